@@ -1,0 +1,280 @@
+/*
+ * The textual languages of Uppaal 4.x/5.x: declarations, templates in XTA
+ * syntax, the system definition, the old Uppaal 3 syntax, label languages
+ * (select, guard, synchronisation, update, invariant) and TCTL queries.
+ *
+ * One grammar with one entry rule per kind of text, so that every label of an
+ * XML model is parsed by the rule for its kind.
+ */
+grammar Uppaal;
+
+// ---------------------------------------------------------------- entry rules
+
+/** A whole .xta or .ta file. */
+xtaFile : topItem* systemLine? trailer* EOF ;
+
+/** A <declaration> element (global or template-local). */
+declarationsText : declaration* EOF ;
+
+/** A <system> (or <instantiation>) element: declarations, instantiations, the system line. */
+systemText : topItem* systemLine? trailer* EOF ;
+
+/** A <parameter> element. */
+parametersText : parameterList? EOF ;
+
+selectLabel : selectItem (',' selectItem)* EOF ;
+guardLabel : guardExpr EOF ;
+invariantLabel : guardExpr EOF ;
+syncLabel : expression direction=('!' | '?')? EOF ;
+updateLabel : expressionList? EOF ;
+
+/** A TCTL query (a <formula> element). */
+queryText : query? EOF ;
+
+/** A .q file: queries one after another. */
+queriesFile : query* EOF ;
+
+/** A TRON interface file (.trn). */
+trnFile : trnItem* EOF ;
+
+trnItem
+    : kind=('input' | 'output') trnChannel (',' trnChannel)* ';'    # TrnChannels
+    | 'precision' NAT ';'                                           # TrnPrecision
+    | 'timeout' NAT ';'                                             # TrnTimeout
+    ;
+
+trnChannel : identifier ('(' (identifier (',' identifier)*)? ')')? ;
+
+// ---------------------------------------------------------------- top level
+
+topItem
+    : declaration
+    | processDecl
+    | instantiation
+    ;
+
+declaration
+    : variableDecl
+    | typedefDecl
+    | functionDecl
+    | chanPriorityDecl
+    | oldConstDecl
+    ;
+
+variableDecl : type variableDeclarator (',' variableDeclarator)* ';' ;
+
+variableDeclarator : identifier arrayDim* ('=' initialiser | ':=' initialiser)? ;
+
+arrayDim : '[' (expression | type) ']' ;
+
+initialiser
+    : expression
+    | '{' initialiser (',' initialiser)* '}'
+    ;
+
+typedefDecl : 'typedef' type typedefName (',' typedefName)* ';' ;
+
+typedefName : identifier arrayDim* ;
+
+functionDecl : type identifier '(' parameterList? ')' block ;
+
+parameterList : parameter (',' parameter)* ;
+
+parameter : type ref='&'? identifier arrayDim* ;
+
+chanPriorityDecl : 'chan' 'priority' chanPriorityItem (separators+=(',' | '<') chanPriorityItem)* ';' ;
+
+chanPriorityItem
+    : 'default'
+    | expression
+    ;
+
+/** Uppaal 3: {@code const N 5;} */
+oldConstDecl : 'const' oldConstItem (',' oldConstItem)* ';' ;
+
+oldConstItem : identifier sign='-'? NAT ;
+
+// ---------------------------------------------------------------- types
+
+type : typePrefix* typeId ;
+
+typePrefix : 'const' | 'urgent' | 'broadcast' | 'meta' | 'hybrid' ;
+
+typeId
+    : 'int' ('[' lower=expression ',' upper=expression ']')?   # IntType
+    | 'bool'                                                   # BoolType
+    | 'clock'                                                  # ClockType
+    | 'chan'                                                   # ChanType
+    | 'double'                                                 # DoubleType
+    | 'void'                                                   # VoidType
+    | 'scalar' '[' expression ']'                              # ScalarType
+    | 'struct' '{' fieldDecl+ '}'                              # StructType
+    | ID                                                       # NamedType
+    ;
+
+fieldDecl : type fieldDeclarator (',' fieldDeclarator)* ';' ;
+
+fieldDeclarator : identifier arrayDim* ;
+
+// ---------------------------------------------------------------- templates in XTA syntax
+
+processDecl : 'process' identifier ('(' parameterList? ')')? '{' processBody '}' ;
+
+processBody
+    : declaration*
+      stateDecl?
+      (commitDecl | urgentDecl | branchpointDecl)*
+      initDecl?
+      transDecl?
+    ;
+
+stateDecl : 'state' locationDecl (',' locationDecl)* ';' ;
+
+locationDecl : identifier ('{' guardExpr? '}')? ;
+
+commitDecl : 'commit' identifier (',' identifier)* ';' ;
+
+urgentDecl : 'urgent' identifier (',' identifier)* ';' ;
+
+branchpointDecl : 'branchpoint' identifier (',' identifier)* ';' ;
+
+initDecl : 'init' identifier ';' ;
+
+transDecl : 'trans' transition (',' transition)* ';' ;
+
+transition : (source=identifier)? '->' target=identifier '{' transitionBody '}' ;
+
+transitionBody
+    : ('select' selectItem (',' selectItem)* ';')?
+      ('guard' guardExpr (',' guardExpr)* ';')?
+      ('sync' syncExpr ';')?
+      ('assign' expressionList? ';')?
+    ;
+
+syncExpr : expression direction=('!' | '?')? ;
+
+selectItem : identifier ':' type ;
+
+// ---------------------------------------------------------------- the system definition
+
+instantiation
+    : identifier ('(' parameterList? ')')? ('=' | ':=') template=identifier '(' argumentList? ')' ';'
+    ;
+
+systemLine : 'system' systemItem (separators+=(',' | '<') systemItem)* ';' ;
+
+systemItem : identifier ;
+
+trailer
+    : ioDecl
+    | progressDecl
+    ;
+
+/** ECDAR-style IO declarations, accepted and ignored. */
+ioDecl : 'IO' identifier '{' (syncExpr (',' syncExpr)*)? '}' ;
+
+progressDecl : 'progress' '{' (expression (':' expression)? ';')* '}' ;
+
+// ---------------------------------------------------------------- statements
+
+block : '{' declaration* statement* '}' ;
+
+statement
+    : block                                                                    # BlockStatement
+    | ';'                                                                      # EmptyStatement
+    | expression ';'                                                           # ExpressionStatement
+    | 'for' '(' init=expressionList? ';' cond=expression? ';' step=expressionList? ')' statement # ForStatement
+    | 'for' '(' identifier ':' type ')' statement                              # IterationStatement
+    | 'while' '(' expression ')' statement                                     # WhileStatement
+    | 'do' statement 'while' '(' expression ')' ';'                            # DoWhileStatement
+    | 'if' '(' expression ')' thenPart=statement ('else' elsePart=statement)?  # IfStatement
+    | 'return' expression? ';'                                                 # ReturnStatement
+    | 'break' ';'                                                              # BreakStatement
+    | 'continue' ';'                                                           # ContinueStatement
+    | 'assert' expression ';'                                                  # AssertStatement
+    ;
+
+// ---------------------------------------------------------------- expressions
+
+expressionList : expression (',' expression)* ;
+
+argumentList : expression (',' expression)* ;
+
+/** A guard or invariant; old syntax allows comma-separated conjunctions only in process bodies. */
+guardExpr : expression ;
+
+expression
+    : primary                                                                       # PrimaryExpr
+    | expression '[' expression ']'                                                 # IndexExpr
+    | expression '.' identifier                                                     # FieldExpr
+    | expression '(' argumentList? ')'                                              # CallExpr
+    | expression op=('++' | '--')                                                   # PostfixExpr
+    | expression '\''                                                               # PrimeExpr
+    | <assoc=right> op=('++' | '--' | '-' | '+' | '!') expression                   # PrefixExpr
+    | expression op=('*' | '/' | '%') expression                                    # BinaryExpr
+    | expression op=('+' | '-') expression                                          # BinaryExpr
+    | expression op=('<<' | '>>') expression                                        # BinaryExpr
+    | expression op=('<?' | '>?') expression                                        # BinaryExpr
+    | expression op=('<' | '<=' | '>=' | '>') expression                            # BinaryExpr
+    | expression op=('==' | '!=') expression                                        # BinaryExpr
+    | expression op='&' expression                                                  # BinaryExpr
+    | expression op='^' expression                                                  # BinaryExpr
+    | expression op='|' expression                                                  # BinaryExpr
+    | expression op='&&' expression                                                 # BinaryExpr
+    | expression op='||' expression                                                 # BinaryExpr
+    | <assoc=right> expression '?' expression ':' expression                        # ConditionalExpr
+    | <assoc=right> expression op=('=' | ':=' | '+=' | '-=' | '*=' | '/=' | '%=' | '|=' | '&=' | '^=' | '<<=' | '>>=') expression # AssignExpr
+    | <assoc=right> op='not' expression                                             # PrefixExpr
+    | expression op='and' expression                                                # BinaryExpr
+    | expression op='or' expression                                                 # BinaryExpr
+    | expression op='imply' expression                                              # BinaryExpr
+    | <assoc=right> quantifier=('forall' | 'exists' | 'sum') '(' identifier ':' type ')' expression # QuantifierExpr
+    ;
+
+primary
+    : NAT                           # NatLiteral
+    | FLOAT                         # FloatLiteral
+    | 'true'                        # TrueLiteral
+    | 'false'                       # FalseLiteral
+    | 'deadlock'                    # DeadlockLiteral
+    | identifier                    # IdentifierRef
+    | '(' expression ')'            # ParenExpr
+    ;
+
+// ---------------------------------------------------------------- queries
+
+query
+    : E_EVENTUALLY expression       # ExistsEventually
+    | A_GLOBALLY expression         # AlwaysGlobally
+    | A_EVENTUALLY expression       # AlwaysEventually
+    | E_GLOBALLY expression         # ExistsGlobally
+    | expression '-->' expression   # LeadsTo
+    ;
+
+// ---------------------------------------------------------------- identifiers
+
+/** Names; the keywords of XTA process bodies are names everywhere else. */
+identifier
+    : ID
+    | 'state' | 'init' | 'trans' | 'commit' | 'branchpoint'
+    | 'guard' | 'sync' | 'assign' | 'select' | 'priority' | 'progress' | 'IO'
+    | 'input' | 'output' | 'precision' | 'timeout'
+    ;
+
+// ---------------------------------------------------------------- lexer
+
+E_EVENTUALLY : 'E' [ \t]* '<>' ;
+A_GLOBALLY : 'A' [ \t]* '[' [ \t]* ']' ;
+A_EVENTUALLY : 'A' [ \t]* '<>' ;
+E_GLOBALLY : 'E' [ \t]* '[' [ \t]* ']' ;
+
+NAT : [0-9]+ ;
+FLOAT : [0-9]+ '.' [0-9]+ ([eE] [+-]? [0-9]+)? | [0-9]+ [eE] [+-]? [0-9]+ ;
+ID : [a-zA-Z_] [a-zA-Z_0-9]* ;
+
+LINE_COMMENT : '//' ~[\r\n]* -> skip ;
+BLOCK_COMMENT : '/*' .*? '*/' -> skip ;
+WS : [ \t\r\n\f\u00a0]+ -> skip ;
+
+/** Anything else: reported by the parser as an unexpected character. */
+UNEXPECTED_CHAR : . ;

@@ -1,0 +1,496 @@
+package io.dtron.xta.internal;
+
+import io.dtron.xta.Diagnostic;
+import io.dtron.xta.Fragment;
+import io.dtron.xta.LineMap;
+import io.dtron.xta.Pos;
+import io.dtron.xta.ast.Coord;
+import io.dtron.xta.ast.Decl;
+import io.dtron.xta.ast.Edge;
+import io.dtron.xta.ast.Expr;
+import io.dtron.xta.ast.Label;
+import io.dtron.xta.ast.Location;
+import io.dtron.xta.ast.Nta;
+import io.dtron.xta.ast.Param;
+import io.dtron.xta.ast.Query;
+import io.dtron.xta.ast.SystemLine;
+import io.dtron.xta.internal.parser.UppaalParser;
+import java.io.StringReader;
+import java.util.ArrayList;
+import java.util.List;
+import java.util.function.Function;
+import javax.xml.stream.XMLInputFactory;
+import javax.xml.stream.XMLStreamConstants;
+import javax.xml.stream.XMLStreamException;
+import javax.xml.stream.XMLStreamReader;
+import org.antlr.v4.runtime.ParserRuleContext;
+
+/**
+ * Reads the Uppaal XML container (DTD flat-1_0 to flat-1_6 and later): global declarations, templates with
+ * their locations, branchpoints, transitions and labels, the instantiation and system sections and the
+ * queries. Each label's text is parsed by the grammar rule for its kind, with positions that point into the
+ * XML file. The DTD is never fetched and no external entity is resolved.
+ */
+final class XmlModelReader {
+    private final String file;
+    private final String raw;
+    private final LineMap lines;
+    private final Fragment whole;
+    private final List<Diagnostic> diagnostics;
+    private XMLStreamReader reader;
+    private String currentTemplate;
+
+    private XmlModelReader(String file, String raw, List<Diagnostic> diagnostics) {
+        this.file = file;
+        this.raw = raw;
+        this.lines = LineMap.of(raw);
+        this.whole = Fragment.ofFile(file, raw);
+        this.diagnostics = diagnostics;
+    }
+
+    /** The model in {@code text}, or null when the XML itself is unreadable (errors added to {@code out}). */
+    static Nta read(String file, String text, List<Diagnostic> out) {
+        return new XmlModelReader(file, text, out).read();
+    }
+
+    private Nta read() {
+        XMLInputFactory factory = XMLInputFactory.newFactory();
+        factory.setProperty(XMLInputFactory.SUPPORT_DTD, false);
+        factory.setProperty(XMLInputFactory.IS_SUPPORTING_EXTERNAL_ENTITIES, false);
+        factory.setProperty(XMLInputFactory.IS_COALESCING, true);
+        List<Decl> globals = new ArrayList<>();
+        List<Decl> templates = new ArrayList<>();
+        List<Decl> systemDecls = new ArrayList<>();
+        List<Query> queries = new ArrayList<>();
+        SystemLine system = null;
+        try {
+            reader = factory.createXMLStreamReader(new StringReader(raw));
+            while (reader.hasNext() && reader.next() != XMLStreamConstants.START_ELEMENT) {
+                // skip the prolog
+            }
+            if (!reader.isStartElement()) {
+                diagnostics.add(Diagnostic.error(new Pos(whole, 0, 0), "not an Uppaal model: the XML has no elements"));
+                return null;
+            }
+            if (!reader.getLocalName().equals("nta")) {
+                diagnostics.add(Diagnostic.error(posOfTag(), "not an Uppaal model: the root element is <"
+                        + reader.getLocalName() + ">, expected <nta>"));
+                return null;
+            }
+            while (nextChild()) {
+                switch (reader.getLocalName()) {
+                    case "declaration" -> globals.addAll(parseDeclarations(text("declaration")));
+                    case "template" -> templates.add(template());
+                    case "instantiation", "system" -> {
+                        String kind = reader.getLocalName();
+                        SystemParts parts = parseSystem(text(kind));
+                        systemDecls.addAll(parts.declarations());
+                        if (parts.system() != null) {
+                            system = parts.system();
+                        }
+                    }
+                    case "queries" -> queries(queries);
+                    default -> {
+                        diagnostics.add(Diagnostic.warning(posOfTag(), "element <" + reader.getLocalName()
+                                + "> is not part of an Uppaal model and is ignored"));
+                        skipElement();
+                    }
+                }
+            }
+        } catch (XMLStreamException e) {
+            int offset = e.getLocation() == null ? 0
+                    : lines.offset(e.getLocation().getLineNumber(), Math.max(1, e.getLocation().getColumnNumber()));
+            offset = Math.max(0, Math.min(offset, raw.length()));
+            diagnostics.add(Diagnostic.error(new Pos(whole, offset, offset), "malformed XML: " + xmlMessage(e)));
+            return null;
+        }
+        List<Decl> all = new ArrayList<>(globals);
+        all.addAll(templates);
+        all.addAll(systemDecls);
+        return new Nta(file, all, system, queries);
+    }
+
+    private static String xmlMessage(XMLStreamException e) {
+        String m = e.getMessage() == null ? "unreadable" : e.getMessage();
+        int i = m.indexOf("Message: ");
+        return i >= 0 ? m.substring(i + "Message: ".length()).trim() : m.trim();
+    }
+
+    // ------------------------------------------------------------ templates
+
+    private Decl.Template template() throws XMLStreamException {
+        currentTemplate = null;
+        String name = null;
+        Pos namePos = posOfTag();
+        Coord coord = null;
+        List<Param> params = List.of();
+        List<Decl> decls = new ArrayList<>();
+        List<Location> locations = new ArrayList<>();
+        List<String> branchpoints = new ArrayList<>();
+        List<Edge> edges = new ArrayList<>();
+        String init = null;
+        Pos initPos = null;
+        while (nextChild()) {
+            switch (reader.getLocalName()) {
+                case "name" -> {
+                    coord = coord();
+                    Fragment f = text("name");
+                    name = f.text().trim();
+                    namePos = trimmedPos(f);
+                    currentTemplate = name;
+                }
+                case "parameter" -> params = parseParams(text("parameter"));
+                case "declaration" -> decls.addAll(parseDeclarations(text("declaration")));
+                case "location" -> locations.add(location());
+                case "branchpoint" -> {
+                    branchpoints.add(attribute("id"));
+                    skipElement();
+                }
+                case "init" -> {
+                    init = attribute("ref");
+                    initPos = posOfTag();
+                    skipElement();
+                }
+                case "transition" -> edges.add(transition());
+                default -> skipElement();
+            }
+        }
+        currentTemplate = null;
+        if (name == null || name.isEmpty()) {
+            diagnostics.add(Diagnostic.error(namePos, "template without a name"));
+            name = "?";
+        }
+        return new Decl.Template(namePos, name, params, decls, locations, branchpoints, init, initPos, edges, coord);
+    }
+
+    private Location location() throws XMLStreamException {
+        String id = attribute("id");
+        Coord coord = coord();
+        Pos pos = posOfTag();
+        String name = null;
+        Location.Kind kind = Location.Kind.NORMAL;
+        Expr invariant = null;
+        while (nextChild()) {
+            switch (reader.getLocalName()) {
+                case "name" -> {
+                    Fragment f = text("location name");
+                    name = f.text().trim();
+                    pos = trimmedPos(f);
+                }
+                case "label" -> {
+                    String labelKind = attribute("kind");
+                    Fragment f = text(labelKind == null ? "label" : labelKind);
+                    if ("invariant".equals(labelKind) && !f.text().isBlank()) {
+                        UppaalParser.InvariantLabelContext ctx = parseRule(f, UppaalParser::invariantLabel);
+                        if (ctx != null) {
+                            invariant = new AstBuilder(f, diagnostics).expr(ctx.guardExpr().expression());
+                        }
+                    }
+                }
+                case "urgent" -> {
+                    kind = Location.Kind.URGENT;
+                    skipElement();
+                }
+                case "committed" -> {
+                    kind = Location.Kind.COMMITTED;
+                    skipElement();
+                }
+                default -> skipElement();
+            }
+        }
+        return new Location(pos, id, name == null || name.isEmpty() ? null : name, kind, invariant, coord);
+    }
+
+    private Edge transition() throws XMLStreamException {
+        Pos pos = posOfTag();
+        String source = null;
+        String target = null;
+        List<Coord> nails = new ArrayList<>();
+        List<Label> labels = new ArrayList<>();
+        List<Edge.Select> selects = List.of();
+        Expr guard = null;
+        Edge.Sync sync = null;
+        List<Expr> updates = List.of();
+        while (nextChild()) {
+            switch (reader.getLocalName()) {
+                case "source" -> {
+                    source = attribute("ref");
+                    skipElement();
+                }
+                case "target" -> {
+                    target = attribute("ref");
+                    skipElement();
+                }
+                case "nail" -> {
+                    nails.add(coord());
+                    skipElement();
+                }
+                case "label" -> {
+                    String kind = attribute("kind");
+                    Coord c = coord();
+                    Fragment f = text(kind == null ? "label" : kind);
+                    labels.add(new Label(f.kind(), f.text(), c));
+                    if (f.text().isBlank()) {
+                        continue;
+                    }
+                    AstBuilder builder = new AstBuilder(f, diagnostics);
+                    switch (f.kind()) {
+                        case "select" -> {
+                            UppaalParser.SelectLabelContext ctx = parseRule(f, UppaalParser::selectLabel);
+                            if (ctx != null) {
+                                selects = ctx.selectItem().stream().map(builder::select).toList();
+                            }
+                        }
+                        case "guard" -> {
+                            UppaalParser.GuardLabelContext ctx = parseRule(f, UppaalParser::guardLabel);
+                            if (ctx != null) {
+                                guard = builder.expr(ctx.guardExpr().expression());
+                            }
+                        }
+                        case "synchronisation" -> {
+                            UppaalParser.SyncLabelContext ctx = parseRule(f, UppaalParser::syncLabel);
+                            if (ctx != null) {
+                                sync = builder.sync(ctx.expression(), ctx.direction, builder.pos(ctx));
+                            }
+                        }
+                        case "assignment" -> {
+                            UppaalParser.UpdateLabelContext ctx = parseRule(f, UppaalParser::updateLabel);
+                            if (ctx != null && ctx.expressionList() != null) {
+                                updates = builder.exprs(ctx.expressionList().expression());
+                            }
+                        }
+                        default -> {
+                            // comments, testcode and the like carry no semantics for DTRON
+                        }
+                    }
+                }
+                default -> skipElement();
+            }
+        }
+        return new Edge(pos, source, target, selects, guard, sync, updates, nails, labels);
+    }
+
+    // ------------------------------------------------------------ label parsing
+
+    private <T extends ParserRuleContext> T parseRule(Fragment f, Function<UppaalParser, T> rule) {
+        return ParserDriver.parse(f, rule, diagnostics);
+    }
+
+    private List<Decl> parseDeclarations(Fragment f) {
+        UppaalParser.DeclarationsTextContext ctx = parseRule(f, UppaalParser::declarationsText);
+        return ctx == null ? List.of() : new AstBuilder(f, diagnostics).declarations(ctx.declaration());
+    }
+
+    private record SystemParts(List<Decl> declarations, SystemLine system) {
+    }
+
+    private SystemParts parseSystem(Fragment f) {
+        UppaalParser.SystemTextContext ctx = parseRule(f, UppaalParser::systemText);
+        if (ctx == null) {
+            return new SystemParts(List.of(), null);
+        }
+        AstBuilder.Section s = new AstBuilder(f, diagnostics).section(ctx.topItem(), ctx.systemLine());
+        return new SystemParts(s.declarations(), s.system());
+    }
+
+    private List<Param> parseParams(Fragment f) {
+        UppaalParser.ParametersTextContext ctx = parseRule(f, UppaalParser::parametersText);
+        return ctx == null ? List.of() : new AstBuilder(f, diagnostics).params(ctx.parameterList());
+    }
+
+    private void queries(List<Query> out) throws XMLStreamException {
+        while (nextChild()) {
+            if (!reader.getLocalName().equals("query")) {
+                skipElement();
+                continue;
+            }
+            Fragment formula = null;
+            String comment = null;
+            while (nextChild()) {
+                switch (reader.getLocalName()) {
+                    case "formula" -> formula = text("formula");
+                    case "comment" -> comment = reader.getElementText().trim();
+                    default -> skipElement();
+                }
+            }
+            if (formula != null && !formula.text().isBlank()) {
+                UppaalParser.QueryTextContext ctx = parseRule(formula, UppaalParser::queryText);
+                if (ctx != null && ctx.query() != null) {
+                    out.add(new AstBuilder(formula, diagnostics).query(ctx.query(), comment));
+                }
+            }
+        }
+    }
+
+    // ------------------------------------------------------------ StAX helpers
+
+    /** Advances to the next child element of the current element; false at the current element's end. */
+    private boolean nextChild() throws XMLStreamException {
+        while (reader.hasNext()) {
+            int event = reader.next();
+            if (event == XMLStreamConstants.START_ELEMENT) {
+                return true;
+            }
+            if (event == XMLStreamConstants.END_ELEMENT) {
+                return false;
+            }
+        }
+        return false;
+    }
+
+    private void skipElement() throws XMLStreamException {
+        int depth = 1;
+        while (depth > 0 && reader.hasNext()) {
+            int event = reader.next();
+            if (event == XMLStreamConstants.START_ELEMENT) {
+                depth++;
+            } else if (event == XMLStreamConstants.END_ELEMENT) {
+                depth--;
+            }
+        }
+    }
+
+    private String attribute(String name) {
+        return reader.getAttributeValue(null, name);
+    }
+
+    private Coord coord() {
+        String x = attribute("x");
+        String y = attribute("y");
+        if (x == null || y == null) {
+            return null;
+        }
+        try {
+            return new Coord(Integer.parseInt(x.trim()), Integer.parseInt(y.trim()));
+        } catch (NumberFormatException e) {
+            return null;
+        }
+    }
+
+    /** The offset just after the current start tag (where its content begins). */
+    private int contentOffset() {
+        javax.xml.stream.Location loc = reader.getLocation();
+        int offset = lines.offset(loc.getLineNumber(), loc.getColumnNumber());
+        offset = Math.max(0, Math.min(offset, raw.length()));
+        if (offset > 0 && raw.charAt(offset - 1) == '>') {
+            return offset;
+        }
+        int gt = raw.lastIndexOf('>', offset);
+        return gt < 0 ? offset : gt + 1;
+    }
+
+    /** The position of the current start tag's {@code <}. */
+    private Pos posOfTag() {
+        int end = contentOffset();
+        int lt = raw.lastIndexOf('<', Math.max(0, end - 1));
+        int start = lt < 0 ? end : lt;
+        return new Pos(whole, start, end);
+    }
+
+    /** The text of the current element as a fragment whose positions point into the file. */
+    private Fragment text(String kind) throws XMLStreamException {
+        int start = contentOffset();
+        String content = reader.getElementText();
+        StringBuilder decoded = new StringBuilder(content.length());
+        int[] offsets = new int[content.length() + 1];
+        int i = start;
+        boolean exact = true;
+        while (i < raw.length() && decoded.length() <= content.length()) {
+            if (raw.startsWith("<![CDATA[", i)) {
+                int end = raw.indexOf("]]>", i);
+                if (end < 0) {
+                    exact = false;
+                    break;
+                }
+                for (int j = i + 9; j < end; j++) {
+                    if (decoded.length() < content.length()) {
+                        offsets[decoded.length()] = j;
+                    }
+                    decoded.append(raw.charAt(j));
+                }
+                i = end + 3;
+            } else if (raw.startsWith("<!--", i)) {
+                int end = raw.indexOf("-->", i);
+                i = end < 0 ? raw.length() : end + 3;
+            } else if (raw.charAt(i) == '<') {
+                break;
+            } else if (raw.charAt(i) == '&') {
+                int semi = raw.indexOf(';', i);
+                String entity = semi < 0 ? "" : raw.substring(i + 1, semi);
+                String value = entity(entity);
+                if (value == null) {
+                    exact = false;
+                    break;
+                }
+                for (int k = 0; k < value.length(); k++) {
+                    if (decoded.length() < content.length()) {
+                        offsets[decoded.length()] = i;
+                    }
+                    decoded.append(value.charAt(k));
+                }
+                i = semi + 1;
+            } else if (raw.charAt(i) == '\r') {
+                // XML turns \r\n and lone \r into \n
+                if (decoded.length() < content.length()) {
+                    offsets[decoded.length()] = i;
+                }
+                decoded.append('\n');
+                i += i + 1 < raw.length() && raw.charAt(i + 1) == '\n' ? 2 : 1;
+            } else {
+                if (decoded.length() < content.length()) {
+                    offsets[decoded.length()] = i;
+                }
+                decoded.append(raw.charAt(i));
+                i++;
+            }
+        }
+        if (!exact || !decoded.toString().equals(content)) {
+            for (int k = 0; k <= content.length(); k++) {
+                offsets[k] = Math.min(raw.length(), start + k);
+            }
+        } else {
+            offsets[content.length()] = i;
+        }
+        return Fragment.ofPart(file, currentTemplate, kind, content, lines, offsets);
+    }
+
+    private static String entity(String name) {
+        switch (name) {
+            case "lt":
+                return "<";
+            case "gt":
+                return ">";
+            case "amp":
+                return "&";
+            case "quot":
+                return "\"";
+            case "apos":
+                return "'";
+            default:
+                try {
+                    if (name.startsWith("#x")) {
+                        return new String(Character.toChars(Integer.parseInt(name.substring(2), 16)));
+                    }
+                    if (name.startsWith("#")) {
+                        return new String(Character.toChars(Integer.parseInt(name.substring(1))));
+                    }
+                } catch (IllegalArgumentException e) {
+                    return null;
+                }
+                return null;
+        }
+    }
+
+    private Pos trimmedPos(Fragment f) {
+        String t = f.text();
+        int s = 0;
+        while (s < t.length() && Character.isWhitespace(t.charAt(s))) {
+            s++;
+        }
+        int e = t.length();
+        while (e > s && Character.isWhitespace(t.charAt(e - 1))) {
+            e--;
+        }
+        return new Pos(f, s, e);
+    }
+}
