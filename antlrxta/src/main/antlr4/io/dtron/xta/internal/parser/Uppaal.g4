@@ -171,7 +171,7 @@ trailer
     ;
 
 /** ECDAR-style IO declarations, accepted and ignored. */
-ioDecl : 'IO' identifier '{' (syncExpr (',' syncExpr)*)? '}' ;
+ioDecl : 'IO' identifier '{' syncExpr (',' syncExpr)* '}' ;
 
 progressDecl : 'progress' '{' (expression (':' expression)? ';')* '}' ;
 
