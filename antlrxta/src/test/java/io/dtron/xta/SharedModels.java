@@ -7,12 +7,13 @@ import java.nio.file.Path;
 import java.util.List;
 import java.util.stream.Stream;
 
-/** The real Uppaal models in {@code ../shared/models}, written by others. */
-final class SharedModels {
+/** The real Uppaal models in {@code ../shared/models}, written by others (a test helper, shared with xtaapi). */
+public final class SharedModels {
     private SharedModels() {
     }
 
-    static Path root() {
+    /** The models folder. */
+    public static Path root() {
         String configured = System.getProperty("dtron.shared");
         Path base = configured != null ? Path.of(configured) : Path.of("..", "..", "shared");
         Path models = base.resolve("models").normalize();
@@ -22,7 +23,8 @@ final class SharedModels {
         return models;
     }
 
-    static List<Path> modelFiles() {
+    /** Every .xml, .xta and .ta file, sorted. */
+    public static List<Path> modelFiles() {
         try (Stream<Path> files = Files.walk(root())) {
             return files.filter(Files::isRegularFile)
                     .filter(p -> p.toString().matches(".*\\.(xml|xta|ta)$"))
@@ -33,7 +35,8 @@ final class SharedModels {
         }
     }
 
-    static String read(Path file) {
+    /** The decoded text of a model file. */
+    public static String read(Path file) {
         try {
             return ModelSyntax.decode(Files.readAllBytes(file));
         } catch (IOException e) {

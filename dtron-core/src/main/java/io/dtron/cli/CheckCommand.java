@@ -1,0 +1,118 @@
+package io.dtron.cli;
+
+import io.dtron.model.ModelException;
+import io.dtron.model.ModelLoader;
+import io.dtron.model.Network;
+import io.dtron.model.Process;
+import io.dtron.model.TestInterface;
+import io.dtron.xta.Diagnostic;
+import java.io.PrintWriter;
+import java.nio.file.Path;
+import java.util.List;
+import java.util.concurrent.Callable;
+import java.util.stream.Collectors;
+import picocli.CommandLine.Command;
+import picocli.CommandLine.Model.CommandSpec;
+import picocli.CommandLine.Option;
+import picocli.CommandLine.Parameters;
+import picocli.CommandLine.Spec;
+
+/** {@code dtron check MODEL...}: loads and type-checks models and prints a summary of each, or its errors. */
+@Command(name = "check", mixinStandardHelpOptions = true, exitCodeOnInvalidInput = 1, exitCodeOnExecutionException = 1,
+        description = {"Load and type-check Uppaal models (.xml, .xta, .ta).",
+                "Prints a summary of each model (templates, processes, clocks, channels, inputs and outputs with"
+                        + " their attached variables), or every error with its file, line and column.",
+                "Exit code 0 when every model loads, 1 otherwise."})
+final class CheckCommand implements Callable<Integer> {
+    private static final int MAX_NAMES = 8;
+
+    @Spec
+    private CommandSpec spec;
+
+    @Parameters(arity = "1..*", paramLabel = "MODEL", description = "Model files to check.")
+    private List<Path> models;
+
+    @Option(names = "--interface", paramLabel = "FILE.trn",
+            description = "TRON interface file (inputs, outputs, attached variables) for the model; by default the"
+                    + " interface comes from i_/o_ channel names.")
+    private Path interfaceFile;
+
+    @Option(names = {"-q", "--quiet"}, description = "Print errors only.")
+    private boolean quiet;
+
+    @Override
+    public Integer call() {
+        PrintWriter out = spec.commandLine().getOut();
+        PrintWriter err = spec.commandLine().getErr();
+        if (interfaceFile != null && models.size() != 1) {
+            err.println("dtron check: --interface applies to one model, but " + models.size() + " were given");
+            return 1;
+        }
+        int failed = 0;
+        for (Path model : models) {
+            try {
+                Network network = ModelLoader.load(model);
+                TestInterface testInterface = interfaceFile == null ? TestInterface.fromNames(network)
+                        : TestInterface.fromFile(network, interfaceFile);
+                if (!quiet) {
+                    summary(out, network, testInterface);
+                }
+            } catch (ModelException e) {
+                failed++;
+                List<Diagnostic> errors = e.errors();
+                err.println(model + ": " + errors.size() + " error" + (errors.size() == 1 ? "" : "s"));
+                for (Diagnostic d : e.diagnostics()) {
+                    err.println("  " + d.format());
+                }
+            }
+        }
+        out.flush();
+        err.flush();
+        return failed == 0 ? 0 : 1;
+    }
+
+    private static void summary(PrintWriter out, Network n, TestInterface i) {
+        out.println(n.file() + ": ok");
+        List<String> templates = n.templates();
+        row(out, "templates", templates.size(), names(templates));
+        row(out, "processes", n.processes().size(), names(n.processes().stream().map(Process::name).toList()));
+        row(out, "clocks", n.clockCount(), names(n.clocks().stream().map(c -> c.name()
+                + (c.type().clocks() > 1 ? "[" + c.type().clocks() + "]" : "")).toList()));
+        long urgent = n.channels().stream().filter(c -> c.kind().urgent()).mapToLong(c -> c.type().channels()).sum();
+        long broadcast = n.channels().stream().filter(c -> c.kind().broadcast())
+                .mapToLong(c -> c.type().channels()).sum();
+        row(out, "channels", n.channelCount(), n.channelCount() == 0 ? ""
+                : "(" + urgent + " urgent, " + broadcast + " broadcast) " + names(n.channels().stream()
+                .map(c -> c.name() + (c.type().channels() > 1 ? "[" + c.type().channels() + "]" : "")).toList()));
+        row(out, "variables", n.variables().size(), "(" + n.stateSize() + " integer slots)");
+        row(out, "inputs", i.inputs().size(), channels(i.inputs()));
+        row(out, "outputs", i.outputs().size(), channels(i.outputs()));
+        if (i.timeUnitMicros() != null || i.timeout() != null) {
+            out.printf("  %-10s %s%n", "timing", (i.timeUnitMicros() == null ? "" : "time unit " + i.timeUnitMicros()
+                    + " us ") + (i.timeout() == null ? "" : "timeout " + i.timeout() + " units"));
+        }
+        if (i.inputs().isEmpty() && i.outputs().isEmpty()) {
+            out.printf("  %-10s %s%n", "", "(name channels i_x / o_y, or give --interface FILE.trn, to test the model)");
+        }
+        for (Diagnostic w : n.warnings()) {
+            out.println("  " + w.format());
+        }
+    }
+
+    private static void row(PrintWriter out, String what, long count, String details) {
+        out.printf("  %-10s %4d  %s%n", what, count, details);
+    }
+
+    private static String names(List<String> names) {
+        if (names.size() <= MAX_NAMES) {
+            return String.join(", ", names);
+        }
+        return String.join(", ", names.subList(0, MAX_NAMES)) + " and " + (names.size() - MAX_NAMES) + " more";
+    }
+
+    private static String channels(List<TestInterface.ObservableChannel> channels) {
+        return channels.stream().map(c -> c.name() + "(" + c.variables().stream()
+                .map(TestInterface.AttachedVariable::name).collect(Collectors.joining(", ")) + ")")
+                .collect(Collectors.joining(", "));
+    }
+}
