@@ -1,0 +1,66 @@
+package io.dtron.api;
+
+import java.util.Objects;
+
+/**
+ * Receives the messages of one channel from a {@link Dtron}.
+ *
+ * <p>All listeners of a {@code Dtron} are called on one thread, one message at
+ * a time, in the bus's total order. A listener may reply inline through
+ * {@link #getDtron()}. An exception thrown by {@link #messageReceived} is logged
+ * with the message and counted; the listener keeps receiving.
+ */
+public abstract class DtronListener {
+    private final IDtronChannel channel;
+    private volatile Dtron dtron;
+
+    /**
+     * Creates a listener.
+     *
+     * @param channel the channel to listen to; its template decides which variables messages must carry
+     */
+    protected DtronListener(IDtronChannel channel) {
+        this.channel = Objects.requireNonNull(channel, "channel");
+    }
+
+    /** Returns the channel this listener listens to. */
+    public final IDtronChannel getChannel() {
+        return channel;
+    }
+
+    /**
+     * Returns the {@code Dtron} this listener is added to, for replies.
+     *
+     * @throws IllegalStateException if the listener is not added to one
+     */
+    public final Dtron getDtron() {
+        Dtron current = dtron;
+        if (current == null) {
+            throw new IllegalStateException("listener not added to a Dtron");
+        }
+        return current;
+    }
+
+    /** Called with every valid message of the channel. */
+    public abstract void messageReceived(IDtronChannelValued message);
+
+    /** Attaches this listener to a {@code Dtron}; false if it already is attached to another one. */
+    final synchronized boolean attach(Dtron owner) {
+        if (dtron != null && dtron != owner) {
+            return false;
+        }
+        dtron = owner;
+        return true;
+    }
+
+    final synchronized void detach(Dtron owner) {
+        if (dtron == owner) {
+            dtron = null;
+        }
+    }
+
+    @Override
+    public String toString() {
+        return getClass().getName() + "[" + channel.getChannelName() + "]";
+    }
+}

@@ -1,0 +1,26 @@
+/**
+ * The public API of DTRON: connect to the bus, send channel synchronisations
+ * and listen to them.
+ *
+ * <p>A model's channel {@code i_move} with the attached global
+ * {@code i_move_amount} is the bus channel {@code move} with the variable
+ * {@code amount}. An adapter for it:
+ *
+ * <pre>{@code
+ * IDtronChannel move = IDtronChannel.of("move", "amount");
+ * IDtronChannel done = IDtronChannel.of("done");
+ * try (Dtron dtron = Dtron.connect(DtronOptions.builder().clusterName("robot").build())) {
+ *     dtron.addDtronListener(new DtronListener(move) {
+ *         public void messageReceived(IDtronChannelValued message) {
+ *             robot.move(message.getVariables().get("amount"));
+ *             getDtron().send(done.constructValued(Map.of()));
+ *         }
+ *     });
+ *     ...
+ * }
+ * }</pre>
+ *
+ * <p>Every member of a bus receives every message, its own included, in one
+ * total order that is the same at all members. Values are immutable.
+ */
+package io.dtron.api;

@@ -1,0 +1,128 @@
+package io.dtron.bus.internal;
+
+import java.nio.charset.StandardCharsets;
+import java.security.GeneralSecurityException;
+import java.util.ArrayList;
+import java.util.List;
+import javax.crypto.SecretKey;
+import javax.crypto.SecretKeyFactory;
+import javax.crypto.spec.PBEKeySpec;
+import javax.crypto.spec.SecretKeySpec;
+import org.jgroups.protocols.AUTH;
+import org.jgroups.protocols.FD_ALL3;
+import org.jgroups.protocols.FD_SOCK2;
+import org.jgroups.protocols.FRAG2;
+import org.jgroups.protocols.MERGE3;
+import org.jgroups.protocols.MFC;
+import org.jgroups.protocols.SEQUENCER;
+import org.jgroups.protocols.SHARED_LOOPBACK;
+import org.jgroups.protocols.SHARED_LOOPBACK_PING;
+import org.jgroups.protocols.SYM_ENCRYPT;
+import org.jgroups.protocols.TCP;
+import org.jgroups.protocols.TCPPING;
+import org.jgroups.protocols.UFC;
+import org.jgroups.protocols.UNICAST3;
+import org.jgroups.protocols.VERIFY_SUSPECT2;
+import org.jgroups.protocols.pbcast.GMS;
+import org.jgroups.protocols.pbcast.NAKACK2;
+import org.jgroups.protocols.pbcast.STABLE;
+import org.jgroups.stack.Protocol;
+
+/**
+ * Not API. Builds DTRON's JGroups protocol stack in code, bottom (transport) first.
+ *
+ * <pre>
+ *  TCP (bind address, port..port+range)      | SHARED_LOOPBACK        (in-JVM mode)
+ *  TCPPING (initial members, same range)     | SHARED_LOOPBACK_PING
+ *  MERGE3                                      heals partitions
+ *  FD_SOCK2 (TCP only), FD_ALL3, VERIFY_SUSPECT2   failure detection
+ *  SYM_ENCRYPT                                 optional: AES, key derived from the secret
+ *  NAKACK2, UNICAST3, STABLE                   reliable FIFO multicast and unicast
+ *  AUTH                                        optional: members must prove the secret to join
+ *  GMS                                         membership views
+ *  MFC, UFC                                    flow control
+ *  SEQUENCER                                   total order: every multicast goes through the coordinator
+ *  FRAG2                                       large messages
+ * </pre>
+ *
+ * <p><b>Discovery.</b> Members find each other with TCPPING over a port range:
+ * every member listens on the first free port of {@code port..port+range} and
+ * probes that whole range at each initial member (by default only the bind
+ * address, i.e. 127.0.0.1). On one host this needs no configuration, no
+ * multicast (often unavailable on loopback in containers and sandboxes), no
+ * shared directory and no daemon; probing a closed loopback port fails at
+ * once. On a LAN, the same range is probed at every given initial member
+ * (a connection attempt gives up after 300 ms). Members of other clusters in
+ * the range answer nothing: JGroups drops messages whose cluster name differs.
+ * The range bounds how many members one host can hold (31 by default).
+ * Alternatives that were not taken: UDP multicast discovery (blocked in many
+ * sandboxes and containers, even on loopback) and FILE_PING (needs a
+ * directory shared by all users of the bus and leaves stale entries of
+ * crashed members behind).
+ *
+ * <p><b>In-JVM mode</b> uses SHARED_LOOPBACK: the members of one JVM exchange
+ * messages in memory, with no sockets at all.
+ */
+final class JGroupsStack {
+    private static final int PBKDF2_ITERATIONS = 65_536;
+    private static final int AES_KEY_BITS = 128;
+
+    private JGroupsStack() {
+    }
+
+    static List<Protocol> build(JGroupsSettings settings) {
+        List<Protocol> stack = new ArrayList<>();
+        if (settings.inJvm()) {
+            stack.add(new SHARED_LOOPBACK().logDiscardMsgs(false));
+            stack.add(new SHARED_LOOPBACK_PING());
+        } else {
+            TCP tcp = new TCP();
+            tcp.setSockConnTimeout(300);
+            stack.add(tcp
+                    .setBindAddress(settings.bindAddress())
+                    .setBindPort(settings.port())
+                    .setPortRange(settings.portRange())
+                    .logDiscardMsgs(false));
+            // TCPPING applies its own port_range only to hosts given as a string, so the range is expanded here
+            stack.add(new TCPPING().setInitialHosts(settings.discoveryAddresses()).setPortRange(0));
+        }
+        stack.add(new MERGE3().setMinInterval(1_000).setMaxInterval(5_000));
+        if (!settings.inJvm()) {
+            stack.add(new FD_SOCK2());
+        }
+        stack.add(new FD_ALL3().setTimeout(15_000).setInterval(3_000));
+        stack.add(new VERIFY_SUSPECT2().setTimeout(1_500));
+        settings.secret().filter(secret -> settings.encrypt()).ifPresent(secret -> {
+            SYM_ENCRYPT encrypt = new SYM_ENCRYPT().symAlgorithm("AES/CBC/PKCS5Padding").symIvLength(16);
+            stack.add(encrypt.setSecretKey(deriveKey(secret, settings.clusterName())));
+        });
+        stack.add(new NAKACK2().useMcastXmit(false));
+        stack.add(new UNICAST3());
+        stack.add(new STABLE());
+        settings.secret().ifPresent(secret -> {
+            AUTH auth = new AUTH();
+            SharedSecretToken token = new SharedSecretToken(secret, settings.clusterName());
+            token.setAuth(auth);
+            stack.add(auth.setAuthToken(token));
+        });
+        stack.add(new GMS().printLocalAddress(false).setJoinTimeout(1_000));
+        stack.add(new MFC());
+        stack.add(new UFC());
+        stack.add(new SEQUENCER());
+        stack.add(new FRAG2().setFragSize(60_000));
+        return stack;
+    }
+
+    /** Derives the AES key from the secret with PBKDF2, salted with the cluster name. */
+    static SecretKey deriveKey(String secret, String clusterName) {
+        try {
+            PBEKeySpec spec = new PBEKeySpec(secret.toCharArray(),
+                    ("dtron-bus:" + clusterName).getBytes(StandardCharsets.UTF_8), PBKDF2_ITERATIONS, AES_KEY_BITS);
+            byte[] key = SecretKeyFactory.getInstance("PBKDF2WithHmacSHA256").generateSecret(spec).getEncoded();
+            spec.clearPassword();
+            return new SecretKeySpec(key, "AES");
+        } catch (GeneralSecurityException e) {
+            throw new IllegalStateException("cannot derive the encryption key", e);
+        }
+    }
+}
