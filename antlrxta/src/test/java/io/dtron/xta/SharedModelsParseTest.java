@@ -26,6 +26,12 @@ class SharedModelsParseTest {
     void everySharedModelParsesWithoutSyntaxErrors(Path file) {
         Parsed<Nta> parsed = ModelSyntax.parseModel(file.getFileName().toString(), SharedModels.read(file));
         String errors = parsed.diagnostics().stream().map(Diagnostic::format).collect(Collectors.joining("\n"));
+        if (file.getFileName().toString().equals("err-13.xta")) {
+            // an empty IO list, "IO P1{}", is a syntax error in Uppaal too
+            assertEquals(List.of("err-13.xta:25:7: error: syntax error: unexpected '}'"),
+                    parsed.diagnostics().stream().map(Diagnostic::format).toList());
+            return;
+        }
         assertFalse(parsed.hasErrors(), errors);
         assertNotNull(parsed.value());
         assertNotNull(parsed.value().system(), "every shared model has a system line");

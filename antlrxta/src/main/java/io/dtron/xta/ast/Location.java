@@ -1,6 +1,7 @@
 package io.dtron.xta.ast;
 
 import io.dtron.xta.Pos;
+import java.util.List;
 
 /**
  * A location of a template.
@@ -11,8 +12,12 @@ import io.dtron.xta.Pos;
  * @param kind      normal, urgent or committed
  * @param invariant the invariant, or null
  * @param coord     the drawing position, or null
+ * @param labels    the name and labels as drawn (kind {@code name}, {@code invariant}, {@code comments}...)
  */
-public record Location(Pos pos, String id, String name, Kind kind, Expr invariant, Coord coord) {
+public record Location(Pos pos, String id, String name, Kind kind, Expr invariant, Coord coord, List<Label> labels) {
+    public Location {
+        labels = List.copyOf(labels);
+    }
 
     /** Normal, urgent (no delay) or committed (no delay, and the next move leaves a committed location). */
     public enum Kind { NORMAL, URGENT, COMMITTED }

@@ -164,7 +164,7 @@ final class AstBuilder {
             for (LocationDeclContext l : body.stateDecl().locationDecl()) {
                 String n = name(l.identifier());
                 locations.add(new Location(pos(l.identifier()), n, n, kinds.getOrDefault(n, Location.Kind.NORMAL),
-                        l.guardExpr() == null ? null : expr(l.guardExpr().expression()), null));
+                        l.guardExpr() == null ? null : expr(l.guardExpr().expression()), null, List.of()));
             }
         }
         List<String> branchpoints = new ArrayList<>();

@@ -170,16 +170,21 @@ final class XmlModelReader {
         String name = null;
         Location.Kind kind = Location.Kind.NORMAL;
         Expr invariant = null;
+        List<Label> labels = new ArrayList<>();
         while (nextChild()) {
             switch (reader.getLocalName()) {
                 case "name" -> {
+                    Coord c = coord();
                     Fragment f = text("location name");
+                    labels.add(new Label("name", f.text(), c));
                     name = f.text().trim();
                     pos = trimmedPos(f);
                 }
                 case "label" -> {
                     String labelKind = attribute("kind");
+                    Coord c = coord();
                     Fragment f = text(labelKind == null ? "label" : labelKind);
+                    labels.add(new Label(f.kind(), f.text(), c));
                     if ("invariant".equals(labelKind) && !f.text().isBlank()) {
                         UppaalParser.InvariantLabelContext ctx = parseRule(f, UppaalParser::invariantLabel);
                         if (ctx != null) {
@@ -198,7 +203,7 @@ final class XmlModelReader {
                 default -> skipElement();
             }
         }
-        return new Location(pos, id, name == null || name.isEmpty() ? null : name, kind, invariant, coord);
+        return new Location(pos, id, name == null || name.isEmpty() ? null : name, kind, invariant, coord, labels);
     }
 
     private Edge transition() throws XMLStreamException {
