@@ -42,6 +42,11 @@ public final class Fragment {
         return new Fragment(file, template, kind, text, fileLines, fileOffsets.clone());
     }
 
+    /** The same text attributed to {@code template} (for a template's name, read before it is known). */
+    public Fragment withTemplate(String template) {
+        return new Fragment(file, template, kind, text, fileLines, fileOffsets);
+    }
+
     /** The file name as the user gave it. */
     public String file() {
         return file;

@@ -121,7 +121,10 @@ public sealed interface Type {
         }
     }
 
-    /** The difference of two clocks, {@code x - y}, as compared in guards. */
+    /**
+     * The difference of two clocks, {@code x - y}, possibly offset by an integer, as compared in guards. (A
+     * clock offset by an integer, {@code x + 2}, has type {@link Clock}.)
+     */
     record ClockDifference() implements Type {
         /** The one clock-difference type. */
         public static final ClockDifference INSTANCE = new ClockDifference();
@@ -271,13 +274,16 @@ public sealed interface Type {
         }
     }
 
-    /** Where a clock formula may stand. */
+    /** Where a clock formula may stand (Uppaal's classification). */
     enum ConstraintKind {
-        /** Upper bounds only ({@code x < c}, {@code x <= c}) and their conjunctions: usable as an invariant. */
+        /**
+         * Bounds {@code <, <=, >=, >} on clocks and clock differences, their conjunctions, and disjunctions with
+         * conditions on data: usable as an invariant or a guard.
+         */
         INVARIANT,
-        /** Conjunctions of bounds ({@code <, <=, ==, >=, >}): usable as a guard. */
+        /** As {@link #INVARIANT}, with {@code ==} on clocks too: usable as a guard. */
         GUARD,
-        /** Anything else ({@code !=}, disjunctions, negations): usable in queries only. */
+        /** Anything else ({@code !=}, disjunctions of clock constraints, negations): usable in queries only. */
         CONSTRAINT
     }
 }

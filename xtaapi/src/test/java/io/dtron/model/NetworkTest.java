@@ -46,7 +46,7 @@ class NetworkTest {
                 process P() {
                     state A { x <= K }, B;
                     init A;
-                    trans A -> B { guard x >= K - 2 && v == 1 && x - y < 3; assign x = 0, v = K; };
+                    trans A -> B { guard x >= K - 2 && v == 1 && x - y == 3; assign x = 0, v = K; };
                 }
                 system P;
                 """);
@@ -56,12 +56,32 @@ class NetworkTest {
         Expression.Binary bound = (Expression.Binary) invariant;
         assertEquals(7, ((Expression.Constant) bound.right()).value());
         Edge edge = p.edges().get(0);
+        // as in Uppaal: bounds are invariant-like, '==' on clocks makes a guard
         assertEquals(new Type.ClockConstraint(Type.ConstraintKind.GUARD), edge.guard().type());
         Expression.Assign reset = (Expression.Assign) edge.updates().get(0);
         assertInstanceOf(Expression.ClockRef.class, reset.target());
         Expression.Assign setV = (Expression.Assign) edge.updates().get(1);
         assertEquals(7, ((Expression.Constant) setV.value()).value());
         assertNull(edge.sync());
+    }
+
+    @Test
+    void clockOffsetsAndDisjunctionsWithDataAreGuardsAsInUppaal() throws ModelException {
+        Network n = load("""
+                clock x, y;
+                bool b;
+                process P() {
+                    state A { x + 1 <= 5 && (b || y - 2 >= x) }; init A;
+                    trans A -> A { guard b || x + 1 < 3; }, A -> A { guard 2 + x == y; };
+                }
+                system P;
+                """);
+        Process p = n.processes().get(0);
+        assertEquals(new Type.ClockConstraint(Type.ConstraintKind.INVARIANT), p.locations().get(0).invariant().type());
+        assertEquals(new Type.ClockConstraint(Type.ConstraintKind.INVARIANT), p.edges().get(0).guard().type());
+        Expression.Binary eq = (Expression.Binary) p.edges().get(1).guard();
+        assertEquals(Type.Clock.INSTANCE, eq.left().type(), "2 + x is a clock offset by an integer");
+        assertEquals(new Type.ClockConstraint(Type.ConstraintKind.GUARD), eq.type());
     }
 
     @Test

@@ -3,14 +3,17 @@ package io.dtron.xta.internal;
 import io.dtron.xta.Diagnostic;
 import io.dtron.xta.Fragment;
 import io.dtron.xta.Pos;
+import io.dtron.xta.internal.parser.UppaalLexer;
 import java.util.ArrayList;
 import java.util.List;
+import java.util.Set;
 import java.util.TreeSet;
 import org.antlr.v4.runtime.BaseErrorListener;
 import org.antlr.v4.runtime.Parser;
 import org.antlr.v4.runtime.RecognitionException;
 import org.antlr.v4.runtime.Recognizer;
 import org.antlr.v4.runtime.Token;
+import org.antlr.v4.runtime.TokenStream;
 import org.antlr.v4.runtime.misc.IntervalSet;
 
 /** Turns ANTLR's syntax errors into {@link Diagnostic}s with short messages in the model's terms. */
@@ -38,9 +41,48 @@ final class SyntaxErrorCollector extends BaseErrorListener {
             start = trimmedEnd();
             end = start;
         }
-        Pos pos = new Pos(fragment, start, end);
-        String message = describe(recognizer, token, e);
-        diagnostics.add(Diagnostic.error(pos, message));
+        String message;
+        Token next = token == null ? null : neighbour(recognizer, token, 1);
+        Token previous = token == null ? null : neighbour(recognizer, token, -1);
+        if (token != null && token.getType() == UppaalLexer.UNTERMINATED_COMMENT) {
+            message = "a comment starts here with '/*' but never ends with '*/'";
+            end = start + 2;
+        } else if (isOperator(token) && next != null && !startsExpression(next)) {
+            // "3 +;": the operand is missing; say so where it should be
+            message = "syntax error: an operand is missing after '" + token.getText() + "'";
+            start = next.getType() == Token.EOF ? trimmedEnd() : next.getStartIndex();
+            end = next.getType() == Token.EOF ? start : next.getStopIndex() + 1;
+        } else if (token != null && !startsExpression(token) && isOperator(previous)) {
+            message = "syntax error: an operand is missing after '" + previous.getText() + "'";
+        } else {
+            message = describe(recognizer, token, e);
+        }
+        diagnostics.add(Diagnostic.error(new Pos(fragment, start, end), message));
+    }
+
+    private static Token neighbour(Recognizer<?, ?> recognizer, Token token, int step) {
+        if (!(recognizer instanceof Parser parser) || token.getTokenIndex() < 0) {
+            return null;
+        }
+        TokenStream tokens = parser.getInputStream();
+        int i = token.getTokenIndex() + step;
+        return i >= 0 && i < tokens.size() ? tokens.get(i) : null;
+    }
+
+    private static final Set<String> BINARY_OPERATORS = Set.of("+", "-", "*", "/", "%", "<", "<=", ">", ">=", "==",
+            "!=", "&&", "||", "&", "|", "^", "<<", ">>", "<?", ">?", "?", ":", "=", ":=", "+=", "-=", "*=", "/=", "%=",
+            "and", "or", "imply", "not", "!");
+
+    private static boolean isOperator(Token token) {
+        return token != null && token.getType() != Token.EOF && BINARY_OPERATORS.contains(token.getText());
+    }
+
+    private static boolean startsExpression(Token token) {
+        if (token.getType() == Token.EOF) {
+            return false;
+        }
+        String text = token.getText();
+        return !(text.equals(";") || text.equals(",") || text.equals(")") || text.equals("]") || text.equals("}"));
     }
 
     private int trimmedEnd() {
@@ -56,7 +98,7 @@ final class SyntaxErrorCollector extends BaseErrorListener {
         String found;
         if (token == null || token.getType() == Token.EOF) {
             found = "end of text";
-        } else if (token.getType() == io.dtron.xta.internal.parser.UppaalLexer.UNEXPECTED_CHAR) {
+        } else if (token.getType() == UppaalLexer.UNEXPECTED_CHAR) {
             found = "character '" + token.getText() + "'";
         } else {
             found = "'" + token.getText() + "'";

@@ -73,7 +73,9 @@ final class XmlModelReader {
                 return null;
             }
             if (!reader.getLocalName().equals("nta")) {
-                diagnostics.add(Diagnostic.error(posOfTag(), "not an Uppaal model: the root element is <"
+                int at = posOfTag().fragment().fileOffset(0);
+                diagnostics.add(Diagnostic.error(new Pos(whole, at, at),
+                        "not an Uppaal model: the root element is <"
                         + reader.getLocalName() + ">, expected <nta>"));
                 return null;
             }
@@ -136,8 +138,8 @@ final class XmlModelReader {
                     coord = coord();
                     Fragment f = text("name");
                     name = f.text().trim();
-                    namePos = trimmedPos(f);
                     currentTemplate = name;
+                    namePos = trimmedPos(f.withTemplate(name));
                 }
                 case "parameter" -> params = parseParams(text("parameter"));
                 case "declaration" -> decls.addAll(parseDeclarations(text("declaration")));
@@ -384,12 +386,18 @@ final class XmlModelReader {
         return gt < 0 ? offset : gt + 1;
     }
 
-    /** The position of the current start tag's {@code <}. */
+    /** The current start tag, as a fragment of the current template named after the element. */
     private Pos posOfTag() {
         int end = contentOffset();
         int lt = raw.lastIndexOf('<', Math.max(0, end - 1));
         int start = lt < 0 ? end : lt;
-        return new Pos(whole, start, end);
+        int[] offsets = new int[end - start + 1];
+        for (int i = 0; i < offsets.length; i++) {
+            offsets[i] = start + i;
+        }
+        Fragment tag = Fragment.ofPart(file, currentTemplate, reader.getLocalName(), raw.substring(start, end), lines,
+                offsets);
+        return new Pos(tag, 0, end - start);
     }
 
     /** The text of the current element as a fragment whose positions point into the file. */

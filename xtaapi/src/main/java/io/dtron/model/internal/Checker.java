@@ -482,12 +482,28 @@ final class Checker {
                 ConstraintKind kind = ConstraintKind.CONSTRAINT;
                 if (op == Operator.AND) {
                     kind = combine(kindOf(left), kindOf(right));
+                } else if (op == Operator.OR && lc != rc) {
+                    // as in Uppaal: a condition on data or a guard is still a guard
+                    kind = lc ? kindOf(left) : kindOf(right);
                 }
                 return new Expression.Binary(pos, new Type.ClockConstraint(kind), op, left, right);
             }
-            case SUB -> {
-                if (left.type() instanceof Type.Clock && right.type() instanceof Type.Clock) {
-                    return new Expression.Binary(pos, Type.ClockDifference.INSTANCE, op, left, right);
+            case ADD, SUB -> {
+                Type lt = left.type();
+                Type rt = right.type();
+                boolean li = lt instanceof Type.Int;
+                boolean ri = rt instanceof Type.Int;
+                Type clockish = null;
+                if (op == Operator.SUB && lt instanceof Type.Clock && rt instanceof Type.Clock) {
+                    clockish = Type.ClockDifference.INSTANCE;
+                } else if (lt instanceof Type.Clock && ri || op == Operator.ADD && li && rt instanceof Type.Clock) {
+                    clockish = Type.Clock.INSTANCE;
+                } else if (lt instanceof Type.ClockDifference && ri
+                        || li && rt instanceof Type.ClockDifference) {
+                    clockish = Type.ClockDifference.INSTANCE;
+                }
+                if (clockish != null) {
+                    return new Expression.Binary(pos, clockish, op, left, right);
                 }
             }
             default -> {
@@ -524,12 +540,12 @@ final class Checker {
         }
         boolean lClock = lt instanceof Type.Clock || lt instanceof Type.ClockDifference;
         boolean rClock = rt instanceof Type.Clock || rt instanceof Type.ClockDifference;
-        if (lClock && isInteger(rt) || isInteger(lt) && rClock
+        // clocks are compared with integers (not booleans), with clocks, or as differences with integers
+        if (lClock && rt instanceof Type.Int || lt instanceof Type.Int && rClock
                 || lt instanceof Type.Clock && rt instanceof Type.Clock) {
-            Operator effective = lClock ? op : flip(op);
-            ConstraintKind kind = switch (effective) {
-                case LT, LE -> ConstraintKind.INVARIANT;
-                case GT, GE, EQ -> ConstraintKind.GUARD;
+            ConstraintKind kind = switch (op) {
+                case LT, LE, GE, GT -> ConstraintKind.INVARIANT;
+                case EQ -> ConstraintKind.GUARD;
                 default -> ConstraintKind.CONSTRAINT;
             };
             return new Expression.Binary(pos, new Type.ClockConstraint(kind), op, left, right);
@@ -539,15 +555,6 @@ final class Checker {
                 + describe(rt) + (lClock || rClock ? "; a clock is compared with an integer, as in x <= 5" : ""));
     }
 
-    private static Operator flip(Operator op) {
-        return switch (op) {
-            case LT -> Operator.GT;
-            case LE -> Operator.GE;
-            case GT -> Operator.LT;
-            case GE -> Operator.LE;
-            default -> op;
-        };
-    }
 
     private static ConstraintKind kindOf(Expression e) {
         return e.type() instanceof Type.ClockConstraint c ? c.kind() : null;

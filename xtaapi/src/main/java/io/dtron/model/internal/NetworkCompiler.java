@@ -481,8 +481,8 @@ public final class NetworkCompiler {
                 return null;
             }
             if (x.type() instanceof Type.ClockConstraint c && c.kind() != Type.ConstraintKind.INVARIANT) {
-                diagnostics.error(e.pos(), "an invariant is a conjunction of upper bounds on clocks (x < c, x <= c,"
-                        + " x - y <= c) and conditions on data; '" + e.pos().text() + "' is not");
+                diagnostics.error(e.pos(), "an invariant is a conjunction of bounds on clocks (x <= c, x - y < c,"
+                        + " x >= c, but not x == c or x != c) and conditions on data; '" + e.pos().text() + "' is not");
                 return null;
             }
             if (!(x.type() instanceof Type.ClockConstraint) && !Checker.isInteger(x.type())) {
@@ -576,8 +576,8 @@ public final class NetworkCompiler {
             }
             if (x.type() instanceof Type.ClockConstraint c && c.kind() == Type.ConstraintKind.CONSTRAINT) {
                 diagnostics.error(e.pos(), "a guard is a conjunction of clock bounds (x < c, x - y >= c, x == c) and"
-                        + " conditions on data; '!=' on clocks, and disjunctions or negations of clock constraints,"
-                        + " are not allowed");
+                        + " conditions on data; '!=' on clocks, negations of clock constraints and disjunctions of two"
+                        + " clock constraints are not allowed");
                 return null;
             }
             if (!(x.type() instanceof Type.ClockConstraint) && !Checker.isInteger(x.type())) {

@@ -274,6 +274,9 @@ ID : [a-zA-Z_] [a-zA-Z_0-9]* ;
 
 LINE_COMMENT : '//' ~[\r\n]* -> skip ;
 BLOCK_COMMENT : '/*' .*? '*/' -> skip ;
+
+/** A comment that runs to the end of the text: reported by the parser. */
+UNTERMINATED_COMMENT : '/*' ( ~'*' | '*'+ ~[*/] )* '*'* EOF ;
 WS : [ \t\r\n\f\u00a0]+ -> skip ;
 
 /** Anything else: reported by the parser as an unexpected character. */
