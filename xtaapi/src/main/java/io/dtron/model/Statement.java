@@ -20,7 +20,10 @@ public sealed interface Statement {
     record Eval(Pos pos, Expression expression) implements Statement {
     }
 
-    /** Initialises a local variable's slots: from an expression, or to zeros when it is null. */
+    /**
+     * Initialises a local variable's slots: from an expression, or, when it is null, to the default values
+     * (0, or the bound nearest 0 of a range that excludes 0, as for variables).
+     */
     record InitLocal(Pos pos, int slot, Type type, Expression initial) implements Statement {
     }
 
