@@ -1,0 +1,22 @@
+package io.dtron.engine;
+
+import io.dtron.model.TestInterface;
+
+/** What an {@link Adapter} gets from the engine: a way to report outputs, the run's clock and the interface. */
+public interface AdapterContext {
+
+    /**
+     * Reports an output of the system under test, time-stamped with the clock's current time. Thread-safe; in
+     * virtual time, call it from a task scheduled on {@link #clock()} or from {@link Adapter#perform}.
+     */
+    void report(Event output);
+
+    /** The run's clock. */
+    TestClock clock();
+
+    /** The observable interface of the model: the channel and variable names events use. */
+    TestInterface testInterface();
+
+    /** Microseconds per model time unit in this run. */
+    long timeUnitMicros();
+}

@@ -1,0 +1,56 @@
+package io.dtron.engine;
+
+import java.util.Objects;
+
+/**
+ * The settings of a test run.
+ *
+ * @param seed           the seed of the run's one random source (printed, so that a run can be replayed)
+ * @param timeUnitMicros microseconds per model time unit
+ * @param timeout        the test duration in model time units; the run passes when it is reached
+ * @param delayPolicy    how input times are chosen
+ * @param delayBound     for {@link DelayPolicy#RANDOM_BOUNDED}: the largest delay after a window opens, in model
+ *                       time units
+ * @param virtualTime    whether the run uses virtual time (deterministic, as fast as the CPU allows) rather
+ *                       than real time
+ */
+public record TestOptions(long seed, long timeUnitMicros, long timeout, DelayPolicy delayPolicy, long delayBound,
+                          boolean virtualTime) {
+    public TestOptions {
+        Objects.requireNonNull(delayPolicy, "delayPolicy");
+        if (timeUnitMicros <= 0) {
+            throw new IllegalArgumentException("the time unit must be a positive number of microseconds");
+        }
+        if (timeout <= 0) {
+            throw new IllegalArgumentException("the timeout must be a positive number of model time units");
+        }
+        if (delayBound < 0) {
+            throw new IllegalArgumentException("the delay bound must not be negative");
+        }
+    }
+
+    /** Options with defaults: random delays, virtual time, time unit 1000 us, timeout 1000 units. */
+    public static TestOptions defaults(long seed) {
+        return new TestOptions(seed, 1000, 1000, DelayPolicy.RANDOM, 0, true);
+    }
+
+    /** These options with another timeout (model time units). */
+    public TestOptions withTimeout(long units) {
+        return new TestOptions(seed, timeUnitMicros, units, delayPolicy, delayBound, virtualTime);
+    }
+
+    /** These options with another time unit. */
+    public TestOptions withTimeUnit(long micros) {
+        return new TestOptions(seed, micros, timeout, delayPolicy, delayBound, virtualTime);
+    }
+
+    /** These options with another delay policy and bound. */
+    public TestOptions withDelayPolicy(DelayPolicy policy, long bound) {
+        return new TestOptions(seed, timeUnitMicros, timeout, policy, bound, virtualTime);
+    }
+
+    /** These options in real or virtual time. */
+    public TestOptions withVirtualTime(boolean virtual) {
+        return new TestOptions(seed, timeUnitMicros, timeout, delayPolicy, delayBound, virtual);
+    }
+}

@@ -1,0 +1,111 @@
+package io.dtron.engine.internal.clock;
+
+import io.dtron.engine.Event;
+import io.dtron.engine.TestClock;
+import java.util.PriorityQueue;
+import java.util.concurrent.LinkedBlockingQueue;
+
+/**
+ * The clock of one run, as the tester drives it: scheduled tasks run on the tester's thread, inside
+ * {@link #awaitUntil}, and outputs reported by adapters are queued with their times. Subclasses decide what
+ * waiting means: virtual time jumps, real time sleeps.
+ */
+public abstract class RunClock implements TestClock {
+
+    /** An output with the time it was reported, in microseconds since the start. */
+    public record TimedEvent(Event event, long micros) {
+    }
+
+    private final PriorityQueue<Task> tasks = new PriorityQueue<>();
+    private final LinkedBlockingQueue<TimedEvent> outputs = new LinkedBlockingQueue<>();
+    private long sequence;
+
+    private static final class Task implements Comparable<Task>, Scheduled {
+        final long due;
+        final long seq;
+        final Runnable action;
+        volatile boolean cancelled;
+
+        Task(long due, long seq, Runnable action) {
+            this.due = due;
+            this.seq = seq;
+            this.action = action;
+        }
+
+        @Override
+        public int compareTo(Task o) {
+            return due != o.due ? Long.compare(due, o.due) : Long.compare(seq, o.seq);
+        }
+
+        @Override
+        public void cancel() {
+            cancelled = true;
+        }
+    }
+
+    @Override
+    public final Scheduled schedule(long delayMicros, Runnable task) {
+        synchronized (tasks) {
+            Task t = new Task(nowMicros() + Math.max(0, delayMicros), sequence++, task);
+            tasks.add(t);
+            return t;
+        }
+    }
+
+    /** Queues an output reported now (thread-safe). */
+    public final void report(Event output) {
+        outputs.add(new TimedEvent(output, nowMicros()));
+    }
+
+    /**
+     * Runs due tasks and waits until {@code untilMicros} or until an output is reported, whichever comes first;
+     * returns the output (removed from the queue), or null when the time was reached first.
+     */
+    public final TimedEvent awaitUntil(long untilMicros) {
+        while (true) {
+            TimedEvent output = outputs.poll();
+            if (output != null) {
+                return output;
+            }
+            Task next;
+            synchronized (tasks) {
+                next = tasks.peek();
+            }
+            long target = next == null ? untilMicros : Math.min(untilMicros, next.due);
+            if (!waitFor(target)) {
+                continue;
+            }
+            if (next != null && next.due <= target && nowMicros() >= next.due) {
+                synchronized (tasks) {
+                    tasks.remove(next);
+                }
+                if (!next.cancelled) {
+                    next.action.run();
+                }
+                continue;
+            }
+            if (nowMicros() >= untilMicros) {
+                return outputs.poll();
+            }
+        }
+    }
+
+    /** Whether an output is waiting. */
+    protected final boolean hasOutput() {
+        return !outputs.isEmpty();
+    }
+
+    /**
+     * Moves or waits the time forward to {@code targetMicros}; returns false if an output arrived first (then
+     * the time may be earlier than the target).
+     */
+    protected abstract boolean waitFor(long targetMicros);
+
+    /** Blocks until an output arrives or {@code nanos} pass; for real time. */
+    protected final void awaitOutput(long nanos) throws InterruptedException {
+        TimedEvent e = outputs.poll(nanos, java.util.concurrent.TimeUnit.NANOSECONDS);
+        if (e != null) {
+            outputs.add(e);
+        }
+    }
+}

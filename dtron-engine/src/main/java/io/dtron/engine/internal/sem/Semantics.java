@@ -1,0 +1,498 @@
+package io.dtron.engine.internal.sem;
+
+import io.dtron.engine.UnsupportedModelException;
+import io.dtron.engine.internal.eval.ClockResets;
+import io.dtron.engine.internal.eval.Evaluator;
+import io.dtron.engine.zone.Bound;
+import io.dtron.engine.zone.Dbm;
+import io.dtron.model.ClockVariable;
+import io.dtron.model.Edge;
+import io.dtron.model.Expression;
+import io.dtron.model.Location;
+import io.dtron.model.Network;
+import io.dtron.model.Process;
+import io.dtron.model.Type;
+import java.util.ArrayList;
+import java.util.Arrays;
+import java.util.List;
+
+/**
+ * The symbolic semantics of a network, as Uppaal defines it: internal moves, binary synchronisation (the
+ * sender's updates before the receiver's), broadcast synchronisation (every process with an enabled receiving
+ * edge takes part, in the order of the system line), committed locations (a move must involve a process in a
+ * committed location when there is one), urgent locations and urgent channels (no delay), select bindings,
+ * guards on data and clocks, and location invariants bounding delays. Zones are over integer ticks, a fixed
+ * number per model time unit; the last clock of every zone is the tester's clock of time elapsed since its
+ * last observation.
+ */
+public final class Semantics {
+    private final Network network;
+    private final Evaluator evaluator;
+    private final int ticksPerUnit;
+    private final int dimension;
+    private final int[] maxBounds;
+    private final Process[] processes;
+
+    /** A move: the edges that take part, in the order their updates run, and the channel (-1 for none). */
+    public record Move(int channel, List<Step> steps) {
+        public Move {
+            steps = List.copyOf(steps);
+        }
+    }
+
+    /** One process's edge in a move, with its select values in {@code frame}. */
+    public record Step(int process, Edge edge, int[] frame) {
+    }
+
+    /** Receives the successors of a state. */
+    public interface MoveSink {
+        /** One successor, reached by {@code move}; {@code next} is owned by the sink. */
+        void accept(Move move, SymState next);
+    }
+
+    /** The semantics of {@code network} with zones over {@code ticksPerUnit} ticks per model time unit. */
+    public Semantics(Network network, int ticksPerUnit) {
+        this.network = network;
+        this.ticksPerUnit = ticksPerUnit;
+        this.dimension = network.clockCount() + 2;
+        this.processes = network.processes().toArray(new Process[0]);
+        checkSupported(network);
+        this.evaluator = new Evaluator(network);
+        this.maxBounds = maxBounds(network, ticksPerUnit, dimension);
+    }
+
+    /** The network. */
+    public Network network() {
+        return network;
+    }
+
+    /** The evaluator of the network's expressions. */
+    public Evaluator evaluator() {
+        return evaluator;
+    }
+
+    /** Ticks per model time unit. */
+    public int ticksPerUnit() {
+        return ticksPerUnit;
+    }
+
+    /** The number of the clock that measures time elapsed since the tester's last observation. */
+    public int elapsedClock() {
+        return dimension - 1;
+    }
+
+    /** The initial state: every clock 0, initial locations and values, invariants applied. */
+    public SymState initial() {
+        int[] locations = new int[processes.length];
+        for (Process p : processes) {
+            locations[p.index()] = p.initial();
+        }
+        int[] vars = network.initialState();
+        Dbm zone = Dbm.zero(dimension);
+        if (!invariants(locations, vars, zone)) {
+            throw new UnsupportedModelException("the initial state violates a location invariant");
+        }
+        return new SymState(locations, vars, zone);
+    }
+
+    /** Whether time may pass in {@code s}: no process is in an urgent or committed location, no urgent move. */
+    public boolean mayDelay(SymState s) {
+        for (Process p : processes) {
+            int l = s.locations[p.index()];
+            if (l >= 0 && p.locations().get(l).isUrgentOrCommitted()) {
+                return false;
+            }
+        }
+        return !urgentSyncEnabled(s);
+    }
+
+    /** Lets time pass in {@code s} (in place), as far as the invariants allow; false if nothing is left. */
+    public boolean delay(SymState s) {
+        if (mayDelay(s)) {
+            s.zone.up();
+        }
+        return invariants(s.locations, s.vars, s.zone);
+    }
+
+    /** Applies the invariants of {@code locations} to {@code zone}; false if the zone becomes empty. */
+    public boolean invariants(int[] locations, int[] vars, Dbm zone) {
+        for (Process p : processes) {
+            int l = locations[p.index()];
+            if (l < 0) {
+                continue;
+            }
+            Location loc = p.locations().get(l);
+            if (loc.invariant() != null && !evaluator.constrain(loc.invariant(), vars, null, zone, ticksPerUnit)) {
+                return false;
+            }
+        }
+        return !zone.isEmpty();
+    }
+
+    /** Extrapolates a zone (Extra_M over the model's clock constants; the elapsed clock is kept exact). */
+    public void extrapolate(Dbm zone) {
+        if (maxBounds != null) {
+            zone.extrapolateMaxBounds(maxBounds);
+        }
+    }
+
+    // ================================================================ discrete moves
+
+    /** A process's edge that may take part in a move, its data guard true. */
+    private record Candidate(int process, Edge edge, int[] frame, int channel) {
+    }
+
+    /** Every discrete successor of {@code s}, without delay. */
+    public void moves(SymState s, MoveSink sink) {
+        List<Candidate> candidates = candidates(s);
+        boolean committed = inCommitted(s);
+        for (Candidate c : candidates) {
+            Edge.Sync sync = c.edge.sync();
+            if (sync == null) {
+                if (!committed || isCommitted(s, c.process)) {
+                    fire(s, List.of(c), -1, sink);
+                }
+                continue;
+            }
+            if (sync.direction() != Edge.Direction.SEND) {
+                continue;
+            }
+            Type.Channel kind = channelKind(c.channel);
+            if (kind.broadcast()) {
+                broadcast(s, c, candidates, committed, sink);
+            } else {
+                for (Candidate r : candidates) {
+                    if (r.process != c.process && r.channel == c.channel && r.edge.sync() != null
+                            && r.edge.sync().direction() == Edge.Direction.RECEIVE
+                            && (!committed || isCommitted(s, c.process) || isCommitted(s, r.process))) {
+                        fire(s, List.of(c, r), c.channel, sink);
+                    }
+                }
+            }
+        }
+    }
+
+    private void broadcast(SymState s, Candidate sender, List<Candidate> candidates, boolean committed,
+                           MoveSink sink) {
+        List<List<Candidate>> perProcess = new ArrayList<>();
+        for (Process p : processes) {
+            if (p.index() == sender.process) {
+                continue;
+            }
+            List<Candidate> receivers = new ArrayList<>();
+            for (Candidate r : candidates) {
+                if (r.process == p.index() && r.channel == sender.channel && r.edge.sync() != null
+                        && r.edge.sync().direction() == Edge.Direction.RECEIVE) {
+                    receivers.add(r);
+                }
+            }
+            if (!receivers.isEmpty()) {
+                perProcess.add(receivers);
+            }
+        }
+        int[] choice = new int[perProcess.size()];
+        while (true) {
+            List<Candidate> participants = new ArrayList<>();
+            participants.add(sender);
+            boolean anyCommitted = isCommitted(s, sender.process);
+            for (int i = 0; i < choice.length; i++) {
+                Candidate r = perProcess.get(i).get(choice[i]);
+                participants.add(r);
+                anyCommitted |= isCommitted(s, r.process);
+            }
+            if (!committed || anyCommitted) {
+                fire(s, participants, sender.channel, sink);
+            }
+            int k = choice.length - 1;
+            while (k >= 0 && choice[k] == perProcess.get(k).size() - 1) {
+                choice[k] = 0;
+                k--;
+            }
+            if (k < 0) {
+                return;
+            }
+            choice[k]++;
+        }
+    }
+
+    private void fire(SymState s, List<Candidate> participants, int channel, MoveSink sink) {
+        Dbm zone = s.zone.copy();
+        for (Candidate c : participants) {
+            Expression guard = c.edge.guard();
+            if (guard != null && !evaluator.constrain(guard, s.vars, c.frame, zone, ticksPerUnit)) {
+                return;
+            }
+        }
+        if (zone.isEmpty()) {
+            return;
+        }
+        int[] vars = s.vars.clone();
+        ClockResets resets = new ClockResets();
+        for (Candidate c : participants) {
+            for (Expression update : c.edge.updates()) {
+                evaluator.execute(update, vars, c.frame, resets);
+            }
+        }
+        resets.applyTo(zone, ticksPerUnit);
+        int[] locations = s.locations.clone();
+        List<Step> steps = new ArrayList<>(participants.size());
+        for (Candidate c : participants) {
+            locations[c.process] = c.edge.target();
+            steps.add(new Step(c.process, c.edge, c.frame));
+        }
+        if (!invariants(locations, vars, zone)) {
+            return;
+        }
+        sink.accept(new Move(channel, steps), new SymState(locations, vars, zone));
+    }
+
+    /** The edges whose data guards hold in {@code s}, once per select binding. */
+    private List<Candidate> candidates(SymState s) {
+        List<Candidate> out = new ArrayList<>();
+        for (Process p : processes) {
+            int l = s.locations[p.index()];
+            if (l < 0) {
+                continue;
+            }
+            for (Edge e : p.edges()) {
+                if (e.source() != l) {
+                    continue;
+                }
+                int[] frame = new int[e.frameSize()];
+                List<Edge.Select> selects = e.selects();
+                for (Edge.Select sel : selects) {
+                    frame[sel.slot()] = sel.lower();
+                }
+                while (true) {
+                    if (e.guard() == null || evaluator.dataHolds(e.guard(), s.vars, frame)) {
+                        int channel = e.sync() == null ? -1 : evaluator.channel(e.sync().channel(), s.vars, frame);
+                        out.add(new Candidate(p.index(), e, frame.clone(), channel));
+                    }
+                    int k = selects.size() - 1;
+                    while (k >= 0 && frame[selects.get(k).slot()] == selects.get(k).upper()) {
+                        frame[selects.get(k).slot()] = selects.get(k).lower();
+                        k--;
+                    }
+                    if (k < 0) {
+                        break;
+                    }
+                    frame[selects.get(k).slot()]++;
+                }
+            }
+        }
+        return out;
+    }
+
+    private boolean urgentSyncEnabled(SymState s) {
+        List<Candidate> candidates = null;
+        for (int c = 0; c < network.channelCount(); c++) {
+            if (channelKind(c).urgent()) {
+                candidates = candidates(s);
+                break;
+            }
+        }
+        if (candidates == null) {
+            return false;
+        }
+        for (Candidate send : candidates) {
+            if (send.edge.sync() == null || send.edge.sync().direction() != Edge.Direction.SEND
+                    || !channelKind(send.channel).urgent()) {
+                continue;
+            }
+            if (channelKind(send.channel).broadcast()) {
+                return true;
+            }
+            for (Candidate r : candidates) {
+                if (r.process != send.process && r.channel == send.channel && r.edge.sync() != null
+                        && r.edge.sync().direction() == Edge.Direction.RECEIVE) {
+                    return true;
+                }
+            }
+        }
+        return false;
+    }
+
+    private boolean inCommitted(SymState s) {
+        for (Process p : processes) {
+            if (isCommitted(s, p.index())) {
+                return true;
+            }
+        }
+        return false;
+    }
+
+    private boolean isCommitted(SymState s, int p) {
+        int l = s.locations[p];
+        return l >= 0 && processes[p].locations().get(l).kind() == Location.Kind.COMMITTED;
+    }
+
+    private Type.Channel channelKind(int channel) {
+        return network.channelVariableOf(channel).kind();
+    }
+
+    // ================================================================ checks and constants
+
+    private static void checkSupported(Network network) {
+        if (!network.startErrors().isEmpty()) {
+            throw new UnsupportedModelException("the model cannot start: " + network.startErrors().get(0).format());
+        }
+        if (network.channelPriority().stream().anyMatch(p -> p != 0)
+                || network.processes().stream().anyMatch(p -> p.priority() != 0)) {
+            throw new UnsupportedModelException("channel and process priorities are not supported by DTRON's engine"
+                    + " yet");
+        }
+        for (Process p : network.processes()) {
+            for (Location l : p.locations()) {
+                if (l.invariant() != null && containsRate(l.invariant())) {
+                    throw new UnsupportedModelException(l.pos().fragment().file() + ":" + l.pos().line() + ": clock"
+                            + " rates (stopwatches) in the invariant of " + p.name() + "." + l.name()
+                            + " are not supported by DTRON's engine");
+                }
+            }
+            for (Edge e : p.edges()) {
+                if (e.sync() == null) {
+                    continue;
+                }
+                if (e.sync().direction() == Edge.Direction.CSP) {
+                    throw new UnsupportedModelException(e.pos().fragment().file() + ":" + e.pos().line()
+                            + ": CSP synchronisation (sync without ! or ?) in " + p.name()
+                            + " is not supported by DTRON's engine");
+                }
+                if (e.sync().direction() == Edge.Direction.RECEIVE && e.guard() != null
+                        && e.guard().type() instanceof Type.ClockConstraint
+                        && e.sync().channel().type() instanceof Type.Channel c && c.broadcast()) {
+                    throw new UnsupportedModelException(e.pos().fragment().file() + ":" + e.pos().line()
+                            + ": a clock guard on a broadcast receiver (in " + p.name()
+                            + ") is not supported by DTRON's engine");
+                }
+            }
+        }
+    }
+
+    private static boolean containsRate(Expression e) {
+        if (e instanceof Expression.ClockRate) {
+            return true;
+        }
+        return e instanceof Expression.Binary b && (containsRate(b.left()) || containsRate(b.right()));
+    }
+
+    /**
+     * The largest constant each clock is compared with, in ticks; null (no extrapolation) when a clock is
+     * compared with a non-constant expression or the model has clock differences.
+     */
+    private static int[] maxBounds(Network network, int ticksPerUnit, int dimension) {
+        long[] max = new long[dimension];
+        List<Expression> constraints = new ArrayList<>();
+        for (Process p : network.processes()) {
+            for (Location l : p.locations()) {
+                if (l.invariant() != null) {
+                    constraints.add(l.invariant());
+                }
+            }
+            for (Edge e : p.edges()) {
+                if (e.guard() != null) {
+                    constraints.add(e.guard());
+                }
+            }
+        }
+        for (Expression c : constraints) {
+            if (!collect(c, max)) {
+                return null;
+            }
+        }
+        int[] out = new int[dimension];
+        for (int i = 1; i < dimension - 1; i++) {
+            long ticks = max[i] * ticksPerUnit;
+            if (ticks > Bound.MAX_VALUE / 4) {
+                return null;
+            }
+            out[i] = (int) ticks;
+        }
+        out[dimension - 1] = Bound.MAX_VALUE / 2;
+        return out;
+    }
+
+    /** Adds the atoms' constants to the clocks they bound; false when an atom defeats extrapolation. */
+    private static boolean collect(Expression e, long[] max) {
+        if (!(e.type() instanceof Type.ClockConstraint) || !(e instanceof Expression.Binary b)) {
+            return true;
+        }
+        if (b.op() == Expression.Operator.AND || b.op() == Expression.Operator.OR) {
+            return collect(b.left(), max) && collect(b.right(), max);
+        }
+        if (b.left().type() instanceof Type.ClockDifference || b.right().type() instanceof Type.ClockDifference
+                || b.left().type() instanceof Type.Clock && b.right().type() instanceof Type.Clock) {
+            return false;
+        }
+        long[] constant = {0};
+        List<int[]> clocks = new ArrayList<>();
+        if (!walk(b.left(), constant, clocks) || !walk(b.right(), constant, clocks)) {
+            return false;
+        }
+        for (int[] range : clocks) {
+            for (int i = range[0]; i < range[1]; i++) {
+                max[i] = Math.max(max[i], constant[0]);
+            }
+        }
+        return true;
+    }
+
+    private static boolean walk(Expression e, long[] constant, List<int[]> clocks) {
+        if (e instanceof Expression.Constant c) {
+            constant[0] += Math.abs((long) c.value());
+            return true;
+        }
+        if (e instanceof Expression.ClockRef c) {
+            ClockVariable v = c.clock();
+            clocks.add(new int[] {v.index(), v.index() + v.type().clocks()});
+            return true;
+        }
+        if (e instanceof Expression.Index i && i.type() instanceof Type.Clock) {
+            return walk(i.array(), constant, clocks);
+        }
+        if (e instanceof Expression.Binary b && (b.op() == Expression.Operator.ADD
+                || b.op() == Expression.Operator.SUB)) {
+            return walk(b.left(), constant, clocks) && walk(b.right(), constant, clocks);
+        }
+        return false;
+    }
+
+    /**
+     * An edge of a process accepted by {@code processes} that could send on {@code channel} in {@code s} (its
+     * guard satisfiable in the zone), whoever receives; null if there is none.
+     */
+    public Step enabledSend(SymState s, int channel, java.util.function.IntPredicate processes) {
+        for (Candidate c : candidates(s)) {
+            if (c.channel != channel || !processes.test(c.process) || c.edge.sync() == null
+                    || c.edge.sync().direction() != Edge.Direction.SEND) {
+                continue;
+            }
+            Dbm zone = s.zone.copy();
+            if (c.edge.guard() == null || evaluator.constrain(c.edge.guard(), s.vars, c.frame, zone, ticksPerUnit)) {
+                return new Step(c.process, c.edge, c.frame);
+            }
+        }
+        return null;
+    }
+
+    /** The names of a state's locations, for explanations: {@code Lamp.off, User.idle}. */
+    public String describe(SymState s, boolean[] include) {
+        StringBuilder sb = new StringBuilder();
+        for (Process p : processes) {
+            int l = s.locations[p.index()];
+            if (l < 0 || include != null && !include[p.index()]) {
+                continue;
+            }
+            sb.append(sb.length() == 0 ? "" : ", ").append(p.name()).append('.').append(p.locations().get(l).name());
+        }
+        return sb.toString();
+    }
+
+    /** An edge as people read it: {@code Lamp: off -> on}. */
+    public String describe(Step step) {
+        Process p = processes[step.process()];
+        String select = step.edge().selects().isEmpty() ? "" : " " + Arrays.toString(step.frame());
+        return p.name() + ": " + p.locations().get(step.edge().source()).name() + " -> "
+                + p.locations().get(step.edge().target()).name() + select;
+    }
+}

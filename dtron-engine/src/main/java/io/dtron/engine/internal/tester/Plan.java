@@ -1,0 +1,254 @@
+package io.dtron.engine.internal.tester;
+
+import io.dtron.engine.DelayPolicy;
+import io.dtron.engine.internal.sem.Partition;
+import io.dtron.engine.internal.sem.Semantics;
+import io.dtron.engine.internal.sem.SymState;
+import io.dtron.engine.zone.Bound;
+import io.dtron.model.TestInterface;
+import java.util.ArrayList;
+import java.util.LinkedHashMap;
+import java.util.List;
+import java.util.Map;
+import java.util.Random;
+import java.util.function.LongFunction;
+
+/**
+ * What may happen next, seen from the last observation: for every observable channel the windows of elapsed
+ * time (in ticks) in which the model allows it, and the deadline by which something must happen. The tester
+ * chooses its next input from this and explains its verdicts with it.
+ */
+public final class Plan {
+    private final Semantics semantics;
+    private final long unitMicros;
+    private final long horizon;
+    private final long deadline;
+    private final Map<Integer, List<Window>> windows;
+    private final Map<Integer, TestInterface.ObservableChannel> inputs;
+    private final Map<Integer, String> names;
+    private final String implementationState;
+
+    /** A window of elapsed ticks in which a channel is enabled, with the edge that would take it. */
+    record Window(long lo, long hi, String edge) {
+    }
+
+    /** The tester's next move: an input after {@code ticks}, or (input null) waiting until {@code ticks}. */
+    public record Choice(TestInterface.ObservableChannel input, long ticks) {
+        /** Whether this applies an input. */
+        public boolean isInput() {
+            return input != null;
+        }
+    }
+
+    private Plan(Semantics semantics, long unitMicros, long horizon, long deadline,
+                 Map<Integer, List<Window>> windows, Map<Integer, TestInterface.ObservableChannel> inputs,
+                 Map<Integer, String> names, String implementationState) {
+        this.semantics = semantics;
+        this.unitMicros = unitMicros;
+        this.horizon = horizon;
+        this.deadline = deadline;
+        this.windows = windows;
+        this.inputs = inputs;
+        this.names = names;
+        this.implementationState = implementationState;
+    }
+
+    /** The plan for {@code set}, looking at most {@code horizon} ticks ahead; {@code unitMicros} per time unit. */
+    public static Plan of(StateSet set, Semantics semantics, Partition partition, TestInterface testInterface,
+                          long unitMicros, long horizon) {
+        int elapsed = semantics.elapsedClock();
+        Map<Integer, TestInterface.ObservableChannel> inputs = new LinkedHashMap<>();
+        Map<Integer, String> names = new LinkedHashMap<>();
+        for (TestInterface.ObservableChannel c : testInterface.inputs()) {
+            inputs.put(c.channel(), c);
+            names.put(c.channel(), c.name());
+        }
+        for (TestInterface.ObservableChannel c : testInterface.outputs()) {
+            names.put(c.channel(), c.name());
+        }
+        Map<Integer, List<Window>> windows = new LinkedHashMap<>();
+        long deadline = 0;
+        List<SymState> reach = set.reach(horizon);
+        for (SymState s : reach) {
+            deadline = Math.max(deadline, upper(s, elapsed, horizon));
+            semantics.moves(s, (move, next) -> {
+                if (move.channel() >= 0 && partition.observable(move.channel()) != Partition.INTERNAL) {
+                    long lo = lower(next, elapsed);
+                    long hi = upper(next, elapsed, horizon);
+                    windows.computeIfAbsent(move.channel(), k -> new ArrayList<>())
+                            .add(new Window(lo, hi, semantics.describe(move.steps().get(0))));
+                }
+            });
+        }
+        boolean[] implementation = new boolean[semantics.network().processes().size()];
+        for (int p = 0; p < implementation.length; p++) {
+            implementation[p] = !partition.isEnvironment(p);
+        }
+        String state = set.states().isEmpty() ? "" : semantics.describe(set.states().get(0), implementation);
+        return new Plan(semantics, unitMicros, horizon, Math.min(deadline, horizon), windows, inputs, names, state);
+    }
+
+    private static long lower(SymState s, int clock) {
+        int raw = s.zone().lowerBound(clock);
+        if (Bound.isInfinite(raw)) {
+            return 0;
+        }
+        long v = Bound.value(raw);
+        return Bound.isStrict(raw) ? v + 1 : v;
+    }
+
+    private static long upper(SymState s, int clock, long horizon) {
+        int raw = s.zone().upperBound(clock);
+        if (Bound.isInfinite(raw)) {
+            return horizon;
+        }
+        long v = Bound.value(raw);
+        return Math.min(horizon, Bound.isStrict(raw) ? v - 1 : v);
+    }
+
+    /** The windows (merged) in which channel number {@code channel} is allowed. */
+    List<Window> windowsOf(int channel) {
+        return merge(windows.getOrDefault(channel, List.of()));
+    }
+
+    /** Whether something must happen before the horizon. */
+    public boolean hasDeadline() {
+        return deadline < horizon;
+    }
+
+    /** The elapsed ticks by which something must happen (the horizon when nothing must). */
+    public long deadline() {
+        return deadline;
+    }
+
+    /**
+     * Chooses the next move at {@code elapsed} ticks: an input among those the environment allows (with its
+     * time by {@code policy}), or waiting until the deadline (or the horizon). When an input is possible at the
+     * deadline, the tester does not wait past it.
+     */
+    public Choice choose(long elapsed, Random random, DelayPolicy policy, long boundTicks) {
+        List<long[]> options = new ArrayList<>();
+        List<TestInterface.ObservableChannel> channels = new ArrayList<>();
+        boolean mustAct = false;
+        for (Map.Entry<Integer, List<Window>> e : windows.entrySet()) {
+            TestInterface.ObservableChannel input = inputs.get(e.getKey());
+            if (input == null) {
+                continue;
+            }
+            for (Window w : e.getValue()) {
+                long lo = Math.max(w.lo(), elapsed);
+                long hi = hasDeadline() ? Math.min(w.hi(), deadline) : w.hi();
+                if (lo <= hi) {
+                    options.add(new long[] {lo, hi});
+                    channels.add(input);
+                    mustAct |= hasDeadline() && w.lo() <= deadline && deadline <= w.hi();
+                }
+            }
+        }
+        int count = options.size() + (mustAct ? 0 : 1);
+        int pick = options.isEmpty() ? options.size() : random.nextInt(count);
+        if (pick == options.size()) {
+            return new Choice(null, hasDeadline() ? deadline + 1 : horizon);
+        }
+        long lo = options.get(pick)[0];
+        long hi = options.get(pick)[1];
+        long ticks = switch (policy) {
+            case EAGER -> lo;
+            case LAZY -> hi;
+            case RANDOM -> lo + (long) Math.floor(random.nextDouble() * (hi - lo + 1));
+            case RANDOM_BOUNDED -> {
+                long top = Math.min(hi, lo + boundTicks);
+                yield lo + (long) Math.floor(random.nextDouble() * (top - lo + 1));
+            }
+        };
+        return new Choice(channels.get(pick), Math.min(ticks, hi));
+    }
+
+    /** The outputs the model allowed, with their times, and the implementation's state, for explanations. */
+    public String explainOutputs(LongFunction<String> time, long baseMicros) {
+        return explain(time, baseMicros, false);
+    }
+
+    /** The inputs the environment allowed, with their times. */
+    public String explainInputs(LongFunction<String> time, long baseMicros) {
+        return explain(time, baseMicros, true);
+    }
+
+    private String explain(LongFunction<String> time, long baseMicros, boolean wantInputs) {
+        StringBuilder sb = new StringBuilder();
+        for (Map.Entry<Integer, List<Window>> e : windows.entrySet()) {
+            if (inputs.containsKey(e.getKey()) != wantInputs) {
+                continue;
+            }
+            for (Window w : merge(e.getValue())) {
+                sb.append(sb.length() == 0 ? "" : "; ").append(names.get(e.getKey())).append(" between ")
+                        .append(time.apply(baseMicros + micros(w.lo()))).append(" and ")
+                        .append(w.hi() >= horizon ? "the end of the test" : time.apply(baseMicros + micros(w.hi())))
+                        .append(" (").append(w.edge()).append(')');
+            }
+        }
+        String what = wantInputs ? "inputs" : "outputs";
+        String allowed = sb.length() == 0 ? "The model allowed no " + what + " then"
+                : "The model allowed these " + what + ": " + sb;
+        return allowed + (wantInputs || implementationState.isEmpty() ? ""
+                : ". The implementation was in " + implementationState) + ".";
+    }
+
+    /** " (too early: ...)" or " (too late: ...)" when {@code channel} is allowed at other times, else "". */
+    public String timing(int channel, long atTicks) {
+        List<Window> ws = windows.get(channel);
+        if (ws == null) {
+            return " (the model does not allow " + names.getOrDefault(channel, "it") + " at all before "
+                    + (hasDeadline() ? "the next deadline" : "the end of the test") + ")";
+        }
+        boolean early = ws.stream().allMatch(w -> atTicks < w.lo());
+        boolean late = ws.stream().allMatch(w -> atTicks > w.hi());
+        return early ? " (too early)" : late ? " (too late)" : "";
+    }
+
+    private long micros(long ticks) {
+        return ticks * unitMicros / semantics.ticksPerUnit();
+    }
+
+    private static List<Window> merge(List<Window> ws) {
+        List<Window> sorted = new ArrayList<>(ws);
+        sorted.sort((a, b) -> Long.compare(a.lo(), b.lo()));
+        List<Window> out = new ArrayList<>();
+        for (Window w : sorted) {
+            if (!out.isEmpty() && w.lo() <= out.get(out.size() - 1).hi() + 1) {
+                Window last = out.remove(out.size() - 1);
+                out.add(new Window(last.lo(), Math.max(last.hi(), w.hi()), last.edge()));
+            } else {
+                out.add(w);
+            }
+        }
+        return out;
+    }
+
+    /**
+     * Why the environment cannot take output {@code channel} in {@code atTime} although the implementation can
+     * send it (the sending edge), or null when the implementation cannot send it either.
+     */
+    public static String environmentRefuses(StateSet atTime, Semantics semantics, Partition partition,
+                                            int channel) {
+        for (SymState s : atTime.states()) {
+            Semantics.Step send = semantics.enabledSend(s, channel, p -> !partition.isEnvironment(p));
+            if (send != null) {
+                boolean[] environment = new boolean[semantics.network().processes().size()];
+                for (int p = 0; p < environment.length; p++) {
+                    environment[p] = partition.isEnvironment(p);
+                }
+                return "the implementation may send it (" + semantics.describe(send)
+                        + "), but no environment process can receive it in " + semantics.describe(s, environment);
+            }
+        }
+        return null;
+    }
+
+    /** Microseconds as model time units with three decimals, e.g. {@code 135.002}. */
+    public static String units(long micros, long unitMicros) {
+        long whole = Math.floorDiv(micros, unitMicros);
+        long rest = Math.floorMod(micros, unitMicros) * 1000 / unitMicros;
+        return whole + "." + String.format("%03d", rest);
+    }
+}

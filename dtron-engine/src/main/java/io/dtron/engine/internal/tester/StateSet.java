@@ -1,0 +1,156 @@
+package io.dtron.engine.internal.tester;
+
+import io.dtron.engine.internal.sem.Partition;
+import io.dtron.engine.internal.sem.Semantics;
+import io.dtron.engine.internal.sem.SymState;
+import io.dtron.engine.zone.Bound;
+import io.dtron.engine.zone.Dbm;
+import java.util.ArrayDeque;
+import java.util.ArrayList;
+import java.util.Collections;
+import java.util.Deque;
+import java.util.List;
+import java.util.function.Predicate;
+
+/**
+ * The tester's knowledge: the symbolic states the closed network may be in at the time of the last
+ * observation (the elapsed clock is 0 in every zone). Immutable; every operation gives a new set.
+ */
+public final class StateSet {
+    /** The most states a closure may visit before the model is declared too nondeterministic to follow. */
+    static final int MAX_STATES = 200_000;
+
+    private final Semantics semantics;
+    private final Partition partition;
+    private final List<SymState> states;
+
+    /** A successor of the set by one move, with the move. */
+    public record Successor(Semantics.Move move, SymState from, SymState state) {
+    }
+
+    StateSet(Semantics semantics, Partition partition, List<SymState> states) {
+        this.semantics = semantics;
+        this.partition = partition;
+        this.states = Collections.unmodifiableList(states);
+    }
+
+    /** The set holding the initial state. */
+    public static StateSet initial(Semantics semantics, Partition partition) {
+        return new StateSet(semantics, partition, List.of(semantics.initial()));
+    }
+
+    /** The states (zones not to be changed). */
+    public List<SymState> states() {
+        return states;
+    }
+
+    /** Whether no state is left. */
+    public boolean isEmpty() {
+        return states.isEmpty();
+    }
+
+    /** Whether a move takes no observable channel. */
+    boolean isInternal(Semantics.Move m) {
+        return m.channel() < 0 || partition.observable(m.channel()) == Partition.INTERNAL;
+    }
+
+    /**
+     * Every state reachable from this set by delays and internal moves while the elapsed clock stays within
+     * {@code [0, horizonTicks]}; zones keep the elapsed clock, so they tell when each state is possible.
+     */
+    public List<SymState> reach(long horizonTicks) {
+        int elapsed = semantics.elapsedClock();
+        int horizon = (int) Math.min(horizonTicks, Bound.MAX_VALUE);
+        List<SymState> passed = new ArrayList<>();
+        Deque<SymState> waiting = new ArrayDeque<>();
+        for (SymState s : states) {
+            waiting.add(copy(s));
+        }
+        int visited = 0;
+        while (!waiting.isEmpty()) {
+            SymState s = waiting.poll();
+            if (!semantics.delay(s) || !s.zone().constrain(elapsed, 0, Bound.le(horizon))) {
+                continue;
+            }
+            if (!addIfNew(passed, s)) {
+                continue;
+            }
+            if (++visited > MAX_STATES) {
+                throw new IllegalStateException("more than " + MAX_STATES + " symbolic states within one step:"
+                        + " the model is too nondeterministic to follow online");
+            }
+            semantics.moves(s, (move, next) -> {
+                if (isInternal(move)) {
+                    waiting.add(next);
+                }
+            });
+        }
+        return passed;
+    }
+
+    /** The set after exactly {@code deltaTicks} without observation (empty if time cannot pass that far). */
+    public StateSet after(long deltaTicks) {
+        return afterWindow(deltaTicks, deltaTicks);
+    }
+
+    /**
+     * The set after a delay somewhere in {@code [fromTicks, toTicks]} (an observation's uncertainty window),
+     * with the elapsed clock set back to 0.
+     */
+    public StateSet afterWindow(long fromTicks, long toTicks) {
+        int elapsed = semantics.elapsedClock();
+        List<SymState> out = new ArrayList<>();
+        for (SymState s : reach(toTicks)) {
+            SymState t = copy(s);
+            Dbm z = t.zone();
+            if (!z.constrain(0, elapsed, Bound.le((int) -Math.min(fromTicks, Bound.MAX_VALUE)))) {
+                continue;
+            }
+            z.reset(elapsed, 0);
+            semantics.extrapolate(z);
+            addIfNew(out, t);
+        }
+        return new StateSet(semantics, partition, out);
+    }
+
+    /** The successors of this set by the moves that {@code which} accepts (no delay before them). */
+    public List<Successor> successors(Predicate<Semantics.Move> which) {
+        List<Successor> out = new ArrayList<>();
+        for (SymState s : states) {
+            semantics.moves(s, (move, next) -> {
+                if (which.test(move)) {
+                    out.add(new Successor(move, s, next));
+                }
+            });
+        }
+        return out;
+    }
+
+    /** A set of states (deduplicated by inclusion). */
+    public StateSet of(List<SymState> next) {
+        List<SymState> out = new ArrayList<>();
+        for (SymState s : next) {
+            addIfNew(out, s);
+        }
+        return new StateSet(semantics, partition, out);
+    }
+
+    private static SymState copy(SymState s) {
+        return s.copy();
+    }
+
+    /**
+     * Adds {@code s} unless a state with the same discrete part and a larger zone is there; removes the states
+     * it covers. Returns whether it was added.
+     */
+    static boolean addIfNew(List<SymState> list, SymState s) {
+        for (SymState o : list) {
+            if (o.sameDiscrete(s) && s.zone().isSubsetOf(o.zone())) {
+                return false;
+            }
+        }
+        list.removeIf(o -> o.sameDiscrete(s) && o.zone().isSubsetOf(s.zone()));
+        list.add(s);
+        return true;
+    }
+}
