@@ -15,7 +15,7 @@ import picocli.CommandLine.Spec;
 @Command(name = "dtron", mixinStandardHelpOptions = true, versionProvider = DtronCommand.Version.class,
         exitCodeOnInvalidInput = 1, exitCodeOnExecutionException = 1,
         description = "Online model-based testing and control of timed systems with Uppaal timed automata.",
-        subcommands = {CheckCommand.class, CommandLine.HelpCommand.class})
+        subcommands = {CheckCommand.class, RunCommand.class, CommandLine.HelpCommand.class})
 public final class DtronCommand implements Callable<Integer> {
 
     @Spec
