@@ -8,9 +8,9 @@ import picocli.CommandLine.Model.CommandSpec;
 import picocli.CommandLine.Spec;
 
 /**
- * The {@code dtron} command line: {@code dtron check MODEL...} now; running models against systems under test
- * comes with the engine. Exit codes follow TRON's: 0 passed, 2 failed, 3 inconclusive; 1 for a usage or model
- * error.
+ * The {@code dtron} command line: {@code dtron check MODEL...} loads and type-checks models, {@code dtron run
+ * MODEL --sut CLASS} tests a system under test against a model. Exit codes follow TRON's: 0 passed, 2 failed,
+ * 3 inconclusive; 1 for a usage or model error.
  */
 @Command(name = "dtron", mixinStandardHelpOptions = true, versionProvider = DtronCommand.Version.class,
         exitCodeOnInvalidInput = 1, exitCodeOnExecutionException = 1,

@@ -45,7 +45,7 @@ public final class SymState {
         return discreteHash == o.discreteHash && Arrays.equals(locations, o.locations) && Arrays.equals(vars, o.vars);
     }
 
-    int discreteHash() {
+    public int discreteHash() {
         return discreteHash;
     }
 

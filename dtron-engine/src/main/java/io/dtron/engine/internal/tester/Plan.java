@@ -191,7 +191,7 @@ public final class Plan {
         String allowed = sb.length() == 0 ? "The model allowed no " + what + " then"
                 : "The model allowed these " + what + ": " + sb;
         return allowed + (wantInputs || implementationState.isEmpty() ? ""
-                : ". The implementation was in " + implementationState) + ".";
+                : ". At the last observation the implementation was in " + implementationState) + ".";
     }
 
     /** " (too early: ...)" or " (too late: ...)" when {@code channel} is allowed at other times, else "". */

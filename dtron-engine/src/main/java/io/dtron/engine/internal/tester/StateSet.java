@@ -61,7 +61,7 @@ public final class StateSet {
     public List<SymState> reach(long horizonTicks) {
         int elapsed = semantics.elapsedClock();
         int horizon = (int) Math.min(horizonTicks, Bound.MAX_VALUE);
-        List<SymState> passed = new ArrayList<>();
+        Passed passed = new Passed();
         Deque<SymState> waiting = new ArrayDeque<>();
         for (SymState s : states) {
             waiting.add(copy(s));
@@ -72,7 +72,7 @@ public final class StateSet {
             if (!semantics.delay(s) || !s.zone().constrain(elapsed, 0, Bound.le(horizon))) {
                 continue;
             }
-            if (!addIfNew(passed, s)) {
+            if (!passed.add(s)) {
                 continue;
             }
             if (++visited > MAX_STATES) {
@@ -85,7 +85,7 @@ public final class StateSet {
                 }
             });
         }
-        return passed;
+        return passed.states();
     }
 
     /** The set after exactly {@code deltaTicks} without observation (empty if time cannot pass that far). */
@@ -99,7 +99,7 @@ public final class StateSet {
      */
     public StateSet afterWindow(long fromTicks, long toTicks) {
         int elapsed = semantics.elapsedClock();
-        List<SymState> out = new ArrayList<>();
+        Passed out = new Passed();
         for (SymState s : reach(toTicks)) {
             SymState t = copy(s);
             Dbm z = t.zone();
@@ -108,9 +108,9 @@ public final class StateSet {
             }
             z.reset(elapsed, 0);
             semantics.extrapolate(z);
-            addIfNew(out, t);
+            out.add(t);
         }
-        return new StateSet(semantics, partition, out);
+        return new StateSet(semantics, partition, out.states());
     }
 
     /** The successors of this set by the moves that {@code which} accepts (no delay before them). */
@@ -128,11 +128,11 @@ public final class StateSet {
 
     /** A set of states (deduplicated by inclusion). */
     public StateSet of(List<SymState> next) {
-        List<SymState> out = new ArrayList<>();
+        Passed out = new Passed();
         for (SymState s : next) {
-            addIfNew(out, s);
+            out.add(s);
         }
-        return new StateSet(semantics, partition, out);
+        return new StateSet(semantics, partition, out.states());
     }
 
     private static SymState copy(SymState s) {
@@ -140,17 +140,33 @@ public final class StateSet {
     }
 
     /**
-     * Adds {@code s} unless a state with the same discrete part and a larger zone is there; removes the states
-     * it covers. Returns whether it was added.
+     * States grouped by their discrete part (locations and variables), so that a new state is compared by zone
+     * inclusion only with the states of its own group.
      */
-    static boolean addIfNew(List<SymState> list, SymState s) {
-        for (SymState o : list) {
-            if (o.sameDiscrete(s) && s.zone().isSubsetOf(o.zone())) {
-                return false;
+    private static final class Passed {
+        private final java.util.Map<Integer, List<SymState>> groups = new java.util.HashMap<>();
+        private final List<SymState> order = new ArrayList<>();
+
+        /** Adds {@code s} unless a state of its group covers it; drops the states it covers. */
+        boolean add(SymState s) {
+            List<SymState> group = groups.computeIfAbsent(s.discreteHash(), k -> new ArrayList<>(2));
+            for (SymState o : group) {
+                if (o.sameDiscrete(s) && s.zone().isSubsetOf(o.zone())) {
+                    return false;
+                }
             }
+            int before = group.size();
+            group.removeIf(o -> o.sameDiscrete(s) && o.zone().isSubsetOf(s.zone()));
+            if (group.size() != before) {
+                order.removeIf(o -> o.sameDiscrete(s) && o.zone().isSubsetOf(s.zone()));
+            }
+            group.add(s);
+            order.add(s);
+            return true;
         }
-        list.removeIf(o -> o.sameDiscrete(s) && o.zone().isSubsetOf(s.zone()));
-        list.add(s);
-        return true;
+
+        List<SymState> states() {
+            return order;
+        }
     }
 }

@@ -28,9 +28,8 @@ import org.openjdk.jmh.annotations.Warmup;
  * State-set updates of the online tester, one step of a recorded run at a time: the delay to an observation
  * plus the observed move ({@link #observe}), and the planning of the next step ({@link #plan}). The run is
  * recorded by letting the model drive itself (earliest output, else an input the environment allows), so every
- * step is one the tester really meets. Run with
- * {@code mvn -pl dtron-engine test-compile exec:java -Dexec.classpathScope=test
- * -Dexec.mainClass=org.openjdk.jmh.Main -Dexec.args="StateSetBenchmark"}.
+ * step is one the tester really meets. JMH forks JVMs, so run it from a plain java command with the test
+ * classpath (see {@code src/site/markdown/benchmarks.md}).
  */
 @State(Scope.Benchmark)
 @BenchmarkMode(Mode.SampleTime)
