@@ -70,12 +70,14 @@ public final class OnlineTester {
         }
         RunClock clock = options.virtualTime() ? new VirtualClock() : new RealClock();
         Run run = new Run(semantics, partition, clock, new Random(options.seed()), ticksPerUnit);
+        run.warmUp();
+        clock.begin();
         adapter.start(new Context(clock));
         TestResult result;
         try {
             result = run.loop();
         } catch (ModelRuntimeException e) {
-            result = run.result(Verdict.INCONCLUSIVE, "model error at " + e.getMessage());
+            result = run.result(Verdict.INCONCLUSIVE, "model error: " + e.format());
         } finally {
             adapter.stop();
         }
@@ -137,6 +139,11 @@ public final class OnlineTester {
             this.ticksPerUnit = ticksPerUnit;
             this.timeoutMicros = Math.multiplyExact(options.timeout(), unit);
             this.set = StateSet.initial(semantics, partition);
+        }
+
+        /** Plans the first step once before time starts, so that a cold start does not eat real time. */
+        void warmUp() {
+            Plan.of(set, semantics, partition, testInterface, unit, ticksCeil(timeoutMicros));
         }
 
         TestResult loop() {

@@ -99,6 +99,135 @@ class OnlineTesterTest {
         List<String> trace = new ArrayList<>();
         TestResult r = run(new Ticker(13), 1, trace);
         assertEquals(Verdict.FAILED, r.verdict(), r.explanation() + "\n" + String.join("\n", trace));
-        System.out.println(r.explanation());
+        assertTrue(r.explanation().startsWith("no output came by t=12.000"), r.explanation());
+    }
+
+    @Test
+    void realTimeRunsJudgeTheSameWay() throws Exception {
+        Network n = ModelLoader.load("ticker.xta", TICKER);
+        TestOptions realTime = TestOptions.defaults(3).withTimeout(150).withVirtualTime(false);
+        long start = System.nanoTime();
+        TestResult passed = new OnlineTester(n, TestInterface.fromNames(n), new Ticker(10), realTime).run();
+        long took = (System.nanoTime() - start) / 1_000_000;
+        assertEquals(Verdict.PASSED, passed.verdict(), passed.explanation());
+        assertTrue(took >= 150, "150 units of 1 ms take at least 150 ms of real time, took " + took);
+        assertTrue(passed.outputs() >= 8, passed.toString());
+        TestResult failed = new OnlineTester(n, TestInterface.fromNames(n), new Ticker(13), realTime).run();
+        assertEquals(Verdict.FAILED, failed.verdict(), failed.explanation());
+    }
+
+    @Test
+    void delayPoliciesPlaceInputsAtTheStartOrTheEndOfTheirWindows() throws Exception {
+        // the environment may reset from e >= 25 on, without an upper bound: eager resets at exactly 25
+        Network n = ModelLoader.load("ticker.xta", TICKER);
+        List<Long> resets = new ArrayList<>();
+        new OnlineTester(n, TestInterface.fromNames(n), new Ticker(10),
+                TestOptions.defaults(5).withTimeout(300).withDelayPolicy(DelayPolicy.EAGER, 0))
+                .addListener(new TestListener() {
+                    @Override
+                    public void inputApplied(Event input, long micros) {
+                        resets.add(micros);
+                    }
+                }).run();
+        assertTrue(resets.size() >= 2, resets.toString());
+        assertEquals(25_000L, resets.get(0));
+        for (int i = 1; i < resets.size(); i++) {
+            assertEquals(25_000L, resets.get(i) - resets.get(i - 1), resets.toString());
+        }
+        List<Long> bounded = new ArrayList<>();
+        new OnlineTester(n, TestInterface.fromNames(n), new Ticker(10),
+                TestOptions.defaults(5).withTimeout(300).withDelayPolicy(DelayPolicy.RANDOM_BOUNDED, 3))
+                .addListener(new TestListener() {
+                    @Override
+                    public void inputApplied(Event input, long micros) {
+                        bounded.add(micros);
+                    }
+                }).run();
+        assertTrue(bounded.get(0) >= 25_000L && bounded.get(0) <= 28_000L, bounded.toString());
+    }
+
+    @Test
+    void anOutputTheEnvironmentCannotAcceptIsInconclusive() throws Exception {
+        // the implementation may beep at any time; the environment listens only once it has asked
+        Network n = ModelLoader.load("beep.xta", """
+                chan i_ask, o_beep;
+                process Iut() { state A; init A; trans A -> A { sync o_beep!; }, A -> A { sync i_ask?; }; }
+                process Env() { clock e; state Quiet { e <= 5 }, Listening; init Quiet;
+                    trans Quiet -> Listening { guard e >= 5; sync i_ask!; }, Listening -> Listening { sync o_beep?; }; }
+                system Iut, Env;
+                """);
+        Adapter beepsEarly = new Adapter() {
+            @Override
+            public void start(AdapterContext context) {
+                context.clock().schedule(2_000, () -> context.report(Event.of("beep")));
+            }
+
+            @Override
+            public void perform(Event input) {
+            }
+        };
+        TestResult r = new OnlineTester(n, TestInterface.fromNames(n), beepsEarly, TestOptions.defaults(1)).run();
+        assertEquals(Verdict.INCONCLUSIVE, r.verdict(), r.explanation());
+        assertTrue(r.explanation().startsWith("the environment model cannot accept output beep() at t=2.000: the"
+                + " implementation may send it (Iut: A -> A), but no environment process can receive it in Env.Quiet"),
+                r.explanation());
+    }
+
+    @Test
+    void anOutputOutsideTheInterfaceIsInconclusive() throws Exception {
+        Network n = ModelLoader.load("ticker.xta", TICKER);
+        Adapter wrong = new Adapter() {
+            @Override
+            public void start(AdapterContext context) {
+                context.clock().schedule(9_000, () -> context.report(Event.of("tock", "seq", 1)));
+            }
+
+            @Override
+            public void perform(Event input) {
+            }
+        };
+        TestResult r = new OnlineTester(n, TestInterface.fromNames(n), wrong, TestOptions.defaults(1)).run();
+        assertEquals(Verdict.INCONCLUSIVE, r.verdict());
+        assertEquals("the adapter reported 'tock' at t=9.000, which is not an output of the model's interface",
+                r.explanation());
+    }
+
+    @Test
+    void aModelErrorWhileRunningIsReportedWithItsPlace() throws Exception {
+        Network n = ModelLoader.load("overflow.xta", """
+                chan i_go, o_done;
+                int[0,3] n;
+                process Iut() { state A; init A; trans A -> A { sync i_go?; assign n++; }, A -> A { guard n == 9; sync o_done!; }; }
+                process Env() { state E; init E; trans E -> E { sync i_go!; }, E -> E { sync o_done?; }; }
+                system Iut, Env;
+                """);
+        Adapter silent = new Adapter() {
+            @Override
+            public void start(AdapterContext context) {
+            }
+
+            @Override
+            public void perform(Event input) {
+            }
+        };
+        TestResult r = new OnlineTester(n, TestInterface.fromNames(n), silent,
+                TestOptions.defaults(1).withDelayPolicy(DelayPolicy.EAGER, 0)).run();
+        assertEquals(Verdict.INCONCLUSIVE, r.verdict(), r.explanation());
+        assertTrue(r.explanation().startsWith("model error: overflow.xta:3:68: the value 4 is outside int[0,3] of 'n'"),
+                r.explanation());
+    }
+
+    @Test
+    void aProcessOnBothSidesIsRefusedWithTheReason() throws Exception {
+        Network n = ModelLoader.load("both.xta", """
+                chan i_go, o_done;
+                process Confused() { state A; init A; trans A -> A { sync i_go!; }, A -> A { sync o_done!; }; }
+                process Other() { state A; init A; trans A -> A { sync i_go?; }, A -> A { sync o_done?; }; }
+                system Confused, Other;
+                """);
+        UnsupportedModelException e = org.junit.jupiter.api.Assertions.assertThrows(UnsupportedModelException.class,
+                () -> new OnlineTester(n, TestInterface.fromNames(n), new Ticker(1), TestOptions.defaults(1)).run());
+        assertTrue(e.getMessage().contains("process Confused sends output o_done but also sends input i_go"),
+                e.getMessage());
     }
 }

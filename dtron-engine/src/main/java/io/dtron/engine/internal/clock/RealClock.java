@@ -2,7 +2,12 @@ package io.dtron.engine.internal.clock;
 
 /** Real time: microseconds of {@link System#nanoTime()} since the start of the run. */
 public final class RealClock extends RunClock {
-    private final long start = System.nanoTime();
+    private volatile long start = System.nanoTime();
+
+    @Override
+    public void begin() {
+        start = System.nanoTime();
+    }
 
     @Override
     public long nowMicros() {

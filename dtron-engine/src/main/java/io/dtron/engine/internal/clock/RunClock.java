@@ -19,6 +19,8 @@ public abstract class RunClock implements TestClock {
     private final PriorityQueue<Task> tasks = new PriorityQueue<>();
     private final LinkedBlockingQueue<TimedEvent> outputs = new LinkedBlockingQueue<>();
     private long sequence;
+    /** The due time of the task running now, or -1: its events and timers count from when it was due. */
+    private volatile long taskTime = -1;
 
     private static final class Task implements Comparable<Task>, Scheduled {
         final long due;
@@ -46,15 +48,23 @@ public abstract class RunClock implements TestClock {
     @Override
     public final Scheduled schedule(long delayMicros, Runnable task) {
         synchronized (tasks) {
-            Task t = new Task(nowMicros() + Math.max(0, delayMicros), sequence++, task);
+            Task t = new Task(logicalNow() + Math.max(0, delayMicros), sequence++, task);
             tasks.add(t);
             return t;
         }
     }
 
-    /** Queues an output reported now (thread-safe). */
+    /**
+     * Queues an output reported now (thread-safe). Inside a scheduled task, "now" is the time the task was due,
+     * so that a simulated system's timing does not depend on how busy the tester was.
+     */
     public final void report(Event output) {
-        outputs.add(new TimedEvent(output, nowMicros()));
+        outputs.add(new TimedEvent(output, logicalNow()));
+    }
+
+    private long logicalNow() {
+        long t = taskTime;
+        return t >= 0 ? t : nowMicros();
     }
 
     /**
@@ -80,7 +90,12 @@ public abstract class RunClock implements TestClock {
                     tasks.remove(next);
                 }
                 if (!next.cancelled) {
-                    next.action.run();
+                    taskTime = next.due;
+                    try {
+                        next.action.run();
+                    } finally {
+                        taskTime = -1;
+                    }
                 }
                 continue;
             }
@@ -88,6 +103,10 @@ public abstract class RunClock implements TestClock {
                 return outputs.poll();
             }
         }
+    }
+
+    /** Sets time 0 to now; called once, right before the adapter starts. */
+    public void begin() {
     }
 
     /** Whether an output is waiting. */

@@ -145,8 +145,11 @@ public final class Plan {
                 }
             }
         }
-        int count = options.size() + (mustAct ? 0 : 1);
-        int pick = options.isEmpty() ? options.size() : random.nextInt(count);
+        // waiting is a choice of its own only when something must happen by a deadline: otherwise an input's
+        // random time already covers waiting, and the tester would wait to the end of the test
+        boolean offerWait = options.isEmpty() || hasDeadline() && !mustAct;
+        int count = options.size() + (offerWait ? 1 : 0);
+        int pick = options.isEmpty() ? 0 : random.nextInt(count);
         if (pick == options.size()) {
             return new Choice(null, hasDeadline() ? deadline + 1 : horizon);
         }
