@@ -11,6 +11,12 @@ public interface AdapterContext {
      */
     void report(Event output);
 
+    /**
+     * Ends the run INCONCLUSIVE with {@code reason} (thread-safe): the adapter lost the system under test (a
+     * connection dropped, an adapter process left the bus) and the test cannot go on.
+     */
+    void inconclusive(String reason);
+
     /** The run's clock. */
     TestClock clock();
 

@@ -101,6 +101,11 @@ public final class OnlineTester {
         }
 
         @Override
+        public void inconclusive(String reason) {
+            clock.abort(Objects.requireNonNull(reason, "reason"));
+        }
+
+        @Override
         public TestClock clock() {
             return clock;
         }
@@ -182,6 +187,9 @@ public final class OnlineTester {
         }
 
         private TestResult observe(RunClock.TimedEvent timed) {
+            if (timed.abort() != null) {
+                return result(Verdict.INCONCLUSIVE, timed.abort() + " (at " + time(timed.micros()) + ")");
+            }
             Event event = timed.event();
             TestInterface.ObservableChannel channel = testInterface.output(event.channel()).orElse(null);
             long at = timed.micros();

@@ -174,6 +174,24 @@ class OnlineTesterTest {
     }
 
     @Test
+    void anAdapterThatLosesItsSystemEndsTheRunInconclusive() throws Exception {
+        Network n = ModelLoader.load("ticker.xta", TICKER);
+        Adapter dropping = new Adapter() {
+            @Override
+            public void start(AdapterContext context) {
+                context.clock().schedule(5_000, () -> context.inconclusive("the connection to the ticker dropped"));
+            }
+
+            @Override
+            public void perform(Event input) {
+            }
+        };
+        TestResult r = new OnlineTester(n, TestInterface.fromNames(n), dropping, TestOptions.defaults(1)).run();
+        assertEquals(Verdict.INCONCLUSIVE, r.verdict());
+        assertEquals("the connection to the ticker dropped (at t=5.000)", r.explanation());
+    }
+
+    @Test
     void anOutputOutsideTheInterfaceIsInconclusive() throws Exception {
         Network n = ModelLoader.load("ticker.xta", TICKER);
         Adapter wrong = new Adapter() {

@@ -12,8 +12,15 @@ import java.util.concurrent.LinkedBlockingQueue;
  */
 public abstract class RunClock implements TestClock {
 
-    /** An output with the time it was reported, in microseconds since the start. */
-    public record TimedEvent(Event event, long micros) {
+    /**
+     * An output with the time it was reported, in microseconds since the start; or, with a null event, the
+     * adapter's report that the run cannot go on, with the reason.
+     */
+    public record TimedEvent(Event event, long micros, String abort) {
+        /** An output. */
+        public TimedEvent(Event event, long micros) {
+            this(event, micros, null);
+        }
     }
 
     private final PriorityQueue<Task> tasks = new PriorityQueue<>();
@@ -60,6 +67,11 @@ public abstract class RunClock implements TestClock {
      */
     public final void report(Event output) {
         outputs.add(new TimedEvent(output, logicalNow()));
+    }
+
+    /** Queues the adapter's report that the run cannot go on (thread-safe). */
+    public final void abort(String reason) {
+        outputs.add(new TimedEvent(null, logicalNow(), reason));
     }
 
     private long logicalNow() {
