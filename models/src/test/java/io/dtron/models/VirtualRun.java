@@ -66,6 +66,11 @@ public final class VirtualRun implements AdapterContext {
     }
 
     @Override
+    public void inconclusive(String reason) {
+        throw new AssertionError("the sample system gave up: " + reason);
+    }
+
+    @Override
     public void report(Event output) {
         TestInterface.ObservableChannel channel = testInterface.output(output.channel()).orElseThrow(
                 () -> new AssertionError("the model has no output " + output.channel()));
