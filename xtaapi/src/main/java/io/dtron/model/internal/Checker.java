@@ -629,27 +629,39 @@ final class Checker {
         return new Expression.Assign(a.pos(), target.type(), target, op, value);
     }
 
-    private Expression quantifier(Expr.Quantifier q) {
-        Resolved r = resolve(q.type());
+    /** The values a bound name takes: a resolved bounded integer range or scalar set, with its limits. */
+    record Range(Type type, int lower, int upper) {
+    }
+
+    /**
+     * The range of a quantifier, a select binding or a {@code for (i : T)} loop: {@code t} must be a bounded
+     * integer range or a scalar set; otherwise an error "{@code what} needs ..." and null.
+     */
+    Range boundedRange(TypeExpr t, String what) {
+        Resolved r = resolve(t);
         if (r == null) {
             return null;
         }
-        int lower;
-        int upper;
         if (r.type() instanceof Type.Int i && !i.equals(Type.Int.DEFAULT)) {
-            lower = i.lower();
-            upper = i.upper();
-        } else if (r.type() instanceof Type.Scalar s) {
-            lower = 0;
-            upper = s.size() - 1;
-        } else {
-            return error(q.type().pos(), "a quantifier ranges over a bounded integer range or a scalar set, not "
-                    + r.type());
+            return new Range(r.type(), i.lower(), i.upper());
         }
+        if (r.type() instanceof Type.Scalar s) {
+            return new Range(r.type(), 0, s.size() - 1);
+        }
+        return error(t.pos(), what + " needs a bounded integer range or a scalar set, not " + r.type());
+    }
+
+    private Expression quantifier(Expr.Quantifier q) {
+        Range range = boundedRange(q.type(), "a quantifier");
+        if (range == null) {
+            return null;
+        }
+        int lower = range.lower();
+        int upper = range.upper();
         int slot = frame.allocate(1);
         Scope outer = scope;
         Scope inner = new Scope(outer);
-        inner.put(q.name(), new Symbol.Local(q.pos(), r.type(), slot, false, false));
+        inner.put(q.name(), new Symbol.Local(q.pos(), range.type(), slot, false, false));
         scope = inner;
         Expression body;
         try {

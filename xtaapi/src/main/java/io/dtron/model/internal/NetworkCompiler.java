@@ -512,22 +512,8 @@ public final class NetworkCompiler {
             boolean ok = true;
             List<Edge.Select> selects = new ArrayList<>();
             for (io.dtron.xta.ast.Edge.Select s : e.selects()) {
-                Checker.Resolved r = checker.resolve(s.type());
-                if (r == null) {
-                    ok = false;
-                    continue;
-                }
-                int lower;
-                int upper;
-                if (r.type() instanceof Type.Int i && !i.equals(Type.Int.DEFAULT)) {
-                    lower = i.lower();
-                    upper = i.upper();
-                } else if (r.type() instanceof Type.Scalar sc) {
-                    lower = 0;
-                    upper = sc.size() - 1;
-                } else {
-                    diagnostics.error(s.type().pos(), "select '" + s.name() + "' needs a bounded integer range or a"
-                            + " scalar set, not " + r.type());
+                Checker.Range range = checker.boundedRange(s.type(), "select '" + s.name() + "'");
+                if (range == null) {
                     ok = false;
                     continue;
                 }
@@ -537,8 +523,8 @@ public final class NetworkCompiler {
                     continue;
                 }
                 int slot = frame.allocate(1);
-                scope.put(s.name(), new Symbol.Local(s.pos(), r.type(), slot, false, false));
-                selects.add(new Edge.Select(s.name(), slot, r.type(), lower, upper));
+                scope.put(s.name(), new Symbol.Local(s.pos(), range.type(), slot, false, false));
+                selects.add(new Edge.Select(s.name(), slot, range.type(), range.lower(), range.upper()));
             }
             Expression guard = null;
             if (e.guard() != null) {

@@ -60,31 +60,18 @@ final class StatementCompiler {
             Statement body = loop(f.body());
             return new Statement.For(s.pos(), init, cond, step, body == null ? empty(s) : body);
         } else if (s instanceof Stmt.Iteration it) {
-            Checker.Resolved r = checker.resolve(it.type());
-            if (r == null) {
-                return null;
-            }
-            int lower;
-            int upper;
-            if (r.type() instanceof Type.Int i && !i.equals(Type.Int.DEFAULT)) {
-                lower = i.lower();
-                upper = i.upper();
-            } else if (r.type() instanceof Type.Scalar sc) {
-                lower = 0;
-                upper = sc.size() - 1;
-            } else {
-                diagnostics.error(it.type().pos(), "'for (" + it.name() + " : T)' needs a bounded integer range or a"
-                        + " scalar set, not " + r.type());
+            Checker.Range range = checker.boundedRange(it.type(), "'for (" + it.name() + " : T)'");
+            if (range == null) {
                 return null;
             }
             Scope outer = checker.scope();
             Scope inner = new Scope(outer);
             int slot = checker.frame().allocate(1);
-            inner.put(it.name(), new Symbol.Local(it.pos(), r.type(), slot, false, false));
+            inner.put(it.name(), new Symbol.Local(it.pos(), range.type(), slot, false, false));
             checker.enter(inner);
             try {
                 Statement body = loop(it.body());
-                return new Statement.Iterate(s.pos(), slot, lower, upper, body == null ? empty(s) : body);
+                return new Statement.Iterate(s.pos(), slot, range.lower(), range.upper(), body == null ? empty(s) : body);
             } finally {
                 checker.leave(outer);
             }
