@@ -167,7 +167,7 @@ public final class OnlineTester {
                         : Math.min(timeoutMicros, lastMicros + micros(choice.ticks()));
                 RunClock.TimedEvent output = clock.awaitUntil(target);
                 if (output != null) {
-                    TestResult verdict = observe(output);
+                    TestResult verdict = observe(output, plan);
                     if (verdict != null) {
                         return verdict;
                     }
@@ -186,7 +186,7 @@ public final class OnlineTester {
             }
         }
 
-        private TestResult observe(RunClock.TimedEvent timed) {
+        private TestResult observe(RunClock.TimedEvent timed, Plan plan) {
             if (timed.abort() != null) {
                 return result(Verdict.INCONCLUSIVE, timed.abort() + " (at " + time(timed.micros()) + ")");
             }
@@ -206,8 +206,6 @@ public final class OnlineTester {
                 l.outputObserved(event, at);
             }
             outputs++;
-            long horizon = ticksCeil(timeoutMicros - lastMicros);
-            Plan plan = Plan.of(set, semantics, partition, testInterface, unit, horizon);
             StateSet atTime = set.afterWindow(ticksFloor(at - lastMicros), ticksCeil(at - lastMicros));
             if (atTime.isEmpty()) {
                 return result(Verdict.FAILED, "output " + event + " observed at " + time(at) + " is too late: "
