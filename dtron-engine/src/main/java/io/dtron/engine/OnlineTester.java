@@ -174,7 +174,8 @@ public final class OnlineTester {
                 } else if (clock.nowMicros() >= timeoutMicros && !choice.isInput()) {
                     continue;
                 } else if (choice.isInput()) {
-                    TestResult verdict = apply(choice, plan);
+                    RunClock.TimedEvent earlier = clock.drain();
+                    TestResult verdict = earlier != null ? observe(earlier, plan) : apply(choice, plan);
                     if (verdict != null) {
                         return verdict;
                     }
@@ -211,7 +212,7 @@ public final class OnlineTester {
                 return result(Verdict.FAILED, "output " + event + " observed at " + time(at) + " is too late: "
                         + plan.explainOutputs(this::time, lastMicros));
             }
-            List<StateSet.Successor> moves = atTime.successors(m -> m.channel() == channel.channel());
+            List<StateSet.Successor> moves = atTime.successors(channel.channel());
             List<io.dtron.engine.internal.sem.SymState> matching = new ArrayList<>();
             for (StateSet.Successor s : moves) {
                 if (valuesMatch(channel, event, s.state())) {
@@ -243,7 +244,7 @@ public final class OnlineTester {
             long delta = ticksFloor(now - lastMicros);
             TestInterface.ObservableChannel channel = choice.input();
             StateSet atTime = set.afterWindow(delta, ticksCeil(now - lastMicros));
-            List<StateSet.Successor> moves = atTime.successors(m -> m.channel() == channel.channel());
+            List<StateSet.Successor> moves = atTime.successors(channel.channel());
             if (moves.isEmpty()) {
                 return result(Verdict.INCONCLUSIVE, "input " + channel.name() + " could not be applied at "
                         + time(now) + " (too late for the window the environment allowed). "

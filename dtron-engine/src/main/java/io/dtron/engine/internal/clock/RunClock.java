@@ -117,6 +117,14 @@ public abstract class RunClock implements TestClock {
         }
     }
 
+    /**
+     * Runs the tasks already due and returns the first output waiting (removed from the queue), or null: what
+     * happened before now must be seen before the tester acts at a late time.
+     */
+    public final TimedEvent drain() {
+        return awaitUntil(nowMicros());
+    }
+
     /** Sets time 0 to now; called once, right before the adapter starts. */
     public void begin() {
     }

@@ -144,17 +144,25 @@ public final class Semantics {
 
     /** Every discrete successor of {@code s}, without delay. */
     public void moves(SymState s, MoveSink sink) {
+        moves(s, c -> true, sink);
+    }
+
+    /**
+     * The discrete successors of {@code s} by moves whose channel (-1 for an edge without synchronisation)
+     * {@code channels} accepts; moves on other channels are not computed at all.
+     */
+    public void moves(SymState s, java.util.function.IntPredicate channels, MoveSink sink) {
         List<Candidate> candidates = candidates(s);
         boolean committed = inCommitted(s);
         for (Candidate c : candidates) {
             Edge.Sync sync = c.edge.sync();
             if (sync == null) {
-                if (!committed || isCommitted(s, c.process)) {
+                if ((!committed || isCommitted(s, c.process)) && channels.test(-1)) {
                     fire(s, List.of(c), -1, sink);
                 }
                 continue;
             }
-            if (sync.direction() != Edge.Direction.SEND) {
+            if (sync.direction() != Edge.Direction.SEND || !channels.test(c.channel)) {
                 continue;
             }
             Type.Channel kind = channelKind(c.channel);

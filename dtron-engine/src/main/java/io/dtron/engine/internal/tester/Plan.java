@@ -29,7 +29,7 @@ public final class Plan {
     private final String implementationState;
 
     /** A window of elapsed ticks in which a channel is enabled, with the edge that would take it. */
-    record Window(long lo, long hi, String edge) {
+    record Window(long lo, long hi, Semantics.Step edge) {
     }
 
     /** The tester's next move: an input after {@code ticks}, or (input null) waiting until {@code ticks}. */
@@ -71,14 +71,9 @@ public final class Plan {
         List<SymState> reach = set.reach(horizon);
         for (SymState s : reach) {
             deadline = Math.max(deadline, upper(s, elapsed, horizon));
-            semantics.moves(s, (move, next) -> {
-                if (move.channel() >= 0 && partition.observable(move.channel()) != Partition.INTERNAL) {
-                    long lo = lower(next, elapsed);
-                    long hi = upper(next, elapsed, horizon);
-                    windows.computeIfAbsent(move.channel(), k -> new ArrayList<>())
-                            .add(new Window(lo, hi, semantics.describe(move.steps().get(0))));
-                }
-            });
+            semantics.moves(s, c -> c >= 0 && partition.observable(c) != Partition.INTERNAL, (move, next) ->
+                    windows.computeIfAbsent(move.channel(), k -> new ArrayList<>()).add(new Window(lower(next, elapsed),
+                            upper(next, elapsed, horizon), move.steps().get(0))));
         }
         boolean[] implementation = new boolean[semantics.network().processes().size()];
         for (int p = 0; p < implementation.length; p++) {
@@ -187,7 +182,7 @@ public final class Plan {
                 sb.append(sb.length() == 0 ? "" : "; ").append(names.get(e.getKey())).append(" between ")
                         .append(time.apply(baseMicros + micros(w.lo()))).append(" and ")
                         .append(w.hi() >= horizon ? "the end of the test" : time.apply(baseMicros + micros(w.hi())))
-                        .append(" (").append(w.edge()).append(')');
+                        .append(" (").append(semantics.describe(w.edge())).append(')');
             }
         }
         String what = wantInputs ? "inputs" : "outputs";

@@ -10,7 +10,6 @@ import java.util.ArrayList;
 import java.util.Collections;
 import java.util.Deque;
 import java.util.List;
-import java.util.function.Predicate;
 
 /**
  * The tester's knowledge: the symbolic states the closed network may be in at the time of the last
@@ -49,11 +48,6 @@ public final class StateSet {
         return states.isEmpty();
     }
 
-    /** Whether a move takes no observable channel. */
-    boolean isInternal(Semantics.Move m) {
-        return m.channel() < 0 || partition.observable(m.channel()) == Partition.INTERNAL;
-    }
-
     /**
      * Every state reachable from this set by delays and internal moves while the elapsed clock stays within
      * {@code [0, horizonTicks]}; zones keep the elapsed clock, so they tell when each state is possible.
@@ -79,11 +73,8 @@ public final class StateSet {
                 throw new IllegalStateException("more than " + MAX_STATES + " symbolic states within one step:"
                         + " the model is too nondeterministic to follow online");
             }
-            semantics.moves(s, (move, next) -> {
-                if (isInternal(move)) {
-                    waiting.add(next);
-                }
-            });
+            semantics.moves(s, c -> c < 0 || partition.observable(c) == Partition.INTERNAL,
+                    (move, next) -> waiting.add(next));
         }
         return passed.states();
     }
@@ -113,15 +104,11 @@ public final class StateSet {
         return new StateSet(semantics, partition, out.states());
     }
 
-    /** The successors of this set by the moves that {@code which} accepts (no delay before them). */
-    public List<Successor> successors(Predicate<Semantics.Move> which) {
+    /** The successors of this set by the moves on channel number {@code channel} (no delay before them). */
+    public List<Successor> successors(int channel) {
         List<Successor> out = new ArrayList<>();
         for (SymState s : states) {
-            semantics.moves(s, (move, next) -> {
-                if (which.test(move)) {
-                    out.add(new Successor(move, s, next));
-                }
-            });
+            semantics.moves(s, c -> c == channel, (move, next) -> out.add(new Successor(move, s, next)));
         }
         return out;
     }

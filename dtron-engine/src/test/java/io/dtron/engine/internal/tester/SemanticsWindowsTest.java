@@ -43,7 +43,7 @@ class SemanticsWindowsTest {
         Harness step(double units, String name) {
             int channel = channel(name);
             StateSet at = set.after(Math.round(units * TICKS));
-            List<StateSet.Successor> succ = at.successors(m -> m.channel() == channel);
+            List<StateSet.Successor> succ = at.successors(channel);
             assertFalse(succ.isEmpty(), name + " is not possible after " + units);
             set = at.of(succ.stream().map(StateSet.Successor::state).toList());
             return this;
@@ -75,7 +75,7 @@ class SemanticsWindowsTest {
             TestInterface.AttachedVariable v = iface.output(name).orElseThrow().variables().stream()
                     .filter(a -> a.name().equals(variable)).findFirst().orElseThrow();
             TreeSet<Integer> out = new TreeSet<>();
-            for (StateSet.Successor s : set.after(Math.round(units * TICKS)).successors(m -> m.channel() == channel)) {
+            for (StateSet.Successor s : set.after(Math.round(units * TICKS)).successors(channel)) {
                 out.add(s.state().var(v.variable().offset()));
             }
             return out;

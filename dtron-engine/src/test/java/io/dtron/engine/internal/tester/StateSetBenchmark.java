@@ -91,7 +91,7 @@ public class StateSetBenchmark {
             }
             int c = channel;
             StateSet at = set.after(delay);
-            List<StateSet.Successor> succ = at.successors(m -> m.channel() == c);
+            List<StateSet.Successor> succ = at.successors(c);
             if (succ.isEmpty()) {
                 break;
             }
@@ -135,7 +135,7 @@ public class StateSetBenchmark {
     public StateSet observe() {
         Step s = nextStep();
         StateSet at = s.before().after(s.delay());
-        return at.of(at.successors(m -> m.channel() == s.channel()).stream().map(StateSet.Successor::state).toList());
+        return at.of(at.successors(s.channel()).stream().map(StateSet.Successor::state).toList());
     }
 
     /** Plan the next step: windows of every observable channel and the deadline. */
