@@ -35,9 +35,18 @@ import org.slf4j.LoggerFactory;
  * {@code Sync}, names an unknown channel, or carries unknown or missing
  * variables is rejected: logged with the reason, counted in
  * {@link #getStats()}, and not delivered; later messages are delivered as
- * usual. Thread-safe.
+ * usual. {@link DtronMembershipListener Membership listeners} learn who joins
+ * and leaves. Thread-safe.
  */
 public final class Dtron implements AutoCloseable {
+    /**
+     * The channel on which a tester announces that a test run starts, with the run's time unit in microseconds
+     * as variable {@code timeunit}. Time 0 of the run is when the tester published it: an adapter whose system
+     * acts on its own (a ticker, a timeout) starts its clock when this message arrives. A model channel may not
+     * have this name.
+     */
+    public static final IDtronChannel RUN_START = IDtronChannel.of("dtron_start", "timeunit");
+
     private static final Logger LOG = LoggerFactory.getLogger(Dtron.class);
     private static final Duration CLOSE_TIMEOUT = Duration.ofSeconds(5);
 
@@ -45,12 +54,14 @@ public final class Dtron implements AutoCloseable {
     private final String clusterName;
     private final Optional<Map<String, DtronChannel>> declared;
     private final Map<String, Registration> registrations = new ConcurrentHashMap<>();
+    private final List<DtronMembershipListener> membershipListeners = new CopyOnWriteArrayList<>();
     private final Counters counters = new Counters();
     private final AtomicLong sequence = new AtomicLong();
     private final SerialExecutor dispatcher;
     private final Object lock = new Object();
     private final Subscription viewSubscription;
     private final Optional<Subscription> allGroups;
+    private MembershipView lastView;
     private volatile boolean closed;
 
     /** The listeners of one channel and the template their messages must fit. */
@@ -66,6 +77,7 @@ public final class Dtron implements AutoCloseable {
             return Map.copyOf(copy);
         });
         this.dispatcher = new SerialExecutor("dtron-listeners-" + transport.localMember());
+        this.lastView = transport.view();
         this.viewSubscription = transport.addViewListener(this::viewChanged);
         this.allGroups = declared.map(d -> transport.subscribeAll(this::received));
     }
@@ -87,6 +99,7 @@ public final class Dtron implements AutoCloseable {
      */
     public static Dtron connect(DtronOptions options) {
         Objects.requireNonNull(options, "options");
+        SyncCodec.warmUp();
         Transport transport;
         try {
             transport = BusConnector.connect(options);
@@ -158,6 +171,26 @@ public final class Dtron implements AutoCloseable {
                 registration.group().ifPresent(Subscription::close);
             }
         }
+    }
+
+    /**
+     * Adds a listener that is told about every later change of the members; a listener added twice is called
+     * once. It is called on the thread of the {@link DtronListener}s, in order with the messages: a member's
+     * messages come before the news that it left.
+     */
+    public void addMembershipListener(DtronMembershipListener listener) {
+        Objects.requireNonNull(listener, "listener");
+        synchronized (lock) {
+            requireOpen();
+            if (!membershipListeners.contains(listener)) {
+                membershipListeners.add(listener);
+            }
+        }
+    }
+
+    /** Removes a membership listener; removing an unknown one does nothing. */
+    public void removeMembershipListener(DtronMembershipListener listener) {
+        membershipListeners.remove(Objects.requireNonNull(listener, "listener"));
     }
 
     /**
@@ -249,6 +282,7 @@ public final class Dtron implements AutoCloseable {
         synchronized (lock) {
             registrations.values().forEach(r -> r.listeners().forEach(l -> l.detach(this)));
             registrations.clear();
+            membershipListeners.clear();
         }
         LOG.info("Left bus '{}' as {}: {}", clusterName, getMemberId(), getStats());
     }
@@ -327,10 +361,32 @@ public final class Dtron implements AutoCloseable {
         }
     }
 
+    /** Called on the transport's thread, one view at a time. */
     private void viewChanged(MembershipView view) {
         LOG.info("Bus '{}' members: {}", clusterName, view.members());
+        List<String> joined = view.joinedSince(lastView);
+        List<String> left = view.leftSince(lastView);
+        lastView = view;
         synchronized (lock) {
             lock.notifyAll();
+        }
+        if (!joined.isEmpty() || !left.isEmpty()) {
+            dispatcher.execute(() -> membershipChanged(view.members(), joined, left));
+        }
+    }
+
+    /** Called on the dispatcher thread, in the bus's order. */
+    private void membershipChanged(List<String> members, List<String> joined, List<String> left) {
+        for (DtronMembershipListener listener : membershipListeners) {
+            try {
+                listener.membershipChanged(members, joined, left);
+            } catch (VirtualMachineError e) {
+                throw e;
+            } catch (Throwable e) {
+                counters.listenerFailed();
+                LOG.error("Membership listener {} failed on members {} (joined {}, left {})", listener, members,
+                        joined, left, e);
+            }
         }
     }
 }

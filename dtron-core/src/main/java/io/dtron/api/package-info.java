@@ -22,5 +22,9 @@
  *
  * <p>Every member of a bus receives every message, its own included, in one
  * total order that is the same at all members. Values are immutable.
+ * {@link io.dtron.api.DtronMembershipListener Membership listeners} hear who
+ * joins and leaves; a tester announces the start of a run on
+ * {@link io.dtron.api.Dtron#RUN_START}; a {@link io.dtron.api.DtronAdapter}
+ * can run in the tester's JVM.
  */
 package io.dtron.api;

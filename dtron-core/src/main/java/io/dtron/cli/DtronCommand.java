@@ -1,6 +1,10 @@
 package io.dtron.cli;
 
+import java.io.File;
 import java.io.PrintWriter;
+import java.nio.file.Files;
+import java.nio.file.InvalidPathException;
+import java.nio.file.Path;
 import java.util.concurrent.Callable;
 import picocli.CommandLine;
 import picocli.CommandLine.Command;
@@ -9,12 +13,14 @@ import picocli.CommandLine.Spec;
 
 /**
  * The {@code dtron} command line: {@code dtron check MODEL...} loads and type-checks models, {@code dtron run
- * MODEL --sut CLASS} tests a system under test against a model. Exit codes follow TRON's: 0 passed, 2 failed,
- * 3 inconclusive; 1 for a usage or model error.
+ * MODEL} tests a system under test against a model, in process ({@code --sut CLASS}) or on the bus; {@code dtron
+ * MODEL ...} is short for {@code dtron run MODEL ...}. Exit codes follow TRON's: 0 passed, 2 failed, 3
+ * inconclusive; 1 for a usage or model error.
  */
 @Command(name = "dtron", mixinStandardHelpOptions = true, versionProvider = DtronCommand.Version.class,
         exitCodeOnInvalidInput = 1, exitCodeOnExecutionException = 1,
-        description = "Online model-based testing and control of timed systems with Uppaal timed automata.",
+        description = {"Online model-based testing and control of timed systems with Uppaal timed automata.",
+                "dtron MODEL [OPTIONS] is short for dtron run MODEL [OPTIONS]."},
         subcommands = {CheckCommand.class, RunCommand.class, CommandLine.HelpCommand.class})
 public final class DtronCommand implements Callable<Integer> {
 
@@ -36,7 +42,33 @@ public final class DtronCommand implements Callable<Integer> {
             e.printStackTrace(commandLine.getErr());
             return 1;
         });
-        return cli.execute(args);
+        return cli.execute(withDefaultCommand(cli, args));
+    }
+
+    /**
+     * Puts {@code run} in front of the arguments when the first one is a model file rather than an option or a
+     * command: a path that exists, or a name with a dot or a path separator.
+     */
+    private static String[] withDefaultCommand(CommandLine cli, String[] args) {
+        if (args.length == 0 || args[0].startsWith("-") || cli.getSubcommands().containsKey(args[0])
+                || !looksLikeFile(args[0])) {
+            return args;
+        }
+        String[] withRun = new String[args.length + 1];
+        withRun[0] = "run";
+        System.arraycopy(args, 0, withRun, 1, args.length);
+        return withRun;
+    }
+
+    private static boolean looksLikeFile(String arg) {
+        if (arg.contains(".") || arg.contains("/") || arg.contains(File.separator)) {
+            return true;
+        }
+        try {
+            return Files.exists(Path.of(arg));
+        } catch (InvalidPathException e) {
+            return false;
+        }
     }
 
     @Override

@@ -1,5 +1,8 @@
 package io.dtron.cli;
 
+import io.dtron.api.DtronAdapter;
+import io.dtron.api.DtronException;
+import io.dtron.api.DtronOptions;
 import io.dtron.engine.Adapter;
 import io.dtron.engine.DelayPolicy;
 import io.dtron.engine.Event;
@@ -16,9 +19,13 @@ import io.dtron.xta.Diagnostic;
 import java.io.IOException;
 import java.io.PrintWriter;
 import java.io.Writer;
+import java.net.InetAddress;
+import java.net.UnknownHostException;
 import java.nio.charset.StandardCharsets;
 import java.nio.file.Files;
 import java.nio.file.Path;
+import java.time.Duration;
+import java.util.ArrayList;
 import java.util.List;
 import java.util.Locale;
 import java.util.concurrent.Callable;
@@ -26,19 +33,25 @@ import java.util.concurrent.atomic.AtomicInteger;
 import picocli.CommandLine.Command;
 import picocli.CommandLine.Model.CommandSpec;
 import picocli.CommandLine.Option;
+import picocli.CommandLine.ParameterException;
 import picocli.CommandLine.Parameters;
 import picocli.CommandLine.Spec;
 
 /**
- * {@code dtron run MODEL --sut CLASS}: tests an in-process system under test against a model with the
- * embedded engine and prints the verdict with its explanation. Exit codes: 0 passed, 2 failed, 3
- * inconclusive, 1 usage or model error.
+ * {@code dtron run MODEL}: tests a system under test against a model with the embedded engine and prints the
+ * verdict with its explanation. With {@code --sut CLASS} the system is an in-process {@link Adapter}; without,
+ * the run is in real time against the adapters on a DTRON bus, through a {@link io.dtron.bridge.BusBridge}, and
+ * ends with the latency of the messages and the bus counters. Exit codes: 0 passed, 2 failed, 3 inconclusive, 1
+ * usage or model error.
  */
 @Command(name = "run", mixinStandardHelpOptions = true, exitCodeOnInvalidInput = 1, exitCodeOnExecutionException = 1,
         description = {"Test a system under test online against a model, with DTRON's engine.",
                 "The model's environment chooses inputs and their timing; the system's outputs and their times are"
                         + " checked against the model. Prints the seed, progress on long runs, and the verdict with"
                         + " its explanation.",
+                "Without --sut the run is in real time against the adapters on a DTRON bus: inputs are published"
+                        + " on the bus, messages on output channels are the outputs; the run ends with the latency"
+                        + " of the messages (t2 - t1, receive minus publish time) and the bus counters.",
                 "Exit code 0 PASSED, 2 FAILED, 3 INCONCLUSIVE, 1 usage or model error."})
 final class RunCommand implements Callable<Integer> {
     private static final long PROGRESS_EVERY_NANOS = 5_000_000_000L;
@@ -49,20 +62,44 @@ final class RunCommand implements Callable<Integer> {
     @Parameters(index = "0", paramLabel = "MODEL", description = "The model (.xml, .xta).")
     private Path model;
 
-    @Option(names = "--sut", required = true, paramLabel = "CLASS[:VARIANT]",
-            description = "The system under test: a class implementing io.dtron.engine.Adapter, optionally with a"
-                    + " variant name passed to its constructor (e.g. io.dtron.models.lamp.SmartLamp:late).")
+    @Option(names = "--sut", paramLabel = "CLASS[:VARIANT]",
+            description = "An in-process system under test: a class implementing io.dtron.engine.Adapter,"
+                    + " optionally with a variant name passed to its constructor (e.g."
+                    + " io.dtron.models.lamp.SmartLamp:late). Without it, the adapters on the bus are tested.")
     private String sut;
 
     @Option(names = "--classpath", split = ",", paramLabel = "PATH",
-            description = "Jars or folders to load the system under test from (comma-separated).")
+            description = "Jars or folders to load the system under test or the adapters from (comma-separated).")
     private List<Path> classpath = List.of();
+
+    @Option(names = "--cluster", paramLabel = "NAME",
+            description = "Bus mode: the bus's cluster name (default: " + DtronOptions.DEFAULT_CLUSTER + ").")
+    private String cluster;
+
+    @Option(names = "--bind", paramLabel = "ADDR",
+            description = "Bus mode: the network interface to bind to and to find members at (default: loopback).")
+    private String bind;
+
+    @Option(names = "--wait-for-adapters", paramLabel = "N",
+            description = "Bus mode: start when N members besides the tester are on the bus, --adapter ones included"
+                    + " (default: 0, start at once).")
+    private Integer waitForAdapters;
+
+    @Option(names = "--wait-timeout", paramLabel = "SECONDS",
+            description = "Bus mode: how long to wait for the adapters (default: 30).")
+    private Long waitTimeout;
+
+    @Option(names = "--adapter", paramLabel = "CLASS[:VARIANT]",
+            description = "Bus mode: start a bus adapter in this JVM, a class implementing io.dtron.api.DtronAdapter"
+                    + " (repeatable).")
+    private List<String> adapterClasses = List.of();
 
     @Option(names = "--interface", paramLabel = "FILE.trn",
             description = "TRON interface file; by default i_/o_ channel names give the interface.")
     private Path interfaceFile;
 
-    @Option(names = "--virtual-time", description = "Run in virtual time: deterministic and as fast as the CPU allows.")
+    @Option(names = "--virtual-time",
+            description = "Run in virtual time: deterministic and as fast as the CPU allows (--sut only).")
     private boolean virtualTime;
 
     @Option(names = "--seed", paramLabel = "N", description = "Seed of the random choices (default: from the clock).")
@@ -91,6 +128,8 @@ final class RunCommand implements Callable<Integer> {
     public Integer call() {
         PrintWriter out = spec.commandLine().getOut();
         PrintWriter err = spec.commandLine().getErr();
+        boolean busMode = sut == null;
+        checkModeOptions(busMode);
         Network network;
         TestInterface testInterface;
         try {
@@ -113,39 +152,21 @@ final class RunCommand implements Callable<Integer> {
         try {
             policy = DelayPolicy.valueOf(delayPolicy.toUpperCase(Locale.ROOT).replace('-', '_'));
         } catch (IllegalArgumentException e) {
-            err.println("dtron run: unknown delay policy '" + delayPolicy
-                    + "' (use random, eager, lazy or random-bounded)");
-            return 1;
+            throw usage("unknown delay policy '" + delayPolicy + "' (use random, eager, lazy or random-bounded)");
         }
         long unit = timeUnit != null ? timeUnit : testInterface.timeUnitMicros() != null
                 ? testInterface.timeUnitMicros() : 1000;
         long units = timeout != null ? timeout : testInterface.timeout() != null ? testInterface.timeout() : 1000;
         long runSeed = seed != null ? seed : System.nanoTime() & 0xffffffffL;
         TestOptions options;
-        Adapter adapter;
         try {
             options = new TestOptions(runSeed, unit, units, policy, delayBound, virtualTime);
-            adapter = SystemUnderTest.create(sut, classpath);
         } catch (IllegalArgumentException e) {
-            err.println("dtron run: " + e.getMessage());
-            return 1;
+            throw usage(e.getMessage());
         }
-        out.println("dtron run: " + model + " against " + sut + ", seed " + runSeed + ", " + units + " time units of "
-                + unit + " us" + (virtualTime ? " in virtual time" : ""));
-        out.flush();
-        try (Writer traceWriter = trace == null ? null : Files.newBufferedWriter(trace, StandardCharsets.UTF_8)) {
-            OnlineTester tester = new OnlineTester(network, testInterface, adapter, options);
-            if (traceWriter != null) {
-                JsonTrace json = new JsonTrace(traceWriter, unit);
-                json.start(runSeed, model.toString(), units, virtualTime);
-                tester.addListener(json);
-            }
-            tester.addListener(new Progress(out));
-            TestResult result = tester.run();
-            out.println(result.verdict() + ": " + result.explanation());
-            out.println("statistics: " + result.statisticsLine() + " (seed verdict inputs outputs duration-us)");
-            out.flush();
-            return result.verdict().exitCode();
+        try {
+            return busMode ? runOnBus(network, testInterface, options, out, err)
+                    : runInProcess(network, testInterface, options, out);
         } catch (UnsupportedModelException e) {
             err.println("dtron run: " + model + ": " + e.getMessage());
             return 1;
@@ -153,6 +174,140 @@ final class RunCommand implements Callable<Integer> {
             err.println("dtron run: cannot write the trace " + trace + ": " + e.getMessage());
             return 1;
         }
+    }
+
+    /** Rejects options that belong to the other mode, and bad values of the bus options. */
+    private void checkModeOptions(boolean busMode) {
+        if (!busMode && (cluster != null || bind != null || waitForAdapters != null || waitTimeout != null
+                || !adapterClasses.isEmpty())) {
+            throw usage("--cluster, --bind, --wait-for-adapters, --wait-timeout and --adapter are for testing the"
+                    + " adapters on a bus, without --sut");
+        }
+        if (busMode && virtualTime) {
+            throw usage("--virtual-time needs --sut: the adapters on a bus live in real time");
+        }
+        if (waitForAdapters != null && waitForAdapters < 0) {
+            throw usage("--wait-for-adapters must not be negative: " + waitForAdapters);
+        }
+        if (waitTimeout != null && waitTimeout <= 0) {
+            throw usage("--wait-timeout must be a positive number of seconds: " + waitTimeout);
+        }
+    }
+
+    private int runInProcess(Network network, TestInterface testInterface, TestOptions options, PrintWriter out)
+            throws IOException {
+        Adapter adapter;
+        try {
+            adapter = SystemUnderTest.create(sut, classpath);
+        } catch (IllegalArgumentException e) {
+            throw usage(e.getMessage());
+        }
+        out.println("dtron run: " + model + " against " + sut + ", seed " + options.seed() + ", " + options.timeout()
+                + " time units of " + options.timeUnitMicros() + " us" + (virtualTime ? " in virtual time" : ""));
+        out.flush();
+        return test(network, testInterface, adapter, options, out).verdict().exitCode();
+    }
+
+    private int runOnBus(Network network, TestInterface testInterface, TestOptions options, PrintWriter out,
+                         PrintWriter err) throws IOException {
+        String clusterName = cluster != null ? cluster : DtronOptions.DEFAULT_CLUSTER;
+        if (clusterName.isBlank()) {
+            throw usage("--cluster: the cluster name is blank");
+        }
+        InetAddress address;
+        List<DtronAdapter> adapters = new ArrayList<>();
+        try {
+            address = bind == null ? InetAddress.getLoopbackAddress() : InetAddress.getByName(bind);
+            for (String adapterClass : adapterClasses) {
+                adapters.add(SystemUnderTest.createBusAdapter(adapterClass, classpath));
+            }
+        } catch (UnknownHostException e) {
+            throw usage("--bind: unknown address '" + bind + "'");
+        } catch (IllegalArgumentException e) {
+            throw usage(e.getMessage());
+        }
+        BusSession session;
+        try {
+            session = BusSession.open(testInterface, clusterName, address);
+        } catch (IllegalArgumentException e) {
+            err.println("dtron run: " + model + ": " + e.getMessage());
+            return 1;
+        } catch (DtronException e) {
+            err.println("dtron run: " + busError(e));
+            return 1;
+        }
+        try (session) {
+            out.println("dtron run: " + model + " on bus '" + clusterName + "' at " + address.getHostAddress()
+                    + " as " + session.bridge().memberId() + ", seed " + options.seed() + ", " + options.timeout()
+                    + " time units of " + options.timeUnitMicros() + " us in real time");
+            out.flush();
+            for (int i = 0; i < adapters.size(); i++) {
+                String member;
+                try {
+                    member = session.startAdapter(adapters.get(i));
+                } catch (DtronException e) {
+                    err.println("dtron run: adapter " + adapterClasses.get(i) + ": " + busError(e));
+                    return 1;
+                } catch (RuntimeException e) {
+                    err.println("dtron run: adapter " + adapterClasses.get(i) + " failed to start: " + e);
+                    return 1;
+                }
+                out.println("dtron run: adapter " + adapterClasses.get(i) + " joined as " + member);
+            }
+            int wanted = waitForAdapters == null ? 0 : waitForAdapters;
+            if (wanted > 0) {
+                long seconds = waitTimeout == null ? 30 : waitTimeout;
+                out.println("dtron run: waiting up to " + seconds + " s for " + wanted + " adapter"
+                        + (wanted == 1 ? "" : "s") + " to join bus '" + clusterName + "'");
+                out.flush();
+                try {
+                    if (!session.awaitAdapters(wanted, Duration.ofSeconds(seconds))) {
+                        err.println("dtron run: only " + (session.bridge().members().size() - 1) + " of " + wanted
+                                + " adapters joined bus '" + clusterName + "' at " + address.getHostAddress()
+                                + " within " + seconds + " s; start them with the same cluster name and address,"
+                                + " or wait longer with --wait-timeout");
+                        return 1;
+                    }
+                } catch (InterruptedException e) {
+                    Thread.currentThread().interrupt();
+                    err.println("dtron run: interrupted while waiting for the adapters");
+                    return 1;
+                }
+                out.println("dtron run: members " + session.bridge().members());
+                out.flush();
+            }
+            TestResult result = test(network, testInterface, session.bridge(), options, out);
+            session.printSummary(out);
+            out.flush();
+            return result.verdict().exitCode();
+        }
+    }
+
+    /** Runs the tester with the trace and progress lines, and prints the verdict and the statistics. */
+    private TestResult test(Network network, TestInterface testInterface, Adapter adapter, TestOptions options,
+                            PrintWriter out) throws IOException {
+        try (Writer traceWriter = trace == null ? null : Files.newBufferedWriter(trace, StandardCharsets.UTF_8)) {
+            OnlineTester tester = new OnlineTester(network, testInterface, adapter, options);
+            if (traceWriter != null) {
+                JsonTrace json = new JsonTrace(traceWriter, options.timeUnitMicros());
+                json.start(options.seed(), model.toString(), options.timeout(), options.virtualTime());
+                tester.addListener(json);
+            }
+            tester.addListener(new Progress(out));
+            TestResult result = tester.run();
+            out.println(result.verdict() + ": " + result.explanation());
+            out.println("statistics: " + result.statisticsLine() + " (seed verdict inputs outputs duration-us)");
+            out.flush();
+            return result;
+        }
+    }
+
+    private static String busError(DtronException e) {
+        return e.getMessage() + (e.getCause() == null ? "" : ": " + e.getCause().getMessage());
+    }
+
+    private ParameterException usage(String message) {
+        return new ParameterException(spec.commandLine(), "dtron run: " + message);
     }
 
     /** A progress line every few seconds of wall-clock time: elapsed test time, inputs, outputs. */

@@ -1,5 +1,6 @@
 package io.dtron.cli;
 
+import io.dtron.api.DtronAdapter;
 import io.dtron.engine.Adapter;
 import java.lang.reflect.Constructor;
 import java.lang.reflect.InvocationTargetException;
@@ -12,9 +13,10 @@ import java.util.ArrayList;
 import java.util.List;
 
 /**
- * Creates an in-process system under test from {@code CLASS[:VARIANT]}: a class implementing
- * {@link Adapter}, with a public constructor taking the variant name (a String), or a public no-arg constructor
- * when no variant is given. Classes come from the classpath, plus {@code --classpath} jars and folders.
+ * Creates an in-process system under test or bus adapter from {@code CLASS[:VARIANT]}: a class implementing
+ * {@link Adapter} (or {@link DtronAdapter}), with a public constructor taking the variant name (a String), or a
+ * public no-arg constructor when no variant is given. Classes come from the classpath, plus {@code --classpath}
+ * jars and folders.
  */
 final class SystemUnderTest {
     private SystemUnderTest() {
@@ -22,6 +24,15 @@ final class SystemUnderTest {
 
     /** The adapter for {@code spec}; an IllegalArgumentException says what is wrong in the user's terms. */
     static Adapter create(String spec, List<Path> classpath) {
+        return create(spec, classpath, Adapter.class, "a system under test");
+    }
+
+    /** The bus adapter for {@code spec}; an IllegalArgumentException says what is wrong in the user's terms. */
+    static DtronAdapter createBusAdapter(String spec, List<Path> classpath) {
+        return create(spec, classpath, DtronAdapter.class, "a bus adapter");
+    }
+
+    private static <T> T create(String spec, List<Path> classpath, Class<T> kind, String what) {
         int colon = spec.indexOf(':');
         String className = colon < 0 ? spec : spec.substring(0, colon);
         String variant = colon < 0 ? null : spec.substring(colon + 1);
@@ -33,17 +44,17 @@ final class SystemUnderTest {
             throw new IllegalArgumentException("no class " + className + " on the classpath"
                     + (classpath.isEmpty() ? " (add its jar or folder with --classpath)" : " " + classpath));
         }
-        if (!Adapter.class.isAssignableFrom(type)) {
-            throw new IllegalArgumentException(className + " is not a system under test: it does not implement "
-                    + Adapter.class.getName());
+        if (!kind.isAssignableFrom(type)) {
+            throw new IllegalArgumentException(className + " is not " + what + ": it does not implement "
+                    + kind.getName());
         }
         try {
             if (variant == null) {
                 Constructor<?> c = type.getConstructor();
-                return (Adapter) c.newInstance();
+                return kind.cast(c.newInstance());
             }
             Constructor<?> c = type.getConstructor(String.class);
-            return (Adapter) c.newInstance(variant);
+            return kind.cast(c.newInstance(variant));
         } catch (NoSuchMethodException e) {
             throw new IllegalArgumentException(className + " has no public constructor "
                     + (variant == null ? "without arguments" : "taking a variant name (String)"));

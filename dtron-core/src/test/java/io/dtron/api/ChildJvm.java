@@ -10,8 +10,8 @@ import java.util.ArrayList;
 import java.util.List;
 import java.util.concurrent.TimeUnit;
 
-/** A main class of the tests run in a JVM of its own, on the test classpath. */
-final class ChildJvm implements AutoCloseable {
+/** A main class of the tests, or a jar, run in a JVM of its own. */
+public final class ChildJvm implements AutoCloseable {
     private final Process process;
     private final Path log;
 
@@ -20,13 +20,21 @@ final class ChildJvm implements AutoCloseable {
         this.log = log;
     }
 
-    /** Starts {@code main} with the arguments; its stdout and stderr go to {@code log}. */
-    static ChildJvm start(Class<?> main, Path log, String... args) throws IOException {
+    /** Starts {@code main} on the test classpath with the arguments; its stdout and stderr go to {@code log}. */
+    public static ChildJvm start(Class<?> main, Path log, String... args) throws IOException {
+        return start(List.of("-cp", System.getProperty("java.class.path"), main.getName()), log, args);
+    }
+
+    /** Starts {@code java -jar jar} with the arguments; its stdout and stderr go to {@code log}. */
+    public static ChildJvm startJar(Path jar, Path log, String... args) throws IOException {
+        return start(List.of("-jar", jar.toString()), log, args);
+    }
+
+    private static ChildJvm start(List<String> what, Path log, String... args) throws IOException {
         List<String> command = new ArrayList<>(List.of(
                 Path.of(System.getProperty("java.home"), "bin", "java").toString(),
-                "-Xmx256m", "-XX:+UseSerialGC", "-XX:TieredStopAtLevel=1",
-                "-cp", System.getProperty("java.class.path"),
-                main.getName()));
+                "-Xmx256m", "-XX:+UseSerialGC", "-XX:TieredStopAtLevel=1"));
+        command.addAll(what);
         command.addAll(List.of(args));
         Process process = new ProcessBuilder(command)
                 .redirectErrorStream(true)
@@ -36,7 +44,7 @@ final class ChildJvm implements AutoCloseable {
     }
 
     /** Waits for the JVM to exit and returns its exit code; fails the test after the timeout. */
-    int waitFor(Duration timeout) throws InterruptedException, IOException {
+    public int waitFor(Duration timeout) throws InterruptedException, IOException {
         if (!process.waitFor(timeout.toMillis(), TimeUnit.MILLISECONDS)) {
             process.destroyForcibly();
             fail("child JVM still running after " + timeout + "; its output:\n" + output());
@@ -44,8 +52,26 @@ final class ChildJvm implements AutoCloseable {
         return process.exitValue();
     }
 
+    /**
+     * Waits until the JVM has printed {@code text}; fails the test if it exits first or the timeout passes.
+     */
+    public void awaitOutput(String text, Duration timeout) throws InterruptedException, IOException {
+        long deadline = System.nanoTime() + timeout.toNanos();
+        while (!output().contains(text)) {
+            if (!process.isAlive() || System.nanoTime() > deadline) {
+                fail("child JVM did not print '" + text + "' within " + timeout + "; its output:\n" + output());
+            }
+            Thread.sleep(20);
+        }
+    }
+
+    /** Kills the JVM at once, as a crash would. */
+    public void kill() {
+        process.destroyForcibly();
+    }
+
     /** Returns what the JVM printed so far. */
-    String output() throws IOException {
+    public String output() throws IOException {
         return Files.readString(log);
     }
 

@@ -5,12 +5,15 @@ import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
+import io.dtron.testadapter.BusTicker;
 import java.io.IOException;
 import java.io.PrintWriter;
 import java.io.StringWriter;
 import java.nio.file.Files;
 import java.nio.file.Path;
+import java.util.ArrayList;
 import java.util.List;
+import java.util.UUID;
 import org.junit.jupiter.api.BeforeAll;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
@@ -105,12 +108,93 @@ class RunCommandTest {
         Run policy = dtron("run", model.toString(), "--sut", TickerForTests.class.getName(), "--delay-policy", "soon");
         assertEquals(1, policy.exit());
         assertTrue(policy.err().contains("unknown delay policy 'soon'"), policy.err());
-        Run missingSut = dtron("run", model.toString());
-        assertEquals(1, missingSut.exit());
-        assertTrue(missingSut.err().contains("Missing required option: '--sut=CLASS[:VARIANT]'"), missingSut.err());
         Run badTimeout = dtron("run", model.toString(), "--sut", TickerForTests.class.getName(), "--timeout", "0");
         assertEquals(1, badTimeout.exit());
         assertTrue(badTimeout.err().contains("the timeout must be a positive number"), badTimeout.err());
         assertFalse((noClass.err() + variant.err() + policy.err()).contains("\tat "), "no stack traces");
+        for (Run r : List.of(noClass, notAdapter, variant, policy, badTimeout)) {
+            assertTrue(r.err().contains("Usage: dtron run"), "a usage message: " + r.err());
+        }
+    }
+
+    @Test
+    void aModelFileAloneMeansRun() {
+        Run r = dtron(model.toString(), "--sut", TickerForTests.class.getName(), "--virtual-time", "--seed", "7",
+                "--timeout", "300");
+        assertEquals(0, r.exit(), r.out() + r.err());
+        assertTrue(r.out().contains("PASSED: the timeout of 300 time units was reached"), r.out());
+        Run typo = dtron("chek", model.toString());
+        assertEquals(1, typo.exit());
+        assertTrue(typo.err().contains("Unmatched argument"), "a command name is not taken for a model: " + typo.err());
+    }
+
+    @Test
+    void unknownOptionsAndBadValuesGetAUsageMessage() {
+        Run unknown = dtron(model.toString(), "--bogus");
+        assertEquals(1, unknown.exit());
+        assertTrue(unknown.err().contains("Unknown option: '--bogus'"), unknown.err());
+        assertTrue(unknown.err().contains("Usage: dtron run"), unknown.err());
+        assertTrue(unknown.err().contains("--wait-for-adapters=N"), "the bus options are listed: " + unknown.err());
+        Run notANumber = dtron(model.toString(), "--wait-for-adapters", "two");
+        assertEquals(1, notANumber.exit());
+        assertTrue(notANumber.err().contains("Invalid value for option '--wait-for-adapters': 'two'"),
+                notANumber.err());
+        for (String[] args : List.of(
+                new String[] {"--wait-for-adapters", "-1"},
+                new String[] {"--wait-timeout", "0"},
+                new String[] {"--virtual-time"},
+                new String[] {"--bind", "no.such.host.invalid"},
+                new String[] {"--cluster", " "},
+                new String[] {"--adapter", "java.lang.String"},
+                new String[] {"--sut", TickerForTests.class.getName(), "--cluster", "x"})) {
+            List<String> all = new ArrayList<>(List.of(model.toString()));
+            all.addAll(List.of(args));
+            Run r = dtron(all.toArray(new String[0]));
+            assertEquals(1, r.exit(), String.join(" ", args) + ": " + r.out() + r.err());
+            assertTrue(r.err().contains("Usage: dtron run"), String.join(" ", args) + ": " + r.err());
+        }
+        Run virtual = dtron(model.toString(), "--virtual-time");
+        assertTrue(virtual.err().contains("--virtual-time needs --sut: the adapters on a bus live in real time"),
+                virtual.err());
+        Run notBusAdapter = dtron(model.toString(), "--adapter", "java.lang.String");
+        assertTrue(notBusAdapter.err().contains("java.lang.String is not a bus adapter: it does not implement"
+                + " io.dtron.api.DtronAdapter"), notBusAdapter.err());
+        Run mixed = dtron(model.toString(), "--sut", TickerForTests.class.getName(), "--cluster", "x");
+        assertTrue(mixed.err().contains("are for testing the adapters on a bus, without --sut"), mixed.err());
+    }
+
+    @Test
+    void aBusAdapterInThisJvmPassesAndPrintsTheLatency() {
+        Run r = dtron(model.toString(), "--adapter", BusTicker.class.getName(), "--cluster", cluster(), "--timeunit",
+                "10000", "--timeout", "100", "--delay-policy", "eager", "--seed", "3");
+        assertEquals(0, r.exit(), r.out() + r.err());
+        assertTrue(r.out().contains("adapter " + BusTicker.class.getName() + " joined as "), r.out());
+        assertTrue(r.out().contains("PASSED: the timeout of 100 time units was reached after 3 inputs and 8 outputs"),
+                r.out());
+        assertTrue(r.out().contains("latency t2 - t1 of outputs: count 8, min "), r.out());
+        assertTrue(r.out().contains("latency t2 - t1 of inputs back from the bus: count 3, min "), r.out());
+        assertTrue(r.out().contains("bus: published 4, accepted 12, rejected 0, listener failures 0"), r.out());
+    }
+
+    @Test
+    void aFaultyBusAdapterFails() {
+        Run r = dtron(model.toString(), "--adapter", BusTicker.class.getName() + ":slow", "--cluster", cluster(),
+                "--timeunit", "10000", "--timeout", "100", "--seed", "3");
+        assertEquals(2, r.exit(), r.out() + r.err());
+        assertTrue(r.out().contains("FAILED: no output came by t=12.000"), r.out());
+        assertTrue(r.out().contains("latency t2 - t1 of outputs: count "), r.out());
+    }
+
+    @Test
+    void waitingForAdaptersThatDoNotComeEndsWithAClearMessage() {
+        Run r = dtron(model.toString(), "--cluster", cluster(), "--wait-for-adapters", "1", "--wait-timeout", "1");
+        assertEquals(1, r.exit(), r.out() + r.err());
+        assertTrue(r.out().contains("waiting up to 1 s for 1 adapter to join bus '"), r.out());
+        assertTrue(r.err().contains("only 0 of 1 adapters joined bus '"), r.err());
+        assertFalse(r.out().contains("PASSED") || r.out().contains("FAILED"), "no run: " + r.out());
+    }
+
+    private static String cluster() {
+        return "run-" + UUID.randomUUID().toString().substring(0, 8);
     }
 }

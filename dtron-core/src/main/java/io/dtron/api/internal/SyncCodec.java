@@ -26,6 +26,14 @@ public final class SyncCodec {
     }
 
     /**
+     * Encodes and parses one message, so that the protocol-buffer classes are loaded and initialised (tens of
+     * milliseconds in a fresh JVM) before the first real message.
+     */
+    public static void warmUp() {
+        parse(encode("warm_up", Map.of("v", 1), "", 1, 1));
+    }
+
+    /**
      * Parses the bytes of a {@code Sync}.
      *
      * @throws InvalidMessageException ({@link Reason#MALFORMED}) if they are none, or it has no channel name

@@ -4,7 +4,6 @@ import io.dtron.engine.Adapter;
 import io.dtron.engine.AdapterContext;
 import io.dtron.engine.Event;
 import io.dtron.engine.TestClock;
-import java.util.Arrays;
 import java.util.List;
 
 /**
@@ -23,30 +22,17 @@ import java.util.List;
  */
 public final class TickerSystem implements Adapter {
 
-    private enum Variant {
-        CORRECT("correct", 10),
-        SLOW("slow", 13);
-
-        private final String label;
-        private final int period;
-
-        Variant(String label, int period) {
-            this.label = label;
-            this.period = period;
-        }
-    }
-
     /** The names of the variants, the correct ticker first. */
-    public static final List<String> VARIANTS = Arrays.stream(Variant.values()).map(v -> v.label).toList();
+    public static final List<String> VARIANTS = TickerVariant.LABELS;
 
-    private final Variant variant;
+    private final TickerVariant variant;
     private AdapterContext context;
     private TestClock.Scheduled nextTick;
     private int seq;
 
     /** The correct ticker. */
     public TickerSystem() {
-        this(Variant.CORRECT.label);
+        this(TickerVariant.CORRECT.label);
     }
 
     /**
@@ -55,9 +41,7 @@ public final class TickerSystem implements Adapter {
      * @throws IllegalArgumentException if {@code variant} is none of {@link #VARIANTS}
      */
     public TickerSystem(String variant) {
-        this.variant = Arrays.stream(Variant.values()).filter(v -> v.label.equals(variant)).findFirst()
-                .orElseThrow(() -> new IllegalArgumentException("unknown variant '" + variant + "' of "
-                        + TickerSystem.class.getName() + "; known variants: " + String.join(", ", VARIANTS)));
+        this.variant = TickerVariant.named(variant, TickerSystem.class);
     }
 
     /** The name of this ticker's variant. */

@@ -1,0 +1,244 @@
+package io.dtron.bridge;
+
+import io.dtron.api.Dtron;
+import io.dtron.api.DtronException;
+import io.dtron.api.DtronListener;
+import io.dtron.api.DtronOptions;
+import io.dtron.api.DtronStats;
+import io.dtron.api.IDtronChannel;
+import io.dtron.api.IDtronChannelValued;
+import io.dtron.bridge.internal.LatencyRecorder;
+import io.dtron.engine.Adapter;
+import io.dtron.engine.AdapterContext;
+import io.dtron.engine.Event;
+import io.dtron.model.TestInterface;
+import java.time.Duration;
+import java.util.ArrayList;
+import java.util.LinkedHashMap;
+import java.util.List;
+import java.util.Map;
+import java.util.Objects;
+import java.util.Set;
+import java.util.concurrent.ConcurrentHashMap;
+import java.util.concurrent.atomic.AtomicBoolean;
+import org.slf4j.Logger;
+import org.slf4j.LoggerFactory;
+
+/**
+ * The engine's {@link Adapter} for systems under test whose adapters are members of a DTRON bus.
+ *
+ * <p>The bridge is a bus member that declares the channels of the model's interface (channel and variable names
+ * as in the interface), so that a message on any other channel, or with unknown or missing variables, or that is
+ * no valid {@code Sync}, is rejected, logged and counted in {@link #stats()}. When the run starts it publishes
+ * {@link Dtron#RUN_START} with the run's time unit. Every input the engine applies is published on the input's
+ * channel; every message another member publishes on an output channel is reported to the engine as it arrives.
+ * The bridge's own inputs come back in the bus's total order and are not outputs. For every message received, t1
+ * (its publish time) and t2 (its receive time) are recorded: {@link #outputLatency()} and
+ * {@link #inputLatency()} summarise t2 - t1.
+ *
+ * <p>When a member other than the bridge leaves the bus during the run (it closed, or its process died and
+ * failure detection noticed), the run ends INCONCLUSIVE naming the member: the bridge cannot know which parts of
+ * the system under test that member stood for, so it assumes the model may be waiting on it.
+ */
+public final class BusBridge implements Adapter, AutoCloseable {
+    private static final Logger LOG = LoggerFactory.getLogger(BusBridge.class);
+
+    private final Dtron dtron;
+    private final Map<String, IDtronChannel> inputs;
+    private final Set<String> outputs;
+    private final LatencyRecorder outputLatency = new LatencyRecorder();
+    private final LatencyRecorder inputLatency = new LatencyRecorder();
+    private final Set<String> watched = ConcurrentHashMap.newKeySet();
+    private final AtomicBoolean warnedOutsideRun = new AtomicBoolean();
+    private volatile AdapterContext context;
+    private volatile boolean running;
+
+    private BusBridge(Dtron dtron, Map<String, IDtronChannel> channels, TestInterface testInterface) {
+        this.dtron = dtron;
+        Map<String, IDtronChannel> inputChannels = new LinkedHashMap<>();
+        testInterface.inputs().forEach(c -> inputChannels.put(c.name(), channels.get(c.name())));
+        this.inputs = Map.copyOf(inputChannels);
+        this.outputs = Set.copyOf(testInterface.outputs().stream().map(TestInterface.ObservableChannel::name).toList());
+        for (IDtronChannel channel : channels.values()) {
+            dtron.addDtronListener(new DtronListener(channel) {
+                @Override
+                public void messageReceived(IDtronChannelValued message) {
+                    received(message);
+                }
+            });
+        }
+        dtron.addMembershipListener(this::membershipChanged);
+    }
+
+    /**
+     * Joins the bus as the tester of a model.
+     *
+     * @param testInterface the model's interface: its channels are declared on {@code options}
+     * @param options       how to join the bus
+     * @throws IllegalArgumentException if a channel name of the interface cannot be a bus channel (a channel array
+     *                                  element, the reserved {@link Dtron#RUN_START} name), or an input and an
+     *                                  output have the same name and different variables
+     * @throws DtronException           if the bus cannot be joined
+     */
+    public static BusBridge connect(TestInterface testInterface, DtronOptions.Builder options) {
+        Map<String, IDtronChannel> channels = channels(testInterface);
+        List<IDtronChannel> declared = new ArrayList<>(channels.values());
+        declared.add(Dtron.RUN_START);
+        Dtron dtron = Dtron.connect(options.channels(declared).build());
+        try {
+            return new BusBridge(dtron, channels, testInterface);
+        } catch (RuntimeException e) {
+            dtron.close();
+            throw e;
+        }
+    }
+
+    /** The bus channel of every input and output of the interface, by name. */
+    private static Map<String, IDtronChannel> channels(TestInterface testInterface) {
+        Map<String, IDtronChannel> channels = new LinkedHashMap<>();
+        List<TestInterface.ObservableChannel> all = new ArrayList<>(testInterface.inputs());
+        all.addAll(testInterface.outputs());
+        for (TestInterface.ObservableChannel c : all) {
+            if (c.name().equals(Dtron.RUN_START.getChannelName())) {
+                throw new IllegalArgumentException("channel '" + c.name() + "' of the model's interface has the name"
+                        + " DTRON reserves for announcing the start of a run; rename it");
+            }
+            IDtronChannel channel;
+            try {
+                channel = IDtronChannel.of(c.name(), c.variables().stream().map(TestInterface.AttachedVariable::name)
+                        .toList());
+            } catch (IllegalArgumentException e) {
+                throw new IllegalArgumentException("channel '" + c.name() + "' of the model's interface cannot travel"
+                        + " on the bus: " + e.getMessage());
+            }
+            IDtronChannel other = channels.putIfAbsent(c.name(), channel);
+            if (other != null && !other.equals(channel)) {
+                throw new IllegalArgumentException("input and output '" + c.name() + "' carry different variables ("
+                        + other.getVariableNames() + ", " + channel.getVariableNames() + "), so the bus cannot"
+                        + " carry both on one channel");
+            }
+        }
+        return channels;
+    }
+
+    /** Returns this bridge's member id on the bus. */
+    public String memberId() {
+        return dtron.getMemberId();
+    }
+
+    /** Returns the members on the bus now, oldest first, this bridge included. */
+    public List<String> members() {
+        return dtron.getMembers();
+    }
+
+    /**
+     * Waits until at least {@code count} members other than this bridge are on the bus.
+     *
+     * @return whether they were, before the timeout
+     * @throws InterruptedException if the thread was interrupted while waiting
+     */
+    public boolean awaitAdapters(int count, Duration timeout) throws InterruptedException {
+        return dtron.awaitMembers(count + 1, timeout);
+    }
+
+    @Override
+    public void start(AdapterContext runContext) {
+        context = Objects.requireNonNull(runContext, "runContext");
+        watched.addAll(dtron.getMembers());
+        watched.remove(dtron.getMemberId());
+        running = true;
+        // a time unit beyond int range (35 minutes) does not occur in practice; the message carries an int
+        int unit = (int) Math.min(Integer.MAX_VALUE, runContext.timeUnitMicros());
+        publish(Dtron.RUN_START.constructValued(Map.of("timeunit", unit)), "the start of the run");
+    }
+
+    @Override
+    public void perform(Event input) {
+        IDtronChannel channel = inputs.get(input.channel());
+        if (channel == null) {
+            throw new IllegalArgumentException("'" + input.channel() + "' is not an input of the interface");
+        }
+        publish(channel.constructValued(input.values()), "input " + input);
+    }
+
+    @Override
+    public void stop() {
+        running = false;
+    }
+
+    /** Returns t2 - t1 of the outputs received from other members so far. */
+    public LatencySummary outputLatency() {
+        return outputLatency.summary();
+    }
+
+    /** Returns t2 - t1 of this bridge's own inputs, received back from the bus so far. */
+    public LatencySummary inputLatency() {
+        return inputLatency.summary();
+    }
+
+    /** Returns the bus counters of this bridge: published, accepted and rejected messages, by reason. */
+    public DtronStats stats() {
+        return dtron.getStats();
+    }
+
+    /** Leaves the bus; closing twice does nothing. */
+    @Override
+    public void close() {
+        dtron.close();
+    }
+
+    private void publish(IDtronChannelValued message, String what) {
+        try {
+            dtron.send(message);
+        } catch (DtronException | IllegalStateException e) {
+            LOG.warn("Cannot publish {}: {}", what, e.getMessage());
+            context.inconclusive("cannot publish " + what + " on the bus: " + e.getMessage());
+        }
+    }
+
+    /** Called on the bus's listener thread, in the bus's order. */
+    private void received(IDtronChannelValued message) {
+        String channel = message.getChannelName();
+        if (message.getSender().equals(dtron.getMemberId())) {
+            inputLatency.record(message);
+            return;
+        }
+        if (!outputs.contains(channel)) {
+            LOG.warn("Ignored {}: '{}' is an input, which only the tester publishes", message, channel);
+            return;
+        }
+        outputLatency.record(message);
+        if (!running) {
+            String when = context == null ? "has not started" : "is over";
+            if (warnedOutsideRun.compareAndSet(false, true)) {
+                LOG.warn("Ignored output {}: the run {} (more such outputs are logged at debug level)", message, when);
+            } else {
+                LOG.debug("Ignored output {}: the run {}", message, when);
+            }
+            return;
+        }
+        context.report(new Event(channel, message.getVariables()));
+    }
+
+    /**
+     * Called on the bus's listener thread, after the messages of members that left. Only members that were on
+     * the bus during the run count: this news may come after the start for a member that left before.
+     */
+    private void membershipChanged(List<String> members, List<String> joined, List<String> left) {
+        if (!joined.isEmpty()) {
+            LOG.info("Joined the bus: {}; members now {}", joined, members);
+            if (running) {
+                watched.addAll(joined);
+            }
+        }
+        if (left.isEmpty()) {
+            return;
+        }
+        LOG.info("Left the bus: {}; members now {}", left, members);
+        List<String> gone = left.stream().filter(watched::remove).toList();
+        if (running && !gone.isEmpty()) {
+            context.inconclusive("adapter member" + (gone.size() == 1 ? " " : "s ") + String.join(", ", gone)
+                    + " left the bus (members now " + members + "); the system under test may be gone");
+        }
+    }
+}

@@ -1,0 +1,105 @@
+package io.dtron.cli;
+
+import io.dtron.api.Dtron;
+import io.dtron.api.DtronAdapter;
+import io.dtron.api.DtronOptions;
+import io.dtron.bridge.BusBridge;
+import io.dtron.model.TestInterface;
+import java.io.PrintWriter;
+import java.net.InetAddress;
+import java.time.Duration;
+import java.util.ArrayList;
+import java.util.List;
+import org.slf4j.Logger;
+import org.slf4j.LoggerFactory;
+
+/**
+ * The bus side of {@code dtron run} without {@code --sut}: the tester's {@link BusBridge}, and the bus adapters
+ * of {@code --adapter}, each a member of the same bus with a {@link Dtron} of its own. Closing it stops the
+ * adapters and leaves the bus.
+ */
+final class BusSession implements AutoCloseable {
+    private static final Logger LOG = LoggerFactory.getLogger(BusSession.class);
+    /** How long adapters that just joined get to add their listeners before the run starts. */
+    private static final Duration SETTLE = Duration.ofMillis(250);
+
+    private final String cluster;
+    private final InetAddress bind;
+    private final BusBridge bridge;
+    private final List<DtronAdapter> adapters = new ArrayList<>();
+    private final List<Dtron> adapterMembers = new ArrayList<>();
+
+    private BusSession(String cluster, InetAddress bind, BusBridge bridge) {
+        this.cluster = cluster;
+        this.bind = bind;
+        this.bridge = bridge;
+    }
+
+    /**
+     * Joins the bus as the tester of the interface.
+     *
+     * @throws IllegalArgumentException if the interface's channels cannot travel on the bus
+     * @throws io.dtron.api.DtronException if the bus cannot be joined
+     */
+    static BusSession open(TestInterface testInterface, String cluster, InetAddress bind) {
+        return new BusSession(cluster, bind, BusBridge.connect(testInterface, options(cluster, bind)));
+    }
+
+    private static DtronOptions.Builder options(String cluster, InetAddress bind) {
+        return DtronOptions.builder().clusterName(cluster).bindAddress(bind);
+    }
+
+    /** The engine's adapter. */
+    BusBridge bridge() {
+        return bridge;
+    }
+
+    /**
+     * Connects an adapter of this JVM to the bus as a member of its own and starts it.
+     *
+     * @return its member id
+     * @throws io.dtron.api.DtronException if it cannot join the bus
+     */
+    String startAdapter(DtronAdapter adapter) {
+        Dtron member = Dtron.connect(options(cluster, bind).build());
+        adapterMembers.add(member);
+        adapters.add(adapter);
+        adapter.start(member);
+        return member.getMemberId();
+    }
+
+    /**
+     * Waits until {@code count} members other than the tester are on the bus, then a short while for the last
+     * ones to add their listeners.
+     *
+     * @return whether they came before the timeout
+     * @throws InterruptedException if the thread was interrupted while waiting
+     */
+    boolean awaitAdapters(int count, Duration timeout) throws InterruptedException {
+        if (!bridge.awaitAdapters(count, timeout)) {
+            return false;
+        }
+        Thread.sleep(SETTLE.toMillis());
+        return true;
+    }
+
+    /** Prints the latency of the messages and the bus counters. */
+    void printSummary(PrintWriter out) {
+        out.println("latency t2 - t1 of outputs: " + bridge.outputLatency());
+        out.println("latency t2 - t1 of inputs back from the bus: " + bridge.inputLatency());
+        out.println("bus: " + bridge.stats());
+    }
+
+    @Override
+    public void close() {
+        for (DtronAdapter adapter : adapters) {
+            try {
+                adapter.close();
+            } catch (RuntimeException e) {
+                LOG.warn("Adapter {} failed to close: {}", adapter.getClass().getName(), e.toString());
+            }
+        }
+        adapterMembers.forEach(Dtron::close);
+        bridge.close();
+    }
+}

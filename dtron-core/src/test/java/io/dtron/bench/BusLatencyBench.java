@@ -1,0 +1,110 @@
+package io.dtron.bench;
+
+import io.dtron.api.DtronOptions;
+import io.dtron.bridge.BusBridge;
+import io.dtron.engine.DelayPolicy;
+import io.dtron.engine.OnlineTester;
+import io.dtron.engine.TestOptions;
+import io.dtron.engine.TestResult;
+import io.dtron.engine.Verdict;
+import io.dtron.model.ModelException;
+import io.dtron.model.ModelLoader;
+import io.dtron.model.Network;
+import io.dtron.model.TestInterface;
+import io.dtron.testadapter.TickerAdapterMain;
+import java.io.IOException;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.time.Duration;
+import java.util.EnumMap;
+import java.util.List;
+import java.util.Map;
+import java.util.UUID;
+import java.util.concurrent.TimeUnit;
+
+/**
+ * The latency of the bus under a real-time test: the bundled ticker model, run by DTRON's engine through a
+ * {@link BusBridge} in this JVM, against a ticker adapter in another JVM ({@link TickerAdapterMain}, which uses
+ * only {@code io.dtron.api}). Prints t2 - t1 (receive minus publish time) of the ticks received: count, min, p50,
+ * p99, max.
+ *
+ * <p>Resets come as early as the model allows (every 25 time units), so the ticker sends two ticks per 25 units.
+ * A tick may come 2 units early or late, so with a small time unit one latency spike ends a run FAILED; the bench
+ * then starts the next run, until it has the ticks it wants, and says how the runs ended. It first warms both
+ * JVMs up for a few seconds the same way, with a bridge of its own, and throws those figures away.
+ *
+ * <p>Arguments (all optional): the time unit in microseconds (default 100: a tick every millisecond), the number
+ * of ticks to measure (default 10,000), the ticker model (default
+ * {@code ../models/src/main/resources/io/dtron/models/ticker.xml}, from {@code dtron-core}).
+ */
+public final class BusLatencyBench {
+    private static final Duration WARM_UP = Duration.ofSeconds(5);
+    private static final Duration ADAPTERS = Duration.ofSeconds(30);
+    private static final long PAUSE_BETWEEN_RUNS_MILLIS = 20;
+
+    private BusLatencyBench() {
+    }
+
+    public static void main(String[] args) throws IOException, InterruptedException, ModelException {
+        long unit = args.length > 0 ? Long.parseLong(args[0]) : 100;
+        int ticks = args.length > 1 ? Integer.parseInt(args[1]) : 10_000;
+        Path modelFile = Path.of(args.length > 2 ? args[2]
+                : "../models/src/main/resources/io/dtron/models/ticker.xml");
+        Network network = ModelLoader.load(modelFile);
+        TestInterface testInterface = TestInterface.fromNames(network);
+        String cluster = "bench-" + UUID.randomUUID().toString().substring(0, 8);
+        Path adapterLog = Files.createTempFile("bench-adapter", ".log");
+        Process adapter = new ProcessBuilder(List.of(Path.of(System.getProperty("java.home"), "bin", "java")
+                .toString(), "-Xmx256m", "-cp", System.getProperty("java.class.path"),
+                TickerAdapterMain.class.getName(), cluster, "bench-adapter", "correct", "2"))
+                .redirectErrorStream(true).redirectOutput(adapterLog.toFile()).start();
+        try {
+            System.out.println("ticker model, " + unit + " us per time unit (a tick every " + 10 * unit
+                    + " us), adapter in another JVM; warming up for " + WARM_UP.toSeconds() + " s");
+            measure(network, testInterface, cluster, unit, System.nanoTime() + WARM_UP.toNanos(), Integer.MAX_VALUE);
+            System.out.println("measuring " + ticks + " ticks");
+            measure(network, testInterface, cluster, unit, Long.MAX_VALUE, ticks);
+            if (!adapter.waitFor(30, TimeUnit.SECONDS)) {
+                System.out.println("the adapter did not leave; its output:\n" + Files.readString(adapterLog));
+            }
+        } finally {
+            adapter.destroyForcibly();
+            Files.deleteIfExists(adapterLog);
+        }
+    }
+
+    /** Runs the model again and again on a bridge of its own until the deadline or until it has the ticks. */
+    private static void measure(Network network, TestInterface testInterface, String cluster, long unit,
+                                long deadlineNanos, int ticks) throws InterruptedException {
+        try (BusBridge bridge = BusBridge.connect(testInterface, DtronOptions.builder().clusterName(cluster))) {
+            if (!bridge.awaitAdapters(1, ADAPTERS)) {
+                throw new IllegalStateException("the adapter did not join within " + ADAPTERS);
+            }
+            Map<Verdict, Integer> verdicts = new EnumMap<>(Verdict.class);
+            int longest = 0;
+            String firstFailure = null;
+            long start = System.nanoTime();
+            long seed = 1;
+            while (System.nanoTime() < deadlineNanos && bridge.outputLatency().count() < ticks) {
+                long left = ticks - bridge.outputLatency().count();
+                long units = Math.min(2_000_000_000L, Math.max(25, left / 2 * 25));
+                TestResult result = new OnlineTester(network, testInterface, bridge,
+                        new TestOptions(seed++, unit, units, DelayPolicy.EAGER, 0, false)).run();
+                verdicts.merge(result.verdict(), 1, Integer::sum);
+                longest = Math.max(longest, result.outputs());
+                if (result.verdict() != Verdict.PASSED && firstFailure == null) {
+                    firstFailure = result.verdict() + ": " + result.explanation();
+                }
+                Thread.sleep(PAUSE_BETWEEN_RUNS_MILLIS);
+            }
+            System.out.printf("%.1f s, runs %s, most ticks in one run %d%n", (System.nanoTime() - start) / 1e9,
+                    verdicts, longest);
+            if (firstFailure != null) {
+                System.out.println("first run that did not pass: " + firstFailure);
+            }
+            System.out.println("latency t2 - t1 of ticks: " + bridge.outputLatency());
+            System.out.println("latency t2 - t1 of resets back from the bus: " + bridge.inputLatency());
+            System.out.println("bus: " + bridge.stats());
+        }
+    }
+}

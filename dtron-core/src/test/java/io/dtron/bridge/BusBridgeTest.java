@@ -1,0 +1,268 @@
+package io.dtron.bridge;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertNotNull;
+import static org.junit.jupiter.api.Assertions.assertNull;
+import static org.junit.jupiter.api.Assertions.assertThrows;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+import io.dtron.api.Dtron;
+import io.dtron.api.DtronListener;
+import io.dtron.api.DtronOptions;
+import io.dtron.api.DtronStats;
+import io.dtron.api.IDtronChannel;
+import io.dtron.api.IDtronChannelValued;
+import io.dtron.api.InvalidMessageException.Reason;
+import io.dtron.api.internal.BusConnector;
+import io.dtron.api.internal.proto.Sync;
+import io.dtron.api.internal.proto.Variable;
+import io.dtron.bus.Transport;
+import io.dtron.bus.internal.JGroupsTransport;
+import io.dtron.engine.AdapterContext;
+import io.dtron.engine.Event;
+import io.dtron.engine.TestClock;
+import io.dtron.model.ModelException;
+import io.dtron.model.ModelLoader;
+import io.dtron.model.TestInterface;
+import java.time.Duration;
+import java.util.List;
+import java.util.Map;
+import java.util.UUID;
+import java.util.concurrent.BlockingQueue;
+import java.util.concurrent.LinkedBlockingQueue;
+import java.util.concurrent.TimeUnit;
+import org.junit.jupiter.api.AfterEach;
+import org.junit.jupiter.api.BeforeEach;
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.Timeout;
+import org.junit.jupiter.params.ParameterizedTest;
+import org.junit.jupiter.params.provider.EnumSource;
+
+/** The bridge on the in-JVM bus, with a stand-in for the engine's side. */
+@Timeout(value = 60, unit = TimeUnit.SECONDS)
+class BusBridgeTest {
+    private static final Duration WAIT = Duration.ofSeconds(10);
+    private static final String MODEL = """
+            chan i_move, o_done, i_x, o_x;
+            int i_move_amount; int o_done_amount;
+            process P() { state A; init A;
+                trans A -> A { sync i_move?; }, A -> A { sync o_done!; }, A -> A { sync i_x?; }, A -> A { sync o_x!; };
+            }
+            system P;
+            """;
+    private static final String EMPTY = " process P() { state A; init A; } system P;";
+    private static final IDtronChannel MOVE = IDtronChannel.of("move", "amount");
+    private static final IDtronChannel DONE = IDtronChannel.of("done", "amount");
+    private static final IDtronChannel X = IDtronChannel.of("x");
+
+    private final String cluster = "bridge-" + UUID.randomUUID().toString().substring(0, 8);
+    private final Context context = new Context();
+    private BusBridge bridge;
+    private Dtron adapter;
+
+    /** The engine's side: keeps what the bridge reports. */
+    private static final class Context implements AdapterContext {
+        final BlockingQueue<Event> outputs = new LinkedBlockingQueue<>();
+        final BlockingQueue<String> inconclusive = new LinkedBlockingQueue<>();
+
+        @Override
+        public void report(Event output) {
+            outputs.add(output);
+        }
+
+        @Override
+        public void inconclusive(String reason) {
+            inconclusive.add(reason);
+        }
+
+        @Override
+        public TestClock clock() {
+            throw new UnsupportedOperationException("the bridge needs no clock");
+        }
+
+        @Override
+        public TestInterface testInterface() {
+            throw new UnsupportedOperationException("the bridge gets the interface when it connects");
+        }
+
+        @Override
+        public long timeUnitMicros() {
+            return 250;
+        }
+    }
+
+    /** An adapter's listener that keeps what it receives. */
+    private static final class Inbox extends DtronListener {
+        final BlockingQueue<IDtronChannelValued> received = new LinkedBlockingQueue<>();
+
+        Inbox(IDtronChannel channel) {
+            super(channel);
+        }
+
+        @Override
+        public void messageReceived(IDtronChannelValued message) {
+            received.add(message);
+        }
+
+        IDtronChannelValued take() throws InterruptedException {
+            IDtronChannelValued message = received.poll(10, TimeUnit.SECONDS);
+            assertNotNull(message, "nothing on " + getChannel() + " within 10 s");
+            return message;
+        }
+    }
+
+    @BeforeEach
+    void connect() throws Exception {
+        bridge = BusBridge.connect(testInterface(MODEL), DtronOptions.builder().clusterName(cluster).inJvm(true));
+        adapter = Dtron.connect(DtronOptions.builder().clusterName(cluster).memberName("adapter").inJvm(true).build());
+        assertTrue(bridge.awaitAdapters(1, WAIT));
+    }
+
+    @AfterEach
+    void close() {
+        adapter.close();
+        bridge.close();
+    }
+
+    private static TestInterface testInterface(String model) throws ModelException {
+        return TestInterface.fromNames(ModelLoader.load("bridge.xta", model));
+    }
+
+    @Test
+    void announcesTheStartPublishesInputsAndReportsOutputs() throws Exception {
+        Inbox start = new Inbox(Dtron.RUN_START);
+        Inbox moves = new Inbox(MOVE);
+        adapter.addDtronListener(start);
+        adapter.addDtronListener(moves);
+        bridge.start(context);
+        IDtronChannelValued announced = start.take();
+        assertEquals(Map.of("timeunit", 250), announced.getVariables());
+        assertEquals(bridge.memberId(), announced.getSender());
+
+        bridge.perform(Event.of("move", "amount", 7));
+        IDtronChannelValued move = moves.take();
+        assertEquals(7, move.getVariables().get("amount"));
+        adapter.send(DONE.constructValued(Map.of("amount", 14)));
+        assertEquals(Event.of("done", "amount", 14), context.outputs.poll(10, TimeUnit.SECONDS));
+        assertNull(context.outputs.poll(200, TimeUnit.MILLISECONDS), "the bridge's own input is no output");
+
+        assertEquals(1, bridge.outputLatency().count());
+        assertTrue(bridge.outputLatency().minMicros() >= 0, bridge.outputLatency().toString());
+        assertEquals(1, bridge.inputLatency().count(), "the input came back through the bus");
+        DtronStats stats = bridge.stats();
+        assertEquals(2, stats.getPublished(), stats.toString());
+        assertEquals(0, stats.getRejectedTotal(), stats.toString());
+        assertTrue(context.inconclusive.isEmpty(), context.inconclusive.toString());
+    }
+
+    @Test
+    void onAChannelThatIsInputAndOutputOnlyOtherMembersMessagesAreOutputs() throws Exception {
+        Inbox xs = new Inbox(X);
+        adapter.addDtronListener(xs);
+        bridge.start(context);
+        bridge.perform(Event.of("x"));
+        assertEquals(bridge.memberId(), xs.take().getSender());
+        adapter.send(X.constructValued(Map.of()));
+        assertEquals(Event.of("x"), context.outputs.poll(10, TimeUnit.SECONDS));
+        assertNull(context.outputs.poll(200, TimeUnit.MILLISECONDS), "one output only: " + context.outputs);
+    }
+
+    @Test
+    void outputsBeforeTheStartAndAfterTheStopAreNotReported() throws Exception {
+        adapter.send(DONE.constructValued(Map.of("amount", 1)));
+        awaitOutputsSeen(1);
+        bridge.start(context);
+        bridge.stop();
+        adapter.send(DONE.constructValued(Map.of("amount", 2)));
+        awaitOutputsSeen(2);
+        assertTrue(context.outputs.isEmpty(), context.outputs.toString());
+    }
+
+    /** The four kinds of bad input: each is rejected and counted, and the next output is still reported. */
+    @ParameterizedTest
+    @EnumSource(Reason.class)
+    void badMessagesAreRejectedCountedAndTheRunGoesOn(Reason reason) throws Exception {
+        bridge.start(context);
+        try (Transport rogue = JGroupsTransport.connect(BusConnector.settings(
+                DtronOptions.builder().clusterName(cluster).inJvm(true).build(), "rogue"))) {
+            switch (reason) {
+                case MALFORMED -> rogue.publish("done", new byte[] {(byte) 0xFF, (byte) 0xFF, 0x07});
+                case UNKNOWN_CHANNEL -> rogue.publish("bogus", sync("bogus"));
+                case UNKNOWN_VARIABLES -> rogue.publish("done", sync("done", variable("amount", 1),
+                        variable("colour", 2)));
+                case MISSING_VARIABLES -> rogue.publish("done", sync("done"));
+                default -> throw new AssertionError(reason);
+            }
+            adapter.send(DONE.constructValued(Map.of("amount", 3)));
+            assertEquals(Event.of("done", "amount", 3), context.outputs.poll(10, TimeUnit.SECONDS));
+            assertNull(context.outputs.poll(100, TimeUnit.MILLISECONDS), "the bad message is no output");
+            DtronStats stats = bridge.stats();
+            assertEquals(1, stats.getRejected(reason), stats.toString());
+            assertEquals(1, stats.getRejectedTotal(), stats.toString());
+            assertEquals(1, bridge.outputLatency().count());
+        }
+    }
+
+    @Test
+    void aMemberLeavingDuringTheRunEndsItInconclusive() throws Exception {
+        bridge.start(context);
+        adapter.close();
+        String reason = context.inconclusive.poll(10, TimeUnit.SECONDS);
+        assertNotNull(reason, "no inconclusive verdict");
+        assertTrue(reason.startsWith("adapter member adapter left the bus (members now [" + bridge.memberId() + "])"),
+                reason);
+    }
+
+    @Test
+    void membersLeavingBeforeTheStartOrAfterTheStopAreNoReason() throws Exception {
+        try (Dtron early = Dtron.connect(DtronOptions.builder().clusterName(cluster).inJvm(true).build())) {
+            assertTrue(bridge.awaitAdapters(2, WAIT));
+        }
+        awaitMembers(2);
+        bridge.start(context);
+        bridge.stop();
+        adapter.close();
+        awaitMembers(1);
+        assertNull(context.inconclusive.poll(200, TimeUnit.MILLISECONDS));
+    }
+
+    private void awaitMembers(int count) throws InterruptedException {
+        long deadline = System.nanoTime() + WAIT.toNanos();
+        while (bridge.members().size() != count && System.nanoTime() < deadline) {
+            Thread.sleep(10);
+        }
+        assertEquals(count, bridge.members().size(), bridge.members().toString());
+    }
+
+    @Test
+    void interfaceChannelsThatCannotTravelOnTheBusAreRefused() {
+        IllegalArgumentException reserved = assertThrows(IllegalArgumentException.class, () -> BusBridge.connect(
+                testInterface("chan i_dtron_start;" + EMPTY), DtronOptions.builder().inJvm(true)));
+        assertTrue(reserved.getMessage().contains("reserves for announcing the start"), reserved.getMessage());
+        IllegalArgumentException array = assertThrows(IllegalArgumentException.class, () -> BusBridge.connect(
+                testInterface("chan i_req[2];" + EMPTY), DtronOptions.builder().inJvm(true)));
+        assertTrue(array.getMessage().contains("channel 'req[0]' of the model's interface cannot travel on the bus"),
+                array.getMessage());
+        IllegalArgumentException clash = assertThrows(IllegalArgumentException.class, () -> BusBridge.connect(
+                testInterface("chan i_y, o_y; int i_y_a;" + EMPTY), DtronOptions.builder().inJvm(true)));
+        assertTrue(clash.getMessage().contains("input and output 'y' carry different variables ([a], [])"),
+                clash.getMessage());
+    }
+
+    /** Waits until the bridge has handled {@code count} outputs (it records the latency of each). */
+    private void awaitOutputsSeen(long count) throws InterruptedException {
+        long deadline = System.nanoTime() + WAIT.toNanos();
+        while (bridge.outputLatency().count() < count && System.nanoTime() < deadline) {
+            Thread.sleep(10);
+        }
+        assertEquals(count, bridge.outputLatency().count());
+    }
+
+    private static Variable variable(String name, int value) {
+        return Variable.newBuilder().setName(name).setValue(value).build();
+    }
+
+    private static byte[] sync(String name, Variable... variables) {
+        return Sync.newBuilder().setName(name).addAllVariables(List.of(variables)).build().toByteArray();
+    }
+}

@@ -1,0 +1,127 @@
+package io.dtron.cli;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertFalse;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+import io.dtron.api.ChildJvm;
+import io.dtron.testadapter.TickerAdapterMain;
+import java.nio.file.Path;
+import java.time.Duration;
+import java.util.ArrayList;
+import java.util.List;
+import java.util.UUID;
+import java.util.concurrent.TimeUnit;
+import java.util.regex.Matcher;
+import java.util.regex.Pattern;
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.Timeout;
+import org.junit.jupiter.api.io.TempDir;
+
+/**
+ * {@code java -jar dtron.jar MODEL} in one JVM tests the bundled ticker model against ticker adapters in other
+ * JVMs, which use only {@code io.dtron.api}. Runs after the jar is built ({@code mvn verify}).
+ */
+@Timeout(value = 120, unit = TimeUnit.SECONDS)
+class DtronJarIT {
+    private static final Path JAR = Path.of("target", "dtron.jar");
+    private static final Path TICKER = Path.of("..", "models", "src", "main", "resources", "io", "dtron", "models",
+            "ticker.xml");
+    private static final Duration WAIT = Duration.ofSeconds(60);
+
+    @TempDir
+    Path dir;
+
+    private final String cluster = "it-" + UUID.randomUUID().toString().substring(0, 8);
+
+    /** dtron.jar on the ticker model, with 10 ms per time unit and resets as early as allowed. */
+    private ChildJvm dtron(int adapters, String... options) throws Exception {
+        List<String> args = new ArrayList<>(List.of(TICKER.toString(), "--cluster", cluster, "--wait-for-adapters",
+                String.valueOf(adapters), "--delay-policy", "eager", "--seed", "1"));
+        args.addAll(List.of(options));
+        return ChildJvm.startJar(JAR, dir.resolve("dtron.log"), args.toArray(new String[0]));
+    }
+
+    private ChildJvm adapter(String variant) throws Exception {
+        return ChildJvm.start(TickerAdapterMain.class, dir.resolve("adapter.log"), cluster, "ticker-adapter", variant,
+                "1");
+    }
+
+    @Test
+    void aCorrectAdapterInAnotherJvmPasses() throws Exception {
+        try (ChildJvm dtron = dtron(1, "--timeunit", "10000", "--timeout", "200");
+                ChildJvm adapter = adapter("correct")) {
+            assertEquals(0, dtron.waitFor(WAIT), dtron.output());
+            String out = dtron.output();
+            assertTrue(out.contains("dtron run: members [") && out.contains("ticker-adapter"), out);
+            assertTrue(out.contains("PASSED: the timeout of 200 time units was reached after 7 inputs and 16 outputs"),
+                    out);
+            assertTrue(out.contains("statistics: 1 PASSED 7 16 "), out);
+            assertTrue(out.contains("latency t2 - t1 of outputs: count 16, min "), out);
+            assertTrue(out.contains("latency t2 - t1 of inputs back from the bus: count 7, min "), out);
+            assertTrue(out.contains("bus: published 8, accepted 24, rejected 0, listener failures 0"), out);
+            assertEquals(0, adapter.waitFor(WAIT), adapter.output());
+            assertTrue(adapter.output().contains("resets 7"), "the inputs reached the adapter: " + adapter.output());
+        }
+    }
+
+    @Test
+    void aSlowAdapterInAnotherJvmFails() throws Exception {
+        try (ChildJvm dtron = dtron(1, "--timeunit", "10000", "--timeout", "200");
+                ChildJvm adapter = adapter("slow")) {
+            assertEquals(2, dtron.waitFor(WAIT), dtron.output());
+            String out = dtron.output();
+            assertTrue(out.contains("FAILED: no output came by t=12.000: the model required the system under test to"
+                    + " act by then. The model allowed these outputs: tick between t=8.000 and t=12.000"), out);
+            assertTrue(out.contains("latency t2 - t1 of outputs: "), out);
+            assertEquals(0, adapter.waitFor(WAIT), adapter.output());
+        }
+    }
+
+    @Test
+    void badMessagesOfARogueMemberAreRejectedCountedAndTheRunGoesOn() throws Exception {
+        try (ChildJvm dtron = dtron(2, "--timeunit", "10000", "--timeout", "200");
+                ChildJvm adapter = adapter("correct");
+                ChildJvm rogue = ChildJvm.start(RogueMemberMain.class, dir.resolve("rogue.log"), cluster)) {
+            assertEquals(0, dtron.waitFor(WAIT), dtron.output() + rogue.output());
+            String out = dtron.output();
+            assertTrue(rogue.output().contains("sent 4"), rogue.output());
+            assertTrue(out.contains("PASSED: the timeout of 200 time units was reached after 7 inputs and 16 outputs"),
+                    out);
+            assertTrue(out.contains("bus: published 8, accepted 24, rejected 4 (malformed 1, unknown channel 1,"
+                    + " unknown variables 1, missing variables 1), listener failures 0"), out);
+            assertTrue(out.contains("Rejected a message on channel 'tick' from rogue (3 bytes), MALFORMED"), out);
+            assertTrue(out.contains("Rejected a message on channel 'bogus' from rogue"), out);
+            assertTrue(out.contains("UNKNOWN_VARIABLES: channel tick has no variable colour"), out);
+            assertTrue(out.contains("MISSING_VARIABLES: channel tick needs variable seq"), out);
+            assertFalse(out.contains("\tat "), "no stack traces: " + out);
+        }
+    }
+
+    @Test
+    void anAdapterThatDiesMidRunEndsItInconclusiveNamingTheMember() throws Exception {
+        // half a second per time unit: the first tick is due 5 s into the run, long after the adapter is noticed gone
+        try (ChildJvm dtron = dtron(1, "--timeunit", "500000", "--timeout", "100");
+                ChildJvm adapter = adapter("correct")) {
+            dtron.awaitOutput("dtron run: members [", WAIT);
+            Thread.sleep(300);
+            adapter.kill();
+            assertEquals(3, dtron.waitFor(WAIT), dtron.output());
+            String out = dtron.output();
+            Matcher verdict = Pattern.compile("INCONCLUSIVE: adapter member ticker-adapter left the bus \\(members now"
+                    + " \\[[^]]+]\\); the system under test may be gone \\(at t=(\\d+)\\.\\d+\\)").matcher(out);
+            assertTrue(verdict.find(), out);
+            assertTrue(Integer.parseInt(verdict.group(1)) < 10, "noticed before the first tick was due: " + out);
+            assertTrue(out.contains("statistics: 1 INCONCLUSIVE 0 0 "), out);
+        }
+    }
+
+    @Test
+    void theJarTakesAModelAloneAndRejectsUnknownOptionsWithAUsageMessage() throws Exception {
+        try (ChildJvm dtron = ChildJvm.startJar(JAR, dir.resolve("dtron.log"), TICKER.toString(), "--bogus")) {
+            assertEquals(1, dtron.waitFor(WAIT), dtron.output());
+            assertTrue(dtron.output().contains("Unknown option: '--bogus'"), dtron.output());
+            assertTrue(dtron.output().contains("Usage: dtron run [-hV]"), dtron.output());
+        }
+    }
+}

@@ -1,0 +1,91 @@
+package io.dtron.models.ticker;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertNotNull;
+import static org.junit.jupiter.api.Assertions.assertThrows;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+import io.dtron.api.Dtron;
+import io.dtron.api.DtronListener;
+import io.dtron.api.DtronOptions;
+import io.dtron.api.IDtronChannelValued;
+import io.dtron.cli.DtronCommand;
+import java.io.PrintWriter;
+import java.io.StringWriter;
+import java.time.Duration;
+import java.util.Map;
+import java.util.UUID;
+import java.util.concurrent.BlockingQueue;
+import java.util.concurrent.LinkedBlockingQueue;
+import java.util.concurrent.TimeUnit;
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.Timeout;
+
+/** The ticker as a bus adapter: on its own on the bus, and tested by the README's command. */
+@Timeout(value = 60, unit = TimeUnit.SECONDS)
+class TickerBusAdapterTest {
+    private final String cluster = "ticker-" + UUID.randomUUID().toString().substring(0, 8);
+
+    @Test
+    void ticksFromTheStartOfARunAndRestartsOnReset() throws Exception {
+        BlockingQueue<IDtronChannelValued> ticks = new LinkedBlockingQueue<>();
+        try (Dtron tester = Dtron.connect(DtronOptions.builder().clusterName(cluster).inJvm(true).build());
+                Dtron bus = Dtron.connect(DtronOptions.builder().clusterName(cluster).inJvm(true).build());
+                TickerBusAdapter ticker = new TickerBusAdapter()) {
+            ticker.start(bus);
+            tester.addDtronListener(new DtronListener(TickerBusAdapter.TICK) {
+                @Override
+                public void messageReceived(IDtronChannelValued message) {
+                    ticks.add(message);
+                }
+            });
+            assertTrue(tester.awaitMembers(2, Duration.ofSeconds(10)));
+            tester.send(Dtron.RUN_START.constructValued(Map.of("timeunit", 2000)));
+            long start = System.nanoTime();
+            assertEquals(1, seq(ticks));
+            long first = (System.nanoTime() - start) / 1_000_000;
+            assertTrue(first >= 15, "the first tick comes 10 time units (20 ms) after the start, not " + first);
+            assertEquals(2, seq(ticks));
+            tester.send(TickerBusAdapter.RESET.constructValued(Map.of()));
+            int next = seq(ticks);
+            if (next == 3) {
+                next = seq(ticks);
+            }
+            assertEquals(1, next, "a reset restarts the numbering");
+        }
+    }
+
+    @Test
+    void unknownVariantsAreRefused() {
+        IllegalArgumentException e = assertThrows(IllegalArgumentException.class, () -> new TickerBusAdapter("fast"));
+        assertEquals("unknown variant 'fast' of io.dtron.models.ticker.TickerBusAdapter; known variants: correct,"
+                + " slow", e.getMessage());
+        assertEquals("slow", new TickerBusAdapter("slow").variant());
+    }
+
+    @Test
+    void theReadmeCommandPassesAndTheSlowVariantFails() {
+        String[] readme = {"src/main/resources/io/dtron/models/ticker.xml", "--adapter",
+                TickerBusAdapter.class.getName(), "--timeunit", "10000", "--timeout", "300", "--delay-policy", "eager",
+                "--cluster", cluster};
+        StringWriter out = new StringWriter();
+        StringWriter err = new StringWriter();
+        assertEquals(0, DtronCommand.run(readme, new PrintWriter(out), new PrintWriter(err)), out + "" + err);
+        assertTrue(out.toString().contains("PASSED: the timeout of 300 time units was reached after 11 inputs and 24"
+                + " outputs, all as the model allows"), out.toString());
+        assertTrue(out.toString().contains("latency t2 - t1 of outputs: count 24, "), out.toString());
+
+        readme[2] = TickerBusAdapter.class.getName() + ":slow";
+        readme[readme.length - 1] = cluster + "-slow";
+        StringWriter slow = new StringWriter();
+        assertEquals(2, DtronCommand.run(readme, new PrintWriter(slow), new PrintWriter(new StringWriter())),
+                slow.toString());
+        assertTrue(slow.toString().contains("FAILED: no output came by t=12.000"), slow.toString());
+    }
+
+    private static int seq(BlockingQueue<IDtronChannelValued> ticks) throws InterruptedException {
+        IDtronChannelValued tick = ticks.poll(10, TimeUnit.SECONDS);
+        assertNotNull(tick, "no tick within 10 s");
+        return tick.getVariables().get("seq");
+    }
+}
