@@ -1,0 +1,355 @@
+package io.dtron.cli;
+
+import io.dtron.engine.DelayPolicy;
+import io.dtron.engine.Event;
+import io.dtron.engine.OnlineTester;
+import io.dtron.engine.TestListener;
+import io.dtron.engine.TestOptions;
+import io.dtron.engine.TestResult;
+import io.dtron.engine.UnsupportedModelException;
+import io.dtron.model.ModelException;
+import io.dtron.model.ModelLoader;
+import io.dtron.model.Network;
+import io.dtron.model.TestInterface;
+import io.dtron.tron.TronSocketAdapter;
+import io.dtron.xta.Diagnostic;
+import java.io.IOException;
+import java.io.PrintWriter;
+import java.io.Writer;
+import java.net.InetAddress;
+import java.net.ServerSocket;
+import java.nio.charset.StandardCharsets;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.nio.file.StandardOpenOption;
+import java.time.Duration;
+import java.util.ArrayList;
+import java.util.List;
+import java.util.Locale;
+import java.util.concurrent.Callable;
+import java.util.stream.Collectors;
+import picocli.CommandLine.Command;
+import picocli.CommandLine.Model.CommandSpec;
+import picocli.CommandLine.Option;
+import picocli.CommandLine.Parameters;
+import picocli.CommandLine.Spec;
+
+/**
+ * {@code dtron tron [TRON's options] MODEL -- HOST PORT} (or {@code -- PORT} to listen): DTRON in TRON's place, a
+ * drop-in for TRON's command line with its socket adapter. The adapter's configuration defines the interface; the
+ * run prints the seed, the verdict as {@code TEST PASSED|FAILED|INCONCLUSIVE: explanation} and exits 0, 2 or 3 (1
+ * for a usage, model or configuration error). Every TRON option DTRON knows is honoured or refused with a message;
+ * see the site page {@code tron.md} for the table.
+ */
+@Command(name = "tron", mixinStandardHelpOptions = true, versionProvider = DtronCommand.Version.class,
+        exitCodeOnInvalidInput = 1, exitCodeOnExecutionException = 1, sortOptions = false,
+        description = {"DTRON in Uppaal TRON's place: test a system through its TRON socket adapter, unchanged.",
+                "Takes TRON's options, so that a script written for TRON runs DTRON by changing the program name:"
+                        + " dtron tron -I SocketAdapter -P 10,200 -F 300 LightContr.xml -- localhost 9999",
+                "-- HOST PORT connects to an adapter that listens (as TRON's samples do); -- PORT listens for one.",
+                "Exit code 0 PASSED, 2 FAILED, 3 INCONCLUSIVE, 1 usage, model or adapter configuration error."})
+public final class TronCommand implements Callable<Integer> {
+    private static final long DEFAULT_TIME_UNIT = 1000;
+    private static final long DEFAULT_TIMEOUT = 1000;
+
+    @Spec
+    private CommandSpec spec;
+
+    @Parameters(index = "0", paramLabel = "MODEL", description = "The model (.xml, .xta).")
+    private Path model;
+
+    @Parameters(index = "1..*", arity = "0..2", paramLabel = "HOST PORT | PORT",
+            description = "After --: the adapter's address to connect to, or a port to listen on (0: any free port).")
+    private List<String> address = new ArrayList<>();
+
+    @Option(names = "-I", paramLabel = "ADAPTER", defaultValue = "SocketAdapter",
+            description = "TRON's adapter: only SocketAdapter (the default) is supported.")
+    private String adapterName;
+
+    @Option(names = "-P", paramLabel = "DELAY", defaultValue = "random",
+            description = "Delay choice: random (default), eager, lazy, MAX or MIN,MAX (random, at most MAX units"
+                    + " after an input's window opens; MIN is not applied).")
+    private String delay;
+
+    @Option(names = "-F", paramLabel = "UNITS",
+            description = "How long to test, in model time units (default: the adapter's timeout, else 1000).")
+    private Long future;
+
+    @Option(names = {"-U", "-u"}, paramLabel = "UNCERTAINTY",
+            description = "TRON's observation uncertainty: accepted and not applied (outputs are time-stamped on"
+                    + " arrival; see the documentation).")
+    private String uncertainty;
+
+    @Option(names = "-v", paramLabel = "LEVEL", defaultValue = "0",
+            description = "Verbosity: 0 the settings and the verdict, 1 also every input and output, 2 also the"
+                    + " interface the adapter registered.")
+    private int verbosity;
+
+    @Option(names = "-X", paramLabel = "SEED", description = "Seed of the random choices (default: from the clock).")
+    private Long seed;
+
+    @Option(names = "-o", paramLabel = "FILE", description = "Also write everything printed to FILE.")
+    private Path logFile;
+
+    @Option(names = {"-S", "--stats"}, paramLabel = "FILE",
+            description = "Append TRON's statistics line 'seed verdict #inputs #outputs duration' to FILE (the"
+                    + " duration in microseconds).")
+    private Path statsFile;
+
+    @Option(names = "-Q", description = "Quiet: print the verdict line only.")
+    private boolean quiet;
+
+    @Option(names = "--virtual-time",
+            description = "Run in virtual time: the adapter must acknowledge events (TRON's virtual-time protocol)"
+                    + " or use DTRON's shared virtual clock.")
+    private boolean virtualTime;
+
+    @Option(names = "--bind", paramLabel = "ADDRESS", defaultValue = "127.0.0.1",
+            description = "With -- PORT: the address to listen on (default 127.0.0.1; 0.0.0.0 for every interface).")
+    private String bind;
+
+    @Option(names = "--reply-timeout", paramLabel = "SECONDS", defaultValue = "10",
+            description = "In virtual time: how long the adapter may take to acknowledge an input (default 10).")
+    private long replyTimeout;
+
+    @Option(names = "--trace", paramLabel = "FILE", description = "Write every event as one JSON line to FILE.")
+    private Path trace;
+
+    /** Prints to standard output and, with -o, to the log file. */
+    private static final class Printer implements AutoCloseable {
+        private final PrintWriter out;
+        private final Writer log;
+
+        Printer(PrintWriter out, Writer log) {
+            this.out = out;
+            this.log = log;
+        }
+
+        synchronized void println(String line) {
+            out.println(line);
+            out.flush();
+            if (log != null) {
+                try {
+                    log.write(line);
+                    log.write(System.lineSeparator());
+                    log.flush();
+                } catch (IOException e) {
+                    out.println("dtron tron: cannot write the log: " + e.getMessage());
+                }
+            }
+        }
+
+        @Override
+        public void close() throws IOException {
+            if (log != null) {
+                log.close();
+            }
+        }
+    }
+
+    @Override
+    public Integer call() {
+        PrintWriter err = spec.commandLine().getErr();
+        String usage = checkUsage();
+        if (usage != null) {
+            err.println("dtron tron: " + usage);
+            return 1;
+        }
+        DelayChoice choice;
+        try {
+            choice = DelayChoice.parse(delay);
+        } catch (IllegalArgumentException e) {
+            err.println("dtron tron: " + e.getMessage());
+            return 1;
+        }
+        Network network;
+        try {
+            network = ModelLoader.load(model);
+        } catch (ModelException e) {
+            err.println(model + ": " + e.errors().size() + " error" + (e.errors().size() == 1 ? "" : "s"));
+            for (Diagnostic d : e.diagnostics()) {
+                err.println("  " + d.format());
+            }
+            return 1;
+        }
+        if (!quiet) {
+            notes(err, choice);
+        }
+        long runSeed = seed != null ? seed : System.nanoTime() & 0xffffffffL;
+        try (Printer printer = new Printer(spec.commandLine().getOut(), logFile == null ? null
+                : Files.newBufferedWriter(logFile, StandardCharsets.UTF_8))) {
+            return run(network, choice, runSeed, printer, err);
+        } catch (IOException e) {
+            err.println("dtron tron: cannot write " + logFile + ": " + e.getMessage());
+            return 1;
+        }
+    }
+
+    private String checkUsage() {
+        if (!adapterName.equals("SocketAdapter")) {
+            return "-I " + adapterName + " is not supported: DTRON speaks TRON's socket adapter protocol only (-I"
+                    + " SocketAdapter); for a system in the JVM use dtron run --sut";
+        }
+        if (address.isEmpty()) {
+            return "give the adapter's address after the model: -- HOST PORT to connect, or -- PORT to listen";
+        }
+        if (port() < 0) {
+            return "'" + address.get(address.size() - 1) + "' is not a port (0 to 65535)";
+        }
+        if (uncertainty != null && !uncertainty.matches("\\d+(\\.\\d+)?(,\\d+(\\.\\d+)?)?")) {
+            return "-U " + uncertainty + ": give a number of model time units, or MIN,MAX";
+        }
+        if (verbosity < 0) {
+            return "-v " + verbosity + ": the verbosity is 0 or more";
+        }
+        if (future != null && future <= 0) {
+            return "-F " + future + ": the test duration must be a positive number of model time units";
+        }
+        if (replyTimeout <= 0) {
+            return "--reply-timeout must be a positive number of seconds";
+        }
+        return null;
+    }
+
+    private int port() {
+        String text = address.get(address.size() - 1);
+        try {
+            int port = Integer.parseInt(text);
+            return port >= 0 && port <= 65535 ? port : -1;
+        } catch (NumberFormatException e) {
+            return -1;
+        }
+    }
+
+    private void notes(PrintWriter err, DelayChoice choice) {
+        if (choice.min() > 0) {
+            err.println("dtron tron: note: -P " + delay + ": inputs come at most " + choice.bound() + " units after"
+                    + " their window opens; DTRON's engine does not hold them back for the lower bound "
+                    + choice.min());
+        }
+        if (uncertainty != null) {
+            err.println("dtron tron: note: -U " + uncertainty + " is accepted and not applied: DTRON time-stamps each"
+                    + " output when it arrives and checks it against the model at the precision of the time unit");
+        }
+        err.flush();
+    }
+
+    private int run(Network network, DelayChoice choice, long runSeed, Printer printer, PrintWriter err)
+            throws IOException {
+        boolean listen = address.size() == 1;
+        String where = listen ? "listening for the adapter" : "connecting to " + address.get(0) + ":" + port();
+        if (!quiet) {
+            printer.println("dtron tron: " + model + ", random seed " + runSeed + ", " + where
+                    + (virtualTime ? ", virtual time" : ""));
+        }
+        TronSocketAdapter.Settings settings = TronSocketAdapter.Settings.forRealTime().withVirtualTime(virtualTime)
+                .withReplyTimeout(Duration.ofSeconds(replyTimeout));
+        TronSocketAdapter adapter;
+        try {
+            adapter = listen ? acceptOne(network, settings, printer) : TronSocketAdapter.connect(address.get(0),
+                    port(), network, settings);
+        } catch (IOException e) {
+            err.println("dtron tron: the adapter's configuration failed: " + e.getMessage());
+            return 1;
+        }
+        TestInterface ti = adapter.testInterface();
+        long unit = ti.timeUnitMicros() != null ? ti.timeUnitMicros() : DEFAULT_TIME_UNIT;
+        long units = future != null ? future : ti.timeout() != null ? ti.timeout() : DEFAULT_TIMEOUT;
+        if (!quiet) {
+            printer.println("dtron tron: adapter " + adapter.remote() + ": " + units + " time units of " + unit + " us"
+                    + (verbosity >= 2 ? "; " + describe(ti) : ""));
+        }
+        TestOptions options = new TestOptions(runSeed, unit, units, choice.policy(), choice.bound(), virtualTime);
+        OnlineTester tester = new OnlineTester(network, ti, adapter, options);
+        if (verbosity >= 1 && !quiet) {
+            tester.addListener(new EventPrinter(printer, unit));
+        }
+        TestResult result;
+        try (Writer traceWriter = trace == null ? null : Files.newBufferedWriter(trace, StandardCharsets.UTF_8)) {
+            if (traceWriter != null) {
+                JsonTrace json = new JsonTrace(traceWriter, unit);
+                json.start(runSeed, model.toString(), units, virtualTime);
+                tester.addListener(json);
+            }
+            result = tester.run();
+        } catch (UnsupportedModelException e) {
+            adapter.close();
+            err.println("dtron tron: " + model + ": " + e.getMessage());
+            return 1;
+        }
+        printer.println("TEST " + result.verdict() + ": " + result.explanation());
+        if (statsFile != null) {
+            Files.writeString(statsFile, result.statisticsLine() + System.lineSeparator(), StandardCharsets.UTF_8,
+                    StandardOpenOption.CREATE, StandardOpenOption.APPEND);
+        }
+        return result.verdict().exitCode();
+    }
+
+    private TronSocketAdapter acceptOne(Network network, TronSocketAdapter.Settings settings, Printer printer)
+            throws IOException {
+        try (ServerSocket server = new ServerSocket(port(), 1, InetAddress.getByName(bind))) {
+            if (!quiet) {
+                printer.println("dtron tron: waiting for the adapter on " + server.getInetAddress().getHostAddress()
+                        + ":" + server.getLocalPort());
+            }
+            return TronSocketAdapter.accept(server, network, settings);
+        }
+    }
+
+    private static String describe(TestInterface ti) {
+        return "inputs " + channels(ti.inputs()) + "; outputs " + channels(ti.outputs());
+    }
+
+    private static String channels(List<TestInterface.ObservableChannel> channels) {
+        return channels.stream().map(c -> c.name() + "(" + c.variables().stream()
+                .map(TestInterface.AttachedVariable::name).collect(Collectors.joining(", ")) + ")")
+                .collect(Collectors.joining(", "));
+    }
+
+    /** TRON's {@code -P} value as DTRON's delay policy. */
+    record DelayChoice(DelayPolicy policy, long min, long bound) {
+        static DelayChoice parse(String text) {
+            String t = text.strip().toLowerCase(Locale.ROOT);
+            switch (t) {
+                case "random": return new DelayChoice(DelayPolicy.RANDOM, 0, 0);
+                case "eager": return new DelayChoice(DelayPolicy.EAGER, 0, 0);
+                case "lazy": return new DelayChoice(DelayPolicy.LAZY, 0, 0);
+                default: break;
+            }
+            if (t.matches("\\d{1,9}")) {
+                return new DelayChoice(DelayPolicy.RANDOM_BOUNDED, 0, Long.parseLong(t));
+            }
+            if (t.matches("\\d{1,9},\\d{1,9}")) {
+                String[] parts = t.split(",");
+                long min = Long.parseLong(parts[0]);
+                long max = Long.parseLong(parts[1]);
+                if (min <= max) {
+                    return new DelayChoice(DelayPolicy.RANDOM_BOUNDED, min, max);
+                }
+            }
+            throw new IllegalArgumentException("-P " + text + ": use random, eager, lazy, MAX or MIN,MAX with MIN <="
+                    + " MAX (model time units)");
+        }
+    }
+
+    /** Prints every input and output with its time, at verbosity 1 and more. */
+    private static final class EventPrinter implements TestListener {
+        private final Printer printer;
+        private final long unit;
+
+        EventPrinter(Printer printer, long unit) {
+            this.printer = printer;
+            this.unit = unit;
+        }
+
+        @Override
+        public void inputApplied(Event input, long micros) {
+            printer.println(String.format(Locale.ROOT, "t=%.3f input %s", micros / (double) unit, input));
+        }
+
+        @Override
+        public void outputObserved(Event output, long micros) {
+            printer.println(String.format(Locale.ROOT, "t=%.3f output %s", micros / (double) unit, output));
+        }
+    }
+}

@@ -1,0 +1,204 @@
+package io.dtron.tron;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertFalse;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+import io.dtron.cli.TronCommand;
+import java.io.IOException;
+import java.io.PrintWriter;
+import java.io.StringWriter;
+import java.net.ConnectException;
+import java.net.InetAddress;
+import java.net.ServerSocket;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.time.Duration;
+import java.util.concurrent.CompletableFuture;
+import java.util.concurrent.TimeUnit;
+import org.junit.jupiter.api.BeforeAll;
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.Timeout;
+import org.junit.jupiter.api.io.TempDir;
+import picocli.CommandLine;
+
+/** {@code dtron tron}: TRON's command line, with TRON's sample setup and every usage error. */
+@Timeout(value = 120, unit = TimeUnit.SECONDS, threadMode = Timeout.ThreadMode.SEPARATE_THREAD)
+class TronCommandTest {
+    private static Path lightContr;
+
+    @TempDir
+    Path dir;
+
+    @BeforeAll
+    static void find() throws Exception {
+        lightContr = Path.of(System.getProperty("dtron.shared", "../../shared"), "models", "tron", "LightContr.xml");
+        Warmup.lightContr(io.dtron.model.ModelLoader.load(lightContr));
+    }
+
+    private record Run(int exit, String out, String err) {
+    }
+
+    private static Run tron(String... args) {
+        StringWriter out = new StringWriter();
+        StringWriter err = new StringWriter();
+        CommandLine cli = new CommandLine(new TronCommand());
+        cli.setOut(new PrintWriter(out));
+        cli.setErr(new PrintWriter(err));
+        int exit = cli.execute(args);
+        return new Run(exit, out.toString(), err.toString());
+    }
+
+    /** TRON's sample: the lamp listens, the tester connects, with delays -P 10,200 and -F 300. */
+    private Run sample(String variant, String... extra) throws Exception {
+        try (ChildProcess lamp = ChildProcess.start(LampIutMain.class, dir.resolve("lamp.log"), "listen",
+                "REAL_TIME", variant, "300", Integer.toString(TronLampEndToEndTest.REAL_TIME_UNIT))) {
+            int port = lamp.awaitPort(Duration.ofSeconds(30));
+            String[] head = {"-I", "SocketAdapter", "-P", "10,200", "-F", "300", "-X", "42"};
+            String[] tail = {lightContr.toString(), "--", "127.0.0.1", Integer.toString(port)};
+            String[] args = new String[head.length + extra.length + tail.length];
+            System.arraycopy(head, 0, args, 0, head.length);
+            System.arraycopy(extra, 0, args, head.length, extra.length);
+            System.arraycopy(tail, 0, args, head.length + extra.length, tail.length);
+            Run r = tron(args);
+            assertEquals(0, lamp.waitFor(Duration.ofSeconds(30)), lamp.output());
+            return r;
+        }
+    }
+
+    @Test
+    void tronsSampleSetupPassesTheCorrectLampWithStatisticsAndALog() throws Exception {
+        Path stats = dir.resolve("stats.txt");
+        Path log = dir.resolve("tron.log");
+        Run r = sample("correct", "-v", "2", "-S", stats.toString(), "-o", log.toString());
+        assertEquals(0, r.exit(), r.out() + r.err());
+        assertTrue(r.out().contains("random seed 42, connecting to 127.0.0.1:"), r.out());
+        assertTrue(r.out().contains("300 time units of 10000 us; inputs grasp(), release(); outputs level(adapLevel)"),
+                r.out());
+        assertTrue(r.out().contains(" input grasp()"), r.out());
+        assertTrue(r.out().contains("TEST PASSED: the timeout of 300 time units was reached"), r.out());
+        assertTrue(r.err().contains("note: -P 10,200: inputs come at most 200 units after their window opens"),
+                r.err());
+        assertTrue(Files.readString(stats).matches("42 PASSED \\d+ \\d+ 30\\d{5}\\R"), Files.readString(stats));
+        assertEquals(r.out(), Files.readString(log).replace(System.lineSeparator(), "\n"));
+    }
+
+    @Test
+    void tronsSampleSetupFailsTheLateLampWithExitCode2() throws Exception {
+        Run r = sample("late", "-Q");
+        assertEquals(2, r.exit(), r.out() + r.err());
+        assertTrue(r.out().startsWith("TEST FAILED: "), r.out());
+        assertEquals(1, r.out().lines().count(), r.out());
+    }
+
+    @Test
+    void listensForTheAdapterInVirtualTime() throws Exception {
+        int port;
+        try (ServerSocket probe = new ServerSocket(0, 1, InetAddress.getLoopbackAddress())) {
+            port = probe.getLocalPort();
+        }
+        CompletableFuture<Run> run = CompletableFuture.supplyAsync(() -> tron("--virtual-time", "-X", "9", "-F",
+                "3000", lightContr.toString(), "--", Integer.toString(port)));
+        connectLamp(port);
+        Run r = run.get(60, TimeUnit.SECONDS);
+        assertEquals(0, r.exit(), r.out() + r.err());
+        assertTrue(r.out().contains("dtron tron: waiting for the adapter on 127.0.0.1:" + port), r.out());
+        assertTrue(r.out().contains("3000 time units of 1000 us"), r.out());
+        assertTrue(r.out().contains("TEST PASSED"), r.out());
+    }
+
+    private static void connectLamp(int port) throws Exception {
+        long deadline = System.nanoTime() + Duration.ofSeconds(20).toNanos();
+        while (true) {
+            try {
+                InJvmLamp.run(port, TronAdapterClient.TimeMode.SHARED_VIRTUAL_CLOCK, false, 1000);
+                return;
+            } catch (java.io.UncheckedIOException e) {
+                if (!(e.getCause().getCause() instanceof ConnectException) || System.nanoTime() > deadline) {
+                    throw e;
+                }
+                Thread.sleep(50);
+            }
+        }
+    }
+
+    @Test
+    void aProtocolErrorDuringTheTestIsInconclusiveWithExitCode3() throws Exception {
+        try (ServerSocket server = new ServerSocket(0, 1, InetAddress.getLoopbackAddress())) {
+            CompletableFuture<Void> adapter = CompletableFuture.runAsync(() -> {
+                try (var socket = server.accept(); RawClient c = RawClient.over(socket)) {
+                    c.configureLamp(5000).int32(77).uint16(0);
+                    c.closedByTester();
+                } catch (IOException e) {
+                    throw new IllegalStateException(e);
+                }
+            });
+            Run r = tron(lightContr.toString(), "--", "127.0.0.1", Integer.toString(server.getLocalPort()));
+            adapter.get(10, TimeUnit.SECONDS);
+            assertEquals(3, r.exit(), r.out() + r.err());
+            assertTrue(r.out().contains("TEST INCONCLUSIVE: protocol error: the adapter sent an event on channel id"
+                    + " 77, which was never registered"), r.out());
+        }
+    }
+
+    @Test
+    void aBrokenConfigurationIsAUsageError() throws Exception {
+        try (ServerSocket server = new ServerSocket(0, 1, InetAddress.getLoopbackAddress())) {
+            CompletableFuture<Void> adapter = CompletableFuture.runAsync(() -> {
+                try (var socket = server.accept(); RawClient c = RawClient.over(socket)) {
+                    c.bytes(42);
+                    c.closedByTester();
+                } catch (IOException e) {
+                    throw new IllegalStateException(e);
+                }
+            });
+            Run r = tron(lightContr.toString(), "--", "127.0.0.1", Integer.toString(server.getLocalPort()));
+            adapter.get(10, TimeUnit.SECONDS);
+            assertEquals(1, r.exit(), r.out() + r.err());
+            assertTrue(r.err().contains("dtron tron: the adapter's configuration failed: unknown command byte 42"),
+                    r.err());
+        }
+    }
+
+    @Test
+    void usageErrorsSayWhatIsWrong() throws Exception {
+        String model = lightContr.toString();
+        Run otherAdapter = tron("-I", "TraceAdapter", model, "--", "9999");
+        assertEquals(1, otherAdapter.exit());
+        assertTrue(otherAdapter.err().contains("-I TraceAdapter is not supported: DTRON speaks TRON's socket adapter"
+                + " protocol only"), otherAdapter.err());
+        Run badDelay = tron("-P", "200,10", model, "--", "9999");
+        assertEquals(1, badDelay.exit());
+        assertTrue(badDelay.err().contains("-P 200,10: use random, eager, lazy, MAX or MIN,MAX"), badDelay.err());
+        Run unknown = tron("-Z", "1", model, "--", "9999");
+        assertEquals(1, unknown.exit());
+        assertTrue(unknown.err().contains("Unknown option: '-Z'"), unknown.err());
+        Run noAddress = tron(model);
+        assertEquals(1, noAddress.exit());
+        assertTrue(noAddress.err().contains("give the adapter's address after the model"), noAddress.err());
+        Run badPort = tron(model, "--", "localhost", "port");
+        assertEquals(1, badPort.exit());
+        assertTrue(badPort.err().contains("'port' is not a port"), badPort.err());
+        Run tooMany = tron(model, "--", "localhost", "1", "2");
+        assertEquals(1, tooMany.exit());
+        Run badUncertainty = tron("-U", "x", model, "--", "1");
+        assertEquals(1, badUncertainty.exit());
+        assertTrue(badUncertainty.err().contains("-U x: give a number"), badUncertainty.err());
+        Run missingModel = tron(dir.resolve("none.xml").toString(), "--", "1");
+        assertEquals(1, missingModel.exit());
+        assertTrue(missingModel.err().contains("none.xml"), missingModel.err());
+    }
+
+    @Test
+    void nobodyListeningIsAUsageError() throws Exception {
+        int port;
+        try (ServerSocket probe = new ServerSocket(0, 1, InetAddress.getLoopbackAddress())) {
+            port = probe.getLocalPort();
+        }
+        Run r = tron("-U", "5", lightContr.toString(), "--", "127.0.0.1", Integer.toString(port));
+        assertEquals(1, r.exit());
+        assertTrue(r.err().contains("cannot connect to the adapter at 127.0.0.1:" + port), r.err());
+        assertTrue(r.err().contains("note: -U 5 is accepted and not applied"), r.err());
+        assertFalse(r.out().contains("TEST"), r.out());
+    }
+}
