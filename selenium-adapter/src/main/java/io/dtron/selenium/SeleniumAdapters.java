@@ -1,0 +1,336 @@
+package io.dtron.selenium;
+
+import com.google.inject.AbstractModule;
+import com.google.inject.ConfigurationException;
+import com.google.inject.CreationException;
+import com.google.inject.Guice;
+import com.google.inject.Injector;
+import com.google.inject.ProvisionException;
+import com.google.inject.Scopes;
+import com.google.inject.name.Names;
+import com.google.inject.spi.Message;
+import io.dtron.api.Dtron;
+import io.dtron.api.DtronAdapter;
+import io.dtron.selenium.internal.ClassScanner;
+import io.dtron.selenium.internal.Locators;
+import io.dtron.selenium.internal.UserSessions;
+import java.io.IOException;
+import java.io.InputStream;
+import java.io.InputStreamReader;
+import java.io.Reader;
+import java.lang.reflect.Modifier;
+import java.nio.charset.StandardCharsets;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.util.ArrayList;
+import java.util.Collection;
+import java.util.HashMap;
+import java.util.LinkedHashMap;
+import java.util.LinkedHashSet;
+import java.util.List;
+import java.util.Map;
+import java.util.Objects;
+import java.util.Properties;
+import java.util.Set;
+import java.util.stream.Collectors;
+import java.util.stream.IntStream;
+import org.slf4j.Logger;
+import org.slf4j.LoggerFactory;
+
+/**
+ * A set of Selenium adapters, found in a package or listed, created with Guice and started on a bus: a
+ * {@link DtronAdapter}, so {@code dtron run MODEL --adapter io.dtron.selenium.SeleniumAdapters:com.example.web}
+ * tests a web application with the adapters of package {@code com.example.web}.
+ *
+ * <p>The properties that {@code @Inject @Named("KEY") String} fields and constructor parameters receive, and
+ * that {@link AbstractSeleniumAdapter#findElement} looks locators up in, come from, by increasing precedence:
+ * the file {@value #PROPERTIES_FILE} in each scanned package (a class-path resource), the files given to
+ * {@link Builder#properties(Path)}, a system property with the name of a key already defined, and
+ * {@link Builder#property}. Each adapter class is created once, so adapters injected into each other are the
+ * ones that serve their channels. Closing stops the adapters and quits the browsers.
+ */
+public final class SeleniumAdapters implements DtronAdapter {
+    /** The properties file read from each scanned package. */
+    public static final String PROPERTIES_FILE = "adapters.properties";
+
+    private static final Logger LOG = LoggerFactory.getLogger(SeleniumAdapters.class);
+
+    private final Map<String, String> properties;
+    private final WebDriverFactory driverFactory;
+    private final String startPage;
+    private final List<Integer> prestartUsers;
+    private final List<AbstractSeleniumAdapter> adapters;
+    private UserSessions sessions;
+    private boolean started;
+    private boolean closed;
+
+    /**
+     * Creates the adapters of a package with the package's {@value #PROPERTIES_FILE} and headless Chromium: the
+     * constructor {@code dtron run --adapter io.dtron.selenium.SeleniumAdapters:PACKAGE} calls.
+     *
+     * @throws IllegalArgumentException if the package has no adapter, or one cannot be created (a missing
+     *                                  property, two adapters of one channel), saying why
+     */
+    public SeleniumAdapters(String packageName) {
+        this(builder().scan(packageName));
+    }
+
+    private SeleniumAdapters(Builder builder) {
+        if (builder.types.isEmpty()) {
+            throw new IllegalArgumentException("no adapters: scan a package or add adapter classes");
+        }
+        this.properties = builder.resolveProperties();
+        this.driverFactory = builder.driverFactory;
+        this.startPage = builder.startPage;
+        this.prestartUsers = List.copyOf(builder.prestartUsers);
+        this.adapters = create(builder.types, properties);
+    }
+
+    /** Returns a builder. */
+    public static Builder builder() {
+        return new Builder();
+    }
+
+    private static List<AbstractSeleniumAdapter> create(Collection<Class<? extends AbstractSeleniumAdapter>> types,
+                                                        Map<String, String> properties) {
+        Map<String, Class<?>> byChannel = new HashMap<>();
+        for (Class<? extends AbstractSeleniumAdapter> type : types) {
+            String channel = AbstractSeleniumAdapter.channelOf(type).getChannelName();
+            Class<?> other = byChannel.putIfAbsent(channel, type);
+            if (other != null) {
+                throw new IllegalArgumentException("adapters " + other.getName() + " and " + type.getName()
+                        + " both serve channel '" + channel + "'");
+            }
+        }
+        try {
+            Injector injector = Guice.createInjector(new AbstractModule() {
+                @Override
+                protected void configure() {
+                    Properties values = new Properties();
+                    values.putAll(properties);
+                    Names.bindProperties(binder(), values);
+                    types.forEach(type -> bind(type).in(Scopes.SINGLETON));
+                }
+            });
+            List<AbstractSeleniumAdapter> created = new ArrayList<>();
+            types.forEach(type -> created.add(injector.getInstance(type)));
+            return List.copyOf(created);
+        } catch (CreationException e) {
+            throw new IllegalArgumentException(guiceMessage(e.getErrorMessages()), e);
+        } catch (ConfigurationException e) {
+            throw new IllegalArgumentException(guiceMessage(e.getErrorMessages()), e);
+        } catch (ProvisionException e) {
+            throw new IllegalArgumentException(guiceMessage(e.getErrorMessages()), e);
+        }
+    }
+
+    private static String guiceMessage(Collection<Message> messages) {
+        return "cannot create the adapters: " + messages.stream().map(Message::getMessage)
+                .map(m -> m.lines().findFirst().orElse(m)).collect(Collectors.joining("; "));
+    }
+
+    /**
+     * Starts the adapters on a bus member: starts the browsers of {@link Builder#browsers}, then listens to the
+     * adapters' channels.
+     *
+     * @throws AdapterException      if a browser cannot be started
+     * @throws IllegalStateException if started twice, or after closing
+     */
+    @Override
+    public synchronized void start(Dtron dtron) {
+        Objects.requireNonNull(dtron, "dtron");
+        if (started || closed) {
+            throw new IllegalStateException("the adapters can be started once");
+        }
+        started = true;
+        sessions = new UserSessions(driverFactory, startPage);
+        AdapterRuntime runtime = new AdapterRuntime(dtron, sessions, new Locators(properties));
+        try {
+            sessions.prestart(prestartUsers);
+            adapters.forEach(a -> a.attach(runtime));
+        } catch (RuntimeException e) {
+            close();
+            throw e;
+        }
+        LOG.info("Started Selenium adapters {} on {}", adapters, dtron);
+    }
+
+    /** Returns the adapters, sorted by class name. */
+    public List<AbstractSeleniumAdapter> getAdapters() {
+        return adapters;
+    }
+
+    /**
+     * Returns the adapter of a class.
+     *
+     * @throws IllegalArgumentException if it is not one of these adapters
+     */
+    public <T extends AbstractSeleniumAdapter> T getAdapter(Class<T> type) {
+        return adapters.stream().filter(type::isInstance).map(type::cast).findFirst()
+                .orElseThrow(() -> new IllegalArgumentException(type.getName() + " is not one of " + adapters));
+    }
+
+    /** Stops listening, lets the steps under way finish (a few seconds at most) and quits the browsers. */
+    @Override
+    public synchronized void close() {
+        if (closed) {
+            return;
+        }
+        closed = true;
+        if (sessions != null) {
+            adapters.forEach(AbstractSeleniumAdapter::detach);
+            sessions.close();
+        }
+    }
+
+    @Override
+    public String toString() {
+        return "SeleniumAdapters" + adapters;
+    }
+
+    /** Builds {@link SeleniumAdapters}. Not thread-safe. */
+    public static final class Builder {
+        private final Set<Class<? extends AbstractSeleniumAdapter>> types = new LinkedHashSet<>();
+        private final List<Map<String, String>> resources = new ArrayList<>();
+        private final List<Path> files = new ArrayList<>();
+        private final Map<String, String> explicit = new LinkedHashMap<>();
+        private WebDriverFactory driverFactory = HeadlessChrome.defaults();
+        private String startPage;
+        private List<Integer> prestartUsers = List.of();
+
+        private Builder() {
+        }
+
+        /**
+         * Adds every adapter class of a package (not of its subpackages): the concrete top-level and static
+         * nested classes extending {@link AbstractSeleniumAdapter}; and the package's {@value #PROPERTIES_FILE},
+         * if it has one.
+         *
+         * @throws IllegalArgumentException if the package has no adapter class
+         */
+        public Builder scan(String packageName) {
+            ClassLoader loader = loader();
+            List<Class<? extends AbstractSeleniumAdapter>> found = new ArrayList<>();
+            for (Class<?> type : ClassScanner.classesIn(packageName, loader)) {
+                if (isAdapter(type)) {
+                    found.add(type.asSubclass(AbstractSeleniumAdapter.class));
+                }
+            }
+            if (found.isEmpty()) {
+                throw new IllegalArgumentException("no adapters in package " + packageName + ": no concrete class"
+                        + " there extends " + AbstractSeleniumAdapter.class.getName());
+            }
+            types.addAll(found);
+            String resource = packageName.replace('.', '/') + "/" + PROPERTIES_FILE;
+            try (InputStream in = loader.getResourceAsStream(resource)) {
+                if (in != null) {
+                    resources.add(load(new InputStreamReader(in, StandardCharsets.UTF_8), resource));
+                }
+            } catch (IOException e) {
+                throw new IllegalArgumentException("cannot read " + resource + ": " + e.getMessage(), e);
+            }
+            return this;
+        }
+
+        /** Adds one adapter class. */
+        public Builder adapter(Class<? extends AbstractSeleniumAdapter> type) {
+            if (!isAdapter(Objects.requireNonNull(type, "type"))) {
+                throw new IllegalArgumentException(type.getName() + " is no concrete adapter class");
+            }
+            types.add(type);
+            return this;
+        }
+
+        /** Adds a properties file (UTF-8), whose values override the packages' {@value #PROPERTIES_FILE}. */
+        public Builder properties(Path file) {
+            files.add(Objects.requireNonNull(file, "file"));
+            return this;
+        }
+
+        /** Sets one property, overriding every other source. */
+        public Builder property(String key, String value) {
+            explicit.put(Objects.requireNonNull(key, "key"), Objects.requireNonNull(value, "value"));
+            return this;
+        }
+
+        /** Sets how browsers are started (default: {@link HeadlessChrome#defaults()}). */
+        public Builder driverFactory(WebDriverFactory factory) {
+            driverFactory = Objects.requireNonNull(factory, "factory");
+            return this;
+        }
+
+        /**
+         * Starts the browsers of users 0 to {@code users - 1} when the adapters start, in parallel, rather than
+         * at each user's first message (default: none ahead).
+         */
+        public Builder browsers(int users) {
+            if (users < 0) {
+                throw new IllegalArgumentException("users must not be negative: " + users);
+            }
+            prestartUsers = IntStream.range(0, users).boxed().toList();
+            return this;
+        }
+
+        /**
+         * Sets the page every browser opens when it starts (default: none, a blank page). With
+         * {@link #browsers}, the first steps of a test then find the browsers warmed up.
+         */
+        public Builder startPage(String url) {
+            startPage = Objects.requireNonNull(url, "url");
+            return this;
+        }
+
+        /**
+         * Finds the properties and creates the adapters, not yet started.
+         *
+         * @throws IllegalArgumentException if there is no adapter, or one cannot be created, saying why
+         */
+        public SeleniumAdapters build() {
+            return new SeleniumAdapters(this);
+        }
+
+        private Map<String, String> resolveProperties() {
+            Map<String, String> values = new LinkedHashMap<>();
+            resources.forEach(values::putAll);
+            for (Path file : files) {
+                try (Reader in = Files.newBufferedReader(file, StandardCharsets.UTF_8)) {
+                    values.putAll(load(in, file.toString()));
+                } catch (IOException e) {
+                    throw new IllegalArgumentException("cannot read properties " + file + ": " + e.getMessage(), e);
+                }
+            }
+            for (String key : List.copyOf(values.keySet())) {
+                String system = System.getProperty(key);
+                if (system != null) {
+                    values.put(key, system);
+                }
+            }
+            values.putAll(explicit);
+            return values;
+        }
+
+        private static Map<String, String> load(Reader in, String name) throws IOException {
+            Properties p = new Properties();
+            try {
+                p.load(in);
+            } catch (IllegalArgumentException e) {
+                throw new IOException(name + " is malformed: " + e.getMessage(), e);
+            }
+            Map<String, String> values = new LinkedHashMap<>();
+            p.stringPropertyNames().forEach(k -> values.put(k, p.getProperty(k)));
+            return values;
+        }
+
+        private static boolean isAdapter(Class<?> type) {
+            int modifiers = type.getModifiers();
+            return AbstractSeleniumAdapter.class.isAssignableFrom(type) && !Modifier.isAbstract(modifiers)
+                    && !type.isInterface() && !type.isAnonymousClass() && !type.isLocalClass()
+                    && (!type.isMemberClass() || Modifier.isStatic(modifiers));
+        }
+
+        private static ClassLoader loader() {
+            ClassLoader context = Thread.currentThread().getContextClassLoader();
+            return context != null ? context : SeleniumAdapters.class.getClassLoader();
+        }
+    }
+}

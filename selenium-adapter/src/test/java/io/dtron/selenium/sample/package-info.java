@@ -1,0 +1,2 @@
+/** Adapters of the tests' small web site, found by scanning this package. */
+package io.dtron.selenium.sample;
