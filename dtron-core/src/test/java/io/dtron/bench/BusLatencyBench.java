@@ -31,14 +31,18 @@ import java.util.concurrent.TimeUnit;
  * <p>Resets come as early as the model allows (every 25 time units), so the ticker sends two ticks per 25 units.
  * A tick may come 2 units early or late, so with a small time unit one latency spike ends a run FAILED; the bench
  * then starts the next run, until it has the ticks it wants, and says how the runs ended. It first warms both
- * JVMs up for a few seconds the same way, with a bridge of its own, and throws those figures away.
+ * JVMs up for 15 s with a tick every millisecond (most of those runs fail: the code of a fresh JVM is slow until
+ * the JIT has compiled it, which takes thousands of messages), with a bridge of its own, and throws those figures
+ * away.
  *
- * <p>Arguments (all optional): the time unit in microseconds (default 100: a tick every millisecond), the number
+ * <p>Arguments (all optional): the time unit in microseconds (default 1000: a tick every 10 ms), the number
  * of ticks to measure (default 10,000), the ticker model (default
  * {@code ../models/src/main/resources/io/dtron/models/ticker.xml}, from {@code dtron-core}).
  */
 public final class BusLatencyBench {
-    private static final Duration WARM_UP = Duration.ofSeconds(5);
+    private static final Duration WARM_UP = Duration.ofSeconds(15);
+    /** The time unit of the warm-up runs: a tick every millisecond, so that both JVMs compile the bus's code. */
+    private static final long WARM_UP_UNIT = 100;
     private static final Duration ADAPTERS = Duration.ofSeconds(30);
     private static final long PAUSE_BETWEEN_RUNS_MILLIS = 20;
 
@@ -46,7 +50,7 @@ public final class BusLatencyBench {
     }
 
     public static void main(String[] args) throws IOException, InterruptedException, ModelException {
-        long unit = args.length > 0 ? Long.parseLong(args[0]) : 100;
+        long unit = args.length > 0 ? Long.parseLong(args[0]) : 1000;
         int ticks = args.length > 1 ? Integer.parseInt(args[1]) : 10_000;
         Path modelFile = Path.of(args.length > 2 ? args[2]
                 : "../models/src/main/resources/io/dtron/models/ticker.xml");
@@ -60,8 +64,10 @@ public final class BusLatencyBench {
                 .redirectErrorStream(true).redirectOutput(adapterLog.toFile()).start();
         try {
             System.out.println("ticker model, " + unit + " us per time unit (a tick every " + 10 * unit
-                    + " us), adapter in another JVM; warming up for " + WARM_UP.toSeconds() + " s");
-            measure(network, testInterface, cluster, unit, System.nanoTime() + WARM_UP.toNanos(), Integer.MAX_VALUE);
+                    + " us), adapter in another JVM; warming up for " + WARM_UP.toSeconds() + " s with a tick every "
+                    + 10 * WARM_UP_UNIT + " us");
+            measure(network, testInterface, cluster, WARM_UP_UNIT, System.nanoTime() + WARM_UP.toNanos(),
+                    Integer.MAX_VALUE);
             System.out.println("measuring " + ticks + " ticks");
             measure(network, testInterface, cluster, unit, Long.MAX_VALUE, ticks);
             if (!adapter.waitFor(30, TimeUnit.SECONDS)) {

@@ -2,6 +2,7 @@ package io.dtron.bus.internal;
 
 import static org.junit.jupiter.api.Assertions.assertArrayEquals;
 import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertInstanceOf;
 import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertThrows;
 import static org.junit.jupiter.api.Assertions.assertTrue;
@@ -12,6 +13,7 @@ import java.util.Arrays;
 import java.util.List;
 import java.util.Optional;
 import org.jgroups.protocols.TCP;
+import org.jgroups.util.PassRegularMessagesUpDirectly;
 import org.jgroups.protocols.TCPPING;
 import org.jgroups.stack.Protocol;
 import org.junit.jupiter.api.Test;
@@ -36,6 +38,9 @@ class JGroupsStackTest {
         assertEquals(LOOPBACK, tcp.getBindAddress());
         assertEquals(7800, tcp.getBindPort());
         assertEquals(30, tcp.getPortRange());
+        assertEquals("no-bundler", tcp.getBundlerType(), "the sending thread writes each message");
+        assertInstanceOf(PassRegularMessagesUpDirectly.class, tcp.getMessageProcessingPolicy(),
+                "the reading thread passes messages up");
         TCPPING ping = (TCPPING) stack.get(1);
         assertEquals(31, ping.getInitialHosts().size(), "the whole range is probed");
         assertEquals(0, ping.getPortRange());
