@@ -15,11 +15,16 @@ import io.dtron.model.ModelException;
 import io.dtron.model.ModelLoader;
 import io.dtron.model.Network;
 import io.dtron.model.TestInterface;
+import io.dtron.tron.TronBackend;
+import io.dtron.tron.TronSocketAdapter;
+import io.dtron.troninstaller.TronInstallation;
+import io.dtron.troninstaller.TronNotFoundException;
 import io.dtron.xta.Diagnostic;
 import java.io.IOException;
 import java.io.PrintWriter;
 import java.io.Writer;
 import java.net.InetAddress;
+import java.net.ServerSocket;
 import java.net.UnknownHostException;
 import java.nio.charset.StandardCharsets;
 import java.nio.file.Files;
@@ -28,6 +33,7 @@ import java.time.Duration;
 import java.util.ArrayList;
 import java.util.List;
 import java.util.Locale;
+import java.util.Optional;
 import java.util.concurrent.Callable;
 import java.util.concurrent.atomic.AtomicInteger;
 import picocli.CommandLine.Command;
@@ -94,6 +100,16 @@ final class RunCommand implements Callable<Integer> {
                     + " (repeatable).")
     private List<String> adapterClasses = List.of();
 
+    @Option(names = "--tron-adapter", paramLabel = "HOST:PORT|PORT",
+            description = "The system under test is an adapter written for Uppaal TRON: connect to its socket adapter"
+                    + " at HOST:PORT, or listen for it on PORT at loopback. Its configuration defines the interface.")
+    private String tronAdapter;
+
+    @Option(names = "--backend", paramLabel = "engine|tron", defaultValue = "engine",
+            description = "Who judges: DTRON's own engine (default), or an installed Uppaal TRON (found through"
+                    + " TRON_HOME or PATH; real time only).")
+    private String backend;
+
     @Option(names = "--interface", paramLabel = "FILE.trn",
             description = "TRON interface file; by default i_/o_ channel names give the interface.")
     private Path interfaceFile;
@@ -128,31 +144,30 @@ final class RunCommand implements Callable<Integer> {
     public Integer call() {
         PrintWriter out = spec.commandLine().getOut();
         PrintWriter err = spec.commandLine().getErr();
-        boolean busMode = sut == null;
-        checkModeOptions(busMode);
+        boolean busMode = sut == null && tronAdapter == null;
+        boolean tronBackend = parseBackend();
+        checkModeOptions(busMode, tronBackend);
+        DelayPolicy policy = parseDelayPolicy();
         Network network;
         TestInterface testInterface;
         try {
             network = ModelLoader.load(model);
+            if (tronAdapter != null) {
+                return runAgainstTronAdapter(network, policy, out, err);
+            }
             testInterface = interfaceFile == null ? TestInterface.fromNames(network)
                     : TestInterface.fromFile(network, interfaceFile);
         } catch (ModelException e) {
-            err.println(model + ": " + e.errors().size() + " error" + (e.errors().size() == 1 ? "" : "s"));
-            for (Diagnostic d : e.diagnostics()) {
-                err.println("  " + d.format());
-            }
+            printModelErrors(e, err);
+            return 1;
+        } catch (IOException e) {
+            err.println("dtron run: cannot write the trace " + trace + ": " + e.getMessage());
             return 1;
         }
         if (testInterface.inputs().isEmpty() && testInterface.outputs().isEmpty()) {
             err.println("dtron run: " + model + " has no inputs or outputs: name channels i_x / o_y, or give"
                     + " --interface FILE.trn");
             return 1;
-        }
-        DelayPolicy policy;
-        try {
-            policy = DelayPolicy.valueOf(delayPolicy.toUpperCase(Locale.ROOT).replace('-', '_'));
-        } catch (IllegalArgumentException e) {
-            throw usage("unknown delay policy '" + delayPolicy + "' (use random, eager, lazy or random-bounded)");
         }
         long unit = timeUnit != null ? timeUnit : testInterface.timeUnitMicros() != null
                 ? testInterface.timeUnitMicros() : 1000;
@@ -164,9 +179,16 @@ final class RunCommand implements Callable<Integer> {
         } catch (IllegalArgumentException e) {
             throw usage(e.getMessage());
         }
+        Judge judge;
         try {
-            return busMode ? runOnBus(network, testInterface, options, out, err)
-                    : runInProcess(network, testInterface, options, out);
+            judge = tronBackend ? tronJudge(err) : engineJudge(network);
+        } catch (TronNotFoundException e) {
+            err.println("dtron run: --backend tron: " + e.getMessage());
+            return 1;
+        }
+        try {
+            return busMode ? runOnBus(testInterface, options, judge, out, err)
+                    : runInProcess(testInterface, options, judge, out);
         } catch (UnsupportedModelException e) {
             err.println("dtron run: " + model + ": " + e.getMessage());
             return 1;
@@ -176,15 +198,44 @@ final class RunCommand implements Callable<Integer> {
         }
     }
 
-    /** Rejects options that belong to the other mode, and bad values of the bus options. */
-    private void checkModeOptions(boolean busMode) {
+    private boolean parseBackend() {
+        return switch (backend.toLowerCase(Locale.ROOT)) {
+            case "engine" -> false;
+            case "tron" -> true;
+            default -> throw usage("unknown backend '" + backend + "' (use engine or tron)");
+        };
+    }
+
+    private DelayPolicy parseDelayPolicy() {
+        try {
+            return DelayPolicy.valueOf(delayPolicy.toUpperCase(Locale.ROOT).replace('-', '_'));
+        } catch (IllegalArgumentException e) {
+            throw usage("unknown delay policy '" + delayPolicy + "' (use random, eager, lazy or random-bounded)");
+        }
+    }
+
+    /** Rejects options that belong to another mode, and bad values of the bus options. */
+    private void checkModeOptions(boolean busMode, boolean tronBackend) {
+        if (sut != null && tronAdapter != null) {
+            throw usage("--sut and --tron-adapter each name the system under test; give one");
+        }
         if (!busMode && (cluster != null || bind != null || waitForAdapters != null || waitTimeout != null
                 || !adapterClasses.isEmpty())) {
             throw usage("--cluster, --bind, --wait-for-adapters, --wait-timeout and --adapter are for testing the"
-                    + " adapters on a bus, without --sut");
+                    + " adapters on a bus, without --sut or --tron-adapter");
         }
         if (busMode && virtualTime) {
-            throw usage("--virtual-time needs --sut: the adapters on a bus live in real time");
+            throw usage("--virtual-time needs --sut or --tron-adapter: the adapters on a bus live in real time");
+        }
+        if (tronAdapter != null && (tronBackend || interfaceFile != null)) {
+            throw usage("with --tron-adapter, DTRON's engine takes TRON's place and the adapter's configuration"
+                    + " defines the interface: leave out " + (tronBackend ? "--backend tron" : "--interface"));
+        }
+        if (tronBackend && virtualTime) {
+            throw usage("--backend tron runs in real time only; leave out --virtual-time");
+        }
+        if (tronBackend && trace != null) {
+            throw usage("--trace records DTRON's engine; with --backend tron, TRON keeps its own log");
         }
         if (waitForAdapters != null && waitForAdapters < 0) {
             throw usage("--wait-for-adapters must not be negative: " + waitForAdapters);
@@ -194,7 +245,7 @@ final class RunCommand implements Callable<Integer> {
         }
     }
 
-    private int runInProcess(Network network, TestInterface testInterface, TestOptions options, PrintWriter out)
+    private int runInProcess(TestInterface testInterface, TestOptions options, Judge judge, PrintWriter out)
             throws IOException {
         Adapter adapter;
         try {
@@ -203,12 +254,13 @@ final class RunCommand implements Callable<Integer> {
             throw usage(e.getMessage());
         }
         out.println("dtron run: " + model + " against " + sut + ", seed " + options.seed() + ", " + options.timeout()
-                + " time units of " + options.timeUnitMicros() + " us" + (virtualTime ? " in virtual time" : ""));
+                + " time units of " + options.timeUnitMicros() + " us" + (virtualTime ? " in virtual time" : "")
+                + judge.by());
         out.flush();
-        return test(network, testInterface, adapter, options, out).verdict().exitCode();
+        return judge.test(testInterface, adapter, options, out).verdict().exitCode();
     }
 
-    private int runOnBus(Network network, TestInterface testInterface, TestOptions options, PrintWriter out,
+    private int runOnBus(TestInterface testInterface, TestOptions options, Judge judge, PrintWriter out,
                          PrintWriter err) throws IOException {
         String clusterName = cluster != null ? cluster : DtronOptions.DEFAULT_CLUSTER;
         if (clusterName.isBlank()) {
@@ -239,7 +291,7 @@ final class RunCommand implements Callable<Integer> {
         try (session) {
             out.println("dtron run: " + model + " on bus '" + clusterName + "' at " + address.getHostAddress()
                     + " as " + session.bridge().memberId() + ", seed " + options.seed() + ", " + options.timeout()
-                    + " time units of " + options.timeUnitMicros() + " us in real time");
+                    + " time units of " + options.timeUnitMicros() + " us in real time" + judge.by());
             out.flush();
             for (int i = 0; i < adapters.size(); i++) {
                 String member;
@@ -276,16 +328,65 @@ final class RunCommand implements Callable<Integer> {
                 out.println("dtron run: members " + session.bridge().members());
                 out.flush();
             }
-            TestResult result = test(network, testInterface, session.bridge(), options, out);
+            TestResult result = judge.test(testInterface, session.bridge(), options, out);
             session.printSummary(out);
             out.flush();
             return result.verdict().exitCode();
         }
     }
 
-    /** Runs the tester with the trace and progress lines, and prints the verdict and the statistics. */
-    private TestResult test(Network network, TestInterface testInterface, Adapter adapter, TestOptions options,
-                            PrintWriter out) throws IOException {
+    /** Who judges a run: DTRON's engine, or an installed TRON. */
+    private interface Judge {
+        /** Tests the system under test, prints the verdict and the statistics line. */
+        TestResult test(TestInterface testInterface, Adapter adapter, TestOptions options, PrintWriter out)
+                throws IOException;
+
+        /** How the first line of the run names the judge. */
+        String by();
+    }
+
+    private Judge engineJudge(Network network) {
+        return new Judge() {
+            @Override
+            public TestResult test(TestInterface testInterface, Adapter adapter, TestOptions options,
+                                   PrintWriter out) throws IOException {
+                return testWithEngine(network, testInterface, adapter, options, out);
+            }
+
+            @Override
+            public String by() {
+                return "";
+            }
+        };
+    }
+
+    private Judge tronJudge(PrintWriter err) throws TronNotFoundException {
+        TronBackend tron = TronBackend.installed(new TronInstallation(), new LineEcho(err, "tron: "));
+        return new Judge() {
+            @Override
+            public TestResult test(TestInterface testInterface, Adapter adapter, TestOptions options,
+                                   PrintWriter out) throws IOException {
+                TestResult result;
+                try {
+                    result = tron.run(model.toAbsolutePath(), testInterface, adapter, options);
+                } catch (InterruptedException e) {
+                    Thread.currentThread().interrupt();
+                    throw new IOException("interrupted while TRON was testing", e);
+                }
+                printVerdict(result, out);
+                return result;
+            }
+
+            @Override
+            public String by() {
+                return ", judged by Uppaal TRON";
+            }
+        };
+    }
+
+    /** Runs DTRON's tester with the trace and progress lines, and prints the verdict and the statistics. */
+    private TestResult testWithEngine(Network network, TestInterface testInterface, Adapter adapter,
+                                      TestOptions options, PrintWriter out) throws IOException {
         try (Writer traceWriter = trace == null ? null : Files.newBufferedWriter(trace, StandardCharsets.UTF_8)) {
             OnlineTester tester = new OnlineTester(network, testInterface, adapter, options);
             if (traceWriter != null) {
@@ -295,10 +396,90 @@ final class RunCommand implements Callable<Integer> {
             }
             tester.addListener(new Progress(out));
             TestResult result = tester.run();
-            out.println(result.verdict() + ": " + result.explanation());
-            out.println("statistics: " + result.statisticsLine() + " (seed verdict inputs outputs duration-us)");
-            out.flush();
+            printVerdict(result, out);
             return result;
+        }
+    }
+
+    private static void printVerdict(TestResult result, PrintWriter out) {
+        out.println(result.verdict() + ": " + result.explanation());
+        out.println("statistics: " + result.statisticsLine() + " (seed verdict inputs outputs duration-us)");
+        out.flush();
+    }
+
+    /**
+     * {@code --tron-adapter}: DTRON's engine in TRON's place. The adapter connects (or is connected to), registers
+     * its channels, variables, time unit and timeout, and is then tested.
+     */
+    private int runAgainstTronAdapter(Network network, DelayPolicy policy, PrintWriter out, PrintWriter err)
+            throws IOException {
+        TronAddress address = TronAddress.parse(tronAdapter).orElseThrow(() -> usage("--tron-adapter "
+                + tronAdapter + ": give HOST:PORT to connect to the adapter, or PORT to listen for it"));
+        TronSocketAdapter.Settings settings = TronSocketAdapter.Settings.forRealTime().withVirtualTime(virtualTime);
+        long runSeed = seed != null ? seed : System.nanoTime() & 0xffffffffL;
+        TronSocketAdapter adapter;
+        try {
+            if (address.host() == null) {
+                try (ServerSocket server = new ServerSocket(address.port(), 1, InetAddress.getLoopbackAddress())) {
+                    out.println("dtron run: waiting for the TRON adapter on 127.0.0.1:" + server.getLocalPort());
+                    out.flush();
+                    adapter = TronSocketAdapter.accept(server, network, settings);
+                }
+            } else {
+                adapter = TronSocketAdapter.connect(address.host(), address.port(), network, settings);
+            }
+        } catch (IOException e) {
+            err.println("dtron run: the TRON adapter's configuration failed: " + e.getMessage());
+            return 1;
+        }
+        try (adapter) {
+            TestInterface testInterface = adapter.testInterface();
+            Long adapterUnit = testInterface.timeUnitMicros();
+            if (timeUnit != null && adapterUnit != null && !timeUnit.equals(adapterUnit)) {
+                err.println("dtron run: --timeunit " + timeUnit + " differs from the time unit the adapter set, "
+                        + adapterUnit + " us; leave --timeunit out");
+                return 1;
+            }
+            long unit = adapterUnit != null ? adapterUnit : timeUnit != null ? timeUnit : 1000;
+            long units = timeout != null ? timeout : testInterface.timeout() != null ? testInterface.timeout() : 1000;
+            TestOptions options;
+            try {
+                options = new TestOptions(runSeed, unit, units, policy, delayBound, virtualTime);
+            } catch (IllegalArgumentException e) {
+                throw usage(e.getMessage());
+            }
+            out.println("dtron run: " + model + " against the TRON adapter at " + adapter.remote() + ", seed "
+                    + runSeed + ", " + units + " time units of " + unit + " us"
+                    + (virtualTime ? " in virtual time" : ""));
+            out.flush();
+            return testWithEngine(network, testInterface, adapter, options, out).verdict().exitCode();
+        } catch (UnsupportedModelException e) {
+            err.println("dtron run: " + model + ": " + e.getMessage());
+            return 1;
+        }
+    }
+
+    /** {@code HOST:PORT} (connect) or {@code PORT} (listen; 0 for any free port). */
+    record TronAddress(String host, int port) {
+        static Optional<TronAddress> parse(String text) {
+            int colon = text.lastIndexOf(':');
+            String host = colon < 0 ? null : text.substring(0, colon);
+            if (host != null && host.startsWith("[") && host.endsWith("]")) {
+                host = host.substring(1, host.length() - 1);
+            }
+            String port = text.substring(colon + 1);
+            if (!port.matches("\\d{1,5}") || Integer.parseInt(port) > 65535 || host != null && host.isBlank()
+                    || host != null && Integer.parseInt(port) == 0) {
+                return Optional.empty();
+            }
+            return Optional.of(new TronAddress(host, Integer.parseInt(port)));
+        }
+    }
+
+    private void printModelErrors(ModelException e, PrintWriter err) {
+        err.println(model + ": " + e.errors().size() + " error" + (e.errors().size() == 1 ? "" : "s"));
+        for (Diagnostic d : e.diagnostics()) {
+            err.println("  " + d.format());
         }
     }
 

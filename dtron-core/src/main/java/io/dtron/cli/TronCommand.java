@@ -48,7 +48,7 @@ import picocli.CommandLine.Spec;
                         + " dtron tron -I SocketAdapter -P 10,200 -F 300 LightContr.xml -- localhost 9999",
                 "-- HOST PORT connects to an adapter that listens (as TRON's samples do); -- PORT listens for one.",
                 "Exit code 0 PASSED, 2 FAILED, 3 INCONCLUSIVE, 1 usage, model or adapter configuration error."})
-public final class TronCommand implements Callable<Integer> {
+final class TronCommand implements Callable<Integer> {
     private static final long DEFAULT_TIME_UNIT = 1000;
     private static final long DEFAULT_TIMEOUT = 1000;
 

@@ -38,7 +38,8 @@ import org.slf4j.LoggerFactory;
  * names are resolved against the model (global channels, or {@code name[i]} elements of channel arrays; global int
  * and bool variables), refusals are answered with negative error codes that command 127 explains, and a start after
  * a refusal is refused. Then {@link #testInterface()} is the interface the adapter defined, for {@link
- * io.dtron.engine.OnlineTester}'s constructor, and this object is the {@link Adapter} of the run.
+ * io.dtron.engine.OnlineTester}'s constructor, and this object is the {@link Adapter} of the run. The start is
+ * accepted when the engine starts the run, so the adapter's time 0 is the tester's.
  *
  * <p>Time:
  * <ul>
@@ -212,7 +213,7 @@ public final class TronSocketAdapter implements Adapter, Closeable {
 
     /** The adapter's address. */
     public String remote() {
-        return String.valueOf(socket.getRemoteSocketAddress());
+        return socket.getInetAddress().getHostAddress() + ":" + socket.getPort();
     }
 
     private void configurationPhase() throws IOException {
@@ -256,10 +257,12 @@ public final class TronSocketAdapter implements Adapter, Closeable {
                 case Wire.EXPLAIN -> reply(Wire.string(registry.explain(reader.int32("the error code to explain"))));
                 case Wire.START -> {
                     String refusal = startRefusal();
-                    reply(Wire.string(refusal == null ? "" : refusal));
                     if (refusal != null) {
+                        reply(Wire.string(refusal));
                         throw new TronProtocolException("the test was not started: " + refusal);
                     }
+                    // the acceptance is sent when the engine starts the run (start(AdapterContext)), so that the
+                    // adapter's time 0 is the tester's, not the moment before the engine's own preparations
                     testInterface = registry.build();
                     for (InterfaceRegistry.Registered r : registry.channels()) {
                         byName.put(r.name(), r);
@@ -317,6 +320,12 @@ public final class TronSocketAdapter implements Adapter, Closeable {
     @Override
     public void start(AdapterContext runContext) {
         this.context = runContext;
+        try {
+            reply(Wire.string(""));
+        } catch (IOException e) {
+            fail("cannot accept the adapter's start: " + e.getMessage());
+            return;
+        }
         readerThread = new Thread(this::readLoop, "tron-tester-reader");
         readerThread.setDaemon(true);
         readerThread.start();

@@ -3,8 +3,8 @@
  *
  * <ul>
  *   <li>{@link io.dtron.tron.TronSocketAdapter}: DTRON in TRON's place, the tester's side; its configuration phase
- *       defines the test interface, and it is the {@link io.dtron.engine.Adapter} of the run. {@code dtron tron}
- *       ({@code io.dtron.cli.TronCommand}) is the command line around it.</li>
+ *       defines the test interface, and it is the {@link io.dtron.engine.Adapter} of the run
+ *       ({@code dtron tron} and {@code dtron run --tron-adapter} on the command line).</li>
  *   <li>{@link io.dtron.tron.TronAdapterClient}: the system under test's side, shaped like TRON's Java reporter and
  *       adapter.</li>
  *   <li>{@link io.dtron.tron.TronBackend}: an installed TRON as DTRON's backend, through the client.</li>

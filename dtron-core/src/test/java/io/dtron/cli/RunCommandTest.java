@@ -154,7 +154,7 @@ class RunCommandTest {
             assertTrue(r.err().contains("Usage: dtron run"), String.join(" ", args) + ": " + r.err());
         }
         Run virtual = dtron(model.toString(), "--virtual-time");
-        assertTrue(virtual.err().contains("--virtual-time needs --sut: the adapters on a bus live in real time"),
+        assertTrue(virtual.err().contains("--virtual-time needs --sut or --tron-adapter: the adapters on a bus live in real time"),
                 virtual.err());
         Run notBusAdapter = dtron(model.toString(), "--adapter", "java.lang.String");
         assertTrue(notBusAdapter.err().contains("java.lang.String is not a bus adapter: it does not implement"

@@ -1,6 +1,7 @@
 package io.dtron.tron;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertInstanceOf;
 import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertThrows;
 import static org.junit.jupiter.api.Assertions.assertTrue;
@@ -19,6 +20,8 @@ import java.net.InetAddress;
 import java.net.ServerSocket;
 import java.net.Socket;
 import java.time.Duration;
+import java.util.concurrent.ExecutionException;
+import java.io.IOException;
 import java.util.List;
 import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.TimeUnit;
@@ -160,7 +163,6 @@ class TronAdapterClientTest {
             c.start((id, v) -> { });
         });
         TronSocketAdapter tester = TronSocketAdapter.accept(server, pingPong, FAST);
-        iut.get(10, TimeUnit.SECONDS);
         TestInterface ti = tester.testInterface();
         assertEquals("ping", ti.inputs().get(0).name());
         TestInterface.ObservableChannel req = ti.outputs().get(0);
@@ -170,7 +172,11 @@ class TronAdapterClientTest {
                 .toList());
         assertEquals(2_500_000L, ti.timeUnitMicros());
         assertEquals(77L, ti.timeout());
+        Thread.sleep(200);
+        assertFalse(iut.isDone(), "the start is accepted only when the engine starts the run");
         tester.close();
+        ExecutionException closed = assertThrows(ExecutionException.class, () -> iut.get(10, TimeUnit.SECONDS));
+        assertInstanceOf(IOException.class, closed.getCause().getCause(), closed.toString());
     }
 
     @Test

@@ -1,0 +1,241 @@
+package io.dtron.tron;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertFalse;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+import io.dtron.cli.DtronCommand;
+import io.dtron.testadapter.BusTicker;
+import java.io.IOException;
+import java.io.PrintWriter;
+import java.io.StringWriter;
+import java.net.ConnectException;
+import java.net.InetAddress;
+import java.net.ServerSocket;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.nio.file.attribute.PosixFilePermissions;
+import java.time.Duration;
+import java.util.ArrayList;
+import java.util.List;
+import java.util.UUID;
+import java.util.concurrent.CompletableFuture;
+import java.util.concurrent.TimeUnit;
+import java.util.stream.Collectors;
+import org.junit.jupiter.api.BeforeAll;
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.Timeout;
+import org.junit.jupiter.api.io.TempDir;
+
+/**
+ * {@code dtron run} with TRON's protocol: {@code --tron-adapter} tests an adapter written for TRON with DTRON's
+ * engine in TRON's place; {@code --backend tron} has an installed TRON judge DTRON's system under test (here a
+ * {@code tron} script that runs DTRON in TRON's place, in a JVM of its own).
+ */
+@Timeout(value = 120, unit = TimeUnit.SECONDS, threadMode = Timeout.ThreadMode.SEPARATE_THREAD)
+class RunWithTronTest {
+    private static Path tronModels;
+    private static Path lightContr;
+
+    @TempDir
+    Path dir;
+
+    @BeforeAll
+    static void find() throws Exception {
+        tronModels = Path.of(System.getProperty("dtron.shared", "../../shared"), "models", "tron").toAbsolutePath();
+        lightContr = tronModels.resolve("LightContr.xml");
+        Warmup.lightContr(io.dtron.model.ModelLoader.load(lightContr));
+    }
+
+    private record Run(int exit, String out, String err) {
+    }
+
+    private static Run dtron(String... args) {
+        StringWriter out = new StringWriter();
+        StringWriter err = new StringWriter();
+        int exit = DtronCommand.run(args, new PrintWriter(out, true), new PrintWriter(err, true));
+        return new Run(exit, out.toString(), err.toString());
+    }
+
+    /** The lamp's adapter listens, as in TRON's sample; dtron run connects to it. */
+    private Run againstListeningLamp(String variant) throws Exception {
+        try (ChildProcess lamp = ChildProcess.start(LampIutMain.class, dir.resolve("lamp.log"), "listen",
+                "REAL_TIME", variant, "300", Integer.toString(TronLampEndToEndTest.REAL_TIME_UNIT))) {
+            int port = lamp.awaitPort(Duration.ofSeconds(30));
+            Run r = dtron("run", lightContr.toString(), "--tron-adapter", "127.0.0.1:" + port, "--seed", "7",
+                    "--delay-policy", "random-bounded", "--delay-bound", "200");
+            assertEquals(0, lamp.waitFor(Duration.ofSeconds(30)), lamp.output());
+            return r;
+        }
+    }
+
+    @Test
+    void theCorrectTronAdapterPasses() throws Exception {
+        Run r = againstListeningLamp("correct");
+        assertEquals(0, r.exit(), r.out() + r.err());
+        assertTrue(r.out().contains("against the TRON adapter at 127.0.0.1:"), r.out());
+        assertTrue(r.out().contains("seed 7, 300 time units of " + TronLampEndToEndTest.REAL_TIME_UNIT + " us"),
+                r.out());
+        assertTrue(r.out().contains("\nPASSED: the timeout of 300 time units was reached"), r.out());
+    }
+
+    @Test
+    void aFaultyTronAdapterFails() throws Exception {
+        Run r = againstListeningLamp("late");
+        assertEquals(2, r.exit(), r.out() + r.err());
+        assertTrue(r.out().contains("\nFAILED: "), r.out());
+        assertTrue(r.out().contains("level"), r.out());
+    }
+
+    @Test
+    void listensForTheTronAdapterInVirtualTime() throws Exception {
+        int port;
+        try (ServerSocket probe = new ServerSocket(0, 1, InetAddress.getLoopbackAddress())) {
+            port = probe.getLocalPort();
+        }
+        CompletableFuture<Run> run = CompletableFuture.supplyAsync(() -> dtron("run", lightContr.toString(),
+                "--tron-adapter", Integer.toString(port), "--virtual-time", "--timeout", "3000", "--seed", "3"));
+        long deadline = System.nanoTime() + Duration.ofSeconds(20).toNanos();
+        while (true) {
+            try {
+                InJvmLamp.run(port, TronAdapterClient.TimeMode.SHARED_VIRTUAL_CLOCK, false, 1000);
+                break;
+            } catch (java.io.UncheckedIOException e) {
+                if (!(e.getCause().getCause() instanceof ConnectException) || System.nanoTime() > deadline) {
+                    throw e;
+                }
+                Thread.sleep(50);
+            }
+        }
+        Run r = run.get(60, TimeUnit.SECONDS);
+        assertEquals(0, r.exit(), r.out() + r.err());
+        assertTrue(r.out().contains("dtron run: waiting for the TRON adapter on 127.0.0.1:" + port), r.out());
+        assertTrue(r.out().contains("3000 time units of 1000 us in virtual time"), r.out());
+        assertTrue(r.out().contains("\nPASSED: "), r.out());
+    }
+
+    @Test
+    void tronAdapterOptionsThatCannotGoTogetherAreUsageErrors() throws Exception {
+        String model = lightContr.toString();
+        Run withSut = dtron("run", model, "--tron-adapter", "9999", "--sut", LampSystem.class.getName());
+        assertEquals(1, withSut.exit());
+        assertTrue(withSut.err().contains("--sut and --tron-adapter each name the system under test"), withSut.err());
+        Run withInterface = dtron("run", model, "--tron-adapter", "9999", "--interface",
+                tronModels.resolve("LightContr.trn").toString());
+        assertEquals(1, withInterface.exit());
+        assertTrue(withInterface.err().contains("the adapter's configuration defines the interface: leave out"
+                + " --interface"), withInterface.err());
+        Run withTron = dtron("run", model, "--tron-adapter", "localhost:9999", "--backend", "tron");
+        assertEquals(1, withTron.exit());
+        assertTrue(withTron.err().contains("leave out --backend tron"), withTron.err());
+        Run withBus = dtron("run", model, "--tron-adapter", "9999", "--cluster", "x");
+        assertEquals(1, withBus.exit());
+        assertTrue(withBus.err().contains("are for testing the adapters on a bus"), withBus.err());
+        for (String bad : List.of("host:", "localhost:port", "70000", "localhost:0", ":80")) {
+            Run r = dtron("run", model, "--tron-adapter", bad);
+            assertEquals(1, r.exit(), bad);
+            assertTrue(r.err().contains("--tron-adapter " + bad + ": give HOST:PORT to connect to the adapter, or"
+                    + " PORT to listen for it"), r.err());
+        }
+        Run badBackend = dtron("run", model, "--backend", "uppaal");
+        assertEquals(1, badBackend.exit());
+        assertTrue(badBackend.err().contains("unknown backend 'uppaal' (use engine or tron)"), badBackend.err());
+    }
+
+    @Test
+    void nobodyListeningAtTheTronAdapterAddressIsAClearError() throws Exception {
+        int port;
+        try (ServerSocket probe = new ServerSocket(0, 1, InetAddress.getLoopbackAddress())) {
+            port = probe.getLocalPort();
+        }
+        Run r = dtron("run", lightContr.toString(), "--tron-adapter", "127.0.0.1:" + port);
+        assertEquals(1, r.exit());
+        assertTrue(r.err().contains("dtron run: the TRON adapter's configuration failed: cannot connect to the"
+                + " adapter at 127.0.0.1:" + port), r.err());
+        assertFalse(r.err().contains("\tat "), "no stack trace: " + r.err());
+    }
+
+    /** dtron run in a JVM of its own, with TRON_HOME and PATH as given. */
+    private Process dtronProcess(String tronHome, String path, Path log, String... args) throws IOException {
+        List<String> command = new ArrayList<>(ChildProcess.command(DtronCommand.class, args));
+        ProcessBuilder builder = new ProcessBuilder(command).redirectErrorStream(true).redirectOutput(log.toFile());
+        builder.environment().remove("TRON_HOME");
+        if (tronHome != null) {
+            builder.environment().put("TRON_HOME", tronHome);
+        }
+        builder.environment().put("PATH", path);
+        return builder.start();
+    }
+
+    /** A TRON_HOME whose bin/tron runs DTRON in TRON's place. */
+    private Path tronHome() throws IOException {
+        Path bin = dir.resolve("tron-home").resolve("bin");
+        Files.createDirectories(bin);
+        Path script = bin.resolve("tron");
+        String command = ChildProcess.command(FakeTronMain.class).stream().map(a -> "'" + a + "'")
+                .collect(Collectors.joining(" "));
+        Files.writeString(script, "#!/bin/sh\nexec " + command + " \"$@\"\n");
+        Files.setPosixFilePermissions(script, PosixFilePermissions.fromString("rwxr-xr-x"));
+        return dir.resolve("tron-home");
+    }
+
+    private String runWithTronBackend(String variant, int expectedExit) throws Exception {
+        Path log = dir.resolve("dtron-" + variant + ".log");
+        Process p = dtronProcess(tronHome().toString(), "/usr/bin:/bin", log, "run", lightContr.toString(),
+                "--interface", tronModels.resolve("LightContr.trn").toString(), "--sut",
+                LampSystem.class.getName() + ":" + variant, "--timeunit",
+                Integer.toString(TronLampEndToEndTest.REAL_TIME_UNIT), "--timeout", "300", "--seed", "42",
+                "--backend", "tron");
+        assertTrue(p.waitFor(90, TimeUnit.SECONDS), Files.readString(log));
+        String out = Files.readString(log);
+        assertEquals(expectedExit, p.exitValue(), out);
+        assertTrue(out.contains("seed 42, 300 time units of " + TronLampEndToEndTest.REAL_TIME_UNIT
+                + " us, judged by Uppaal TRON"), out);
+        return out;
+    }
+
+    @Test
+    void theInstalledTronJudgesTheCorrectSystemPassed() throws Exception {
+        String out = runWithTronBackend("correct", 0);
+        assertTrue(out.contains("\nPASSED: the timeout of 300 time units was reached"), out);
+        assertTrue(out.contains("statistics: 42 PASSED "), out);
+        assertTrue(out.contains("tron: dtron tron: "), "TRON's own output is shown behind 'tron: ': " + out);
+    }
+
+    @Test
+    void theInstalledTronJudgesTheLateSystemFailed() throws Exception {
+        String out = runWithTronBackend("late", 2);
+        assertTrue(out.contains("\nFAILED: "), out);
+    }
+
+    @Test
+    void theInstalledTronJudgesTheAdaptersOnTheBus() throws Exception {
+        Path log = dir.resolve("bus.log");
+        Path ticker = Path.of("..", "models", "src", "main", "resources", "io", "dtron", "models", "ticker.xml");
+        Process p = dtronProcess(tronHome().toString(), "/usr/bin:/bin", log, "run", ticker.toString(),
+                "--adapter", BusTicker.class.getName(), "--cluster", "tron-" + UUID.randomUUID().toString()
+                        .substring(0, 8), "--timeunit", "10000", "--timeout", "200", "--delay-policy", "eager",
+                "--seed", "5", "--backend", "tron");
+        assertTrue(p.waitFor(90, TimeUnit.SECONDS), Files.readString(log));
+        String out = Files.readString(log);
+        assertEquals(0, p.exitValue(), out);
+        assertTrue(out.contains("seed 5, 200 time units of 10000 us in real time, judged by Uppaal TRON"), out);
+        assertTrue(out.contains("\nPASSED: the timeout of 200 time units was reached"), out);
+        assertTrue(out.contains("latency t2 - t1 of outputs: count "), out);
+    }
+
+    @Test
+    void withoutTronTheBackendSaysWhereItLookedAndWhatToDo() throws Exception {
+        Path log = dir.resolve("missing.log");
+        Process p = dtronProcess(null, dir.resolve("empty").toString(), log, "run", lightContr.toString(),
+                "--interface", tronModels.resolve("LightContr.trn").toString(), "--sut", LampSystem.class.getName(),
+                "--backend", "tron");
+        assertTrue(p.waitFor(60, TimeUnit.SECONDS));
+        String out = Files.readString(log);
+        assertEquals(1, p.exitValue(), out);
+        assertTrue(out.contains("dtron run: --backend tron: Uppaal TRON was not found: no executable 'tron'"
+                + " (TRON_HOME is not set, and not on PATH)"), out);
+        assertTrue(out.contains("leave out --backend tron"), out);
+        assertFalse(out.contains("\tat "), "no stack trace: " + out);
+    }
+}
