@@ -47,6 +47,13 @@ public final class Dtron implements AutoCloseable {
      */
     public static final IDtronChannel RUN_START = IDtronChannel.of("dtron_start", "timeunit");
 
+    /**
+     * The channel on which a tester announces that its test run is over, whatever the verdict: an adapter whose
+     * system acts on its own stops it until the next {@link #RUN_START}, so that nothing it does between runs is
+     * taken for the next run's. A model channel may not have this name.
+     */
+    public static final IDtronChannel RUN_STOP = IDtronChannel.of("dtron_stop");
+
     private static final Logger LOG = LoggerFactory.getLogger(Dtron.class);
     private static final Duration CLOSE_TIMEOUT = Duration.ofSeconds(5);
 

@@ -30,7 +30,7 @@ import org.slf4j.LoggerFactory;
  * <p>The bridge is a bus member that declares the channels of the model's interface (channel and variable names
  * as in the interface), so that a message on any other channel, or with unknown or missing variables, or that is
  * no valid {@code Sync}, is rejected, logged and counted in {@link #stats()}. When the run starts it publishes
- * {@link Dtron#RUN_START} with the run's time unit. Every input the engine applies is published on the input's
+ * {@link Dtron#RUN_START} with the run's time unit, and when it ends {@link Dtron#RUN_STOP}. Every input the engine applies is published on the input's
  * channel; every message another member publishes on an output channel is reported to the engine as it arrives.
  * The bridge's own inputs come back in the bus's total order and are not outputs. For every message received, t1
  * (its publish time) and t2 (its receive time) are recorded: {@link #outputLatency()} and
@@ -76,7 +76,8 @@ public final class BusBridge implements Adapter, AutoCloseable {
      * @param testInterface the model's interface: its channels are declared on {@code options}
      * @param options       how to join the bus
      * @throws IllegalArgumentException if a channel name of the interface cannot be a bus channel (a channel array
-     *                                  element, the reserved {@link Dtron#RUN_START} name), or an input and an
+     *                                  element, the reserved names of {@link Dtron#RUN_START} and {@link
+     *                                  Dtron#RUN_STOP}), or an input and an
      *                                  output have the same name and different variables
      * @throws DtronException           if the bus cannot be joined
      */
@@ -84,6 +85,7 @@ public final class BusBridge implements Adapter, AutoCloseable {
         Map<String, IDtronChannel> channels = channels(testInterface);
         List<IDtronChannel> declared = new ArrayList<>(channels.values());
         declared.add(Dtron.RUN_START);
+        declared.add(Dtron.RUN_STOP);
         Dtron dtron = Dtron.connect(options.channels(declared).build());
         try {
             return new BusBridge(dtron, channels, testInterface);
@@ -99,9 +101,10 @@ public final class BusBridge implements Adapter, AutoCloseable {
         List<TestInterface.ObservableChannel> all = new ArrayList<>(testInterface.inputs());
         all.addAll(testInterface.outputs());
         for (TestInterface.ObservableChannel c : all) {
-            if (c.name().equals(Dtron.RUN_START.getChannelName())) {
-                throw new IllegalArgumentException("channel '" + c.name() + "' of the model's interface has the name"
-                        + " DTRON reserves for announcing the start of a run; rename it");
+            if (c.name().equals(Dtron.RUN_START.getChannelName()) || c.name().equals(Dtron.RUN_STOP
+                    .getChannelName())) {
+                throw new IllegalArgumentException("channel '" + c.name() + "' of the model's interface has a name"
+                        + " DTRON reserves for announcing the start and end of a run; rename it");
             }
             IDtronChannel channel;
             try {
@@ -164,6 +167,11 @@ public final class BusBridge implements Adapter, AutoCloseable {
     @Override
     public void stop() {
         running = false;
+        try {
+            dtron.send(Dtron.RUN_STOP.constructValued(Map.of()));
+        } catch (DtronException | IllegalStateException e) {
+            LOG.warn("Cannot publish the end of the run: {}", e.getMessage());
+        }
     }
 
     /** Returns t2 - t1 of the outputs received from other members so far. */

@@ -131,8 +131,10 @@ class BusBridgeTest {
     @Test
     void announcesTheStartPublishesInputsAndReportsOutputs() throws Exception {
         Inbox start = new Inbox(Dtron.RUN_START);
+        Inbox stop = new Inbox(Dtron.RUN_STOP);
         Inbox moves = new Inbox(MOVE);
         adapter.addDtronListener(start);
+        adapter.addDtronListener(stop);
         adapter.addDtronListener(moves);
         bridge.start(context);
         IDtronChannelValued announced = start.take();
@@ -149,8 +151,10 @@ class BusBridgeTest {
         assertEquals(1, bridge.outputLatency().count());
         assertTrue(bridge.outputLatency().minMicros() >= 0, bridge.outputLatency().toString());
         assertEquals(1, bridge.inputLatency().count(), "the input came back through the bus");
+        bridge.stop();
+        assertEquals(bridge.memberId(), stop.take().getSender(), "the end of the run is announced");
         DtronStats stats = bridge.stats();
-        assertEquals(2, stats.getPublished(), stats.toString());
+        assertEquals(3, stats.getPublished(), stats.toString());
         assertEquals(0, stats.getRejectedTotal(), stats.toString());
         assertTrue(context.inconclusive.isEmpty(), context.inconclusive.toString());
     }
@@ -238,7 +242,12 @@ class BusBridgeTest {
     void interfaceChannelsThatCannotTravelOnTheBusAreRefused() {
         IllegalArgumentException reserved = assertThrows(IllegalArgumentException.class, () -> BusBridge.connect(
                 testInterface("chan i_dtron_start;" + EMPTY), DtronOptions.builder().inJvm(true)));
-        assertTrue(reserved.getMessage().contains("reserves for announcing the start"), reserved.getMessage());
+        assertTrue(reserved.getMessage().contains("reserves for announcing the start and end of a run"),
+                reserved.getMessage());
+        IllegalArgumentException reservedStop = assertThrows(IllegalArgumentException.class, () -> BusBridge
+                .connect(testInterface("chan o_dtron_stop;" + EMPTY), DtronOptions.builder().inJvm(true)));
+        assertTrue(reservedStop.getMessage().contains("channel 'dtron_stop' of the model's interface has a name DTRON"
+                + " reserves"), reservedStop.getMessage());
         IllegalArgumentException array = assertThrows(IllegalArgumentException.class, () -> BusBridge.connect(
                 testInterface("chan i_req[2];" + EMPTY), DtronOptions.builder().inJvm(true)));
         assertTrue(array.getMessage().contains("channel 'req[0]' of the model's interface cannot travel on the bus"),

@@ -15,8 +15,8 @@ import java.util.concurrent.atomic.AtomicInteger;
 
 /**
  * A ticker on the bus for the ticker model, using only {@code io.dtron.api}: from the start of a run it publishes
- * {@code tick(seq)} every 10 time units ({@code slow}: 13), and restarts on {@code reset}; periods count from the
- * publish time of the message that starts them.
+ * {@code tick(seq)} every 10 time units ({@code slow}: 13), and restarts on {@code reset}, until the run stops;
+ * periods count from the publish time of the message that starts them.
  */
 public final class BusTicker implements DtronAdapter {
     private static final IDtronChannel RESET = IDtronChannel.of("reset");
@@ -56,6 +56,12 @@ public final class BusTicker implements DtronAdapter {
             @Override
             public void messageReceived(IDtronChannelValued message) {
                 restart(periodUnits * (long) message.getVariables().get("timeunit"), message);
+            }
+        });
+        bus.addDtronListener(new DtronListener(Dtron.RUN_STOP) {
+            @Override
+            public void messageReceived(IDtronChannelValued message) {
+                stop();
             }
         });
         bus.addDtronListener(new DtronListener(RESET) {

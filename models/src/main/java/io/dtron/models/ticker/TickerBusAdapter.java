@@ -19,7 +19,7 @@ import org.slf4j.LoggerFactory;
  * The ticker of {@link TickerSystem} as a bus adapter, for the bundled model {@code io/dtron/models/ticker.xml},
  * using nothing of DTRON but {@code io.dtron.api}. When a run starts ({@link Dtron#RUN_START}, which carries the
  * run's time unit) it publishes {@code tick(seq)} every period, in real time, numbering the ticks from 1; an input
- * {@code reset} restarts the period and the numbering. A period starts at the publish time of the message that
+ * {@code reset} restarts the period and the numbering; when the run ends ({@link Dtron#RUN_STOP}) it stops. A period starts at the publish time of the message that
  * starts it, so that the message's own latency does not delay the ticks (exactly so on one host, where the sender
  * and this adapter share the clock). The variants are those of {@link TickerSystem}: {@code correct} (the
  * default) ticks every 10 time units, {@code slow} every 13.
@@ -80,6 +80,12 @@ public final class TickerBusAdapter implements DtronAdapter {
                 restart(period, period - age(message, period));
             }
         });
+        bus.addDtronListener(new DtronListener(Dtron.RUN_STOP) {
+            @Override
+            public void messageReceived(IDtronChannelValued message) {
+                pause();
+            }
+        });
         bus.addDtronListener(new DtronListener(RESET) {
             @Override
             public void messageReceived(IDtronChannelValued message) {
@@ -90,6 +96,17 @@ public final class TickerBusAdapter implements DtronAdapter {
                 }
             }
         });
+    }
+
+    /** Stops ticking until the next run starts; resets meanwhile are ignored. */
+    private void pause() {
+        synchronized (lock) {
+            generation++;
+            periodMicros = 0;
+            if (ticking != null) {
+                ticking.cancel(false);
+            }
+        }
     }
 
     /** Stops ticking; later messages are ignored. */

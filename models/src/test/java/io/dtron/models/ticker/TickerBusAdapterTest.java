@@ -2,6 +2,7 @@ package io.dtron.models.ticker;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertNotNull;
+import static org.junit.jupiter.api.Assertions.assertNull;
 import static org.junit.jupiter.api.Assertions.assertThrows;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
@@ -52,6 +53,14 @@ class TickerBusAdapterTest {
                 next = seq(ticks);
             }
             assertEquals(1, next, "a reset restarts the numbering");
+            tester.send(Dtron.RUN_STOP.constructValued(Map.of()));
+            Thread.sleep(100);
+            ticks.clear();
+            assertNull(ticks.poll(100, TimeUnit.MILLISECONDS), "no tick after the end of the run");
+            tester.send(TickerBusAdapter.RESET.constructValued(Map.of()));
+            assertNull(ticks.poll(100, TimeUnit.MILLISECONDS), "a reset between runs starts nothing");
+            tester.send(Dtron.RUN_START.constructValued(Map.of("timeunit", 2000)));
+            assertEquals(1, seq(ticks), "the next run starts the ticks again");
         }
     }
 
