@@ -52,6 +52,12 @@ import org.slf4j.LoggerFactory;
 public final class SeleniumAdapters implements DtronAdapter {
     /** The properties file read from each scanned package. */
     public static final String PROPERTIES_FILE = "adapters.properties";
+    /**
+     * The property that says how many browsers to start before the run (users 0 to N - 1), when the builder's
+     * {@link Builder#browsers} is not called: so that {@code dtron run --adapter SeleniumAdapters:PACKAGE} does
+     * not make the first steps of a test wait for their browser to start.
+     */
+    public static final String BROWSERS_PROPERTY = "dtron.browsers";
 
     private static final Logger LOG = LoggerFactory.getLogger(SeleniumAdapters.class);
 
@@ -82,8 +88,30 @@ public final class SeleniumAdapters implements DtronAdapter {
         this.properties = builder.resolveProperties();
         this.driverFactory = builder.driverFactory;
         this.startPage = builder.startPage;
-        this.prestartUsers = List.copyOf(builder.prestartUsers);
+        this.prestartUsers = builder.prestartUsers != null ? List.copyOf(builder.prestartUsers)
+                : users(browsersProperty(properties));
         this.adapters = create(builder.types, properties);
+    }
+
+    private static int browsersProperty(Map<String, String> properties) {
+        String value = properties.get(BROWSERS_PROPERTY);
+        if (value == null) {
+            return 0;
+        }
+        try {
+            int users = Integer.parseInt(value.strip());
+            if (users >= 0) {
+                return users;
+            }
+        } catch (NumberFormatException e) {
+            // refused below
+        }
+        throw new IllegalArgumentException("property " + BROWSERS_PROPERTY + " = '" + value + "': give the number"
+                + " of browsers to start before the run (0 or more)");
+    }
+
+    private static List<Integer> users(int count) {
+        return IntStream.range(0, count).boxed().toList();
     }
 
     /** Returns a builder. */
@@ -196,7 +224,7 @@ public final class SeleniumAdapters implements DtronAdapter {
         private final Map<String, String> explicit = new LinkedHashMap<>();
         private WebDriverFactory driverFactory = HeadlessChrome.defaults();
         private String startPage;
-        private List<Integer> prestartUsers = List.of();
+        private List<Integer> prestartUsers;
 
         private Builder() {
         }
@@ -261,13 +289,13 @@ public final class SeleniumAdapters implements DtronAdapter {
 
         /**
          * Starts the browsers of users 0 to {@code users - 1} when the adapters start, in parallel, rather than
-         * at each user's first message (default: none ahead).
+         * at each user's first message (default: the property {@value #BROWSERS_PROPERTY}, else none ahead).
          */
         public Builder browsers(int users) {
             if (users < 0) {
                 throw new IllegalArgumentException("users must not be negative: " + users);
             }
-            prestartUsers = IntStream.range(0, users).boxed().toList();
+            prestartUsers = users(users);
             return this;
         }
 

@@ -4,6 +4,8 @@ import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertSame;
 import static org.junit.jupiter.api.Assertions.assertThrows;
 
+import io.dtron.api.Dtron;
+import io.dtron.api.DtronOptions;
 import io.dtron.api.IDtronChannel;
 import io.dtron.selenium.sample.Farewell;
 import io.dtron.selenium.sample.Greet;
@@ -12,12 +14,14 @@ import io.dtron.selenium.sample.Remember;
 import java.nio.file.Files;
 import java.nio.file.Path;
 import java.util.List;
+import java.util.UUID;
 import java.util.concurrent.TimeUnit;
+import java.util.concurrent.atomic.AtomicInteger;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.Timeout;
 import org.junit.jupiter.api.io.TempDir;
 
-/** Discovery, channels and injection of adapters, without a browser or a bus. */
+/** Discovery, channels and injection of adapters; browsers started ahead of the run. */
 @Timeout(value = 30, unit = TimeUnit.SECONDS)
 class SeleniumAdaptersTest {
     private static final String SAMPLE = "io.dtron.selenium.sample";
@@ -71,6 +75,32 @@ class SeleniumAdaptersTest {
                 () -> SeleniumAdapters.builder().adapter(Greet.class).driverFactory(NO_BROWSER).build());
         assertEquals("cannot create the adapters: No implementation for java.lang.String annotated with"
                 + " @com.google.inject.name.Named(\"BASE_URL\") was bound.", e.getMessage());
+    }
+
+    @Test
+    void theBrowsersPropertySaysHowManyBrowsersStartBeforeTheRun() {
+        AtomicInteger started = new AtomicInteger();
+        WebDriverFactory counting = () -> {
+            started.incrementAndGet();
+            return HeadlessChrome.defaults().create();
+        };
+        try (Dtron bus = Dtron.connect(DtronOptions.builder().clusterName("browsers-" + UUID.randomUUID())
+                .inJvm(true).build());
+                SeleniumAdapters adapters = SeleniumAdapters.builder().scan(SAMPLE).driverFactory(counting)
+                        .property(SeleniumAdapters.BROWSERS_PROPERTY, "2").build()) {
+            adapters.start(bus);
+            assertEquals(2, started.get(), "users 0 and 1 have their browsers before the first message");
+        }
+        SeleniumAdapters explicit = SeleniumAdapters.builder().scan(SAMPLE).driverFactory(NO_BROWSER).browsers(0)
+                .property(SeleniumAdapters.BROWSERS_PROPERTY, "3").build();
+        try (Dtron bus = Dtron.connect(DtronOptions.builder().clusterName("browsers-" + UUID.randomUUID())
+                .inJvm(true).build()); explicit) {
+            explicit.start(bus);
+        }
+        IllegalArgumentException bad = assertThrows(IllegalArgumentException.class, () -> SeleniumAdapters.builder()
+                .scan(SAMPLE).property(SeleniumAdapters.BROWSERS_PROPERTY, "two").build());
+        assertEquals("property dtron.browsers = 'two': give the number of browsers to start before the run (0 or"
+                + " more)", bad.getMessage());
     }
 
     @Test

@@ -1,0 +1,67 @@
+package io.dtron.models.streetlight;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertNotEquals;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+import io.dtron.cli.DtronCommand;
+import java.io.PrintWriter;
+import java.io.StringWriter;
+import java.nio.file.Path;
+import java.util.UUID;
+import java.util.concurrent.TimeUnit;
+import java.util.regex.Matcher;
+import java.util.regex.Pattern;
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.Timeout;
+import org.junit.jupiter.api.io.TempDir;
+import org.junit.jupiter.params.ParameterizedTest;
+import org.junit.jupiter.params.provider.CsvSource;
+
+/**
+ * The street-light application in headless Chromium, one browser per operator, tested against its model by
+ * {@code dtron run} on a bus in this JVM, with {@link StreetLightWebTest} as the bus adapter.
+ */
+@Timeout(value = 150, unit = TimeUnit.SECONDS)
+class StreetLightBrowserTest {
+
+    /** The output and exit code of one run. */
+    private record Run(int exit, String out) {
+    }
+
+    private static Run run(Path dir, int users, String variant, int timeout) throws Exception {
+        StringWriter out = new StringWriter();
+        StringWriter err = new StringWriter();
+        int exit = DtronCommand.run(new String[] {"run", StreetLightModel.write(dir, users).toString(),
+                "--adapter", StreetLightWebTest.class.getName() + ":" + variant,
+                "--cluster", "streetlight-" + UUID.randomUUID().toString().substring(0, 8),
+                "--timeunit", Long.toString(StreetLightModel.TIME_UNIT_MICROS), "--timeout", Integer.toString(timeout),
+                "--delay-policy", "random-bounded", "--delay-bound", "4", "--seed", "1"},
+                new PrintWriter(out), new PrintWriter(err));
+        return new Run(exit, out + "\n" + err);
+    }
+
+    @ParameterizedTest(name = "{0} operators for {1} time units")
+    @CsvSource({"1, 120", "2, 150", "4, 200"})
+    void operatorsAtOncePassAgainstTheCorrectApplication(int users, int timeout, @TempDir Path dir)
+            throws Exception {
+        Run run = run(dir, users, Integer.toString(users), timeout);
+        assertEquals(0, run.exit(), run.out());
+        Matcher passed = Pattern.compile("\nPASSED: the timeout of " + timeout + " time units was reached after"
+                + " (\\d+) inputs").matcher(run.out());
+        assertTrue(passed.find(), run.out());
+        assertTrue(Integer.parseInt(passed.group(1)) >= 6 * users, "every operator did a whole round: " + run.out());
+    }
+
+    @Test
+    void theSessionMixUpFailsAMultiUserRunOnAResultCode(@TempDir Path dir) throws Exception {
+        Run run = run(dir, 4, "4,mixup", 400);
+        assertEquals(2, run.exit(), run.out());
+        Matcher failed = Pattern.compile("\nFAILED: output result\\(user=(\\d), resCode=(\\d+)\\) observed at"
+                + " t=[0-9.]+ carries values the model does not allow then: it allowed (?:result\\(user=\\d,"
+                + " resCode=\\d+\\) or )*result\\(user=\\1, resCode=(\\d+)\\)").matcher(run.out());
+        assertTrue(failed.find(), run.out());
+        assertNotEquals(failed.group(2), failed.group(3), "observed and expected result codes of operator "
+                + failed.group(1) + ": " + run.out());
+    }
+}
