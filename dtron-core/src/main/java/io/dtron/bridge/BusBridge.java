@@ -20,6 +20,8 @@ import java.util.Map;
 import java.util.Objects;
 import java.util.Set;
 import java.util.concurrent.ConcurrentHashMap;
+import java.util.concurrent.CountDownLatch;
+import java.util.concurrent.TimeUnit;
 import java.util.concurrent.atomic.AtomicBoolean;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
@@ -42,6 +44,8 @@ import org.slf4j.LoggerFactory;
  */
 public final class BusBridge implements Adapter, AutoCloseable {
     private static final Logger LOG = LoggerFactory.getLogger(BusBridge.class);
+    /** How long {@link #stop()} waits for its own end-of-run message to come back from the bus. */
+    static final Duration STOP_ECHO_TIMEOUT = Duration.ofSeconds(2);
 
     private final Dtron dtron;
     private final Map<String, IDtronChannel> inputs;
@@ -50,6 +54,7 @@ public final class BusBridge implements Adapter, AutoCloseable {
     private final LatencyRecorder inputLatency = new LatencyRecorder();
     private final Set<String> watched = ConcurrentHashMap.newKeySet();
     private final AtomicBoolean warnedOutsideRun = new AtomicBoolean();
+    private volatile CountDownLatch ownStop = new CountDownLatch(1);
     private volatile AdapterContext context;
     private volatile boolean running;
 
@@ -67,6 +72,14 @@ public final class BusBridge implements Adapter, AutoCloseable {
                 }
             });
         }
+        dtron.addDtronListener(new DtronListener(Dtron.RUN_STOP) {
+            @Override
+            public void messageReceived(IDtronChannelValued message) {
+                if (message.getSender().equals(dtron.getMemberId())) {
+                    ownStop.countDown();
+                }
+            }
+        });
         dtron.addMembershipListener(this::membershipChanged);
     }
 
@@ -164,13 +177,28 @@ public final class BusBridge implements Adapter, AutoCloseable {
         publish(channel.constructValued(input.values()), "input " + input);
     }
 
+    /**
+     * Publishes {@link Dtron#RUN_STOP} and waits (at most two seconds) until it comes back, so that
+     * the latency summaries and {@link #stats()} count every message the bus ordered before the end of the run.
+     */
     @Override
     public void stop() {
         running = false;
+        CountDownLatch echo = new CountDownLatch(1);
+        ownStop = echo;
         try {
             dtron.send(Dtron.RUN_STOP.constructValued(Map.of()));
         } catch (DtronException | IllegalStateException e) {
             LOG.warn("Cannot publish the end of the run: {}", e.getMessage());
+            return;
+        }
+        try {
+            if (!echo.await(STOP_ECHO_TIMEOUT.toMillis(), TimeUnit.MILLISECONDS)) {
+                LOG.warn("The end of the run did not come back from the bus within {} ms; the counters may miss"
+                        + " the last messages", STOP_ECHO_TIMEOUT.toMillis());
+            }
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
         }
     }
 

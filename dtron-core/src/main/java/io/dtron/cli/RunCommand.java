@@ -158,7 +158,7 @@ final class RunCommand implements Callable<Integer> {
             testInterface = interfaceFile == null ? TestInterface.fromNames(network)
                     : TestInterface.fromFile(network, interfaceFile);
         } catch (ModelException e) {
-            printModelErrors(e, err);
+            printModelErrors(model, e, err);
             return 1;
         } catch (IOException e) {
             err.println("dtron run: cannot write the trace " + trace + ": " + e.getMessage());
@@ -192,9 +192,19 @@ final class RunCommand implements Callable<Integer> {
         } catch (UnsupportedModelException e) {
             err.println("dtron run: " + model + ": " + e.getMessage());
             return 1;
+        } catch (TronFailure e) {
+            err.println("dtron run: --backend tron: " + e.getMessage());
+            return 1;
         } catch (IOException e) {
             err.println("dtron run: cannot write the trace " + trace + ": " + e.getMessage());
             return 1;
+        }
+    }
+
+    /** The installed TRON could not test: it did not start or connect, broke the protocol, or gave no verdict. */
+    private static final class TronFailure extends RuntimeException {
+        TronFailure(String message) {
+            super(message);
         }
     }
 
@@ -371,7 +381,9 @@ final class RunCommand implements Callable<Integer> {
                     result = tron.run(model.toAbsolutePath(), testInterface, adapter, options);
                 } catch (InterruptedException e) {
                     Thread.currentThread().interrupt();
-                    throw new IOException("interrupted while TRON was testing", e);
+                    throw new TronFailure("interrupted while TRON was testing");
+                } catch (IOException e) {
+                    throw new TronFailure(e.getMessage());
                 }
                 printVerdict(result, out);
                 return result;
@@ -476,7 +488,8 @@ final class RunCommand implements Callable<Integer> {
         }
     }
 
-    private void printModelErrors(ModelException e, PrintWriter err) {
+    /** Prints a model's errors as {@code check} does: the count, then each with its place. */
+    static void printModelErrors(Path model, ModelException e, PrintWriter err) {
         err.println(model + ": " + e.errors().size() + " error" + (e.errors().size() == 1 ? "" : "s"));
         for (Diagnostic d : e.diagnostics()) {
             err.println("  " + d.format());

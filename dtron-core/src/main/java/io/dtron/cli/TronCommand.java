@@ -12,7 +12,6 @@ import io.dtron.model.ModelLoader;
 import io.dtron.model.Network;
 import io.dtron.model.TestInterface;
 import io.dtron.tron.TronSocketAdapter;
-import io.dtron.xta.Diagnostic;
 import java.io.IOException;
 import java.io.PrintWriter;
 import java.io.Writer;
@@ -166,10 +165,7 @@ final class TronCommand implements Callable<Integer> {
         try {
             network = ModelLoader.load(model);
         } catch (ModelException e) {
-            err.println(model + ": " + e.errors().size() + " error" + (e.errors().size() == 1 ? "" : "s"));
-            for (Diagnostic d : e.diagnostics()) {
-                err.println("  " + d.format());
-            }
+            RunCommand.printModelErrors(model, e, err);
             return 1;
         }
         if (!quiet) {

@@ -59,7 +59,7 @@ class DtronJarIT {
             assertTrue(out.contains("statistics: 1 PASSED 7 16 "), out);
             assertTrue(out.contains("latency t2 - t1 of outputs: count 16, min "), out);
             assertTrue(out.contains("latency t2 - t1 of inputs back from the bus: count 7, min "), out);
-            assertTrue(out.contains("bus: published 8, accepted 24, rejected 0, listener failures 0"), out);
+            assertTrue(out.contains("bus: published 9, accepted 25, rejected 0, listener failures 0"), out);
             assertEquals(0, adapter.waitFor(WAIT), adapter.output());
             assertTrue(adapter.output().contains("resets 7"), "the inputs reached the adapter: " + adapter.output());
         }
@@ -88,7 +88,7 @@ class DtronJarIT {
             assertTrue(rogue.output().contains("sent 4"), rogue.output());
             assertTrue(out.contains("PASSED: the timeout of 200 time units was reached after 7 inputs and 16 outputs"),
                     out);
-            assertTrue(out.contains("bus: published 8, accepted 24, rejected 4 (malformed 1, unknown channel 1,"
+            assertTrue(out.contains("bus: published 9, accepted 25, rejected 4 (malformed 1, unknown channel 1,"
                     + " unknown variables 1, missing variables 1), listener failures 0"), out);
             assertTrue(out.contains("Rejected a message on channel 'tick' from rogue (3 bytes), MALFORMED"), out);
             assertTrue(out.contains("Rejected a message on channel 'bogus' from rogue"), out);

@@ -173,7 +173,7 @@ class RunCommandTest {
                 r.out());
         assertTrue(r.out().contains("latency t2 - t1 of outputs: count 8, min "), r.out());
         assertTrue(r.out().contains("latency t2 - t1 of inputs back from the bus: count 3, min "), r.out());
-        assertTrue(r.out().contains("bus: published 4, accepted 12, rejected 0, listener failures 0"), r.out());
+        assertTrue(r.out().contains("bus: published 5, accepted 13, rejected 0, listener failures 0"), r.out());
     }
 
     @Test

@@ -214,14 +214,33 @@ class RunWithTronTest {
         Path ticker = Path.of("..", "models", "src", "main", "resources", "io", "dtron", "models", "ticker.xml");
         Process p = dtronProcess(tronHome().toString(), "/usr/bin:/bin", log, "run", ticker.toString(),
                 "--adapter", BusTicker.class.getName(), "--cluster", "tron-" + UUID.randomUUID().toString()
-                        .substring(0, 8), "--timeunit", "10000", "--timeout", "200", "--delay-policy", "eager",
+                        .substring(0, 8), "--timeunit", "50000", "--timeout", "60", "--delay-policy", "eager",
                 "--seed", "5", "--backend", "tron");
         assertTrue(p.waitFor(90, TimeUnit.SECONDS), Files.readString(log));
         String out = Files.readString(log);
         assertEquals(0, p.exitValue(), out);
-        assertTrue(out.contains("seed 5, 200 time units of 10000 us in real time, judged by Uppaal TRON"), out);
-        assertTrue(out.contains("\nPASSED: the timeout of 200 time units was reached"), out);
+        assertTrue(out.contains("seed 5, 60 time units of 50000 us in real time, judged by Uppaal TRON"), out);
+        assertTrue(out.contains("\nPASSED: the timeout of 60 time units was reached"), out);
         assertTrue(out.contains("latency t2 - t1 of outputs: count "), out);
+    }
+
+    @Test
+    void aTronThatFailsToStartIsAClearErrorWithWhatItPrinted() throws Exception {
+        Path home = dir.resolve("broken-tron");
+        Files.createDirectories(home.resolve("bin"));
+        Path script = home.resolve("bin").resolve("tron");
+        Files.writeString(script, "#!/bin/sh\necho 'tron: cannot parse the model' >&2\nexit 1\n");
+        Files.setPosixFilePermissions(script, PosixFilePermissions.fromString("rwxr-xr-x"));
+        Path log = dir.resolve("broken.log");
+        Process p = dtronProcess(home.toString(), "/usr/bin:/bin", log, "run", lightContr.toString(), "--interface",
+                tronModels.resolve("LightContr.trn").toString(), "--sut", LampSystem.class.getName(), "--backend",
+                "tron");
+        assertTrue(p.waitFor(60, TimeUnit.SECONDS));
+        String out = Files.readString(log);
+        assertEquals(1, p.exitValue(), out);
+        assertTrue(out.contains("dtron run: --backend tron: TRON ended (exit code 1) without connecting to DTRON; it"
+                + " printed: tron: cannot parse the model"), out);
+        assertFalse(out.contains("\tat "), "no stack trace: " + out);
     }
 
     @Test
