@@ -5,6 +5,7 @@ import io.dtron.api.DtronListener;
 import io.dtron.api.IDtronChannel;
 import io.dtron.api.IDtronChannelValued;
 import io.dtron.selenium.internal.Locators;
+import io.dtron.selenium.internal.Messages;
 import java.time.Duration;
 import java.util.List;
 import java.util.Locale;
@@ -51,6 +52,8 @@ public abstract class AbstractSeleniumAdapter {
 
     private static final Logger LOG = LoggerFactory.getLogger(AbstractSeleniumAdapter.class);
     private static final ThreadLocal<Call> CURRENT = new ThreadLocal<>();
+    private static final IDtronChannel RESULT = IDtronChannel.of(RESULT_CHANNEL, RESULT_CODE);
+    private static final IDtronChannel RESULT_FOR_USER = IDtronChannel.of(RESULT_CHANNEL, USER_VARIABLE, RESULT_CODE);
 
     private final IDtronChannel channel;
     private volatile AdapterRuntime runtime;
@@ -179,8 +182,7 @@ public abstract class AbstractSeleniumAdapter {
         if (call.reported) {
             throw new IllegalStateException("the result of " + text(call.message) + " was already reported");
         }
-        call.reported = true;
-        send(call, code);
+        report(call, code);
     }
 
     @Override
@@ -240,8 +242,7 @@ public abstract class AbstractSeleniumAdapter {
         try {
             execute(call.message);
             if (!call.reported) {
-                call.reported = true;
-                send(call, RESULT_OK);
+                report(call, RESULT_OK);
             }
             LOG.debug("{} did {} for user {} in {} ms", this, text(call.message), call.user, millisSince(start));
         } catch (VirtualMachineError e) {
@@ -266,14 +267,13 @@ public abstract class AbstractSeleniumAdapter {
             LOG.warn(text, args);
         }
         if (report) {
-            call.reported = true;
-            send(call, RESULT_FAILED);
+            report(call, RESULT_FAILED);
         }
     }
 
-    private void send(Call call, int code) {
-        IDtronChannel result = call.withUser ? IDtronChannel.of(RESULT_CHANNEL, USER_VARIABLE, RESULT_CODE)
-                : IDtronChannel.of(RESULT_CHANNEL, RESULT_CODE);
+    private void report(Call call, int code) {
+        call.reported = true;
+        IDtronChannel result = call.withUser ? RESULT_FOR_USER : RESULT;
         Map<String, Integer> values = call.withUser ? Map.of(USER_VARIABLE, call.user, RESULT_CODE, code)
                 : Map.of(RESULT_CODE, code);
         try {
@@ -287,7 +287,7 @@ public abstract class AbstractSeleniumAdapter {
         if (e instanceof AdapterException) {
             return e.getMessage();
         }
-        String message = e instanceof WebDriverException ? HeadlessChrome.firstLine(e.getMessage()) : e.getMessage();
+        String message = e instanceof WebDriverException ? Messages.firstLine(e.getMessage()) : e.getMessage();
         return e.getClass().getSimpleName() + (message == null || message.isEmpty() ? "" : ": " + message);
     }
 

@@ -1,5 +1,6 @@
 package io.dtron.selenium;
 
+import io.dtron.selenium.internal.Messages;
 import java.io.IOException;
 import java.nio.file.Files;
 import java.nio.file.Path;
@@ -100,14 +101,14 @@ public final class HeadlessChrome implements WebDriverFactory {
             service.stop();
             deleteProfile(profile);
             throw new AdapterException("cannot start " + chromium + " through " + chromedriver + ": "
-                    + firstLine(e.getMessage()), e);
+                    + Messages.firstLine(e.getMessage()), e);
         }
         try {
             driver.manage().timeouts().implicitlyWait(implicitWait);
             driver.manage().timeouts().pageLoadTimeout(pageLoadTimeout);
         } catch (WebDriverException e) {
             driver.quit();
-            throw new AdapterException("cannot set the timeouts of Chromium: " + firstLine(e.getMessage()), e);
+            throw new AdapterException("cannot set the timeouts of Chromium: " + Messages.firstLine(e.getMessage()), e);
         }
         LOG.debug("Started headless Chromium in {} ms with profile {}", (System.nanoTime() - start) / 1_000_000,
                 profile);
@@ -125,15 +126,6 @@ public final class HeadlessChrome implements WebDriverFactory {
             throw new AdapterException("no " + what + " at " + file + ": install Debian's chromium and"
                     + " chromium-driver (apt-get install chromium chromium-driver), or give its path");
         }
-    }
-
-    /** Returns the first line of a Selenium message, which goes on with build and system information. */
-    static String firstLine(String message) {
-        if (message == null) {
-            return "";
-        }
-        int end = message.indexOf('\n');
-        return end < 0 ? message : message.substring(0, end);
     }
 
     private static void deleteProfile(Path profile) {

@@ -13,6 +13,7 @@ import io.dtron.api.Dtron;
 import io.dtron.api.DtronAdapter;
 import io.dtron.selenium.internal.ClassScanner;
 import io.dtron.selenium.internal.Locators;
+import io.dtron.selenium.internal.Messages;
 import io.dtron.selenium.internal.UserSessions;
 import java.io.IOException;
 import java.io.InputStream;
@@ -33,7 +34,6 @@ import java.util.Objects;
 import java.util.Properties;
 import java.util.Set;
 import java.util.stream.Collectors;
-import java.util.stream.IntStream;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
@@ -64,7 +64,7 @@ public final class SeleniumAdapters implements DtronAdapter {
     private final Map<String, String> properties;
     private final WebDriverFactory driverFactory;
     private final String startPage;
-    private final List<Integer> prestartUsers;
+    private final int prestartBrowsers;
     private final List<AbstractSeleniumAdapter> adapters;
     private UserSessions sessions;
     private boolean started;
@@ -88,8 +88,8 @@ public final class SeleniumAdapters implements DtronAdapter {
         this.properties = builder.resolveProperties();
         this.driverFactory = builder.driverFactory;
         this.startPage = builder.startPage;
-        this.prestartUsers = builder.prestartUsers != null ? List.copyOf(builder.prestartUsers)
-                : users(browsersProperty(properties));
+        this.prestartBrowsers = builder.prestartBrowsers != null ? builder.prestartBrowsers
+                : browsersProperty(properties);
         this.adapters = create(builder.types, properties);
     }
 
@@ -108,10 +108,6 @@ public final class SeleniumAdapters implements DtronAdapter {
         }
         throw new IllegalArgumentException("property " + BROWSERS_PROPERTY + " = '" + value + "': give the number"
                 + " of browsers to start before the run (0 or more)");
-    }
-
-    private static List<Integer> users(int count) {
-        return IntStream.range(0, count).boxed().toList();
     }
 
     /** Returns a builder. */
@@ -154,7 +150,7 @@ public final class SeleniumAdapters implements DtronAdapter {
 
     private static String guiceMessage(Collection<Message> messages) {
         return "cannot create the adapters: " + messages.stream().map(Message::getMessage)
-                .map(m -> m.lines().findFirst().orElse(m)).collect(Collectors.joining("; "));
+                .map(Messages::firstLine).collect(Collectors.joining("; "));
     }
 
     /**
@@ -174,7 +170,7 @@ public final class SeleniumAdapters implements DtronAdapter {
         sessions = new UserSessions(driverFactory, startPage);
         AdapterRuntime runtime = new AdapterRuntime(dtron, sessions, new Locators(properties));
         try {
-            sessions.prestart(prestartUsers);
+            sessions.prestart(prestartBrowsers);
             adapters.forEach(a -> a.attach(runtime));
         } catch (RuntimeException e) {
             close();
@@ -224,7 +220,7 @@ public final class SeleniumAdapters implements DtronAdapter {
         private final Map<String, String> explicit = new LinkedHashMap<>();
         private WebDriverFactory driverFactory = HeadlessChrome.defaults();
         private String startPage;
-        private List<Integer> prestartUsers;
+        private Integer prestartBrowsers;
 
         private Builder() {
         }
@@ -295,7 +291,7 @@ public final class SeleniumAdapters implements DtronAdapter {
             if (users < 0) {
                 throw new IllegalArgumentException("users must not be negative: " + users);
             }
-            prestartUsers = users(users);
+            prestartBrowsers = users;
             return this;
         }
 
@@ -327,12 +323,7 @@ public final class SeleniumAdapters implements DtronAdapter {
                     throw new IllegalArgumentException("cannot read properties " + file + ": " + e.getMessage(), e);
                 }
             }
-            for (String key : List.copyOf(values.keySet())) {
-                String system = System.getProperty(key);
-                if (system != null) {
-                    values.put(key, system);
-                }
-            }
+            values.replaceAll(System::getProperty);
             values.putAll(explicit);
             return values;
         }

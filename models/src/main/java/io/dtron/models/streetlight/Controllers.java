@@ -48,10 +48,6 @@ final class Controllers {
         requested[id] = state;
     }
 
-    synchronized LightState requested(int id) {
-        return requested[id];
-    }
-
     synchronized Report reported(int id) {
         return reported[id];
     }

@@ -22,6 +22,8 @@ public final class Locators {
             "partialLink", By::partialLinkText,
             "class", By::className,
             "tag", By::tagName);
+    /** The prefixes of the strategies, for messages: {@code class:, css:, ...}. */
+    private static final String PREFIXES = String.join(":, ", STRATEGIES.keySet().stream().sorted().toList()) + ":";
 
     private final Map<String, String> properties;
 
@@ -57,12 +59,12 @@ public final class Locators {
         String value = properties.get(keyOrLocator);
         if (value == null) {
             throw new AdapterException("'" + keyOrLocator + "' is neither a key of the adapters' properties nor a"
-                    + " locator (" + String.join(":, ", STRATEGIES.keySet().stream().sorted().toList()) + ":)");
+                    + " locator (" + PREFIXES + ")");
         }
         By by = parse(value);
         if (by == null) {
             throw new AdapterException("the value of " + keyOrLocator + ", '" + value + "', is no locator: start it"
-                    + " with one of " + String.join(":, ", STRATEGIES.keySet().stream().sorted().toList()) + ":");
+                    + " with one of " + PREFIXES);
         }
         return new Locator(keyOrLocator + " (" + value + ")", by);
     }

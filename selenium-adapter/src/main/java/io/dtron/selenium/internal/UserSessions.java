@@ -3,7 +3,6 @@ package io.dtron.selenium.internal;
 import io.dtron.selenium.AdapterException;
 import io.dtron.selenium.WebDriverFactory;
 import java.util.ArrayList;
-import java.util.Collection;
 import java.util.List;
 import java.util.Map;
 import java.util.Objects;
@@ -70,7 +69,7 @@ public final class UserSessions implements AutoCloseable {
                     } catch (WebDriverException e) {
                         quit();
                         throw new AdapterException("the browser of user " + id + " cannot open its start page "
-                                + startPage + ": " + String.valueOf(e.getMessage()).lines().findFirst().orElse(""),
+                                + startPage + ": " + Messages.firstLine(e.getMessage()),
                                 e);
                     }
                 }
@@ -85,7 +84,7 @@ public final class UserSessions implements AutoCloseable {
                     browser.quit();
                 } catch (WebDriverException e) {
                     LOG.warn("The browser of user {} did not quit cleanly: {}", id,
-                            String.valueOf(e.getMessage()).lines().findFirst().orElse(""));
+                            Messages.firstLine(e.getMessage()));
                 }
                 browser = null;
             }
@@ -122,13 +121,14 @@ public final class UserSessions implements AutoCloseable {
     }
 
     /**
-     * Starts the browsers of these users in parallel, so that the first step of a test does not wait for them.
+     * Starts the browsers of users 0 to {@code count - 1} in parallel, so that the first step of a test does not
+     * wait for them.
      *
      * @throws AdapterException if a browser cannot be started
      */
-    public void prestart(Collection<Integer> ids) {
+    public void prestart(int count) {
         List<Future<?>> starts = new ArrayList<>();
-        for (int id : ids) {
+        for (int id = 0; id < count; id++) {
             User user = user(id);
             starts.add(user.worker.submit(user::browser));
         }
