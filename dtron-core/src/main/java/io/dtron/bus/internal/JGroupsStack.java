@@ -65,7 +65,11 @@ import org.jgroups.stack.Protocol;
  * passes regular messages up): each hop costs one thread wake-up.
  *
  * <p><b>In-JVM mode</b> uses SHARED_LOOPBACK: the members of one JVM exchange
- * messages in memory, with no sockets at all.
+ * messages in memory, with no sockets at all, with no bundler and direct
+ * processing as over TCP. That also keeps a leaving member's last messages
+ * ahead of the view without it: with a bundler thread, the sequencer's
+ * broadcast of a message could still be queued when the member's leave
+ * request installed the new view.
  */
 final class JGroupsStack {
     private static final int PBKDF2_ITERATIONS = 65_536;
@@ -79,7 +83,10 @@ final class JGroupsStack {
     static List<Protocol> build(JGroupsSettings settings) {
         List<Protocol> stack = new ArrayList<>();
         if (settings.inJvm()) {
-            stack.add(new SHARED_LOOPBACK().logDiscardMsgs(false));
+            SHARED_LOOPBACK loopback = new SHARED_LOOPBACK();
+            loopback.setBundlerType(NO_BUNDLER);
+            loopback.setMessageProcessingPolicy(DIRECT);
+            stack.add(loopback.logDiscardMsgs(false));
             stack.add(new SHARED_LOOPBACK_PING());
         } else {
             TCP tcp = new TCP();

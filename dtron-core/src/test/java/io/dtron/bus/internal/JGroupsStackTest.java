@@ -13,6 +13,7 @@ import java.util.Arrays;
 import java.util.List;
 import java.util.Optional;
 import org.jgroups.protocols.TCP;
+import org.jgroups.protocols.TP;
 import org.jgroups.util.PassRegularMessagesUpDirectly;
 import org.jgroups.protocols.TCPPING;
 import org.jgroups.stack.Protocol;
@@ -75,6 +76,9 @@ class JGroupsStackTest {
     void inJvmStackHasNoSockets() {
         List<String> names = names(JGroupsStack.build(settings(Optional.empty(), false, true)));
         assertEquals(List.of("SHARED_LOOPBACK", "SHARED_LOOPBACK_PING"), names.subList(0, 2));
+        TP loopback = (TP) JGroupsStack.build(settings(Optional.empty(), false, true)).get(0);
+        assertEquals("no-bundler", loopback.getBundlerType(), "as over TCP: the sending thread delivers");
+        assertInstanceOf(PassRegularMessagesUpDirectly.class, loopback.getMessageProcessingPolicy());
         assertFalse(names.contains("FD_SOCK2"));
         assertTrue(names.contains("SEQUENCER"));
     }
