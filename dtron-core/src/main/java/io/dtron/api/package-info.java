@@ -24,7 +24,8 @@
  * total order that is the same at all members. Values are immutable.
  * {@link io.dtron.api.DtronMembershipListener Membership listeners} hear who
  * joins and leaves; a tester announces the start of a run on
- * {@link io.dtron.api.Dtron#RUN_START}; a {@link io.dtron.api.DtronAdapter}
+ * {@link io.dtron.api.Dtron#RUN_START} and its end on
+ * {@link io.dtron.api.Dtron#RUN_STOP}; a {@link io.dtron.api.DtronAdapter}
  * can run in the tester's JVM.
  */
 package io.dtron.api;

@@ -59,16 +59,20 @@ final class CheckCommand implements Callable<Integer> {
                 }
             } catch (ModelException e) {
                 failed++;
-                List<Diagnostic> errors = e.errors();
-                err.println(model + ": " + errors.size() + " error" + (errors.size() == 1 ? "" : "s"));
-                for (Diagnostic d : e.diagnostics()) {
-                    err.println("  " + d.format());
-                }
+                printErrors(model, e, err);
             }
         }
         out.flush();
         err.flush();
         return failed == 0 ? 0 : 1;
+    }
+
+    /** Prints a model's errors: the count, then each with its place. The other commands print them the same way. */
+    static void printErrors(Path model, ModelException e, PrintWriter err) {
+        err.println(model + ": " + e.errors().size() + " error" + (e.errors().size() == 1 ? "" : "s"));
+        for (Diagnostic d : e.diagnostics()) {
+            err.println("  " + d.format());
+        }
     }
 
     private static void summary(PrintWriter out, Network n, TestInterface i) {
@@ -110,7 +114,8 @@ final class CheckCommand implements Callable<Integer> {
         return String.join(", ", names.subList(0, MAX_NAMES)) + " and " + (names.size() - MAX_NAMES) + " more";
     }
 
-    private static String channels(List<TestInterface.ObservableChannel> channels) {
+    /** The channels with their attached variables, as {@code name(var, ...)}, comma-separated. */
+    static String channels(List<TestInterface.ObservableChannel> channels) {
         return channels.stream().map(c -> c.name() + "(" + c.variables().stream()
                 .map(TestInterface.AttachedVariable::name).collect(Collectors.joining(", ")) + ")")
                 .collect(Collectors.joining(", "));

@@ -1,11 +1,16 @@
 package io.dtron.cli;
 
 import io.dtron.engine.Event;
+import io.dtron.engine.OnlineTester;
 import io.dtron.engine.TestListener;
+import io.dtron.engine.TestOptions;
 import io.dtron.engine.TestResult;
 import java.io.IOException;
 import java.io.UncheckedIOException;
 import java.io.Writer;
+import java.nio.charset.StandardCharsets;
+import java.nio.file.Files;
+import java.nio.file.Path;
 import java.util.Map;
 
 /**
@@ -19,6 +24,23 @@ final class JsonTrace implements TestListener {
     JsonTrace(Writer out, long unitMicros) {
         this.out = out;
         this.unitMicros = unitMicros;
+    }
+
+    /**
+     * Runs the tester, writing the run to {@code file} when one is given.
+     *
+     * @throws IOException if the trace file cannot be written
+     */
+    static TestResult run(OnlineTester tester, Path file, Path model, TestOptions options) throws IOException {
+        if (file == null) {
+            return tester.run();
+        }
+        try (Writer writer = Files.newBufferedWriter(file, StandardCharsets.UTF_8)) {
+            JsonTrace json = new JsonTrace(writer, options.timeUnitMicros());
+            json.start(options.seed(), model.toString(), options.timeout(), options.virtualTime());
+            tester.addListener(json);
+            return tester.run();
+        }
     }
 
     void start(long seed, String model, long timeout, boolean virtualTime) {

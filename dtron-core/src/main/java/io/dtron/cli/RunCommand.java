@@ -19,15 +19,11 @@ import io.dtron.tron.TronBackend;
 import io.dtron.tron.TronSocketAdapter;
 import io.dtron.troninstaller.TronInstallation;
 import io.dtron.troninstaller.TronNotFoundException;
-import io.dtron.xta.Diagnostic;
 import java.io.IOException;
 import java.io.PrintWriter;
-import java.io.Writer;
 import java.net.InetAddress;
 import java.net.ServerSocket;
 import java.net.UnknownHostException;
-import java.nio.charset.StandardCharsets;
-import java.nio.file.Files;
 import java.nio.file.Path;
 import java.time.Duration;
 import java.util.ArrayList;
@@ -158,7 +154,7 @@ final class RunCommand implements Callable<Integer> {
             testInterface = interfaceFile == null ? TestInterface.fromNames(network)
                     : TestInterface.fromFile(network, interfaceFile);
         } catch (ModelException e) {
-            printModelErrors(model, e, err);
+            CheckCommand.printErrors(model, e, err);
             return 1;
         } catch (IOException e) {
             err.println("dtron run: cannot write the trace " + trace + ": " + e.getMessage());
@@ -169,10 +165,9 @@ final class RunCommand implements Callable<Integer> {
                     + " --interface FILE.trn");
             return 1;
         }
-        long unit = timeUnit != null ? timeUnit : testInterface.timeUnitMicros() != null
-                ? testInterface.timeUnitMicros() : 1000;
-        long units = timeout != null ? timeout : testInterface.timeout() != null ? testInterface.timeout() : 1000;
-        long runSeed = seed != null ? seed : System.nanoTime() & 0xffffffffL;
+        long unit = RunDefaults.timeUnit(timeUnit, testInterface.timeUnitMicros());
+        long units = RunDefaults.timeout(timeout, testInterface.timeout());
+        long runSeed = RunDefaults.seed(seed);
         TestOptions options;
         try {
             options = new TestOptions(runSeed, unit, units, policy, delayBound, virtualTime);
@@ -399,18 +394,11 @@ final class RunCommand implements Callable<Integer> {
     /** Runs DTRON's tester with the trace and progress lines, and prints the verdict and the statistics. */
     private TestResult testWithEngine(Network network, TestInterface testInterface, Adapter adapter,
                                       TestOptions options, PrintWriter out) throws IOException {
-        try (Writer traceWriter = trace == null ? null : Files.newBufferedWriter(trace, StandardCharsets.UTF_8)) {
-            OnlineTester tester = new OnlineTester(network, testInterface, adapter, options);
-            if (traceWriter != null) {
-                JsonTrace json = new JsonTrace(traceWriter, options.timeUnitMicros());
-                json.start(options.seed(), model.toString(), options.timeout(), options.virtualTime());
-                tester.addListener(json);
-            }
-            tester.addListener(new Progress(out));
-            TestResult result = tester.run();
-            printVerdict(result, out);
-            return result;
-        }
+        OnlineTester tester = new OnlineTester(network, testInterface, adapter, options);
+        tester.addListener(new Progress(out));
+        TestResult result = JsonTrace.run(tester, trace, model, options);
+        printVerdict(result, out);
+        return result;
     }
 
     private static void printVerdict(TestResult result, PrintWriter out) {
@@ -428,7 +416,7 @@ final class RunCommand implements Callable<Integer> {
         TronAddress address = TronAddress.parse(tronAdapter).orElseThrow(() -> usage("--tron-adapter "
                 + tronAdapter + ": give HOST:PORT to connect to the adapter, or PORT to listen for it"));
         TronSocketAdapter.Settings settings = TronSocketAdapter.Settings.forRealTime().withVirtualTime(virtualTime);
-        long runSeed = seed != null ? seed : System.nanoTime() & 0xffffffffL;
+        long runSeed = RunDefaults.seed(seed);
         TronSocketAdapter adapter;
         try {
             if (address.host() == null) {
@@ -452,8 +440,8 @@ final class RunCommand implements Callable<Integer> {
                         + adapterUnit + " us; leave --timeunit out");
                 return 1;
             }
-            long unit = adapterUnit != null ? adapterUnit : timeUnit != null ? timeUnit : 1000;
-            long units = timeout != null ? timeout : testInterface.timeout() != null ? testInterface.timeout() : 1000;
+            long unit = RunDefaults.timeUnit(adapterUnit, timeUnit);
+            long units = RunDefaults.timeout(timeout, testInterface.timeout());
             TestOptions options;
             try {
                 options = new TestOptions(runSeed, unit, units, policy, delayBound, virtualTime);
@@ -485,14 +473,6 @@ final class RunCommand implements Callable<Integer> {
                 return Optional.empty();
             }
             return Optional.of(new TronAddress(host, Integer.parseInt(port)));
-        }
-    }
-
-    /** Prints a model's errors as {@code check} does: the count, then each with its place. */
-    static void printModelErrors(Path model, ModelException e, PrintWriter err) {
-        err.println(model + ": " + e.errors().size() + " error" + (e.errors().size() == 1 ? "" : "s"));
-        for (Diagnostic d : e.diagnostics()) {
-            err.println("  " + d.format());
         }
     }
 

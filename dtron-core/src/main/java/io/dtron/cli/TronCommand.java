@@ -26,7 +26,6 @@ import java.util.ArrayList;
 import java.util.List;
 import java.util.Locale;
 import java.util.concurrent.Callable;
-import java.util.stream.Collectors;
 import picocli.CommandLine.Command;
 import picocli.CommandLine.Model.CommandSpec;
 import picocli.CommandLine.Option;
@@ -48,9 +47,6 @@ import picocli.CommandLine.Spec;
                 "-- HOST PORT connects to an adapter that listens (as TRON's samples do); -- PORT listens for one.",
                 "Exit code 0 PASSED, 2 FAILED, 3 INCONCLUSIVE, 1 usage, model or adapter configuration error."})
 final class TronCommand implements Callable<Integer> {
-    private static final long DEFAULT_TIME_UNIT = 1000;
-    private static final long DEFAULT_TIMEOUT = 1000;
-
     @Spec
     private CommandSpec spec;
 
@@ -165,13 +161,13 @@ final class TronCommand implements Callable<Integer> {
         try {
             network = ModelLoader.load(model);
         } catch (ModelException e) {
-            RunCommand.printModelErrors(model, e, err);
+            CheckCommand.printErrors(model, e, err);
             return 1;
         }
         if (!quiet) {
             notes(err, choice);
         }
-        long runSeed = seed != null ? seed : System.nanoTime() & 0xffffffffL;
+        long runSeed = RunDefaults.seed(seed);
         try (Printer printer = new Printer(spec.commandLine().getOut(), logFile == null ? null
                 : Files.newBufferedWriter(logFile, StandardCharsets.UTF_8))) {
             return run(network, choice, runSeed, printer, err);
@@ -230,8 +226,7 @@ final class TronCommand implements Callable<Integer> {
         err.flush();
     }
 
-    private int run(Network network, DelayChoice choice, long runSeed, Printer printer, PrintWriter err)
-            throws IOException {
+    private int run(Network network, DelayChoice choice, long runSeed, Printer printer, PrintWriter err) {
         boolean listen = address.size() == 1;
         String where = listen ? "listening for the adapter" : "connecting to " + address.get(0) + ":" + port();
         if (!quiet) {
@@ -249,8 +244,8 @@ final class TronCommand implements Callable<Integer> {
             return 1;
         }
         TestInterface ti = adapter.testInterface();
-        long unit = ti.timeUnitMicros() != null ? ti.timeUnitMicros() : DEFAULT_TIME_UNIT;
-        long units = future != null ? future : ti.timeout() != null ? ti.timeout() : DEFAULT_TIMEOUT;
+        long unit = RunDefaults.timeUnit(ti.timeUnitMicros());
+        long units = RunDefaults.timeout(future, ti.timeout());
         if (!quiet) {
             printer.println("dtron tron: adapter " + adapter.remote() + ": " + units + " time units of " + unit + " us"
                     + (verbosity >= 2 ? "; " + describe(ti) : ""));
@@ -261,22 +256,24 @@ final class TronCommand implements Callable<Integer> {
             tester.addListener(new EventPrinter(printer, unit));
         }
         TestResult result;
-        try (Writer traceWriter = trace == null ? null : Files.newBufferedWriter(trace, StandardCharsets.UTF_8)) {
-            if (traceWriter != null) {
-                JsonTrace json = new JsonTrace(traceWriter, unit);
-                json.start(runSeed, model.toString(), units, virtualTime);
-                tester.addListener(json);
-            }
-            result = tester.run();
+        try (adapter) {
+            result = JsonTrace.run(tester, trace, model, options);
         } catch (UnsupportedModelException e) {
-            adapter.close();
             err.println("dtron tron: " + model + ": " + e.getMessage());
+            return 1;
+        } catch (IOException e) {
+            err.println("dtron tron: cannot write the trace " + trace + ": " + e.getMessage());
             return 1;
         }
         printer.println("TEST " + result.verdict() + ": " + result.explanation());
         if (statsFile != null) {
-            Files.writeString(statsFile, result.statisticsLine() + System.lineSeparator(), StandardCharsets.UTF_8,
-                    StandardOpenOption.CREATE, StandardOpenOption.APPEND);
+            try {
+                Files.writeString(statsFile, result.statisticsLine() + System.lineSeparator(),
+                        StandardCharsets.UTF_8, StandardOpenOption.CREATE, StandardOpenOption.APPEND);
+            } catch (IOException e) {
+                err.println("dtron tron: cannot write the statistics " + statsFile + ": " + e.getMessage());
+                return 1;
+            }
         }
         return result.verdict().exitCode();
     }
@@ -293,13 +290,7 @@ final class TronCommand implements Callable<Integer> {
     }
 
     private static String describe(TestInterface ti) {
-        return "inputs " + channels(ti.inputs()) + "; outputs " + channels(ti.outputs());
-    }
-
-    private static String channels(List<TestInterface.ObservableChannel> channels) {
-        return channels.stream().map(c -> c.name() + "(" + c.variables().stream()
-                .map(TestInterface.AttachedVariable::name).collect(Collectors.joining(", ")) + ")")
-                .collect(Collectors.joining(", "));
+        return "inputs " + CheckCommand.channels(ti.inputs()) + "; outputs " + CheckCommand.channels(ti.outputs());
     }
 
     /** TRON's {@code -P} value as DTRON's delay policy. */

@@ -106,6 +106,40 @@ class TronCommandTest {
         assertTrue(r.out().contains("TEST PASSED"), r.out());
     }
 
+    @Test
+    void anUnwritableTraceOrStatisticsFileIsAClearError() throws Exception {
+        Path trace = dir.resolve("no-such-folder").resolve("trace.jsonl");
+        Run noTrace = withLampInVirtualTime("--trace", trace.toString());
+        assertEquals(1, noTrace.exit(), noTrace.out() + noTrace.err());
+        assertTrue(noTrace.err().contains("dtron tron: cannot write the trace " + trace + ": "), noTrace.err());
+        Run noStats = withLampInVirtualTime("-S", dir.toString());
+        assertEquals(1, noStats.exit(), noStats.out() + noStats.err());
+        assertTrue(noStats.out().contains("TEST PASSED"), noStats.out());
+        assertTrue(noStats.err().contains("dtron tron: cannot write the statistics " + dir + ": "), noStats.err());
+        assertFalse((noTrace.err() + noStats.err()).contains("\tat "), "no stack trace");
+    }
+
+    /** Runs dtron tron listening, with the lamp connecting in virtual time; the lamp may be cut off. */
+    private Run withLampInVirtualTime(String... options) throws Exception {
+        int port;
+        try (ServerSocket probe = new ServerSocket(0, 1, InetAddress.getLoopbackAddress())) {
+            port = probe.getLocalPort();
+        }
+        String[] args = new String[options.length + 7];
+        System.arraycopy(options, 0, args, 0, options.length);
+        System.arraycopy(new String[] {"--virtual-time", "-X", "9", "-F", "300", lightContr.toString(), "--"}, 0,
+                args, options.length, 7);
+        String[] withPort = java.util.Arrays.copyOf(args, args.length + 1);
+        withPort[args.length] = Integer.toString(port);
+        CompletableFuture<Run> run = CompletableFuture.supplyAsync(() -> tron(withPort));
+        try {
+            connectLamp(port);
+        } catch (RuntimeException e) {
+            // the tester ended the connection when it could not go on
+        }
+        return run.get(60, TimeUnit.SECONDS);
+    }
+
     private static void connectLamp(int port) throws Exception {
         long deadline = System.nanoTime() + Duration.ofSeconds(20).toNanos();
         while (true) {
