@@ -8,6 +8,7 @@ import io.dtron.engine.TestOptions;
 import io.dtron.engine.TestResult;
 import io.dtron.engine.Verdict;
 import io.dtron.model.TestInterface;
+import io.dtron.tron.internal.Wire;
 import io.dtron.troninstaller.RunningTron;
 import io.dtron.troninstaller.TronArguments;
 import io.dtron.troninstaller.TronInstallation;
@@ -100,7 +101,8 @@ public final class TronBackend {
                 try (TronAdapterClient client = TronAdapterClient.over(socket, TronAdapterClient.TimeMode.REAL_TIME)) {
                     bridge.run(client);
                     int exit = tron.waitFor(limit);
-                    return bridge.result(TronOutput.parse(tron.output()), exit, tron.output());
+                    String printed = tron.output();
+                    return bridge.result(TronOutput.parse(printed), exit, printed);
                 } finally {
                     sut.stop();
                 }
@@ -207,12 +209,8 @@ public final class TronBackend {
                                 output.channel());
                         return;
                     }
-                    List<TestInterface.AttachedVariable> vars = testInterface.output(output.channel()).orElseThrow()
-                            .variables();
-                    int[] values = new int[vars.size()];
-                    for (int i = 0; i < values.length; i++) {
-                        values[i] = output.value(vars.get(i).name());
-                    }
+                    int[] values = Wire.values(testInterface.output(output.channel()).orElseThrow().variables(),
+                            output);
                     if (client.reportOutput(id, values)) {
                         outputCount.incrementAndGet();
                     }

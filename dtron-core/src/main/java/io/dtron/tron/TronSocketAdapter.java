@@ -346,12 +346,7 @@ public final class TronSocketAdapter implements Adapter, Closeable {
             fail("the engine applied '" + input.channel() + "', which the adapter did not register as an input");
             return;
         }
-        List<TestInterface.AttachedVariable> vars = channel.variables();
-        int[] values = new int[vars.size()];
-        for (int i = 0; i < values.length; i++) {
-            values[i] = input.value(vars.get(i).name());
-        }
-        byte[] frame = Wire.event(channel.id(), values);
+        byte[] frame = Wire.event(channel.id(), Wire.values(channel.variables(), input));
         if (sharedClock) {
             long now = context.clock().nowMicros();
             if (now > granted && !grant(now)) {

@@ -56,9 +56,7 @@ public final class FrameReader {
 
     /** Waits without limit for the first int32 of a frame (an event's channel id, or an acknowledgement). */
     public int firstInt() throws IOException {
-        int first = firstByte(Long.MAX_VALUE);
-        readInto(buffer, 1, 3, "the channel id of an event");
-        return (first << 24) | ((buffer[0] & 0xff) << 16) | ((buffer[1] & 0xff) << 8) | (buffer[2] & 0xff);
+        return int32Reply(Long.MAX_VALUE, "the channel id of an event");
     }
 
     /** An int32 inside the current frame; {@code what} names it in messages. */

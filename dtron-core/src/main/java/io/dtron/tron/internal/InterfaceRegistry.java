@@ -7,6 +7,7 @@ import io.dtron.model.Variable;
 import java.util.ArrayList;
 import java.util.HashMap;
 import java.util.LinkedHashMap;
+import java.util.Collections;
 import java.util.List;
 import java.util.Map;
 import java.util.Optional;
@@ -109,7 +110,7 @@ public final class InterfaceRegistry {
 
         /** The attached variables in the order they were attached: the order of their values on the wire. */
         public List<TestInterface.AttachedVariable> variables() {
-            return List.copyOf(variables);
+            return Collections.unmodifiableList(variables);
         }
 
         TestInterface.ObservableChannel toChannel() {

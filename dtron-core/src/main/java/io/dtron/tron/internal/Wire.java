@@ -1,7 +1,10 @@
 package io.dtron.tron.internal;
 
+import io.dtron.engine.Event;
+import io.dtron.model.TestInterface;
 import java.nio.ByteBuffer;
 import java.nio.charset.StandardCharsets;
+import java.util.List;
 
 /**
  * The constants and frame layouts of TRON's socket-adapter protocol: all integers big-endian, a string is one
@@ -73,6 +76,15 @@ public final class Wire {
     public static byte[] string(String text) {
         byte[] s = stringBytes(text);
         return ByteBuffer.allocate(1 + s.length).put((byte) s.length).put(s).array();
+    }
+
+    /** The values of an event's attached variables in their wire order, the order they were registered in. */
+    public static int[] values(List<TestInterface.AttachedVariable> variables, Event event) {
+        int[] values = new int[variables.size()];
+        for (int i = 0; i < values.length; i++) {
+            values[i] = event.value(variables.get(i).name());
+        }
+        return values;
     }
 
     /** An event: {@code [int32 channel][uint16 n][n x int32]}. */
