@@ -105,13 +105,14 @@ class OnlineTesterTest {
     @Test
     void realTimeRunsJudgeTheSameWay() throws Exception {
         Network n = ModelLoader.load("ticker.xta", TICKER);
-        TestOptions realTime = TestOptions.defaults(3).withTimeout(150).withVirtualTime(false);
+        // 10 ms per unit: the model's 2-unit tolerance is 20 ms, wide enough for a loaded 2-core machine
+        TestOptions realTime = TestOptions.defaults(3).withTimeout(40).withTimeUnit(10_000).withVirtualTime(false);
         long start = System.nanoTime();
         TestResult passed = new OnlineTester(n, TestInterface.fromNames(n), new Ticker(10), realTime).run();
         long took = (System.nanoTime() - start) / 1_000_000;
         assertEquals(Verdict.PASSED, passed.verdict(), passed.explanation());
-        assertTrue(took >= 150, "150 units of 1 ms take at least 150 ms of real time, took " + took);
-        assertTrue(passed.outputs() >= 8, passed.toString());
+        assertTrue(took >= 400, "40 units of 10 ms take at least 400 ms of real time, took " + took);
+        assertTrue(passed.outputs() >= 3, passed.toString());
         TestResult failed = new OnlineTester(n, TestInterface.fromNames(n), new Ticker(13), realTime).run();
         assertEquals(Verdict.FAILED, failed.verdict(), failed.explanation());
     }
