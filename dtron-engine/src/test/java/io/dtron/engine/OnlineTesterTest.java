@@ -175,6 +175,59 @@ class OnlineTesterTest {
     }
 
     @Test
+    void anOutputOfALateTaskComesAfterWhatTheTesterSawBeforeIt() throws Exception {
+        // the system may say a or b at any time after go, which the eager tester sends at once
+        Network n = ModelLoader.load("late.xta", """
+                chan i_go, o_a, o_b;
+                process Iut() { state S; init S; trans S -> S { sync i_go?; }, S -> S { sync o_a!; },
+                    S -> S { sync o_b!; }; }
+                process Env() { state Start, Done; init Start;
+                    trans Start -> Done { sync i_go!; }, Done -> Done { sync o_a?; }, Done -> Done { sync o_b?; }; }
+                system Iut, Env;
+                """);
+        // a is due at 5 ms, but the tester's thread is busy in perform until 30 ms; b comes at 10 ms meanwhile,
+        // so the tester sees b before it runs the task that reports a
+        Adapter busy = new Adapter() {
+            private AdapterContext context;
+
+            @Override
+            public void start(AdapterContext context) {
+                this.context = context;
+                context.clock().schedule(5_000, () -> context.report(Event.of("a")));
+            }
+
+            @Override
+            public void perform(Event input) {
+                sleep(10);
+                context.report(Event.of("b"));
+                sleep(20);
+            }
+        };
+        List<String> seen = new ArrayList<>();
+        TestResult r = new OnlineTester(n, TestInterface.fromNames(n), busy,
+                TestOptions.defaults(1).withTimeout(60).withVirtualTime(false).withDelayPolicy(DelayPolicy.EAGER, 0))
+                .addListener(new TestListener() {
+                    @Override
+                    public void outputObserved(Event output, long micros) {
+                        seen.add(output.channel() + "@" + micros);
+                    }
+                }).run();
+        assertEquals(Verdict.PASSED, r.verdict(), r.explanation() + " " + seen);
+        assertEquals(2, r.outputs(), seen.toString());
+        long bAt = Long.parseLong(seen.get(0).substring(2));
+        assertEquals("b", seen.get(0).substring(0, 1), seen.toString());
+        assertEquals("a@" + bAt, seen.get(1), "a, due at 5 ms, counts from b, seen before it: " + seen);
+    }
+
+    private static void sleep(long millis) {
+        try {
+            Thread.sleep(millis);
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+        }
+    }
+
+    @Test
     void anAdapterThatLosesItsSystemEndsTheRunInconclusive() throws Exception {
         Network n = ModelLoader.load("ticker.xta", TICKER);
         Adapter dropping = new Adapter() {

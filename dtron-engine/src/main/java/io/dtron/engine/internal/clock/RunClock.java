@@ -66,12 +66,30 @@ public abstract class RunClock implements TestClock {
      * so that a simulated system's timing does not depend on how busy the tester was.
      */
     public final void report(Event output) {
-        outputs.add(new TimedEvent(output, logicalNow()));
+        enqueue(output, null);
     }
 
     /** Queues the adapter's report that the run cannot go on (thread-safe). */
     public final void abort(String reason) {
-        outputs.add(new TimedEvent(null, logicalNow(), reason));
+        enqueue(null, reason);
+    }
+
+    /** Reads the time and queues in one step, so that {@link #quietNow} sees an output either waiting or later. */
+    private void enqueue(Event output, String abort) {
+        synchronized (outputs) {
+            outputs.add(new TimedEvent(output, logicalNow(), abort));
+        }
+    }
+
+    /**
+     * The time now if no output is waiting, else -1. Atomic with {@link #report}: an output reported before is
+     * waiting, one reported after carries this time or a later one. So a tester that acts at the time returned
+     * never acts after an output it has not seen, however long a reporting thread was held up.
+     */
+    public final long quietNow() {
+        synchronized (outputs) {
+            return outputs.isEmpty() ? nowMicros() : -1;
+        }
     }
 
     private long logicalNow() {

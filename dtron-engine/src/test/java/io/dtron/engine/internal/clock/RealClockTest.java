@@ -1,0 +1,64 @@
+package io.dtron.engine.internal.clock;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+import io.dtron.engine.Event;
+import java.util.ArrayList;
+import java.util.List;
+import java.util.concurrent.TimeUnit;
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.Timeout;
+
+class RealClockTest {
+
+    /**
+     * The tester's race: it finds no output waiting and acts at the time now, while adapter threads report. No
+     * output may then come in with an earlier time than the one the tester acted at: with the time read apart
+     * from the queueing, a reporter held up in between (descheduled, or waiting for the queue) delivered one.
+     */
+    @Test
+    @Timeout(value = 60, unit = TimeUnit.SECONDS)
+    void noOutputComesInWithATimeBeforeAQuietTimeTheTesterActedAt() throws Exception {
+        RealClock clock = new RealClock();
+        clock.begin();
+        int reporters = 3;
+        int each = 100_000;
+        List<Thread> threads = new ArrayList<>();
+        for (int r = 0; r < reporters; r++) {
+            Thread thread = new Thread(() -> {
+                for (int i = 0; i < each; i++) {
+                    clock.report(Event.of("tick"));
+                    long pause = System.nanoTime() + 2_000; // leaves the queue empty now and then
+                    while (System.nanoTime() < pause) {
+                        Thread.onSpinWait();
+                    }
+                }
+            });
+            thread.start();
+            threads.add(thread);
+        }
+        long quiet = -1;
+        int received = 0;
+        int before = 0;
+        String first = null;
+        while (received < reporters * each) {
+            long now = clock.quietNow();
+            if (now >= 0) {
+                quiet = now;
+            }
+            RunClock.TimedEvent output = clock.drain();
+            if (output != null) {
+                received++;
+                if (output.micros() < quiet && before++ == 0) {
+                    first = "output at " + output.micros() + " us after the tester acted at " + quiet + " us";
+                }
+            }
+        }
+        for (Thread thread : threads) {
+            thread.join();
+        }
+        assertEquals(0, before, before + " outputs came in before a quiet time, the first: " + first);
+        assertTrue(quiet >= 0, "the tester found the queue empty at least once");
+    }
+}
