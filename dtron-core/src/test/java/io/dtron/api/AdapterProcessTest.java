@@ -3,6 +3,7 @@ package io.dtron.api;
 import static org.junit.jupiter.api.Assertions.assertEquals;
 
 import io.dtron.testadapter.EchoAdapterMain;
+import io.dtron.testsupport.Inbox;
 import java.nio.file.Path;
 import java.time.Duration;
 import java.util.Map;

@@ -12,6 +12,8 @@ import io.dtron.api.internal.proto.Sync;
 import io.dtron.api.internal.proto.Variable;
 import io.dtron.bus.Transport;
 import io.dtron.bus.internal.JGroupsTransport;
+import io.dtron.testsupport.Inbox;
+import io.dtron.testsupport.LogCapture;
 import java.time.Duration;
 import java.util.List;
 import java.util.Map;

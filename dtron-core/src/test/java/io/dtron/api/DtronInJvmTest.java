@@ -8,6 +8,8 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import ch.qos.logback.classic.Level;
 import ch.qos.logback.classic.spi.ILoggingEvent;
+import io.dtron.testsupport.Inbox;
+import io.dtron.testsupport.LogCapture;
 import java.time.Duration;
 import java.util.List;
 import java.util.Map;

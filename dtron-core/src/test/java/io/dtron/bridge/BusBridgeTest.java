@@ -7,7 +7,6 @@ import static org.junit.jupiter.api.Assertions.assertThrows;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import io.dtron.api.Dtron;
-import io.dtron.api.DtronListener;
 import io.dtron.api.DtronOptions;
 import io.dtron.api.DtronStats;
 import io.dtron.api.IDtronChannel;
@@ -24,6 +23,7 @@ import io.dtron.engine.TestClock;
 import io.dtron.model.ModelException;
 import io.dtron.model.ModelLoader;
 import io.dtron.model.TestInterface;
+import io.dtron.testsupport.Inbox;
 import java.time.Duration;
 import java.util.List;
 import java.util.Map;
@@ -88,26 +88,6 @@ class BusBridgeTest {
         @Override
         public long timeUnitMicros() {
             return 250;
-        }
-    }
-
-    /** An adapter's listener that keeps what it receives. */
-    private static final class Inbox extends DtronListener {
-        final BlockingQueue<IDtronChannelValued> received = new LinkedBlockingQueue<>();
-
-        Inbox(IDtronChannel channel) {
-            super(channel);
-        }
-
-        @Override
-        public void messageReceived(IDtronChannelValued message) {
-            received.add(message);
-        }
-
-        IDtronChannelValued take() throws InterruptedException {
-            IDtronChannelValued message = received.poll(10, TimeUnit.SECONDS);
-            assertNotNull(message, "nothing on " + getChannel() + " within 10 s");
-            return message;
         }
     }
 

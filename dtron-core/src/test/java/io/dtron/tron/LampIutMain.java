@@ -11,9 +11,8 @@ import java.util.concurrent.ScheduledFuture;
 import java.util.concurrent.TimeUnit;
 
 /**
- * A test adapter written against the protocol, run in a JVM of its own: registers LightContr's interface (inputs
- * grasp and release, output level with adapLevel) with {@link TronAdapterClient} and behaves like the lamp ({@link
- * TestLamp}).
+ * A test adapter written against the protocol, run in a JVM of its own: registers LightContr's interface with
+ * {@link TronAdapterClient} and behaves like the lamp ({@link TronLamp}).
  *
  * <p>Arguments: {@code connect PORT | listen}, the time mode ({@code REAL_TIME}, {@code SHARED_VIRTUAL_CLOCK}), the
  * variant ({@code correct} or {@code late}), the timeout in units, the time unit in microseconds. When listening, it
@@ -40,35 +39,7 @@ public final class LampIutMain {
         } else {
             client = TronAdapterClient.connect("127.0.0.1", Integer.parseInt(args[1]), mode);
         }
-        int grasp = client.registerInput("grasp");
-        int release = client.registerInput("release");
-        int level = client.registerOutput("level");
-        client.addOutputVariable(level, "adapLevel");
-        client.setTimeUnit(unit);
-        client.setTimeout(timeout);
-        TestLamp lamp = new TestLamp(new TestLamp.Io() {
-            @Override
-            public long nowMicros() {
-                return client.nowMicros();
-            }
-
-            @Override
-            public TestLamp.Cancel schedule(long micros, Runnable task) {
-                return client.schedule(micros, task)::cancel;
-            }
-
-            @Override
-            public void level(int value) {
-                client.reportOutput(level, value);
-            }
-        }, unit, late);
-        client.start((channel, values) -> {
-            if (channel == grasp) {
-                lamp.grasp();
-            } else if (channel == release) {
-                lamp.release();
-            }
-        });
+        TronLamp.attach(client, unit, late, timeout);
         boolean ended = client.awaitEnd(Duration.ofSeconds(60));
         System.out.println("END " + (ended ? "" : "(timed out) ") + client.failure().orElse("")
                 + " acknowledged=" + client.outputsAcknowledged());

@@ -98,7 +98,7 @@ class RunWithTronTest {
         long deadline = System.nanoTime() + Duration.ofSeconds(20).toNanos();
         while (true) {
             try {
-                InJvmLamp.run(port, TronAdapterClient.TimeMode.SHARED_VIRTUAL_CLOCK, false, 1000);
+                TronLamp.run(port, TronAdapterClient.TimeMode.SHARED_VIRTUAL_CLOCK, false, 1000);
                 break;
             } catch (java.io.UncheckedIOException e) {
                 if (!(e.getCause().getCause() instanceof ConnectException) || System.nanoTime() > deadline) {

@@ -144,7 +144,7 @@ class TronCommandTest {
         long deadline = System.nanoTime() + Duration.ofSeconds(20).toNanos();
         while (true) {
             try {
-                InJvmLamp.run(port, TronAdapterClient.TimeMode.SHARED_VIRTUAL_CLOCK, false, 1000);
+                TronLamp.run(port, TronAdapterClient.TimeMode.SHARED_VIRTUAL_CLOCK, false, 1000);
                 return;
             } catch (java.io.UncheckedIOException e) {
                 if (!(e.getCause().getCause() instanceof ConnectException) || System.nanoTime() > deadline) {

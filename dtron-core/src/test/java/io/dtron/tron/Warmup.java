@@ -29,7 +29,7 @@ final class Warmup {
         }
         try (ServerSocket server = new ServerSocket(0, 1, InetAddress.getLoopbackAddress())) {
             server.setSoTimeout(30_000);
-            CompletableFuture<Void> lamp = CompletableFuture.runAsync(() -> InJvmLamp.run(server.getLocalPort(),
+            CompletableFuture<Void> lamp = CompletableFuture.runAsync(() -> TronLamp.run(server.getLocalPort(),
                     TronAdapterClient.TimeMode.SHARED_VIRTUAL_CLOCK, false, 2000));
             TronSocketAdapter adapter = TronSocketAdapter.accept(server, lightContr,
                     TronSocketAdapter.Settings.forVirtualTime());

@@ -9,6 +9,8 @@ import io.dtron.api.Dtron;
 import io.dtron.api.DtronOptions;
 import io.dtron.api.IDtronChannel;
 import io.dtron.api.IDtronChannelValued;
+import io.dtron.testsupport.Inbox;
+import io.dtron.testsupport.LogCapture;
 import java.time.Duration;
 import java.util.List;
 import java.util.Map;

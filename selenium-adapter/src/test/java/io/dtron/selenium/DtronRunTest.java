@@ -4,6 +4,7 @@ import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import io.dtron.cli.DtronCommand;
+import io.dtron.testsupport.LogCapture;
 import java.io.PrintWriter;
 import java.io.StringWriter;
 import java.net.URISyntaxException;

@@ -7,6 +7,7 @@ import io.dtron.api.Dtron;
 import io.dtron.api.DtronOptions;
 import io.dtron.api.IDtronChannel;
 import io.dtron.selenium.sample.Ping;
+import io.dtron.testsupport.Inbox;
 import java.util.Map;
 import java.util.UUID;
 import java.util.concurrent.TimeUnit;

@@ -1,4 +1,4 @@
-package io.dtron.selenium;
+package io.dtron.testsupport;
 
 import static org.junit.jupiter.api.Assertions.assertNotNull;
 
@@ -10,10 +10,11 @@ import java.util.concurrent.LinkedBlockingQueue;
 import java.util.concurrent.TimeUnit;
 
 /** A listener that keeps what it receives, for a test to take. */
-final class Inbox extends DtronListener {
+public final class Inbox extends DtronListener {
     private final BlockingQueue<IDtronChannelValued> received = new LinkedBlockingQueue<>();
 
-    Inbox(IDtronChannel channel) {
+    /** An inbox for the messages on {@code channel}. */
+    public Inbox(IDtronChannel channel) {
         super(channel);
     }
 
@@ -23,14 +24,14 @@ final class Inbox extends DtronListener {
     }
 
     /** Returns the next message, failing the test if none arrives within 20 seconds. */
-    IDtronChannelValued take() throws InterruptedException {
+    public IDtronChannelValued take() throws InterruptedException {
         IDtronChannelValued message = received.poll(20, TimeUnit.SECONDS);
         assertNotNull(message, "no message on " + getChannel() + " within 20 s");
         return message;
     }
 
-    /** Returns the next message if one arrives within a short while, else null. */
-    IDtronChannelValued poll(long millis) throws InterruptedException {
+    /** Returns the next message if one arrives within {@code millis}, else null. */
+    public IDtronChannelValued poll(long millis) throws InterruptedException {
         return received.poll(millis, TimeUnit.MILLISECONDS);
     }
 }
