@@ -79,7 +79,8 @@ final class RunCommand implements Callable<Integer> {
     private String cluster;
 
     @Option(names = "--bind", paramLabel = "ADDR",
-            description = "Bus mode: the network interface to bind to and to find members at (default: loopback).")
+            description = "Bus mode: the network interface to bind to and to find members at; with --tron-adapter"
+                    + " PORT: the address to listen on (default: loopback).")
     private String bind;
 
     @Option(names = "--wait-for-adapters", paramLabel = "N",
@@ -98,7 +99,8 @@ final class RunCommand implements Callable<Integer> {
 
     @Option(names = "--tron-adapter", paramLabel = "HOST:PORT|PORT",
             description = "The system under test is an adapter written for Uppaal TRON: connect to its socket adapter"
-                    + " at HOST:PORT, or listen for it on PORT at loopback. Its configuration defines the interface.")
+                    + " at HOST:PORT, or listen for it on PORT at loopback (or --bind). Its configuration defines the"
+                    + " interface.")
     private String tronAdapter;
 
     @Option(names = "--backend", paramLabel = "engine|tron", defaultValue = "engine",
@@ -224,10 +226,16 @@ final class RunCommand implements Callable<Integer> {
         if (sut != null && tronAdapter != null) {
             throw usage("--sut and --tron-adapter each name the system under test; give one");
         }
-        if (!busMode && (cluster != null || bind != null || waitForAdapters != null || waitTimeout != null
+        if (!busMode && (cluster != null || waitForAdapters != null || waitTimeout != null
                 || !adapterClasses.isEmpty())) {
-            throw usage("--cluster, --bind, --wait-for-adapters, --wait-timeout and --adapter are for testing the"
+            throw usage("--cluster, --wait-for-adapters, --wait-timeout and --adapter are for testing the"
                     + " adapters on a bus, without --sut or --tron-adapter");
+        }
+        boolean tronListens = tronAdapter != null
+                && TronAddress.parse(tronAdapter).map(a -> a.host() == null).orElse(false);
+        if (bind != null && !busMode && !tronListens) {
+            throw usage("--bind is the bus's network interface, or where --tron-adapter PORT listens; with "
+                    + (sut != null ? "--sut" : "--tron-adapter HOST:PORT (DTRON connects)") + " leave it out");
         }
         if (busMode && virtualTime) {
             throw usage("--virtual-time needs --sut or --tron-adapter: the adapters on a bus live in real time");
@@ -271,15 +279,12 @@ final class RunCommand implements Callable<Integer> {
         if (clusterName.isBlank()) {
             throw usage("--cluster: the cluster name is blank");
         }
-        InetAddress address;
+        InetAddress address = bindAddress();
         List<DtronAdapter> adapters = new ArrayList<>();
         try {
-            address = bind == null ? InetAddress.getLoopbackAddress() : InetAddress.getByName(bind);
             for (String adapterClass : adapterClasses) {
                 adapters.add(SystemUnderTest.createBusAdapter(adapterClass, classpath));
             }
-        } catch (UnknownHostException e) {
-            throw usage("--bind: unknown address '" + bind + "'");
         } catch (IllegalArgumentException e) {
             throw usage(e.getMessage());
         }
@@ -420,8 +425,10 @@ final class RunCommand implements Callable<Integer> {
         TronSocketAdapter adapter;
         try {
             if (address.host() == null) {
-                try (ServerSocket server = new ServerSocket(address.port(), 1, InetAddress.getLoopbackAddress())) {
-                    out.println("dtron run: waiting for the TRON adapter on 127.0.0.1:" + server.getLocalPort());
+                InetAddress listenAt = bindAddress();
+                try (ServerSocket server = new ServerSocket(address.port(), 1, listenAt)) {
+                    out.println("dtron run: waiting for the TRON adapter on " + listenAt.getHostAddress() + ":"
+                            + server.getLocalPort());
                     out.flush();
                     adapter = TronSocketAdapter.accept(server, network, settings);
                 }
@@ -456,6 +463,18 @@ final class RunCommand implements Callable<Integer> {
         } catch (UnsupportedModelException e) {
             err.println("dtron run: " + model + ": " + e.getMessage());
             return 1;
+        }
+    }
+
+    /** {@code --bind}, else loopback: the bus's interface, or where {@code --tron-adapter PORT} listens. */
+    private InetAddress bindAddress() {
+        if (bind == null) {
+            return InetAddress.getLoopbackAddress();
+        }
+        try {
+            return InetAddress.getByName(bind);
+        } catch (UnknownHostException e) {
+            throw usage("--bind: unknown address '" + bind + "'");
         }
     }
 

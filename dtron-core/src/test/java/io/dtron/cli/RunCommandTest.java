@@ -161,6 +161,9 @@ class RunCommandTest {
                 + " io.dtron.api.DtronAdapter"), notBusAdapter.err());
         Run mixed = dtron(model.toString(), "--sut", TickerForTests.class.getName(), "--cluster", "x");
         assertTrue(mixed.err().contains("are for testing the adapters on a bus, without --sut"), mixed.err());
+        Run bindWithSut = dtron(model.toString(), "--sut", TickerForTests.class.getName(), "--bind", "127.0.0.1");
+        assertEquals(1, bindWithSut.exit());
+        assertTrue(bindWithSut.err().contains("with --sut leave it out"), bindWithSut.err());
     }
 
     @Test

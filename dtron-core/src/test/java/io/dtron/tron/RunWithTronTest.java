@@ -89,12 +89,34 @@ class RunWithTronTest {
 
     @Test
     void listensForTheTronAdapterInVirtualTime() throws Exception {
-        int port;
+        int port = freePort();
+        Run r = withLampConnecting(port, "run", lightContr.toString(), "--tron-adapter", Integer.toString(port),
+                "--virtual-time", "--timeout", "3000", "--seed", "3");
+        assertEquals(0, r.exit(), r.out() + r.err());
+        assertTrue(r.out().contains("dtron run: waiting for the TRON adapter on 127.0.0.1:" + port), r.out());
+        assertTrue(r.out().contains("3000 time units of 1000 us in virtual time"), r.out());
+        assertTrue(r.out().contains("\nPASSED: "), r.out());
+    }
+
+    @Test
+    void listensWhereBindSays() throws Exception {
+        int port = freePort();
+        Run r = withLampConnecting(port, "run", lightContr.toString(), "--tron-adapter", Integer.toString(port),
+                "--bind", "0.0.0.0", "--virtual-time", "--timeout", "1000", "--seed", "3");
+        assertEquals(0, r.exit(), r.out() + r.err());
+        assertTrue(r.out().contains("dtron run: waiting for the TRON adapter on 0.0.0.0:" + port), r.out());
+        assertTrue(r.out().contains("\nPASSED: "), r.out());
+    }
+
+    private static int freePort() throws IOException {
         try (ServerSocket probe = new ServerSocket(0, 1, InetAddress.getLoopbackAddress())) {
-            port = probe.getLocalPort();
+            return probe.getLocalPort();
         }
-        CompletableFuture<Run> run = CompletableFuture.supplyAsync(() -> dtron("run", lightContr.toString(),
-                "--tron-adapter", Integer.toString(port), "--virtual-time", "--timeout", "3000", "--seed", "3"));
+    }
+
+    /** Runs dtron, which listens on {@code port}, and the lamp in this JVM, which connects as soon as it can. */
+    private Run withLampConnecting(int port, String... args) throws Exception {
+        CompletableFuture<Run> run = CompletableFuture.supplyAsync(() -> dtron(args));
         long deadline = System.nanoTime() + Duration.ofSeconds(20).toNanos();
         while (true) {
             try {
@@ -107,11 +129,7 @@ class RunWithTronTest {
                 Thread.sleep(50);
             }
         }
-        Run r = run.get(60, TimeUnit.SECONDS);
-        assertEquals(0, r.exit(), r.out() + r.err());
-        assertTrue(r.out().contains("dtron run: waiting for the TRON adapter on 127.0.0.1:" + port), r.out());
-        assertTrue(r.out().contains("3000 time units of 1000 us in virtual time"), r.out());
-        assertTrue(r.out().contains("\nPASSED: "), r.out());
+        return run.get(60, TimeUnit.SECONDS);
     }
 
     @Test
@@ -131,6 +149,13 @@ class RunWithTronTest {
         Run withBus = dtron("run", model, "--tron-adapter", "9999", "--cluster", "x");
         assertEquals(1, withBus.exit());
         assertTrue(withBus.err().contains("are for testing the adapters on a bus"), withBus.err());
+        Run bindToConnect = dtron("run", model, "--tron-adapter", "localhost:9999", "--bind", "0.0.0.0");
+        assertEquals(1, bindToConnect.exit());
+        assertTrue(bindToConnect.err().contains("--bind is the bus's network interface, or where --tron-adapter PORT"
+                + " listens; with --tron-adapter HOST:PORT (DTRON connects) leave it out"), bindToConnect.err());
+        Run unknownBind = dtron("run", model, "--tron-adapter", "9999", "--bind", "no-such-host.invalid");
+        assertEquals(1, unknownBind.exit());
+        assertTrue(unknownBind.err().contains("--bind: unknown address 'no-such-host.invalid'"), unknownBind.err());
         for (String bad : List.of("host:", "localhost:port", "70000", "localhost:0", ":80")) {
             Run r = dtron("run", model, "--tron-adapter", bad);
             assertEquals(1, r.exit(), bad);
