@@ -99,7 +99,8 @@ public abstract class RunClock implements TestClock {
 
     /**
      * Runs due tasks and waits until {@code untilMicros} or until an output is reported, whichever comes first;
-     * returns the output (removed from the queue), or null when the time was reached first.
+     * returns the output (removed from the queue), or null when the time was reached first: then every output
+     * reported later carries a time at or after {@code untilMicros}.
      */
     public final TimedEvent awaitUntil(long untilMicros) {
         while (true) {
@@ -130,7 +131,8 @@ public abstract class RunClock implements TestClock {
                 continue;
             }
             if (nowMicros() >= untilMicros) {
-                return outputs.poll();
+                // null only when quiet (atomic with reports): a later output carries a time past untilMicros
+                return quietNow() >= 0 ? null : outputs.poll();
             }
         }
     }

@@ -7,19 +7,22 @@ import io.dtron.engine.Event;
 import java.util.ArrayList;
 import java.util.List;
 import java.util.concurrent.TimeUnit;
-import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.Timeout;
+import org.junit.jupiter.params.ParameterizedTest;
+import org.junit.jupiter.params.provider.ValueSource;
 
 class RealClockTest {
 
     /**
-     * The tester's race: it finds no output waiting and acts at the time now, while adapter threads report. No
-     * output may then come in with an earlier time than the one the tester acted at: with the time read apart
+     * The tester's race: it finds no output waiting and acts at the time now (an input: {@link RunClock#quietNow}),
+     * or finds the time reached with no output waiting (a deadline: {@link RunClock#awaitUntil} returns null), while
+     * adapter threads report. No output may then come in with an earlier time than that: with the time read apart
      * from the queueing, a reporter held up in between (descheduled, or waiting for the queue) delivered one.
      */
-    @Test
+    @ParameterizedTest(name = "at a deadline: {0}")
+    @ValueSource(booleans = {false, true})
     @Timeout(value = 60, unit = TimeUnit.SECONDS)
-    void noOutputComesInWithATimeBeforeAQuietTimeTheTesterActedAt() throws Exception {
+    void noOutputComesInWithATimeBeforeAQuietTimeTheTesterActedAt(boolean deadline) throws Exception {
         RealClock clock = new RealClock();
         clock.begin();
         int reporters = 3;
@@ -43,11 +46,20 @@ class RealClockTest {
         int before = 0;
         String first = null;
         while (received < reporters * each) {
-            long now = clock.quietNow();
-            if (now >= 0) {
-                quiet = now;
+            RunClock.TimedEvent output;
+            if (deadline) {
+                long until = clock.nowMicros();
+                output = clock.awaitUntil(until);
+                if (output == null) {
+                    quiet = until;
+                }
+            } else {
+                long now = clock.quietNow();
+                if (now >= 0) {
+                    quiet = now;
+                }
+                output = clock.drain();
             }
-            RunClock.TimedEvent output = clock.drain();
             if (output != null) {
                 received++;
                 if (output.micros() < quiet && before++ == 0) {
