@@ -9,7 +9,6 @@ import io.dtron.testadapter.BusTicker;
 import java.io.IOException;
 import java.io.PrintWriter;
 import java.io.StringWriter;
-import java.net.ConnectException;
 import java.net.InetAddress;
 import java.net.ServerSocket;
 import java.nio.file.Files;
@@ -117,18 +116,7 @@ class RunWithTronTest {
     /** Runs dtron, which listens on {@code port}, and the lamp in this JVM, which connects as soon as it can. */
     private Run withLampConnecting(int port, String... args) throws Exception {
         CompletableFuture<Run> run = CompletableFuture.supplyAsync(() -> dtron(args));
-        long deadline = System.nanoTime() + Duration.ofSeconds(20).toNanos();
-        while (true) {
-            try {
-                TronLamp.run(port, TronAdapterClient.TimeMode.SHARED_VIRTUAL_CLOCK, false, 1000);
-                break;
-            } catch (java.io.UncheckedIOException e) {
-                if (!(e.getCause().getCause() instanceof ConnectException) || System.nanoTime() > deadline) {
-                    throw e;
-                }
-                Thread.sleep(50);
-            }
-        }
+        TronLamp.runWhenListening(port);
         return run.get(60, TimeUnit.SECONDS);
     }
 

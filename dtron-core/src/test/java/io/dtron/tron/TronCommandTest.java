@@ -8,7 +8,6 @@ import io.dtron.cli.DtronCommand;
 import java.io.IOException;
 import java.io.PrintWriter;
 import java.io.StringWriter;
-import java.net.ConnectException;
 import java.net.InetAddress;
 import java.net.ServerSocket;
 import java.nio.file.Files;
@@ -98,7 +97,7 @@ class TronCommandTest {
         }
         CompletableFuture<Run> run = CompletableFuture.supplyAsync(() -> tron("--virtual-time", "-X", "9", "-F",
                 "3000", lightContr.toString(), "--", Integer.toString(port)));
-        connectLamp(port);
+        TronLamp.runWhenListening(port);
         Run r = run.get(60, TimeUnit.SECONDS);
         assertEquals(0, r.exit(), r.out() + r.err());
         assertTrue(r.out().contains("dtron tron: waiting for the adapter on 127.0.0.1:" + port), r.out());
@@ -133,26 +132,11 @@ class TronCommandTest {
         withPort[args.length] = Integer.toString(port);
         CompletableFuture<Run> run = CompletableFuture.supplyAsync(() -> tron(withPort));
         try {
-            connectLamp(port);
+            TronLamp.runWhenListening(port);
         } catch (RuntimeException e) {
             // the tester ended the connection when it could not go on
         }
         return run.get(60, TimeUnit.SECONDS);
-    }
-
-    private static void connectLamp(int port) throws Exception {
-        long deadline = System.nanoTime() + Duration.ofSeconds(20).toNanos();
-        while (true) {
-            try {
-                TronLamp.run(port, TronAdapterClient.TimeMode.SHARED_VIRTUAL_CLOCK, false, 1000);
-                return;
-            } catch (java.io.UncheckedIOException e) {
-                if (!(e.getCause().getCause() instanceof ConnectException) || System.nanoTime() > deadline) {
-                    throw e;
-                }
-                Thread.sleep(50);
-            }
-        }
     }
 
     @Test

@@ -2,6 +2,7 @@ package io.dtron.tron;
 
 import java.io.IOException;
 import java.io.UncheckedIOException;
+import java.net.ConnectException;
 import java.time.Duration;
 
 /** {@link TestLamp} behind a {@link TronAdapterClient}: in this JVM, or in a JVM of its own ({@link LampIutMain}). */
@@ -18,6 +19,25 @@ final class TronLamp {
             throw new UncheckedIOException(e);
         } catch (InterruptedException e) {
             Thread.currentThread().interrupt();
+        }
+    }
+
+    /**
+     * {@link #run} in shared virtual time with a timeout of 1000 units, against a tester that is about to listen on
+     * {@code port}: a refused connection is tried again for up to 20 seconds.
+     */
+    static void runWhenListening(int port) throws InterruptedException {
+        long deadline = System.nanoTime() + Duration.ofSeconds(20).toNanos();
+        while (true) {
+            try {
+                run(port, TronAdapterClient.TimeMode.SHARED_VIRTUAL_CLOCK, false, 1000);
+                return;
+            } catch (UncheckedIOException e) {
+                if (!(e.getCause().getCause() instanceof ConnectException) || System.nanoTime() > deadline) {
+                    throw e;
+                }
+                Thread.sleep(50);
+            }
         }
     }
 
