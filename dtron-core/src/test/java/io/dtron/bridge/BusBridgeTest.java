@@ -71,6 +71,16 @@ class BusBridgeTest {
         }
 
         @Override
+        public void report(Event output, long eventMicros) {
+            outputs.add(output);
+        }
+
+        @Override
+        public void inputApplied(long ordinal, long eventMicros) {
+            throw new AssertionError("the bridge acknowledges no inputs yet");
+        }
+
+        @Override
         public void inconclusive(String reason) {
             inconclusive.add(reason);
         }

@@ -12,6 +12,24 @@ public interface AdapterContext {
     void report(Event output);
 
     /**
+     * Reports an output of the system under test that happened at {@code eventMicros} on the run's clock
+     * (microseconds since time 0), as its adapter stamped it. Thread-safe. Outputs may arrive out of the order of
+     * their times: the tester places each by its time, as long as it arrives within the run's reorder window
+     * ({@link TestOptions#reorderWindowMicros()}); one that arrives later, after events the tester already committed
+     * to, ends the run INCONCLUSIVE, naming its delay.
+     */
+    void report(Event output, long eventMicros);
+
+    /**
+     * Reports that input number {@code ordinal} (1 for the first input the engine passed to {@link Adapter#perform},
+     * 2 for the next, ...) was applied to the system under test at {@code eventMicros} on the run's clock, later than
+     * the engine performed it. Thread-safe. The tester then places the input at that time (an input is never placed
+     * before the time it was performed); if the environment did not allow it then, the run ends INCONCLUSIVE (the
+     * input was executed too late), never FAILED.
+     */
+    void inputApplied(long ordinal, long eventMicros);
+
+    /**
      * Ends the run INCONCLUSIVE with {@code reason} (thread-safe): the adapter lost the system under test (a
      * connection dropped, an adapter process left the bus) and the test cannot go on.
      */

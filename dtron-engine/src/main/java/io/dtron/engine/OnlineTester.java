@@ -101,6 +101,19 @@ public final class OnlineTester {
         }
 
         @Override
+        public void report(Event output, long eventMicros) {
+            clock.reportAt(Objects.requireNonNull(output, "output"), eventMicros);
+        }
+
+        @Override
+        public void inputApplied(long ordinal, long eventMicros) {
+            if (ordinal <= 0) {
+                throw new IllegalArgumentException("inputs are numbered from 1: " + ordinal);
+            }
+            clock.inputApplied(ordinal, eventMicros);
+        }
+
+        @Override
         public void inconclusive(String reason) {
             clock.abort(Objects.requireNonNull(reason, "reason"));
         }
@@ -121,6 +134,32 @@ public final class OnlineTester {
         }
     }
 
+    /**
+     * An event the tester has seen but not committed to: an earlier-stamped message may still arrive within the
+     * reorder window and be placed before it. Kept in time order, each with the state set after it.
+     */
+    private static final class Pending {
+        final Event event;
+        final boolean input;
+        final long ordinal;
+        final long sentMicros;
+        long micros;
+        StateSet after;
+        long afterMicros;
+
+        Pending(Event event, boolean input, long ordinal, long micros) {
+            this.event = event;
+            this.input = input;
+            this.ordinal = ordinal;
+            this.sentMicros = micros;
+            this.micros = micros;
+        }
+    }
+
+    /** A verdict that holds for the order of events seen so far, final once no earlier event can arrive. */
+    private record Held(TestResult result, long finalMicros) {
+    }
+
     /** One run: its state and its loop. */
     private final class Run {
         private final Semantics semantics;
@@ -130,8 +169,18 @@ public final class OnlineTester {
         private final long unit;
         private final int ticksPerUnit;
         private final long timeoutMicros;
+        private final long window;
+        /** The state set after every event committed to, at the time of the last of them. */
+        private StateSet committed;
+        private long committedMicros;
+        /** The events after those, in time order; {@link #set} is the state after all of them. */
+        private final List<Pending> pending = new ArrayList<>();
+        /** The committed inputs by number, while their acknowledgements may still come. */
+        private final Map<Long, Pending> committedInputs = new LinkedHashMap<>();
         private StateSet set;
         private long lastMicros;
+        private Held held;
+        private long performed;
         private int inputs;
         private int outputs;
 
@@ -143,59 +192,122 @@ public final class OnlineTester {
             this.unit = options.timeUnitMicros();
             this.ticksPerUnit = ticksPerUnit;
             this.timeoutMicros = Math.multiplyExact(options.timeout(), unit);
+            this.window = options.reorderWindowMicros();
             this.set = StateSet.initial(semantics, partition);
+            this.committed = set;
         }
 
         /** Plans the first step once before time starts, so that a cold start does not eat real time. */
         void warmUp() {
-            Plan.of(set, semantics, partition, testInterface, unit, ticksCeil(timeoutMicros));
+            plan();
+        }
+
+        private Plan plan() {
+            return Plan.of(set, semantics, partition, testInterface, unit, ticksCeil(timeoutMicros - lastMicros));
         }
 
         TestResult loop() {
             while (true) {
                 long now = clock.nowMicros();
-                if (now >= timeoutMicros) {
-                    return result(Verdict.PASSED, "the timeout of " + options.timeout() + " time units was reached"
-                            + " after " + inputs + " inputs and " + outputs + " outputs, all as the model allows");
+                if (held != null) {
+                    if (now >= held.finalMicros()) {
+                        return result(held.result().verdict(), held.result().explanation());
+                    }
+                    TestResult verdict = receive(clock.awaitUntil(held.finalMicros()));
+                    if (verdict != null) {
+                        return verdict;
+                    }
+                    continue;
                 }
-                long horizon = ticksCeil(timeoutMicros - lastMicros);
-                Plan plan = Plan.of(set, semantics, partition, testInterface, unit, horizon);
+                commit(now - window);
+                if (now >= timeoutMicros) {
+                    if (now >= timeoutMicros + window) {
+                        return result(Verdict.PASSED, "the timeout of " + options.timeout() + " time units was"
+                                + " reached after " + inputs + " inputs and " + outputs + " outputs, all as the model"
+                                + " allows");
+                    }
+                    TestResult verdict = receive(clock.awaitUntil(timeoutMicros + window));
+                    if (verdict != null) {
+                        return verdict;
+                    }
+                    continue;
+                }
+                Plan plan = plan();
                 long elapsed = ticksFloor(now - lastMicros);
                 Plan.Choice choice = plan.choose(elapsed, random, options.delayPolicy(),
                         options.delayBound() * ticksPerUnit);
-                long target = choice.isInput() ? lastMicros + micros(choice.ticks())
-                        : Math.min(timeoutMicros, lastMicros + micros(choice.ticks()));
-                RunClock.TimedEvent output = clock.awaitUntil(target);
-                if (output != null) {
-                    TestResult verdict = observe(output, plan);
+                long at = lastMicros + micros(choice.ticks());
+                // a deadline within the test is declared missed only when the outputs stamped before it had the
+                // reorder window to arrive
+                boolean deadline = !choice.isInput() && plan.hasDeadline() && choice.ticks() > plan.deadline()
+                        && at < timeoutMicros;
+                long target = choice.isInput() ? at : deadline ? at + window : Math.min(timeoutMicros, at);
+                RunClock.TimedEvent event = clock.awaitUntil(target);
+                if (event != null) {
+                    TestResult verdict = receive(event);
                     if (verdict != null) {
                         return verdict;
                     }
-                } else if (clock.nowMicros() >= timeoutMicros && !choice.isInput()) {
-                    continue;
                 } else if (choice.isInput()) {
                     RunClock.TimedEvent earlier = clock.drain();
-                    TestResult verdict = earlier != null ? observe(earlier, plan) : apply(choice, plan);
+                    TestResult verdict = earlier != null ? receive(earlier) : apply(choice, plan);
                     if (verdict != null) {
                         return verdict;
                     }
-                } else if (plan.hasDeadline() && choice.ticks() > plan.deadline()) {
+                } else if (deadline) {
                     return result(Verdict.FAILED, "no output came by " + time(lastMicros + micros(plan.deadline()))
-                            + ": the model required the system under test to act by then. " + plan.explainOutputs(
-                            this::time, lastMicros));
+                            + ": the model required the system under test to act by then" + (window > 0
+                            ? " (the tester waited " + Plan.units(window, unit) + " time units more for messages"
+                            + " in transit)" : "") + ". " + plan.explainOutputs(this::time, lastMicros));
                 }
             }
         }
 
-        private TestResult observe(RunClock.TimedEvent timed, Plan plan) {
+        /** Commits to the pending events at or before {@code horizon}: nothing earlier can arrive any more. */
+        private void commit(long horizon) {
+            while (!pending.isEmpty() && pending.get(0).micros <= horizon) {
+                Pending p = pending.remove(0);
+                committed = p.after;
+                committedMicros = p.afterMicros;
+                if (p.input) {
+                    committedInputs.put(p.ordinal, p);
+                }
+            }
+            committedInputs.values().removeIf(p -> p.sentMicros < horizon - window);
+        }
+
+        /** Takes what an adapter reported; returns a verdict that ends the run, or null. */
+        private TestResult receive(RunClock.TimedEvent timed) {
+            if (timed == null) {
+                return null;
+            }
             if (timed.abort() != null) {
                 return result(Verdict.INCONCLUSIVE, timed.abort() + " (at " + time(timed.micros()) + ")");
             }
+            if (timed.appliedInput() > 0) {
+                return acknowledged(timed.appliedInput(), timed.micros());
+            }
             Event event = timed.event();
+            long at = timed.micros();
+            long now = clock.nowMicros();
+            if (held == null) {
+                commit(now - window);
+            }
+            if (window == 0) {
+                // a scheduled task that ran late reports at its due time, which may be before the last event seen:
+                // the tester has committed to that event, so the output comes after it
+                at = Math.max(at, lastMicros);
+            } else if (at < committedMicros) {
+                return result(Verdict.INCONCLUSIVE, "output " + event + " happened at " + time(at) + " but reached"
+                        + " the tester at " + time(now) + ", " + Plan.units(now - at, unit) + " time units later:"
+                        + " more than the reorder window of " + Plan.units(window, unit) + " time units, after the"
+                        + " tester had committed to events up to " + time(committedMicros) + "; its place among them"
+                        + " is unknown");
+            }
+            if (at > timeoutMicros) {
+                return null; // after the end of the test
+            }
             TestInterface.ObservableChannel channel = testInterface.output(event.channel()).orElse(null);
-            // a scheduled task that ran late reports at its due time, which may be before the last event seen:
-            // the tester has committed to that event, so the output comes after it
-            long at = Math.max(timed.micros(), lastMicros);
             if (channel == null) {
                 return result(Verdict.INCONCLUSIVE, "the adapter reported '" + event.channel() + "' at " + time(at)
                         + ", which is not an output of the model's interface");
@@ -209,10 +321,81 @@ public final class OnlineTester {
                 l.outputObserved(event, at);
             }
             outputs++;
+            return place(new Pending(event, false, 0, at));
+        }
+
+        /** Input number {@code ordinal} was applied at {@code micros}: places it there. */
+        private TestResult acknowledged(long ordinal, long micros) {
+            if (held == null) {
+                commit(clock.nowMicros() - window);
+            }
+            for (Pending p : pending) {
+                if (p.input && p.ordinal == ordinal) {
+                    pending.remove(p);
+                    // an input is not applied before it is sent: an earlier time is the clocks' error
+                    p.micros = Math.max(micros, p.sentMicros);
+                    return place(p);
+                }
+            }
+            Pending input = committedInputs.remove(ordinal);
+            if (input != null && micros - input.sentMicros > window) {
+                return result(Verdict.INCONCLUSIVE, "input " + input.event + ", sent at " + time(input.sentMicros)
+                        + ", was applied at " + time(micros) + ", " + Plan.units(micros - input.sentMicros, unit)
+                        + " time units later: more than the reorder window of " + Plan.units(window, unit) + " time"
+                        + " units, after the tester had committed to it");
+            }
+            return null;
+        }
+
+        /**
+         * Puts an event among the pending ones by its time and judges the events from there on. A verdict is held
+         * until no event before the one it concerns can arrive any more; without a reorder window it is final.
+         */
+        private TestResult place(Pending event) {
+            int index = pending.size();
+            while (index > 0 && pending.get(index - 1).micros > event.micros) {
+                index--;
+            }
+            pending.add(index, event);
+            int from = held == null ? index : 0;
+            if (from == 0) {
+                set = committed;
+                lastMicros = committedMicros;
+            } else {
+                set = pending.get(from - 1).after;
+                lastMicros = pending.get(from - 1).afterMicros;
+            }
+            held = null;
+            for (int i = from; i < pending.size(); i++) {
+                Pending p = pending.get(i);
+                TestResult verdict = p.input ? reapply(p) : judge(p.event, p.micros);
+                if (verdict != null) {
+                    if (window == 0) {
+                        return verdict;
+                    }
+                    held = new Held(verdict, p.micros + window);
+                    return null;
+                }
+                p.after = set;
+                p.afterMicros = lastMicros;
+            }
+            return null;
+        }
+
+        /** Judges output {@code event} at {@code at} on the state set: a verdict, or null when it is allowed. */
+        private TestResult judge(Event event, long at) {
+            TestInterface.ObservableChannel channel = testInterface.output(event.channel()).orElseThrow();
             StateSet atTime = set.afterWindow(ticksFloor(at - lastMicros), ticksCeil(at - lastMicros));
             if (atTime.isEmpty()) {
+                Pending late = inputAppliedAfter(at);
+                if (late != null) {
+                    return result(Verdict.INCONCLUSIVE, "input " + late.event + ", sent at " + time(late.sentMicros)
+                            + ", was applied at " + time(late.micros) + ", after output " + event + " happened at "
+                            + time(at) + ": the model cannot let that much time pass before the input (input"
+                            + " executed too late)");
+                }
                 return result(Verdict.FAILED, "output " + event + " observed at " + time(at) + " is too late: "
-                        + plan.explainOutputs(this::time, lastMicros));
+                        + plan().explainOutputs(this::time, lastMicros));
             }
             List<StateSet.Successor> moves = atTime.successors(channel.channel());
             List<io.dtron.engine.internal.sem.SymState> matching = new ArrayList<>();
@@ -236,9 +419,42 @@ public final class OnlineTester {
                 return result(Verdict.INCONCLUSIVE, "the environment model cannot accept output " + event + " at "
                         + time(at) + ": " + envRefusal);
             }
+            Plan plan = plan();
             return result(Verdict.FAILED, "output " + event + " observed at " + time(at) + " is not allowed then"
                     + plan.timing(channel.channel(), ticksFloor(at - lastMicros)) + ". "
                     + plan.explainOutputs(this::time, lastMicros));
+        }
+
+        /** A pending input sent at or before {@code at} but applied after it, or null. */
+        private Pending inputAppliedAfter(long at) {
+            for (Pending p : pending) {
+                if (p.input && p.sentMicros <= at && p.micros > at) {
+                    return p;
+                }
+            }
+            return null;
+        }
+
+        /** Applies pending input {@code p} again, with its values, at its (possibly new) time. */
+        private TestResult reapply(Pending p) {
+            TestInterface.ObservableChannel channel = testInterface.input(p.event.channel()).orElseThrow();
+            StateSet atTime = set.afterWindow(ticksFloor(p.micros - lastMicros), ticksCeil(p.micros - lastMicros));
+            List<io.dtron.engine.internal.sem.SymState> next = new ArrayList<>();
+            for (StateSet.Successor s : atTime.successors(channel.channel())) {
+                if (valuesOf(channel, s.state()).equals(p.event.values())) {
+                    next.add(s.state());
+                }
+            }
+            if (next.isEmpty()) {
+                String late = p.micros > p.sentMicros ? " It was sent at " + time(p.sentMicros) + " and applied "
+                        + Plan.units(p.micros - p.sentMicros, unit) + " time units later." : "";
+                return result(Verdict.INCONCLUSIVE, "input " + p.event + " was executed at " + time(p.micros)
+                        + ", when the environment no longer allowed it, after the events that happened before it"
+                        + " (input executed too late)." + late + " " + plan().explainInputs(this::time, lastMicros));
+            }
+            set = atTime.of(next);
+            lastMicros = p.micros;
+            return null;
         }
 
         private TestResult apply(Plan.Choice choice, Plan plan) {
@@ -266,6 +482,10 @@ public final class OnlineTester {
             Event event = new Event(channel.name(), values);
             set = atTime.of(next);
             lastMicros = now;
+            Pending p = new Pending(event, true, ++performed, now);
+            p.after = set;
+            p.afterMicros = now;
+            pending.add(p);
             inputs++;
             for (TestListener l : listeners) {
                 l.inputApplied(event, now);

@@ -13,9 +13,14 @@ import java.util.Objects;
  *                       time units
  * @param virtualTime    whether the run uses virtual time (deterministic, as fast as the CPU allows) rather
  *                       than real time
+ * @param reorderWindowMicros how long, in microseconds, the tester holds its judgement of an event for messages
+ *                       that happened before it but are still in transit (the reorder window Delta): observations
+ *                       are placed by their own times, a deadline is declared missed only this long after it
+ *                       passed, and a verdict is final only when no earlier event can still arrive. 0 for systems
+ *                       under test that report in time order (in-process adapters)
  */
 public record TestOptions(long seed, long timeUnitMicros, long timeout, DelayPolicy delayPolicy, long delayBound,
-                          boolean virtualTime) {
+                          boolean virtualTime, long reorderWindowMicros) {
     public TestOptions {
         Objects.requireNonNull(delayPolicy, "delayPolicy");
         if (timeUnitMicros <= 0) {
@@ -27,6 +32,15 @@ public record TestOptions(long seed, long timeUnitMicros, long timeout, DelayPol
         if (delayBound < 0) {
             throw new IllegalArgumentException("the delay bound must not be negative");
         }
+        if (reorderWindowMicros < 0) {
+            throw new IllegalArgumentException("the reorder window must not be negative");
+        }
+    }
+
+    /** Options without a reorder window, for systems under test that report in time order. */
+    public TestOptions(long seed, long timeUnitMicros, long timeout, DelayPolicy delayPolicy, long delayBound,
+                       boolean virtualTime) {
+        this(seed, timeUnitMicros, timeout, delayPolicy, delayBound, virtualTime, 0);
     }
 
     /** Options with defaults: random delays, virtual time, time unit 1000 us, timeout 1000 units. */
@@ -36,21 +50,26 @@ public record TestOptions(long seed, long timeUnitMicros, long timeout, DelayPol
 
     /** These options with another timeout (model time units). */
     public TestOptions withTimeout(long units) {
-        return new TestOptions(seed, timeUnitMicros, units, delayPolicy, delayBound, virtualTime);
+        return new TestOptions(seed, timeUnitMicros, units, delayPolicy, delayBound, virtualTime, reorderWindowMicros);
     }
 
     /** These options with another time unit. */
     public TestOptions withTimeUnit(long micros) {
-        return new TestOptions(seed, micros, timeout, delayPolicy, delayBound, virtualTime);
+        return new TestOptions(seed, micros, timeout, delayPolicy, delayBound, virtualTime, reorderWindowMicros);
     }
 
     /** These options with another delay policy and bound. */
     public TestOptions withDelayPolicy(DelayPolicy policy, long bound) {
-        return new TestOptions(seed, timeUnitMicros, timeout, policy, bound, virtualTime);
+        return new TestOptions(seed, timeUnitMicros, timeout, policy, bound, virtualTime, reorderWindowMicros);
     }
 
     /** These options in real or virtual time. */
     public TestOptions withVirtualTime(boolean virtual) {
-        return new TestOptions(seed, timeUnitMicros, timeout, delayPolicy, delayBound, virtual);
+        return new TestOptions(seed, timeUnitMicros, timeout, delayPolicy, delayBound, virtual, reorderWindowMicros);
+    }
+
+    /** These options with another reorder window (microseconds). */
+    public TestOptions withReorderWindow(long micros) {
+        return new TestOptions(seed, timeUnitMicros, timeout, delayPolicy, delayBound, virtualTime, micros);
     }
 }

@@ -72,10 +72,20 @@ public final class VirtualRun implements AdapterContext {
 
     @Override
     public void report(Event output) {
+        report(output, clock.nowMicros());
+    }
+
+    @Override
+    public void report(Event output, long eventMicros) {
         TestInterface.ObservableChannel channel = testInterface.output(output.channel()).orElseThrow(
                 () -> new AssertionError("the model has no output " + output.channel()));
         checkVariables(channel, output);
-        outputs.add(new Output(clock.nowMicros(), output));
+        outputs.add(new Output(eventMicros, output));
+    }
+
+    @Override
+    public void inputApplied(long ordinal, long eventMicros) {
+        throw new AssertionError("the sample systems apply their inputs when they are performed");
     }
 
     @Override

@@ -13,13 +13,14 @@ import java.util.concurrent.LinkedBlockingQueue;
 public abstract class RunClock implements TestClock {
 
     /**
-     * An output with the time it was reported, in microseconds since the start; or, with a null event, the
-     * adapter's report that the run cannot go on, with the reason.
+     * What an adapter reported, with its time in microseconds since the start: an output (with {@code event}); the
+     * adapter's report that the run cannot go on (with {@code abort}, the reason); or the acknowledgement that
+     * input number {@code appliedInput} (1 for the first the engine performed) was applied at that time.
      */
-    public record TimedEvent(Event event, long micros, String abort) {
+    public record TimedEvent(Event event, long micros, String abort, long appliedInput) {
         /** An output. */
         public TimedEvent(Event event, long micros) {
-            this(event, micros, null);
+            this(event, micros, null, 0);
         }
     }
 
@@ -66,24 +67,39 @@ public abstract class RunClock implements TestClock {
      * so that a simulated system's timing does not depend on how busy the tester was.
      */
     public final void report(Event output) {
-        enqueue(output, null);
+        synchronized (outputs) {
+            outputs.add(new TimedEvent(output, logicalNow()));
+        }
+    }
+
+    /**
+     * Queues an output that happened at {@code micros}, as its adapter stamped it (thread-safe). It may be earlier
+     * than outputs already queued: the tester places it by its time, within its reorder window.
+     */
+    public final void reportAt(Event output, long micros) {
+        synchronized (outputs) {
+            outputs.add(new TimedEvent(output, micros));
+        }
+    }
+
+    /** Queues the acknowledgement that input number {@code ordinal} was applied at {@code micros} (thread-safe). */
+    public final void inputApplied(long ordinal, long micros) {
+        synchronized (outputs) {
+            outputs.add(new TimedEvent(null, micros, null, ordinal));
+        }
     }
 
     /** Queues the adapter's report that the run cannot go on (thread-safe). */
     public final void abort(String reason) {
-        enqueue(null, reason);
-    }
-
-    /** Reads the time and queues in one step, so that {@link #quietNow} sees an output either waiting or later. */
-    private void enqueue(Event output, String abort) {
         synchronized (outputs) {
-            outputs.add(new TimedEvent(output, logicalNow(), abort));
+            outputs.add(new TimedEvent(null, logicalNow(), reason, 0));
         }
     }
 
     /**
      * The time now if no output is waiting, else -1. Atomic with {@link #report}: an output reported before is
-     * waiting, one reported after carries this time or a later one. So a tester that acts at the time returned
+     * waiting, one reported after carries this time or a later one (an output reported with its own earlier time,
+     * {@link #reportAt}, is placed by the tester's reorder window). So a tester that acts at the time returned
      * never acts after an output it has not seen, however long a reporting thread was held up.
      */
     public final long quietNow() {

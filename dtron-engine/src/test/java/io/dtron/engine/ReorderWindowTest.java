@@ -1,0 +1,197 @@
+package io.dtron.engine;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+import io.dtron.model.ModelLoader;
+import io.dtron.model.Network;
+import io.dtron.model.TestInterface;
+import org.junit.jupiter.api.Test;
+
+/**
+ * Observations placed by their own times within the reorder window: a message that crossed another on its way to
+ * the tester is judged in its true place, and delays beyond the window end the run INCONCLUSIVE, never FAILED.
+ * Virtual time, 1000 us per unit.
+ */
+class ReorderWindowTest {
+    private static final long UNIT = 1000;
+
+    /** Output x is allowed only before input y, which the environment sends at t=10 (and by t=LATEST). */
+    private static final String CROSSING = """
+            chan i_y, o_x;
+            process Sut() {
+                state Waiting, Got, Over;
+                init Waiting;
+                trans Waiting -> Got { sync o_x!; },
+                      Waiting -> Over { sync i_y?; },
+                      Got -> Over { sync i_y?; };
+            }
+            process Env() {
+                clock e;
+                state Start { e <= LATEST }, Sent;
+                init Start;
+                trans Start -> Start { sync o_x?; },
+                      Start -> Sent { guard e >= 10; sync i_y!; },
+                      Sent -> Sent { sync o_x?; };
+            }
+            system Sut, Env;
+            """;
+
+    private static String crossing(int latest) {
+        return CROSSING.replace("LATEST", Integer.toString(latest));
+    }
+
+    /** Output x must come by t=5. */
+    private static final String DEADLINE = """
+            chan o_x;
+            process Sut() {
+                clock c;
+                state Waiting { c <= 5 }, Done;
+                init Waiting;
+                trans Waiting -> Done { sync o_x!; };
+            }
+            process Env() {
+                state Watching;
+                init Watching;
+                trans Watching -> Watching { sync o_x?; };
+            }
+            system Sut, Env;
+            """;
+
+    /**
+     * A system whose adapter reports output x, that happened at {@code happened} units, when the run's clock reads
+     * {@code arrives} units; and, if {@code appliedAt} is positive, acknowledges the first input as applied then.
+     */
+    private static final class Delayed implements Adapter {
+        private final double happened;
+        private final double arrives;
+        private final double appliedAt;
+        private AdapterContext context;
+
+        Delayed(double happened, double arrives, double appliedAt) {
+            this.happened = happened;
+            this.arrives = arrives;
+            this.appliedAt = appliedAt;
+        }
+
+        @Override
+        public void start(AdapterContext context) {
+            this.context = context;
+            context.clock().schedule(micros(arrives), () -> context.report(Event.of("x"), micros(happened)));
+        }
+
+        @Override
+        public void perform(Event input) {
+            if (appliedAt > 0) {
+                long now = context.clock().nowMicros();
+                context.clock().schedule(micros(appliedAt) - now, () -> context.inputApplied(1, micros(appliedAt)));
+            }
+        }
+    }
+
+    private static long micros(double units) {
+        return Math.round(units * UNIT);
+    }
+
+    private static TestResult run(String model, Adapter adapter, double windowUnits) throws Exception {
+        Network n = ModelLoader.load("model.xta", model);
+        TestOptions options = TestOptions.defaults(1).withTimeout(20).withDelayPolicy(DelayPolicy.EAGER, 0)
+                .withReorderWindow(micros(windowUnits));
+        return new OnlineTester(n, TestInterface.fromNames(n), adapter, options).run();
+    }
+
+    @Test
+    void anOutputThatCrossedAnInputIsJudgedWhereItHappened() throws Exception {
+        // x happened at 9.5, before y at 10, but reached the tester at 10.5
+        TestResult r = run(crossing(10), new Delayed(9.5, 10.5, 0), 2);
+        assertEquals(Verdict.PASSED, r.verdict(), r.explanation());
+        assertEquals(1, r.outputs(), r.toString());
+        assertEquals(1, r.inputs(), r.toString());
+    }
+
+    @Test
+    void withoutAWindowTheSameCrossingFails() throws Exception {
+        TestResult r = run(crossing(10), new Delayed(9.5, 10.5, 0), 0);
+        assertEquals(Verdict.FAILED, r.verdict(), r.explanation());
+    }
+
+    @Test
+    void anOutputTrulyAfterTheInputFailsAfterTheWindow() throws Exception {
+        TestResult r = run(crossing(10), new Delayed(10.5, 10.6, 0), 2);
+        assertEquals(Verdict.FAILED, r.verdict(), r.explanation());
+        assertTrue(r.explanation().contains("observed at t=10.500"), r.explanation());
+        // the verdict waits until nothing stamped before 10.5 can arrive
+        assertTrue(r.durationMicros() >= micros(12.5), r.toString());
+    }
+
+    @Test
+    void aDelayBeyondTheWindowIsInconclusiveAndNamesTheDelay() throws Exception {
+        // x happened at 9.5 and arrived 3 units later; the window is 1 unit, so y (at 10) was committed at 11
+        TestResult r = run(crossing(10), new Delayed(9.5, 12.5, 0), 1);
+        assertEquals(Verdict.INCONCLUSIVE, r.verdict(), r.explanation());
+        assertTrue(r.explanation().contains("happened at t=9.500 but reached the tester at t=12.500, 3.000 time"
+                + " units later: more than the reorder window of 1.000"), r.explanation());
+    }
+
+    @Test
+    void anInputIsPlacedWhereItsAdapterAppliedIt() throws Exception {
+        // y sent at 10 (the environment allows it until 12) but applied at 10.8; x happened at 10.3, before y
+        // reached the system
+        TestResult passed = run(crossing(12), new Delayed(10.3, 10.4, 10.8), 2);
+        assertEquals(Verdict.PASSED, passed.verdict(), passed.explanation());
+        // the same output after the input was applied is a failure of the system
+        TestResult failed = run(crossing(12), new Delayed(10.9, 11, 10.8), 2);
+        assertEquals(Verdict.FAILED, failed.verdict(), failed.explanation());
+        assertTrue(failed.explanation().contains("observed at t=10.900"), failed.explanation());
+    }
+
+    @Test
+    void anInputAppliedAfterTheEnvironmentsWindowIsInconclusive() throws Exception {
+        // the environment sends y by t=12: applied at 13 is outside its window
+        TestResult r = run(crossing(12), new Delayed(15, 15, 13), 4);
+        assertEquals(Verdict.INCONCLUSIVE, r.verdict(), r.explanation());
+        assertTrue(r.explanation().contains("input executed too late"), r.explanation());
+        assertTrue(r.explanation().contains("sent at t=10.000 and applied 3.000 time units later"), r.explanation());
+    }
+
+    @Test
+    void anAcknowledgementBeyondTheWindowIsInconclusiveAndNamesTheDelay() throws Exception {
+        // applied 3 units after it was sent, with a window of 2: the tester had committed to the input at 12
+        TestResult r = run(crossing(20), new Delayed(15, 15, 13), 2);
+        assertEquals(Verdict.INCONCLUSIVE, r.verdict(), r.explanation());
+        assertTrue(r.explanation().startsWith("input y(), sent at t=10.000, was applied at t=13.000, 3.000 time"
+                + " units later: more than the reorder window of 2.000 time units"), r.explanation());
+    }
+
+    @Test
+    void anOutputTheEnvironmentCouldNotWaitForBecauseTheInputWasLateIsInconclusive() throws Exception {
+        // the environment must send y at exactly 10; applied at 10.8, after x at 10.3: the model cannot let time
+        // pass to 10.3 before y, so the late input, not the system, is at fault
+        TestResult r = run(crossing(10), new Delayed(10.3, 10.4, 10.8), 2);
+        assertEquals(Verdict.INCONCLUSIVE, r.verdict(), r.explanation());
+        assertTrue(r.explanation().contains("was applied at t=10.800, after output x() happened at t=10.300"),
+                r.explanation());
+        assertTrue(r.explanation().contains("input executed too late"), r.explanation());
+    }
+
+    @Test
+    void aDeadlineIsMissedOnlyWhenTheWindowHasPassed() throws Exception {
+        // x happened at 4.9, in time, and arrived at 5.4: judged in time with a window of 1 unit
+        TestResult inTime = run(DEADLINE, new Delayed(4.9, 5.4, 0), 1);
+        assertEquals(Verdict.PASSED, inTime.verdict(), inTime.explanation());
+        TestResult noWindow = run(DEADLINE, new Delayed(4.9, 5.4, 0), 0);
+        assertEquals(Verdict.FAILED, noWindow.verdict(), noWindow.explanation());
+        assertTrue(noWindow.explanation().startsWith("no output came by t=5.000"), noWindow.explanation());
+        TestResult late = run(DEADLINE, new Delayed(5.2, 5.4, 0), 1);
+        assertEquals(Verdict.FAILED, late.verdict(), late.explanation());
+    }
+
+    @Test
+    void aMissedDeadlineSaysHowLongTheTesterWaitedForMessagesInTransit() throws Exception {
+        TestResult r = run(DEADLINE, new Delayed(30, 30, 0), 1);
+        assertEquals(Verdict.FAILED, r.verdict(), r.explanation());
+        assertTrue(r.explanation().startsWith("no output came by t=5.000: the model required the system under test"
+                + " to act by then (the tester waited 1.000 time units more for messages in transit)"),
+                r.explanation());
+    }
+}
