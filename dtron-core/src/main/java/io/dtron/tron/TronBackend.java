@@ -216,6 +216,17 @@ public final class TronBackend {
                     }
                 }
 
+                /** TRON's protocol carries no event times: TRON stamps an output when it arrives. */
+                @Override
+                public void report(Event output, long eventMicros) {
+                    report(output);
+                }
+
+                /** TRON's protocol carries no acknowledgements: TRON takes an input as applied when it sent it. */
+                @Override
+                public void inputApplied(long ordinal, long eventMicros) {
+                }
+
                 @Override
                 public void inconclusive(String reason) {
                     lost = reason;
