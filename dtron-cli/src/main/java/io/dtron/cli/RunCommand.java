@@ -135,6 +135,12 @@ final class RunCommand implements Callable<Integer> {
             description = "For random-bounded: the largest delay after an input's window opens, in time units.")
     private long delayBound;
 
+    @Option(names = "--delta", paramLabel = "US|auto", defaultValue = "auto",
+            description = "On the bus: the reorder window, how long the tester holds its judgement for messages still"
+                    + " in transit; every message is placed by the time its sender stamped on it (auto: "
+                    + RunDefaults.REORDER_WINDOW_MICROS + " us).")
+    private String delta;
+
     @Option(names = "--trace", paramLabel = "FILE", description = "Write every event as one JSON line to FILE.")
     private Path trace;
 
@@ -221,6 +227,22 @@ final class RunCommand implements Callable<Integer> {
         }
     }
 
+    /** The reorder window of a bus run, in microseconds: {@code --delta}. */
+    private long reorderWindow() {
+        if (delta.equalsIgnoreCase("auto")) {
+            return RunDefaults.REORDER_WINDOW_MICROS;
+        }
+        try {
+            long micros = Long.parseLong(delta);
+            if (micros >= 0) {
+                return micros;
+            }
+        } catch (NumberFormatException e) {
+            // the message below says what is expected
+        }
+        throw usage("--delta takes a number of microseconds (0 or more) or auto: " + delta);
+    }
+
     /** Rejects options that belong to another mode, and bad values of the bus options. */
     private void checkModeOptions(boolean busMode, boolean tronBackend) {
         if (sut != null && tronAdapter != null) {
@@ -249,6 +271,13 @@ final class RunCommand implements Callable<Integer> {
         }
         if (tronBackend && trace != null) {
             throw usage("--trace records DTRON's engine; with --backend tron, TRON keeps its own log");
+        }
+        if (!busMode && !delta.equalsIgnoreCase("auto")) {
+            throw usage("--delta is the reorder window of the bus; with " + (sut != null ? "--sut" : "--tron-adapter")
+                    + " events reach the tester in their order: leave it out");
+        }
+        if (busMode) {
+            reorderWindow();
         }
         if (waitForAdapters != null && waitForAdapters < 0) {
             throw usage("--wait-for-adapters must not be negative: " + waitForAdapters);
@@ -338,7 +367,8 @@ final class RunCommand implements Callable<Integer> {
                 out.println("dtron run: members " + session.bridge().members());
                 out.flush();
             }
-            TestResult result = judge.test(testInterface, session.bridge(), options, out);
+            TestResult result = judge.test(testInterface, session.bridge(), options.withReorderWindow(reorderWindow()),
+                    out);
             session.printSummary(out);
             out.flush();
             return result.verdict().exitCode();

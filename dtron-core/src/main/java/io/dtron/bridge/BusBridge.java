@@ -13,6 +13,7 @@ import io.dtron.engine.AdapterContext;
 import io.dtron.engine.Event;
 import io.dtron.model.TestInterface;
 import java.time.Duration;
+import java.time.Instant;
 import java.util.ArrayList;
 import java.util.LinkedHashMap;
 import java.util.List;
@@ -34,7 +35,10 @@ import org.slf4j.LoggerFactory;
  * no valid {@code Sync}, is rejected, logged and counted in {@link #stats()}. When the run starts it publishes
  * {@link Dtron#RUN_START} with the run's time unit, and when it ends {@link Dtron#RUN_STOP}. Every input the engine applies is published on the input's
  * channel; every message another member publishes on an output channel is reported to the engine as it arrives.
- * The bridge's own inputs come back in the bus's total order and are not outputs. For every message received, t1
+ * The bridge's own inputs come back in the bus's total order and are not outputs. An output is reported with the
+ * time its sender stamped on it (its publish time, in the run's time since time 0), not the time it arrived, so a
+ * message that crossed another on the bus is judged in its true place (within the run's reorder window, see
+ * {@link io.dtron.engine.TestOptions#reorderWindowMicros()}). For every message received, t1
  * (its publish time) and t2 (its receive time) are recorded: {@link #outputLatency()} and
  * {@link #inputLatency()} summarise t2 - t1.
  *
@@ -57,6 +61,8 @@ public final class BusBridge implements Adapter, AutoCloseable {
     private volatile CountDownLatch ownStop = new CountDownLatch(1);
     private volatile AdapterContext context;
     private volatile boolean running;
+    /** The wall-clock time of the run's time 0, in nanoseconds since the epoch. */
+    private volatile long zeroEpochNanos;
 
     private BusBridge(Dtron dtron, Map<String, IDtronChannel> channels, TestInterface testInterface) {
         this.dtron = dtron;
@@ -160,6 +166,10 @@ public final class BusBridge implements Adapter, AutoCloseable {
     @Override
     public void start(AdapterContext runContext) {
         context = Objects.requireNonNull(runContext, "runContext");
+        long before = epochNanos();
+        long runMicros = runContext.clock().nowMicros();
+        long after = epochNanos();
+        zeroEpochNanos = before + (after - before) / 2 - runMicros * 1000;
         watched.addAll(dtron.getMembers());
         watched.remove(dtron.getMemberId());
         running = true;
@@ -253,7 +263,15 @@ public final class BusBridge implements Adapter, AutoCloseable {
             }
             return;
         }
-        context.report(new Event(channel, message.getVariables()));
+        // stamped before time 0 (it was ordered before the start on the bus): it counts from the start
+        long eventMicros = Math.max(0, Math.floorDiv(message.getPublishTimeNanos() - zeroEpochNanos, 1000));
+        context.report(new Event(channel, message.getVariables()), eventMicros);
+    }
+
+    /** The wall clock, as members stamp their messages: nanoseconds since the epoch. */
+    private static long epochNanos() {
+        Instant now = Instant.now();
+        return now.getEpochSecond() * 1_000_000_000L + now.getNano();
     }
 
     /**

@@ -31,6 +31,12 @@ import java.util.concurrent.CopyOnWriteArrayList;
  */
 public final class OnlineTester {
     private static final int MAX_TICKS_PER_UNIT = 1000;
+    /**
+     * In real time, an input is aimed at least this long before the end of its window (or in the first half of a
+     * narrower one): the tester's thread wakes up tens of microseconds late on an idle machine, milliseconds late on
+     * a loaded one.
+     */
+    private static final long INPUT_MARGIN_MICROS = 2000;
 
     private final Network network;
     private final TestInterface testInterface;
@@ -170,6 +176,8 @@ public final class OnlineTester {
         private final int ticksPerUnit;
         private final long timeoutMicros;
         private final long window;
+        /** How far, in ticks, an input is aimed inside the end of its window: a real clock wakes up late. */
+        private final long inputMargin;
         /** The state set after every event committed to, at the time of the last of them. */
         private StateSet committed;
         private long committedMicros;
@@ -193,6 +201,7 @@ public final class OnlineTester {
             this.ticksPerUnit = ticksPerUnit;
             this.timeoutMicros = Math.multiplyExact(options.timeout(), unit);
             this.window = options.reorderWindowMicros();
+            this.inputMargin = options.virtualTime() ? 0 : ticksCeil(INPUT_MARGIN_MICROS);
             this.set = StateSet.initial(semantics, partition);
             this.committed = set;
         }
@@ -235,7 +244,7 @@ public final class OnlineTester {
                 Plan plan = plan();
                 long elapsed = ticksFloor(now - lastMicros);
                 Plan.Choice choice = plan.choose(elapsed, random, options.delayPolicy(),
-                        options.delayBound() * ticksPerUnit);
+                        options.delayBound() * ticksPerUnit, inputMargin);
                 long at = lastMicros + micros(choice.ticks());
                 // a deadline within the test is declared missed only when the outputs stamped before it had the
                 // reorder window to arrive

@@ -119,9 +119,11 @@ public final class Plan {
     /**
      * Chooses the next move at {@code elapsed} ticks: an input among those the environment allows (with its
      * time by {@code policy}), or waiting until the deadline (or the horizon). When an input is possible at the
-     * deadline, the tester does not wait past it.
+     * deadline, the tester does not wait past it. An input's time is chosen at least {@code marginTicks} before the
+     * end of its window (or in the first half of a narrower window), so that a tester that wakes up a little late
+     * still applies it inside the window.
      */
-    public Choice choose(long elapsed, Random random, DelayPolicy policy, long boundTicks) {
+    public Choice choose(long elapsed, Random random, DelayPolicy policy, long boundTicks, long marginTicks) {
         List<long[]> options = new ArrayList<>();
         List<TestInterface.ObservableChannel> channels = new ArrayList<>();
         boolean mustAct = false;
@@ -134,7 +136,7 @@ public final class Plan {
                 long lo = Math.max(w.lo(), elapsed);
                 long hi = hasDeadline() ? Math.min(w.hi(), deadline) : w.hi();
                 if (lo <= hi) {
-                    options.add(new long[] {lo, hi});
+                    options.add(new long[] {lo, hi - Math.min(marginTicks, (hi - lo) / 2)});
                     channels.add(input);
                     mustAct |= hasDeadline() && w.lo() <= deadline && deadline <= w.hi();
                 }

@@ -95,6 +95,29 @@ class SemanticsWindowsTest {
             """;
 
     @Test
+    void anInputIsAimedInsideTheEndOfItsWindowByTheMargin() throws Exception {
+        // the environment gives i_go between 10 and 20 units
+        Harness h = new Harness("""
+                chan i_go, o_out;
+                process Iut() { state A; init A; trans A -> A { sync i_go?; }; }
+                process Env() { clock e; state W { e <= 20 }, D; init W;
+                    trans W -> D { guard e >= 10; sync i_go!; }, D -> D { sync o_out?; }; }
+                system Iut, Env;
+                """);
+        Plan plan = Plan.of(h.set, h.semantics, h.partition, h.iface, 1000, 100 * TICKS);
+        java.util.Random random = new java.util.Random(1);
+        // lazy: the end of the window, less the margin of 2 units
+        assertEquals(18 * TICKS, plan.choose(0, random, io.dtron.engine.DelayPolicy.LAZY, 0, 2 * TICKS).ticks());
+        assertEquals(20 * TICKS, plan.choose(0, random, io.dtron.engine.DelayPolicy.LAZY, 0, 0).ticks());
+        // a window narrower than twice the margin: its first half
+        assertEquals(15 * TICKS, plan.choose(0, random, io.dtron.engine.DelayPolicy.LAZY, 0, 8 * TICKS).ticks());
+        for (int i = 0; i < 200; i++) {
+            long t = plan.choose(0, random, io.dtron.engine.DelayPolicy.RANDOM, 0, 2 * TICKS).ticks();
+            assertTrue(t >= 10 * TICKS && t <= 18 * TICKS, "chosen at " + t);
+        }
+    }
+
+    @Test
     void invariantsBoundTheWindowStrictOrNot() throws Exception {
         Harness h = new Harness("""
                 chan i_go, o_out;
