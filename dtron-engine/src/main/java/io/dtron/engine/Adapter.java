@@ -14,6 +14,16 @@ public interface Adapter {
     /** Applies an input to the system under test. Called on the engine's thread; must not block for long. */
     void perform(Event input);
 
+    /**
+     * Asked before the engine declares that the system under test missed a deadline: why the system may have been
+     * unable to act, as far as the adapter knows (a member of the bus that does not answer, a lost connection), or
+     * empty when nothing is known against it. With a reason the run ends INCONCLUSIVE naming it, not FAILED. May
+     * take a moment to find out (a probe of the adapter's processes); by default nothing is known.
+     */
+    default java.util.Optional<String> unreachable() {
+        return java.util.Optional.empty();
+    }
+
     /** Called once at the end of the run (the verdict is known). */
     default void stop() {
     }

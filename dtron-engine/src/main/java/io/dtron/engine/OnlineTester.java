@@ -264,8 +264,14 @@ public final class OnlineTester {
                         return verdict;
                     }
                 } else if (deadline) {
-                    return result(Verdict.FAILED, "no output came by " + time(lastMicros + micros(plan.deadline()))
-                            + ": the model required the system under test to act by then" + (window > 0
+                    String deadlineAt = time(lastMicros + micros(plan.deadline()));
+                    java.util.Optional<String> unreachable = adapter.unreachable();
+                    if (unreachable.isPresent()) {
+                        return result(Verdict.INCONCLUSIVE, "no output came by " + deadlineAt + ", and the system"
+                                + " under test may not have been able to act: " + unreachable.get());
+                    }
+                    return result(Verdict.FAILED, "no output came by " + deadlineAt + ": the model required the"
+                            + " system under test to act by then" + (window > 0
                             ? " (the tester waited " + Plan.units(window, unit) + " time units more for messages"
                             + " in transit)" : "") + ". " + plan.explainOutputs(this::time, lastMicros));
                 }

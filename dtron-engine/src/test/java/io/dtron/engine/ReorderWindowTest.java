@@ -194,4 +194,27 @@ class ReorderWindowTest {
                 + " to act by then (the tester waited 1.000 time units more for messages in transit)"),
                 r.explanation());
     }
+
+    @Test
+    void aMissedDeadlineIsInconclusiveWhenTheAdapterKnowsTheSystemCouldNotAct() throws Exception {
+        Adapter gone = new Delayed(30, 30, 0);
+        TestResult r = run(DEADLINE, new Adapter() {
+            @Override
+            public void start(AdapterContext context) {
+                gone.start(context);
+            }
+
+            @Override
+            public void perform(Event input) {
+            }
+
+            @Override
+            public java.util.Optional<String> unreachable() {
+                return java.util.Optional.of("member m1 did not answer");
+            }
+        }, 1);
+        assertEquals(Verdict.INCONCLUSIVE, r.verdict(), r.explanation());
+        assertEquals("no output came by t=5.000, and the system under test may not have been able to act: member m1"
+                + " did not answer", r.explanation());
+    }
 }
