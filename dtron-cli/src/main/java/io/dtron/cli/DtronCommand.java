@@ -9,7 +9,9 @@ import java.util.concurrent.Callable;
 import picocli.CommandLine;
 import picocli.CommandLine.Command;
 import picocli.CommandLine.Model.CommandSpec;
+import picocli.CommandLine.ParameterException;
 import picocli.CommandLine.Spec;
+import picocli.CommandLine.UnmatchedArgumentException;
 
 /**
  * The {@code dtron} command line: {@code dtron check MODEL...} loads and type-checks models, {@code dtron run
@@ -38,12 +40,29 @@ public final class DtronCommand implements Callable<Integer> {
         CommandLine cli = new CommandLine(new DtronCommand());
         cli.setOut(out);
         cli.setErr(err);
+        cli.setParameterExceptionHandler(DtronCommand::usageError);
         cli.setExecutionExceptionHandler((e, commandLine, parseResult) -> {
             commandLine.getErr().println("dtron: internal error: " + e);
             e.printStackTrace(commandLine.getErr());
             return 1;
         });
         return cli.execute(withDefaultCommand(cli, args));
+    }
+
+    /**
+     * Prints a usage error as its reason on one line, prefixed with the command's name, any suggestions for a
+     * mistyped option or command, and where the help is; the whole usage message would bury the reason.
+     */
+    private static int usageError(ParameterException e, String[] args) {
+        CommandLine commandLine = e.getCommandLine();
+        PrintWriter err = commandLine.getErr();
+        String name = commandLine.getCommandSpec().qualifiedName();
+        String message = String.valueOf(e.getMessage());
+        err.println(message.startsWith(name + ":") ? message : name + ": " + message);
+        UnmatchedArgumentException.printSuggestions(e, err);
+        err.println("see '" + name + " --help'");
+        err.flush();
+        return commandLine.getCommandSpec().exitCodeOnInvalidInput();
     }
 
     /**

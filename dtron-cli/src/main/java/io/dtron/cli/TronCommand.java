@@ -29,6 +29,7 @@ import java.util.concurrent.Callable;
 import picocli.CommandLine.Command;
 import picocli.CommandLine.Model.CommandSpec;
 import picocli.CommandLine.Option;
+import picocli.CommandLine.ParameterException;
 import picocli.CommandLine.Parameters;
 import picocli.CommandLine.Spec;
 
@@ -147,15 +148,13 @@ final class TronCommand implements Callable<Integer> {
         PrintWriter err = spec.commandLine().getErr();
         String usage = checkUsage();
         if (usage != null) {
-            err.println("dtron tron: " + usage);
-            return 1;
+            throw usage(usage);
         }
         DelayChoice choice;
         try {
             choice = DelayChoice.parse(delay);
         } catch (IllegalArgumentException e) {
-            err.println("dtron tron: " + e.getMessage());
-            return 1;
+            throw usage(e.getMessage());
         }
         Network network;
         try {
@@ -177,13 +176,18 @@ final class TronCommand implements Callable<Integer> {
         }
     }
 
+    private ParameterException usage(String message) {
+        return new ParameterException(spec.commandLine(), "dtron tron: " + message);
+    }
+
     private String checkUsage() {
         if (!adapterName.equals("SocketAdapter")) {
             return "-I " + adapterName + " is not supported: DTRON speaks TRON's socket adapter protocol only (-I"
                     + " SocketAdapter); for a system in the JVM use dtron run --sut";
         }
-        if (address.isEmpty()) {
-            return "give the adapter's address after the model: -- HOST PORT to connect, or -- PORT to listen";
+        if (address.isEmpty() || address.size() > 2) {
+            return (address.isEmpty() ? "give" : "too many arguments after the model: give") + " the adapter's"
+                    + " address after the model: -- HOST PORT to connect, or -- PORT to listen";
         }
         if (port() < 0) {
             return "'" + address.get(address.size() - 1) + "' is not a port (0 to 65535)";

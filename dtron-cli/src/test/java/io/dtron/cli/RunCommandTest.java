@@ -113,7 +113,7 @@ class RunCommandTest {
         assertTrue(badTimeout.err().contains("the timeout must be a positive number"), badTimeout.err());
         assertFalse((noClass.err() + variant.err() + policy.err()).contains("\tat "), "no stack traces");
         for (Run r : List.of(noClass, notAdapter, variant, policy, badTimeout)) {
-            assertTrue(r.err().contains("Usage: dtron run"), "a usage message: " + r.err());
+            assertOneLineUsageError(r);
         }
     }
 
@@ -128,17 +128,30 @@ class RunCommandTest {
         assertTrue(typo.err().contains("Unmatched argument"), "a command name is not taken for a model: " + typo.err());
     }
 
+    /** A usage error is its reason and where the help is, not the whole usage message; exit code 1. */
+    private static void assertOneLineUsageError(Run r) {
+        assertEquals(1, r.exit(), r.out() + r.err());
+        assertTrue(r.err().startsWith("dtron run: "), r.err());
+        assertTrue(r.err().endsWith("see 'dtron run --help'" + System.lineSeparator()), r.err());
+        assertFalse(r.err().contains("Usage:") || r.err().contains("--wait-for-adapters=N"), r.err());
+        assertTrue(r.err().lines().count() <= 3, "the reason, maybe a suggestion, and the help: " + r.err());
+    }
+
     @Test
-    void unknownOptionsAndBadValuesGetAUsageMessage() {
+    void unknownOptionsAndBadValuesGetTheReasonAndWhereTheHelpIs() {
         Run unknown = dtron(model.toString(), "--bogus");
-        assertEquals(1, unknown.exit());
-        assertTrue(unknown.err().contains("Unknown option: '--bogus'"), unknown.err());
-        assertTrue(unknown.err().contains("Usage: dtron run"), unknown.err());
-        assertTrue(unknown.err().contains("--wait-for-adapters=N"), "the bus options are listed: " + unknown.err());
+        assertOneLineUsageError(unknown);
+        assertTrue(unknown.err().startsWith("dtron run: Unknown option: '--bogus'"), unknown.err());
         Run notANumber = dtron(model.toString(), "--wait-for-adapters", "two");
-        assertEquals(1, notANumber.exit());
+        assertOneLineUsageError(notANumber);
         assertTrue(notANumber.err().contains("Invalid value for option '--wait-for-adapters': 'two'"),
                 notANumber.err());
+        Run missing = dtron("run");
+        assertOneLineUsageError(missing);
+        assertTrue(missing.err().contains("Missing required parameter: 'MODEL'"), missing.err());
+        Run typo = dtron("run", model.toString(), "--sut", TickerForTests.class.getName(), "--virtual-tim");
+        assertOneLineUsageError(typo);
+        assertTrue(typo.err().contains("--virtual-time"), "a suggestion: " + typo.err());
         for (String[] args : List.of(
                 new String[] {"--wait-for-adapters", "-1"},
                 new String[] {"--wait-timeout", "0"},
@@ -149,9 +162,7 @@ class RunCommandTest {
                 new String[] {"--sut", TickerForTests.class.getName(), "--cluster", "x"})) {
             List<String> all = new ArrayList<>(List.of(model.toString()));
             all.addAll(List.of(args));
-            Run r = dtron(all.toArray(new String[0]));
-            assertEquals(1, r.exit(), String.join(" ", args) + ": " + r.out() + r.err());
-            assertTrue(r.err().contains("Usage: dtron run"), String.join(" ", args) + ": " + r.err());
+            assertOneLineUsageError(dtron(all.toArray(new String[0])));
         }
         Run virtual = dtron(model.toString(), "--virtual-time");
         assertTrue(virtual.err().contains("--virtual-time needs --sut or --tron-adapter: the adapters on a bus live in real time"),

@@ -13,6 +13,7 @@ import java.net.ServerSocket;
 import java.nio.file.Files;
 import java.nio.file.Path;
 import java.time.Duration;
+import java.util.List;
 import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.TimeUnit;
 import org.junit.jupiter.api.BeforeAll;
@@ -198,9 +199,15 @@ class TronCommandTest {
         assertTrue(badPort.err().contains("'port' is not a port"), badPort.err());
         Run tooMany = tron(model, "--", "localhost", "1", "2");
         assertEquals(1, tooMany.exit());
+        assertTrue(tooMany.err().contains("too many arguments after the model"), tooMany.err());
         Run badUncertainty = tron("-U", "x", model, "--", "1");
         assertEquals(1, badUncertainty.exit());
         assertTrue(badUncertainty.err().contains("-U x: give a number"), badUncertainty.err());
+        for (Run r : List.of(otherAdapter, badDelay, unknown, noAddress, badPort, tooMany, badUncertainty)) {
+            assertTrue(r.err().startsWith("dtron tron: "), r.err());
+            assertTrue(r.err().endsWith("see 'dtron tron --help'" + System.lineSeparator()), r.err());
+            assertFalse(r.err().contains("Usage:"), "not the whole usage: " + r.err());
+        }
         Run missingModel = tron(dir.resolve("none.xml").toString(), "--", "1");
         assertEquals(1, missingModel.exit());
         assertTrue(missingModel.err().contains("none.xml"), missingModel.err());
