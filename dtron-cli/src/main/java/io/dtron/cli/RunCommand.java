@@ -19,11 +19,13 @@ import io.dtron.tron.TronBackend;
 import io.dtron.tron.TronSocketAdapter;
 import io.dtron.troninstaller.TronInstallation;
 import io.dtron.troninstaller.TronNotFoundException;
+import java.io.File;
 import java.io.IOException;
 import java.io.PrintWriter;
 import java.net.InetAddress;
 import java.net.ServerSocket;
 import java.net.UnknownHostException;
+import java.nio.file.InvalidPathException;
 import java.nio.file.Path;
 import java.time.Duration;
 import java.util.ArrayList;
@@ -32,6 +34,7 @@ import java.util.Locale;
 import java.util.Optional;
 import java.util.concurrent.Callable;
 import java.util.concurrent.atomic.AtomicInteger;
+import java.util.regex.Pattern;
 import picocli.CommandLine.Command;
 import picocli.CommandLine.Model.CommandSpec;
 import picocli.CommandLine.Option;
@@ -61,7 +64,7 @@ final class RunCommand implements Callable<Integer> {
     @Spec
     private CommandSpec spec;
 
-    @Parameters(index = "0", paramLabel = "MODEL", description = "The model (.xml, .xta).")
+    @Parameters(index = "0", paramLabel = "MODEL", description = "The model (.xml, .xta, or an Uppaal 3 .ta).")
     private Path model;
 
     @Option(names = "--sut", paramLabel = "CLASS[:VARIANT]",
@@ -70,9 +73,10 @@ final class RunCommand implements Callable<Integer> {
                     + " io.dtron.models.lamp.SmartLamp:late). Without it, the adapters on the bus are tested.")
     private String sut;
 
-    @Option(names = "--classpath", split = ",", paramLabel = "PATH",
-            description = "Jars or folders to load the system under test or the adapters from (comma-separated).")
-    private List<Path> classpath = List.of();
+    @Option(names = "--classpath", paramLabel = "PATH",
+            description = "Jars or folders to load the system under test or the adapters from, separated by"
+                    + " '${sys:path.separator}' or commas.")
+    private List<String> classpath = List.of();
 
     @Option(names = "--cluster", paramLabel = "NAME",
             description = "Bus mode: the bus's cluster name (default: " + DtronOptions.DEFAULT_CLUSTER + ").")
@@ -262,7 +266,7 @@ final class RunCommand implements Callable<Integer> {
             throws IOException {
         Adapter adapter;
         try {
-            adapter = SystemUnderTest.create(sut, classpath);
+            adapter = SystemUnderTest.create(sut, classpath());
         } catch (IllegalArgumentException e) {
             throw usage(e.getMessage());
         }
@@ -282,8 +286,9 @@ final class RunCommand implements Callable<Integer> {
         InetAddress address = bindAddress();
         List<DtronAdapter> adapters = new ArrayList<>();
         try {
+            List<Path> paths = classpath();
             for (String adapterClass : adapterClasses) {
-                adapters.add(SystemUnderTest.createBusAdapter(adapterClass, classpath));
+                adapters.add(SystemUnderTest.createBusAdapter(adapterClass, paths));
             }
         } catch (IllegalArgumentException e) {
             throw usage(e.getMessage());
@@ -464,6 +469,24 @@ final class RunCommand implements Callable<Integer> {
             err.println("dtron run: " + model + ": " + e.getMessage());
             return 1;
         }
+    }
+
+    /** The {@code --classpath} entries: every value split at the platform's path separator and at commas. */
+    private List<Path> classpath() {
+        List<Path> paths = new ArrayList<>();
+        for (String value : classpath) {
+            for (String entry : value.split("[," + Pattern.quote(File.pathSeparator) + "]")) {
+                if (entry.isBlank()) {
+                    continue;
+                }
+                try {
+                    paths.add(Path.of(entry));
+                } catch (InvalidPathException e) {
+                    throw usage("--classpath entry '" + entry + "' is not a path: " + e.getReason());
+                }
+            }
+        }
+        return paths;
     }
 
     /** {@code --bind}, else loopback: the bus's interface, or where {@code --tron-adapter PORT} listens. */

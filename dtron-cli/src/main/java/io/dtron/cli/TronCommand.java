@@ -51,7 +51,7 @@ final class TronCommand implements Callable<Integer> {
     @Spec
     private CommandSpec spec;
 
-    @Parameters(index = "0", paramLabel = "MODEL", description = "The model (.xml, .xta).")
+    @Parameters(index = "0", paramLabel = "MODEL", description = "The model (.xml, .xta, or an Uppaal 3 .ta).")
     private Path model;
 
     @Parameters(index = "1..*", arity = "0..2", paramLabel = "HOST PORT | PORT",

@@ -6,6 +6,7 @@ import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import io.dtron.testadapter.BusTicker;
+import java.io.File;
 import java.io.IOException;
 import java.io.PrintWriter;
 import java.io.StringWriter;
@@ -115,6 +116,30 @@ class RunCommandTest {
         for (Run r : List.of(noClass, notAdapter, variant, policy, badTimeout)) {
             assertOneLineUsageError(r);
         }
+    }
+
+    @Test
+    void theClasspathTakesThePlatformsPathSeparatorAndCommas() throws IOException {
+        Path a = Files.createDirectories(dir.resolve("cp-a"));
+        Path b = Files.createDirectories(dir.resolve("cp-b"));
+        Path c = Files.createDirectories(dir.resolve("cp-c"));
+        Run r = dtron("run", model.toString(), "--sut", TickerForTests.class.getName(), "--virtual-time", "--seed", "7",
+                "--timeout", "50", "--classpath", a + File.pathSeparator + b + "," + c);
+        assertEquals(0, r.exit(), r.out() + r.err());
+        Path missing = dir.resolve("cp-missing");
+        Run bad = dtron("run", model.toString(), "--sut", TickerForTests.class.getName(), "--virtual-time",
+                "--classpath", a + File.pathSeparator + missing);
+        assertOneLineUsageError(bad);
+        assertTrue(bad.err().contains("--classpath entry " + missing + " does not exist"), "one entry: " + bad.err());
+    }
+
+    @Test
+    void theHelpNamesEveryModelFormatAndThePathSeparator() {
+        Run help = dtron("run", "--help");
+        assertEquals(0, help.exit(), help.err());
+        String text = help.out().replaceAll("\\s+", " ");
+        assertTrue(text.contains("The model (.xml, .xta, or an Uppaal 3 .ta)."), help.out());
+        assertTrue(text.contains("separated by '" + File.pathSeparator + "' or commas"), help.out());
     }
 
     @Test
