@@ -448,8 +448,10 @@ final class RunCommand implements Callable<Integer> {
             TestInterface testInterface = adapter.testInterface();
             Long adapterUnit = testInterface.timeUnitMicros();
             if (timeUnit != null && adapterUnit != null && !timeUnit.equals(adapterUnit)) {
-                err.println("dtron run: --timeunit " + timeUnit + " differs from the time unit the adapter set, "
-                        + adapterUnit + " us; leave --timeunit out");
+                String reason = "--timeunit " + timeUnit + " differs from the time unit the adapter set, "
+                        + adapterUnit + " us; leave --timeunit out";
+                adapter.refuse("DTRON refuses the start: " + reason);
+                err.println("dtron run: " + reason);
                 return 1;
             }
             long unit = RunDefaults.timeUnit(adapterUnit, timeUnit);
@@ -458,7 +460,12 @@ final class RunCommand implements Callable<Integer> {
             try {
                 options = new TestOptions(runSeed, unit, units, policy, delayBound, virtualTime);
             } catch (IllegalArgumentException e) {
-                throw usage(e.getMessage());
+                String reason = e.getMessage() + " (timeout from " + (timeout != null ? "--timeout"
+                        : testInterface.timeout() != null ? "the adapter" : "the default") + ", time unit from "
+                        + (adapterUnit != null ? "the adapter" : timeUnit != null ? "--timeunit" : "the default") + ")";
+                adapter.refuse("DTRON refuses the start: " + reason);
+                err.println("dtron run: " + reason);
+                return 1;
             }
             out.println("dtron run: " + model + " against the TRON adapter at " + adapter.remote() + ", seed "
                     + runSeed + ", " + units + " time units of " + unit + " us"

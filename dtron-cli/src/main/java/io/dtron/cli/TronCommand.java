@@ -254,7 +254,17 @@ final class TronCommand implements Callable<Integer> {
             printer.println("dtron tron: adapter " + adapter.remote() + ": " + units + " time units of " + unit + " us"
                     + (verbosity >= 2 ? "; " + describe(ti) : ""));
         }
-        TestOptions options = new TestOptions(runSeed, unit, units, choice.policy(), choice.bound(), virtualTime);
+        TestOptions options;
+        try {
+            options = new TestOptions(runSeed, unit, units, choice.policy(), choice.bound(), virtualTime);
+        } catch (IllegalArgumentException e) {
+            String reason = e.getMessage() + " (timeout from " + (future != null ? "-F" : ti.timeout() != null
+                    ? "the adapter" : "the default") + ", time unit from " + (ti.timeUnitMicros() != null
+                    ? "the adapter" : "the default") + ")";
+            adapter.refuse("DTRON refuses the start: " + reason);
+            err.println("dtron tron: " + reason);
+            return 1;
+        }
         OnlineTester tester = new OnlineTester(network, ti, adapter, options);
         if (verbosity >= 1 && !quiet) {
             tester.addListener(new EventPrinter(printer, unit));

@@ -143,6 +143,26 @@ class RunCommandTest {
     }
 
     @Test
+    void aRunLongerThanDtronCanTimeIsAUsageErrorNamingTheLimit() {
+        Run r = dtron("run", model.toString(), "--sut", TickerForTests.class.getName(), "--virtual-time",
+                "--timeunit", Long.toString(Long.MAX_VALUE), "--timeout", Integer.toString(Integer.MAX_VALUE));
+        assertOneLineUsageError(r);
+        assertTrue(r.err().startsWith("dtron run: the timeout of 2147483647 time units of 9223372036854775807 us is"
+                + " longer than DTRON can time: at most 9223372036854775 us (about 292 years)"), r.err());
+        assertFalse(r.err().contains("Exception"), r.err());
+        Run bound = dtron("run", model.toString(), "--sut", TickerForTests.class.getName(), "--virtual-time",
+                "--delay-policy", "random-bounded", "--delay-bound", Long.toString(Long.MAX_VALUE));
+        assertOneLineUsageError(bound);
+        assertTrue(bound.err().contains("the delay bound of 9223372036854775807 time units of 1000 us is longer"),
+                bound.err());
+        Run longest = dtron("run", model.toString(), "--sut", TickerForTests.class.getName() + ":slow",
+                "--virtual-time", "--seed", "7", "--timeunit", "1000", "--timeout",
+                Long.toString(9_223_372_036_854_775L / 1000));
+        assertEquals(2, longest.exit(), "the longest run is timed without overflow: " + longest.out() + longest.err());
+        assertTrue(longest.out().contains("FAILED: no output came by t=12.000"), longest.out());
+    }
+
+    @Test
     void aModelFileAloneMeansRun() {
         Run r = dtron(model.toString(), "--sut", TickerForTests.class.getName(), "--virtual-time", "--seed", "7",
                 "--timeout", "300");

@@ -156,6 +156,32 @@ class RunWithTronTest {
     }
 
     @Test
+    void anAdapterTimeUnitTooLongForTheDefaultTimeoutIsRefusedWithTheReason() throws Exception {
+        try (ServerSocket server = new ServerSocket(0, 1, InetAddress.getLoopbackAddress())) {
+            CompletableFuture<String> adapter = CompletableFuture.supplyAsync(() -> {
+                try (var socket = server.accept(); RawClient c = RawClient.over(socket)) {
+                    c.bytes(1).string("grasp");
+                    assertEquals(1, c.readInt());
+                    c.bytes(5).int32(Integer.MAX_VALUE).int32(0);
+                    assertEquals(0, c.readInt(), "a time unit alone fits");
+                    c.bytes(64);
+                    return c.readString();
+                } catch (IOException e) {
+                    throw new IllegalStateException(e);
+                }
+            });
+            Run r = dtron("run", lightContr.toString(), "--tron-adapter", "127.0.0.1:" + server.getLocalPort());
+            String reason = "the timeout of 1000 time units of 2147483647000000 us is longer than DTRON can time: at"
+                    + " most 9223372036854775 us (about 292 years) (timeout from the default, time unit from the"
+                    + " adapter)";
+            assertEquals("DTRON refuses the start: " + reason, adapter.get(10, TimeUnit.SECONDS));
+            assertEquals(1, r.exit(), r.out() + r.err());
+            assertTrue(r.err().contains("dtron run: " + reason), r.err());
+            assertFalse(r.err().contains("Exception") || r.err().contains("\tat "), "no stack trace: " + r.err());
+        }
+    }
+
+    @Test
     void nobodyListeningAtTheTronAdapterAddressIsAClearError() throws Exception {
         int port;
         try (ServerSocket probe = new ServerSocket(0, 1, InetAddress.getLoopbackAddress())) {

@@ -179,6 +179,34 @@ class TronCommandTest {
     }
 
     @Test
+    void aRunLongerThanDtronCanTimeIsRefusedToTheAdapterAndEndsWithTheReason() throws Exception {
+        try (ServerSocket server = new ServerSocket(0, 1, InetAddress.getLoopbackAddress())) {
+            CompletableFuture<String> adapter = CompletableFuture.supplyAsync(() -> {
+                try (var socket = server.accept(); RawClient c = RawClient.over(socket)) {
+                    c.bytes(1).string("grasp");
+                    assertEquals(1, c.readInt());
+                    c.bytes(5).int32(0).int32(1000);
+                    assertEquals(0, c.readInt());
+                    c.bytes(64);
+                    String reply = c.readString();
+                    assertTrue(c.closedByTester());
+                    return reply;
+                } catch (IOException e) {
+                    throw new IllegalStateException(e);
+                }
+            });
+            Run r = tron("-F", Long.toString(Long.MAX_VALUE), lightContr.toString(), "--", "127.0.0.1",
+                    Integer.toString(server.getLocalPort()));
+            String reason = "the timeout of 9223372036854775807 time units of 1000 us is longer than DTRON can time: at"
+                    + " most 9223372036854775 us (about 292 years) (timeout from -F, time unit from the adapter)";
+            assertEquals("DTRON refuses the start: " + reason, adapter.get(10, TimeUnit.SECONDS));
+            assertEquals(1, r.exit(), r.out() + r.err());
+            assertTrue(r.err().contains("dtron tron: " + reason), r.err());
+            assertFalse(r.err().contains("Exception") || r.err().contains("\tat "), "no stack trace: " + r.err());
+        }
+    }
+
+    @Test
     void usageErrorsSayWhatIsWrong() throws Exception {
         String model = lightContr.toString();
         Run otherAdapter = tron("-I", "TraceAdapter", model, "--", "9999");

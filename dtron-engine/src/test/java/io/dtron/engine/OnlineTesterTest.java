@@ -302,4 +302,21 @@ class OnlineTesterTest {
         assertTrue(e.getMessage().contains("process Confused sends output o_done but also sends input i_go"),
                 e.getMessage());
     }
+
+    @Test
+    void aRunLongerThanTheEngineCanTimeIsRefusedWithTheLimit() {
+        IllegalArgumentException timeout = org.junit.jupiter.api.Assertions.assertThrows(
+                IllegalArgumentException.class, () -> new TestOptions(1, Long.MAX_VALUE, Integer.MAX_VALUE,
+                        DelayPolicy.RANDOM, 0, true));
+        assertEquals("the timeout of 2147483647 time units of 9223372036854775807 us is longer than DTRON can time: at"
+                + " most 9223372036854775 us (about 292 years)", timeout.getMessage());
+        IllegalArgumentException bound = org.junit.jupiter.api.Assertions.assertThrows(
+                IllegalArgumentException.class, () -> new TestOptions(1, 1000, 1000, DelayPolicy.RANDOM_BOUNDED,
+                        Long.MAX_VALUE / 1000, true));
+        assertTrue(bound.getMessage().startsWith("the delay bound of "), bound.getMessage());
+        TestOptions longest = new TestOptions(1, 1000, TestOptions.MAX_DURATION_MICROS / 1000, DelayPolicy.RANDOM, 0,
+                true);
+        assertTrue(TestOptions.fits(longest.timeout(), longest.timeUnitMicros()));
+        assertTrue(!TestOptions.fits(longest.timeout() + 1, longest.timeUnitMicros()));
+    }
 }
