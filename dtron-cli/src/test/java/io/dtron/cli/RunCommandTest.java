@@ -5,16 +5,27 @@ import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
+import io.dtron.api.Dtron;
+import io.dtron.api.IDtronChannel;
+import io.dtron.engine.AdapterContext;
+import io.dtron.engine.Event;
+import io.dtron.engine.TestClock;
+import io.dtron.model.ModelLoader;
+import io.dtron.model.TestInterface;
 import io.dtron.testadapter.BusTicker;
 import java.io.File;
 import java.io.IOException;
 import java.io.PrintWriter;
 import java.io.StringWriter;
+import java.net.InetAddress;
 import java.nio.file.Files;
 import java.nio.file.Path;
+import java.time.Duration;
 import java.util.ArrayList;
 import java.util.List;
+import java.util.Map;
 import java.util.UUID;
+import java.util.concurrent.TimeUnit;
 import org.junit.jupiter.api.BeforeAll;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
@@ -242,6 +253,51 @@ class RunCommandTest {
         assertEquals(2, r.exit(), r.out() + r.err());
         assertTrue(r.out().contains("FAILED: no output came by t=12.000"), r.out());
         assertTrue(r.out().contains("latency t2 - t1 of outputs: count "), r.out());
+    }
+
+    @Test
+    void outputsAfterTheEndAreCountedInTheSummary() throws Exception {
+        TestInterface testInterface = TestInterface.fromNames(ModelLoader.load(model));
+        List<Dtron> member = new ArrayList<>();
+        try (BusSession session = BusSession.open(testInterface, cluster(), InetAddress.getLoopbackAddress())) {
+            session.startAdapter(member::add);
+            assertTrue(session.awaitAdapters(1, Duration.ofSeconds(30)), session.bridge().members().toString());
+            session.bridge().start(new AdapterContext() {
+                @Override
+                public void report(Event output) {
+                }
+
+                @Override
+                public void inconclusive(String reason) {
+                }
+
+                @Override
+                public TestClock clock() {
+                    throw new UnsupportedOperationException();
+                }
+
+                @Override
+                public TestInterface testInterface() {
+                    return testInterface;
+                }
+
+                @Override
+                public long timeUnitMicros() {
+                    return 1000;
+                }
+            });
+            session.bridge().stop();
+            IDtronChannel tick = IDtronChannel.of("tick", "seq");
+            member.get(0).send(tick.constructValued(Map.of("seq", 1)));
+            member.get(0).send(tick.constructValued(Map.of("seq", 2)));
+            long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(30);
+            while (session.bridge().outputsAfterEnd() < 2 && System.nanoTime() < deadline) {
+                Thread.sleep(10);
+            }
+            StringWriter summary = new StringWriter();
+            session.printSummary(new PrintWriter(summary, true));
+            assertTrue(summary.toString().contains(", 2 outputs after the end (not judged)"), summary.toString());
+        }
     }
 
     @Test
