@@ -5,9 +5,7 @@ import io.dtron.api.DtronException;
 import io.dtron.api.DtronOptions;
 import io.dtron.engine.Adapter;
 import io.dtron.engine.DelayPolicy;
-import io.dtron.engine.Event;
 import io.dtron.engine.OnlineTester;
-import io.dtron.engine.TestListener;
 import io.dtron.engine.TestOptions;
 import io.dtron.engine.TestResult;
 import io.dtron.engine.UnsupportedModelException;
@@ -33,7 +31,6 @@ import java.util.List;
 import java.util.Locale;
 import java.util.Optional;
 import java.util.concurrent.Callable;
-import java.util.concurrent.atomic.AtomicInteger;
 import java.util.regex.Pattern;
 import picocli.CommandLine.Command;
 import picocli.CommandLine.Model.CommandSpec;
@@ -52,15 +49,13 @@ import picocli.CommandLine.Spec;
 @Command(name = "run", mixinStandardHelpOptions = true, exitCodeOnInvalidInput = 1, exitCodeOnExecutionException = 1,
         description = {"Test a system under test online against a model, with DTRON's engine.",
                 "The model's environment chooses inputs and their timing; the system's outputs and their times are"
-                        + " checked against the model. Prints the seed, progress on long runs, and the verdict with"
-                        + " its explanation.",
+                        + " checked against the model. Prints the seed, a progress line every 5 s, and the verdict"
+                        + " with its explanation.",
                 "Without --sut the run is in real time against the adapters on a DTRON bus: inputs are published"
                         + " on the bus, messages on output channels are the outputs; the run ends with the latency"
                         + " of the messages (t2 - t1, receive minus publish time) and the bus counters.",
                 "Exit code 0 PASSED, 2 FAILED, 3 INCONCLUSIVE, 1 usage or model error."})
 final class RunCommand implements Callable<Integer> {
-    private static final long PROGRESS_EVERY_NANOS = 5_000_000_000L;
-
     @Spec
     private CommandSpec spec;
 
@@ -405,8 +400,11 @@ final class RunCommand implements Callable<Integer> {
     private TestResult testWithEngine(Network network, TestInterface testInterface, Adapter adapter,
                                       TestOptions options, PrintWriter out) throws IOException {
         OnlineTester tester = new OnlineTester(network, testInterface, adapter, options);
-        tester.addListener(new Progress(out));
-        TestResult result = JsonTrace.run(tester, trace, model, options);
+        TestResult result;
+        try (Progress progress = new Progress(out, options)) {
+            tester.addListener(progress);
+            result = JsonTrace.run(tester, trace, model, options);
+        }
         printVerdict(result, out);
         return result;
     }
@@ -531,40 +529,5 @@ final class RunCommand implements Callable<Integer> {
 
     private ParameterException usage(String message) {
         return new ParameterException(spec.commandLine(), "dtron run: " + message);
-    }
-
-    /** A progress line every few seconds of wall-clock time: elapsed test time, inputs, outputs. */
-    private static final class Progress implements TestListener {
-        private final PrintWriter out;
-        private final long start = System.nanoTime();
-        private long lastLine = System.nanoTime();
-        private final AtomicInteger inputs = new AtomicInteger();
-        private final AtomicInteger outputs = new AtomicInteger();
-
-        Progress(PrintWriter out) {
-            this.out = out;
-        }
-
-        @Override
-        public void inputApplied(Event input, long micros) {
-            inputs.incrementAndGet();
-            maybePrint(micros);
-        }
-
-        @Override
-        public void outputObserved(Event output, long micros) {
-            outputs.incrementAndGet();
-            maybePrint(micros);
-        }
-
-        private void maybePrint(long micros) {
-            long now = System.nanoTime();
-            if (now - lastLine >= PROGRESS_EVERY_NANOS) {
-                lastLine = now;
-                out.printf("progress: %.1f s elapsed, test time %.3f s, %d inputs, %d outputs%n",
-                        (now - start) / 1e9, micros / 1e6, inputs.get(), outputs.get());
-                out.flush();
-            }
-        }
     }
 }

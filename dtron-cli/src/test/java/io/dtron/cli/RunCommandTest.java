@@ -26,6 +26,8 @@ import java.util.List;
 import java.util.Map;
 import java.util.UUID;
 import java.util.concurrent.TimeUnit;
+import java.util.regex.Matcher;
+import java.util.regex.Pattern;
 import org.junit.jupiter.api.BeforeAll;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
@@ -81,6 +83,20 @@ class RunCommandTest {
         assertEquals(2, r.exit(), r.out() + r.err());
         assertTrue(r.out().contains("FAILED: no output came by t=12.000"), r.out());
         assertTrue(r.out().contains("tick between t=8.000 and t=12.000 (Ticker: Running -> Running)"), r.out());
+    }
+
+    @Test
+    void aQuietRunInRealTimeShowsProgressWithTheNextDeadline() {
+        // 0.6 s per unit: the slow ticker's first tick is due by t=12 (7.2 s) and comes at t=13; nothing happens
+        // before, and a progress line comes after 5 s
+        Run r = dtron("run", model.toString(), "--sut", TickerForTests.class.getName() + ":slow", "--seed", "1",
+                "--timeunit", "600000", "--timeout", "100");
+        assertEquals(2, r.exit(), r.out() + r.err());
+        Matcher progress = Pattern.compile("progress: \\d+ s elapsed, t=(\\d+)\\.\\d{3}, 0 inputs, 0 outputs, an output is"
+                + " due by t=12\\.000\n").matcher(r.out().replace(System.lineSeparator(), "\n"));
+        assertTrue(progress.find(), r.out());
+        assertTrue(Integer.parseInt(progress.group(1)) <= 12, "the test time while waiting: " + r.out());
+        assertTrue(progress.start() < r.out().indexOf("FAILED: no output came by t=12.000"), r.out());
     }
 
     @Test

@@ -165,6 +165,7 @@ public final class OnlineTester {
                         options.delayBound() * ticksPerUnit);
                 long target = choice.isInput() ? lastMicros + micros(choice.ticks())
                         : Math.min(timeoutMicros, lastMicros + micros(choice.ticks()));
+                announceWait(now, target, choice, plan);
                 RunClock.TimedEvent output = clock.awaitUntil(target);
                 if (output != null) {
                     TestResult verdict = observe(output, plan);
@@ -184,6 +185,19 @@ public final class OnlineTester {
                             + ": the model required the system under test to act by then. " + plan.explainOutputs(
                             this::time, lastMicros));
                 }
+            }
+        }
+
+        private void announceWait(long now, long target, Plan.Choice choice, Plan plan) {
+            if (listeners.isEmpty()) {
+                return;
+            }
+            TestListener.Until until = choice.isInput() ? TestListener.Until.INPUT
+                    : plan.hasDeadline() ? TestListener.Until.OUTPUT_DEADLINE : TestListener.Until.END;
+            long untilMicros = until == TestListener.Until.OUTPUT_DEADLINE ? lastMicros + micros(plan.deadline())
+                    : target;
+            for (TestListener l : listeners) {
+                l.waiting(now, untilMicros, until);
             }
         }
 

@@ -118,6 +118,29 @@ class OnlineTesterTest {
     }
 
     @Test
+    void listenersLearnWhatTheTesterWaitsForAndUntilWhen() throws Exception {
+        Network n = ModelLoader.load("ticker.xta", TICKER);
+        List<String> waits = new ArrayList<>();
+        TestListener listener = new TestListener() {
+            @Override
+            public void waiting(long nowMicros, long untilMicros, Until until) {
+                waits.add(nowMicros + " " + until + " " + untilMicros);
+            }
+        };
+        TestOptions eager = TestOptions.defaults(5).withTimeout(300).withDelayPolicy(DelayPolicy.EAGER, 0);
+        TestResult slow = new OnlineTester(n, TestInterface.fromNames(n), new Ticker(13), eager).addListener(listener)
+                .run();
+        assertEquals(Verdict.FAILED, slow.verdict(), slow.explanation());
+        assertEquals("0 OUTPUT_DEADLINE 12000", waits.get(0), "the tick is due by t=12: " + waits);
+        waits.clear();
+        new OnlineTester(n, TestInterface.fromNames(n), new Ticker(10), eager.withTimeout(290)).addListener(listener)
+                .run();
+        assertTrue(waits.contains("20000 INPUT 25000"), "after the second tick, the reset at t=25: " + waits);
+        assertEquals("285000 END 290000", waits.get(waits.size() - 1), "the tick due by t=297 is after the end: "
+                + waits);
+    }
+
+    @Test
     void delayPoliciesPlaceInputsAtTheStartOrTheEndOfTheirWindows() throws Exception {
         // the environment may reset from e >= 25 on, without an upper bound: eager resets at exactly 25
         Network n = ModelLoader.load("ticker.xta", TICKER);
