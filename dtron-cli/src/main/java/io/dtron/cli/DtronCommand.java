@@ -6,6 +6,8 @@ import java.nio.file.Files;
 import java.nio.file.InvalidPathException;
 import java.nio.file.Path;
 import java.util.concurrent.Callable;
+import org.slf4j.Logger;
+import org.slf4j.LoggerFactory;
 import picocli.CommandLine;
 import picocli.CommandLine.Command;
 import picocli.CommandLine.Model.CommandSpec;
@@ -26,6 +28,7 @@ import picocli.CommandLine.UnmatchedArgumentException;
                 "dtron MODEL [OPTIONS] is short for dtron run MODEL [OPTIONS]."},
         subcommands = {CheckCommand.class, RunCommand.class, TronCommand.class, CommandLine.HelpCommand.class})
 public final class DtronCommand implements Callable<Integer> {
+    private static final Logger LOG = LoggerFactory.getLogger(DtronCommand.class);
 
     @Spec
     private CommandSpec spec;
@@ -42,8 +45,11 @@ public final class DtronCommand implements Callable<Integer> {
         cli.setErr(err);
         cli.setParameterExceptionHandler(DtronCommand::usageError);
         cli.setExecutionExceptionHandler((e, commandLine, parseResult) -> {
-            commandLine.getErr().println("dtron: internal error: " + e);
-            e.printStackTrace(commandLine.getErr());
+            StackTraceElement[] frames = e.getStackTrace();
+            commandLine.getErr().println(commandLine.getCommandSpec().qualifiedName() + ": unexpected error: " + e
+                    + (frames.length == 0 ? "" : " at " + frames[0]) + " (-Ddtron.log.level=DEBUG logs the stack"
+                    + " trace)");
+            LOG.debug("internal error", e);
             return 1;
         });
         return cli.execute(withDefaultCommand(cli, args));

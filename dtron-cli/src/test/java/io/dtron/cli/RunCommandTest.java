@@ -132,7 +132,7 @@ class RunCommandTest {
         assertTrue(notAdapter.err().contains("does not implement io.dtron.engine.Adapter"), notAdapter.err());
         Run variant = dtron("run", model.toString(), "--sut", TickerForTests.class.getName() + ":weird");
         assertEquals(1, variant.exit());
-        assertTrue(variant.err().contains("unknown variant 'weird' (correct, slow)"), variant.err());
+        assertTrue(variant.err().contains("unknown variant 'weird' (correct, slow, broken)"), variant.err());
         Run policy = dtron("run", model.toString(), "--sut", TickerForTests.class.getName(), "--delay-policy", "soon");
         assertEquals(1, policy.exit());
         assertTrue(policy.err().contains("unknown delay policy 'soon'"), policy.err());
@@ -187,6 +187,15 @@ class RunCommandTest {
                 Long.toString(9_223_372_036_854_775L / 1000));
         assertEquals(2, longest.exit(), "the longest run is timed without overflow: " + longest.out() + longest.err());
         assertTrue(longest.out().contains("FAILED: no output came by t=12.000"), longest.out());
+    }
+
+    @Test
+    void aSystemUnderTestThatThrowsIsReportedOnOneLineWithoutAStackTrace() {
+        Run r = dtron("run", model.toString(), "--sut", TickerForTests.class.getName() + ":broken", "--virtual-time");
+        assertEquals(1, r.exit(), r.out() + r.err());
+        assertTrue(r.err().startsWith("dtron run: unexpected error: java.lang.IllegalStateException: the ticker is"
+                + " unplugged at io.dtron.cli.TickerForTests.start(TickerForTests.java:"), r.err());
+        assertEquals(1, r.err().lines().count(), r.err());
     }
 
     @Test
