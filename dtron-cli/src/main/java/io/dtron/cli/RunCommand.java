@@ -252,8 +252,9 @@ final class RunCommand implements Callable<Integer> {
         if (waitForAdapters != null && waitForAdapters < 0) {
             throw usage("--wait-for-adapters must not be negative: " + waitForAdapters);
         }
-        if (waitTimeout != null && waitTimeout <= 0) {
-            throw usage("--wait-timeout must be a positive number of seconds: " + waitTimeout);
+        if (waitTimeout != null && (waitTimeout <= 0 || waitTimeout > RunDefaults.MAX_WAIT_SECONDS)) {
+            throw usage("--wait-timeout must be a positive number of seconds, at most " + RunDefaults.MAX_WAIT_SECONDS
+                    + " (about 292 years): " + waitTimeout);
         }
     }
 

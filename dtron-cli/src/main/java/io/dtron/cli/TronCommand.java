@@ -201,8 +201,9 @@ final class TronCommand implements Callable<Integer> {
         if (future != null && future <= 0) {
             return "-F " + future + ": the test duration must be a positive number of model time units";
         }
-        if (replyTimeout <= 0) {
-            return "--reply-timeout must be a positive number of seconds";
+        if (replyTimeout <= 0 || replyTimeout > RunDefaults.MAX_WAIT_SECONDS) {
+            return "--reply-timeout must be a positive number of seconds, at most " + RunDefaults.MAX_WAIT_SECONDS
+                    + " (about 292 years)";
         }
         return null;
     }

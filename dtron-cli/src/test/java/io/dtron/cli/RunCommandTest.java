@@ -236,6 +236,7 @@ class RunCommandTest {
         for (String[] args : List.of(
                 new String[] {"--wait-for-adapters", "-1"},
                 new String[] {"--wait-timeout", "0"},
+                new String[] {"--wait-timeout", Long.toString(Long.MAX_VALUE)},
                 new String[] {"--virtual-time"},
                 new String[] {"--bind", "no.such.host.invalid"},
                 new String[] {"--cluster", " "},

@@ -231,7 +231,13 @@ class TronCommandTest {
         Run badUncertainty = tron("-U", "x", model, "--", "1");
         assertEquals(1, badUncertainty.exit());
         assertTrue(badUncertainty.err().contains("-U x: give a number"), badUncertainty.err());
-        for (Run r : List.of(otherAdapter, badDelay, unknown, noAddress, badPort, tooMany, badUncertainty)) {
+        Run longReplyTimeout = tron("--virtual-time", "--reply-timeout", Long.toString(Long.MAX_VALUE), model, "--",
+                "1");
+        assertEquals(1, longReplyTimeout.exit());
+        assertTrue(longReplyTimeout.err().contains("--reply-timeout must be a positive number of seconds, at most"
+                + " 9223372036 (about 292 years)"), longReplyTimeout.err());
+        for (Run r : List.of(otherAdapter, badDelay, unknown, noAddress, badPort, tooMany, badUncertainty,
+                longReplyTimeout)) {
             assertTrue(r.err().startsWith("dtron tron: "), r.err());
             assertTrue(r.err().endsWith("see 'dtron tron --help'" + System.lineSeparator()), r.err());
             assertFalse(r.err().contains("Usage:"), "not the whole usage: " + r.err());
