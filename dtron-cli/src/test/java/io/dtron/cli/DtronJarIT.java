@@ -135,7 +135,8 @@ class DtronJarIT {
             for (int i = 0; i < 6; i++) {
                 runs.add(ChildJvm.startJar(JAR, dir.resolve("quick-start-" + i + ".log"), TICKER.toString(),
                         "--cluster", cluster + "-" + i, "--classpath", adapterClasses, "--adapter",
-                        BusTicker.class.getName(), "--timeunit", "25000", "--timeout", "40", "--delay-policy", "eager"));
+                        BusTicker.class.getName(), "--timeunit", "25000", "--timeout", "40", "--delay-policy",
+                        "eager"));
             }
             for (ChildJvm run : runs) {
                 run.waitFor(WAIT);

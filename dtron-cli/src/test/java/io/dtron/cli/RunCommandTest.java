@@ -92,8 +92,8 @@ class RunCommandTest {
         Run r = dtron("run", model.toString(), "--sut", TickerForTests.class.getName() + ":slow", "--seed", "1",
                 "--timeunit", "600000", "--timeout", "100");
         assertEquals(2, r.exit(), r.out() + r.err());
-        Matcher progress = Pattern.compile("progress: \\d+ s elapsed, t=(\\d+)\\.\\d{3}, 0 inputs, 0 outputs, an output is"
-                + " due by t=12\\.000\n").matcher(r.out().replace(System.lineSeparator(), "\n"));
+        Matcher progress = Pattern.compile("progress: \\d+ s elapsed, t=(\\d+)\\.\\d{3}, 0 inputs, 0 outputs, an output"
+                + " is due by t=12\\.000\n").matcher(r.out().replace(System.lineSeparator(), "\n"));
         assertTrue(progress.find(), r.out());
         assertTrue(Integer.parseInt(progress.group(1)) <= 12, "the test time while waiting: " + r.out());
         assertTrue(progress.start() < r.out().indexOf("FAILED: no output came by t=12.000"), r.out());
