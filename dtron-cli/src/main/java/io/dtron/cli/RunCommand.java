@@ -380,6 +380,8 @@ final class RunCommand implements Callable<Integer> {
                 TestResult result;
                 try {
                     result = tron.run(model.toAbsolutePath(), testInterface, adapter, options);
+                } catch (IllegalArgumentException e) {
+                    throw usage("--backend tron: " + e.getMessage());
                 } catch (InterruptedException e) {
                     Thread.currentThread().interrupt();
                     throw new TronFailure("interrupted while TRON was testing");

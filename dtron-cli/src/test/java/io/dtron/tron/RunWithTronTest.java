@@ -242,6 +242,20 @@ class RunWithTronTest {
     }
 
     @Test
+    void aTimeoutBeyondTronsIsAUsageError() throws Exception {
+        Path log = dir.resolve("dtron-long.log");
+        Process p = dtronProcess(tronHome().toString(), "/usr/bin:/bin", log, "run", lightContr.toString(),
+                "--interface", tronModels.resolve("LightContr.trn").toString(), "--sut", LampSystem.class.getName(),
+                "--timeout", "3000000000", "--backend", "tron");
+        assertTrue(p.waitFor(90, TimeUnit.SECONDS), Files.readString(log));
+        String out = Files.readString(log);
+        assertEquals(1, p.exitValue(), out);
+        assertTrue(out.contains("dtron run: --backend tron: TRON's timeout is at most 2147483647 time units\n"
+                + "see 'dtron run --help'"), out);
+        assertFalse(out.contains("Exception"), out);
+    }
+
+    @Test
     void theInstalledTronJudgesTheLateSystemFailed() throws Exception {
         String out = runWithTronBackend("late", 2);
         assertTrue(out.contains("\nFAILED: "), out);
