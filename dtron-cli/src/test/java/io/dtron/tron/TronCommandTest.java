@@ -207,6 +207,35 @@ class TronCommandTest {
     }
 
     @Test
+    void anAdapterConfiguringARunLongerThanDtronCanTimeGetsAnErrorCodeAndTheRunEndsWithTheReason()
+            throws Exception {
+        try (ServerSocket server = new ServerSocket(0, 1, InetAddress.getLoopbackAddress())) {
+            CompletableFuture<Integer> adapter = CompletableFuture.supplyAsync(() -> {
+                try (var socket = server.accept(); RawClient c = RawClient.over(socket)) {
+                    c.bytes(1).string("grasp");
+                    assertEquals(1, c.readInt());
+                    c.bytes(5).int32(0).int32(Integer.MAX_VALUE);
+                    assertEquals(0, c.readInt());
+                    c.bytes(6).int32(Integer.MAX_VALUE);
+                    int code = c.readInt();
+                    c.bytes(64);
+                    c.readString();
+                    return code;
+                } catch (IOException e) {
+                    throw new IllegalStateException(e);
+                }
+            });
+            Run r = tron(lightContr.toString(), "--", "127.0.0.1", Integer.toString(server.getLocalPort()));
+            assertEquals(-13, adapter.get(10, TimeUnit.SECONDS));
+            assertEquals(1, r.exit(), r.out() + r.err());
+            assertTrue(r.err().contains("dtron tron: the adapter's configuration failed: the test was not started: 1"
+                    + " registration was refused: timeout 2147483647: the timeout of 2147483647 time units of"
+                    + " 2147483647 us is longer than DTRON can time"), r.err());
+            assertFalse(r.err().contains("Exception") || r.err().contains("\tat "), "no stack trace: " + r.err());
+        }
+    }
+
+    @Test
     void usageErrorsSayWhatIsWrong() throws Exception {
         String model = lightContr.toString();
         Run otherAdapter = tron("-I", "TraceAdapter", model, "--", "9999");
