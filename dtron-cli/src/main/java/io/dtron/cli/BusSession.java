@@ -83,11 +83,16 @@ final class BusSession implements AutoCloseable {
         return true;
     }
 
-    /** Prints the latency of the messages and the bus counters. */
+    /**
+     * Prints the latency of the messages, the bus counters and, when some came, how many outputs came after the end
+     * of the run (they are not judged).
+     */
     void printSummary(PrintWriter out) {
         out.println("latency t2 - t1 of outputs: " + bridge.outputLatency());
         out.println("latency t2 - t1 of inputs back from the bus: " + bridge.inputLatency());
-        out.println("bus: " + bridge.stats());
+        long late = bridge.outputsAfterEnd();
+        out.println("bus: " + bridge.stats() + (late == 0 ? "" : ", " + late + " output" + (late == 1 ? "" : "s")
+                + " after the end (not judged)"));
     }
 
     @Override

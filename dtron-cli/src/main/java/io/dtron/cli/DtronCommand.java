@@ -6,10 +6,14 @@ import java.nio.file.Files;
 import java.nio.file.InvalidPathException;
 import java.nio.file.Path;
 import java.util.concurrent.Callable;
+import org.slf4j.Logger;
+import org.slf4j.LoggerFactory;
 import picocli.CommandLine;
 import picocli.CommandLine.Command;
 import picocli.CommandLine.Model.CommandSpec;
+import picocli.CommandLine.ParameterException;
 import picocli.CommandLine.Spec;
+import picocli.CommandLine.UnmatchedArgumentException;
 
 /**
  * The {@code dtron} command line: {@code dtron check MODEL...} loads and type-checks models, {@code dtron run
@@ -24,6 +28,7 @@ import picocli.CommandLine.Spec;
                 "dtron MODEL [OPTIONS] is short for dtron run MODEL [OPTIONS]."},
         subcommands = {CheckCommand.class, RunCommand.class, TronCommand.class, CommandLine.HelpCommand.class})
 public final class DtronCommand implements Callable<Integer> {
+    private static final Logger LOG = LoggerFactory.getLogger(DtronCommand.class);
 
     @Spec
     private CommandSpec spec;
@@ -38,12 +43,32 @@ public final class DtronCommand implements Callable<Integer> {
         CommandLine cli = new CommandLine(new DtronCommand());
         cli.setOut(out);
         cli.setErr(err);
+        cli.setParameterExceptionHandler(DtronCommand::usageError);
         cli.setExecutionExceptionHandler((e, commandLine, parseResult) -> {
-            commandLine.getErr().println("dtron: internal error: " + e);
-            e.printStackTrace(commandLine.getErr());
+            StackTraceElement[] frames = e.getStackTrace();
+            commandLine.getErr().println(commandLine.getCommandSpec().qualifiedName() + ": unexpected error: " + e
+                    + (frames.length == 0 ? "" : " at " + frames[0]) + " (-Ddtron.log.level=DEBUG logs the stack"
+                    + " trace)");
+            LOG.debug("internal error", e);
             return 1;
         });
         return cli.execute(withDefaultCommand(cli, args));
+    }
+
+    /**
+     * Prints a usage error as its reason on one line, prefixed with the command's name, any suggestions for a
+     * mistyped option or command, and where the help is; the whole usage message would bury the reason.
+     */
+    private static int usageError(ParameterException e, String[] args) {
+        CommandLine commandLine = e.getCommandLine();
+        PrintWriter err = commandLine.getErr();
+        String name = commandLine.getCommandSpec().qualifiedName();
+        String message = String.valueOf(e.getMessage());
+        err.println(message.startsWith(name + ":") ? message : name + ": " + message);
+        UnmatchedArgumentException.printSuggestions(e, err);
+        err.println("see '" + name + " --help'");
+        err.flush();
+        return commandLine.getCommandSpec().exitCodeOnInvalidInput();
     }
 
     /**

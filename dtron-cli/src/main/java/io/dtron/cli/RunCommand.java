@@ -5,9 +5,7 @@ import io.dtron.api.DtronException;
 import io.dtron.api.DtronOptions;
 import io.dtron.engine.Adapter;
 import io.dtron.engine.DelayPolicy;
-import io.dtron.engine.Event;
 import io.dtron.engine.OnlineTester;
-import io.dtron.engine.TestListener;
 import io.dtron.engine.TestOptions;
 import io.dtron.engine.TestResult;
 import io.dtron.engine.UnsupportedModelException;
@@ -19,11 +17,13 @@ import io.dtron.tron.TronBackend;
 import io.dtron.tron.TronSocketAdapter;
 import io.dtron.troninstaller.TronInstallation;
 import io.dtron.troninstaller.TronNotFoundException;
+import java.io.File;
 import java.io.IOException;
 import java.io.PrintWriter;
 import java.net.InetAddress;
 import java.net.ServerSocket;
 import java.net.UnknownHostException;
+import java.nio.file.InvalidPathException;
 import java.nio.file.Path;
 import java.time.Duration;
 import java.util.ArrayList;
@@ -31,7 +31,7 @@ import java.util.List;
 import java.util.Locale;
 import java.util.Optional;
 import java.util.concurrent.Callable;
-import java.util.concurrent.atomic.AtomicInteger;
+import java.util.regex.Pattern;
 import picocli.CommandLine.Command;
 import picocli.CommandLine.Model.CommandSpec;
 import picocli.CommandLine.Option;
@@ -49,19 +49,17 @@ import picocli.CommandLine.Spec;
 @Command(name = "run", mixinStandardHelpOptions = true, exitCodeOnInvalidInput = 1, exitCodeOnExecutionException = 1,
         description = {"Test a system under test online against a model, with DTRON's engine.",
                 "The model's environment chooses inputs and their timing; the system's outputs and their times are"
-                        + " checked against the model. Prints the seed, progress on long runs, and the verdict with"
-                        + " its explanation.",
+                        + " checked against the model. Prints the seed, a progress line every 5 s, and the verdict"
+                        + " with its explanation.",
                 "Without --sut the run is in real time against the adapters on a DTRON bus: inputs are published"
                         + " on the bus, messages on output channels are the outputs; the run ends with the latency"
                         + " of the messages (t2 - t1, receive minus publish time) and the bus counters.",
                 "Exit code 0 PASSED, 2 FAILED, 3 INCONCLUSIVE, 1 usage or model error."})
 final class RunCommand implements Callable<Integer> {
-    private static final long PROGRESS_EVERY_NANOS = 5_000_000_000L;
-
     @Spec
     private CommandSpec spec;
 
-    @Parameters(index = "0", paramLabel = "MODEL", description = "The model (.xml, .xta).")
+    @Parameters(index = "0", paramLabel = "MODEL", description = "The model (.xml, .xta, or an Uppaal 3 .ta).")
     private Path model;
 
     @Option(names = "--sut", paramLabel = "CLASS[:VARIANT]",
@@ -70,9 +68,10 @@ final class RunCommand implements Callable<Integer> {
                     + " io.dtron.models.lamp.SmartLamp:late). Without it, the adapters on the bus are tested.")
     private String sut;
 
-    @Option(names = "--classpath", split = ",", paramLabel = "PATH",
-            description = "Jars or folders to load the system under test or the adapters from (comma-separated).")
-    private List<Path> classpath = List.of();
+    @Option(names = "--classpath", paramLabel = "PATH",
+            description = "Jars or folders to load the system under test or the adapters from, separated by"
+                    + " '${sys:path.separator}' or commas.")
+    private List<String> classpath = List.of();
 
     @Option(names = "--cluster", paramLabel = "NAME",
             description = "Bus mode: the bus's cluster name (default: " + DtronOptions.DEFAULT_CLUSTER + ").")
@@ -282,8 +281,9 @@ final class RunCommand implements Callable<Integer> {
         if (waitForAdapters != null && waitForAdapters < 0) {
             throw usage("--wait-for-adapters must not be negative: " + waitForAdapters);
         }
-        if (waitTimeout != null && waitTimeout <= 0) {
-            throw usage("--wait-timeout must be a positive number of seconds: " + waitTimeout);
+        if (waitTimeout != null && (waitTimeout <= 0 || waitTimeout > RunDefaults.MAX_WAIT_SECONDS)) {
+            throw usage("--wait-timeout must be a positive number of seconds, at most " + RunDefaults.MAX_WAIT_SECONDS
+                    + " (about 292 years): " + waitTimeout);
         }
     }
 
@@ -291,7 +291,7 @@ final class RunCommand implements Callable<Integer> {
             throws IOException {
         Adapter adapter;
         try {
-            adapter = SystemUnderTest.create(sut, classpath);
+            adapter = SystemUnderTest.create(sut, classpath());
         } catch (IllegalArgumentException e) {
             throw usage(e.getMessage());
         }
@@ -311,8 +311,9 @@ final class RunCommand implements Callable<Integer> {
         InetAddress address = bindAddress();
         List<DtronAdapter> adapters = new ArrayList<>();
         try {
+            List<Path> paths = classpath();
             for (String adapterClass : adapterClasses) {
-                adapters.add(SystemUnderTest.createBusAdapter(adapterClass, classpath));
+                adapters.add(SystemUnderTest.createBusAdapter(adapterClass, paths));
             }
         } catch (IllegalArgumentException e) {
             throw usage(e.getMessage());
@@ -409,6 +410,8 @@ final class RunCommand implements Callable<Integer> {
                 TestResult result;
                 try {
                     result = tron.run(model.toAbsolutePath(), testInterface, adapter, options);
+                } catch (IllegalArgumentException e) {
+                    throw usage("--backend tron: " + e.getMessage());
                 } catch (InterruptedException e) {
                     Thread.currentThread().interrupt();
                     throw new TronFailure("interrupted while TRON was testing");
@@ -430,8 +433,11 @@ final class RunCommand implements Callable<Integer> {
     private TestResult testWithEngine(Network network, TestInterface testInterface, Adapter adapter,
                                       TestOptions options, PrintWriter out) throws IOException {
         OnlineTester tester = new OnlineTester(network, testInterface, adapter, options);
-        tester.addListener(new Progress(out));
-        TestResult result = JsonTrace.run(tester, trace, model, options);
+        TestResult result;
+        try (Progress progress = new Progress(out, options)) {
+            tester.addListener(progress);
+            result = JsonTrace.run(tester, trace, model, options);
+        }
         printVerdict(result, out);
         return result;
     }
@@ -473,8 +479,10 @@ final class RunCommand implements Callable<Integer> {
             TestInterface testInterface = adapter.testInterface();
             Long adapterUnit = testInterface.timeUnitMicros();
             if (timeUnit != null && adapterUnit != null && !timeUnit.equals(adapterUnit)) {
-                err.println("dtron run: --timeunit " + timeUnit + " differs from the time unit the adapter set, "
-                        + adapterUnit + " us; leave --timeunit out");
+                String reason = "--timeunit " + timeUnit + " differs from the time unit the adapter set, "
+                        + adapterUnit + " us; leave --timeunit out";
+                adapter.refuse("DTRON refuses the start: " + reason);
+                err.println("dtron run: " + reason);
                 return 1;
             }
             long unit = RunDefaults.timeUnit(adapterUnit, timeUnit);
@@ -483,7 +491,12 @@ final class RunCommand implements Callable<Integer> {
             try {
                 options = new TestOptions(runSeed, unit, units, policy, delayBound, virtualTime);
             } catch (IllegalArgumentException e) {
-                throw usage(e.getMessage());
+                String reason = e.getMessage() + " (timeout from " + (timeout != null ? "--timeout"
+                        : testInterface.timeout() != null ? "the adapter" : "the default") + ", time unit from "
+                        + (adapterUnit != null ? "the adapter" : timeUnit != null ? "--timeunit" : "the default") + ")";
+                adapter.refuse("DTRON refuses the start: " + reason);
+                err.println("dtron run: " + reason);
+                return 1;
             }
             out.println("dtron run: " + model + " against the TRON adapter at " + adapter.remote() + ", seed "
                     + runSeed + ", " + units + " time units of " + unit + " us"
@@ -494,6 +507,24 @@ final class RunCommand implements Callable<Integer> {
             err.println("dtron run: " + model + ": " + e.getMessage());
             return 1;
         }
+    }
+
+    /** The {@code --classpath} entries: every value split at the platform's path separator and at commas. */
+    private List<Path> classpath() {
+        List<Path> paths = new ArrayList<>();
+        for (String value : classpath) {
+            for (String entry : value.split("[," + Pattern.quote(File.pathSeparator) + "]")) {
+                if (entry.isBlank()) {
+                    continue;
+                }
+                try {
+                    paths.add(Path.of(entry));
+                } catch (InvalidPathException e) {
+                    throw usage("--classpath entry '" + entry + "' is not a path: " + e.getReason());
+                }
+            }
+        }
+        return paths;
     }
 
     /** {@code --bind}, else loopback: the bus's interface, or where {@code --tron-adapter PORT} listens. */
@@ -531,40 +562,5 @@ final class RunCommand implements Callable<Integer> {
 
     private ParameterException usage(String message) {
         return new ParameterException(spec.commandLine(), "dtron run: " + message);
-    }
-
-    /** A progress line every few seconds of wall-clock time: elapsed test time, inputs, outputs. */
-    private static final class Progress implements TestListener {
-        private final PrintWriter out;
-        private final long start = System.nanoTime();
-        private long lastLine = System.nanoTime();
-        private final AtomicInteger inputs = new AtomicInteger();
-        private final AtomicInteger outputs = new AtomicInteger();
-
-        Progress(PrintWriter out) {
-            this.out = out;
-        }
-
-        @Override
-        public void inputApplied(Event input, long micros) {
-            inputs.incrementAndGet();
-            maybePrint(micros);
-        }
-
-        @Override
-        public void outputObserved(Event output, long micros) {
-            outputs.incrementAndGet();
-            maybePrint(micros);
-        }
-
-        private void maybePrint(long micros) {
-            long now = System.nanoTime();
-            if (now - lastLine >= PROGRESS_EVERY_NANOS) {
-                lastLine = now;
-                out.printf("progress: %.1f s elapsed, test time %.3f s, %d inputs, %d outputs%n",
-                        (now - start) / 1e9, micros / 1e6, inputs.get(), outputs.get());
-                out.flush();
-            }
-        }
     }
 }

@@ -2,6 +2,8 @@ package io.dtron.cli;
 
 /** What a run uses for the settings that neither the user nor the model (or adapter) gives. */
 final class RunDefaults {
+    /** The longest wait in seconds an option may ask for: waits are timed in nanoseconds. */
+    static final long MAX_WAIT_SECONDS = Long.MAX_VALUE / 1_000_000_000L;
     private static final long TIME_UNIT_MICROS = 1000;
     private static final long TIMEOUT_UNITS = 1000;
     /**

@@ -29,6 +29,7 @@ import java.util.concurrent.Callable;
 import picocli.CommandLine.Command;
 import picocli.CommandLine.Model.CommandSpec;
 import picocli.CommandLine.Option;
+import picocli.CommandLine.ParameterException;
 import picocli.CommandLine.Parameters;
 import picocli.CommandLine.Spec;
 
@@ -50,7 +51,7 @@ final class TronCommand implements Callable<Integer> {
     @Spec
     private CommandSpec spec;
 
-    @Parameters(index = "0", paramLabel = "MODEL", description = "The model (.xml, .xta).")
+    @Parameters(index = "0", paramLabel = "MODEL", description = "The model (.xml, .xta, or an Uppaal 3 .ta).")
     private Path model;
 
     @Parameters(index = "1..*", arity = "0..2", paramLabel = "HOST PORT | PORT",
@@ -147,15 +148,13 @@ final class TronCommand implements Callable<Integer> {
         PrintWriter err = spec.commandLine().getErr();
         String usage = checkUsage();
         if (usage != null) {
-            err.println("dtron tron: " + usage);
-            return 1;
+            throw usage(usage);
         }
         DelayChoice choice;
         try {
             choice = DelayChoice.parse(delay);
         } catch (IllegalArgumentException e) {
-            err.println("dtron tron: " + e.getMessage());
-            return 1;
+            throw usage(e.getMessage());
         }
         Network network;
         try {
@@ -177,13 +176,18 @@ final class TronCommand implements Callable<Integer> {
         }
     }
 
+    private ParameterException usage(String message) {
+        return new ParameterException(spec.commandLine(), "dtron tron: " + message);
+    }
+
     private String checkUsage() {
         if (!adapterName.equals("SocketAdapter")) {
             return "-I " + adapterName + " is not supported: DTRON speaks TRON's socket adapter protocol only (-I"
                     + " SocketAdapter); for a system in the JVM use dtron run --sut";
         }
-        if (address.isEmpty()) {
-            return "give the adapter's address after the model: -- HOST PORT to connect, or -- PORT to listen";
+        if (address.isEmpty() || address.size() > 2) {
+            return (address.isEmpty() ? "give" : "too many arguments after the model: give") + " the adapter's"
+                    + " address after the model: -- HOST PORT to connect, or -- PORT to listen";
         }
         if (port() < 0) {
             return "'" + address.get(address.size() - 1) + "' is not a port (0 to 65535)";
@@ -197,8 +201,9 @@ final class TronCommand implements Callable<Integer> {
         if (future != null && future <= 0) {
             return "-F " + future + ": the test duration must be a positive number of model time units";
         }
-        if (replyTimeout <= 0) {
-            return "--reply-timeout must be a positive number of seconds";
+        if (replyTimeout <= 0 || replyTimeout > RunDefaults.MAX_WAIT_SECONDS) {
+            return "--reply-timeout must be a positive number of seconds, at most " + RunDefaults.MAX_WAIT_SECONDS
+                    + " (about 292 years)";
         }
         return null;
     }
@@ -250,7 +255,17 @@ final class TronCommand implements Callable<Integer> {
             printer.println("dtron tron: adapter " + adapter.remote() + ": " + units + " time units of " + unit + " us"
                     + (verbosity >= 2 ? "; " + describe(ti) : ""));
         }
-        TestOptions options = new TestOptions(runSeed, unit, units, choice.policy(), choice.bound(), virtualTime);
+        TestOptions options;
+        try {
+            options = new TestOptions(runSeed, unit, units, choice.policy(), choice.bound(), virtualTime);
+        } catch (IllegalArgumentException e) {
+            String reason = e.getMessage() + " (timeout from " + (future != null ? "-F" : ti.timeout() != null
+                    ? "the adapter" : "the default") + ", time unit from " + (ti.timeUnitMicros() != null
+                    ? "the adapter" : "the default") + ")";
+            adapter.refuse("DTRON refuses the start: " + reason);
+            err.println("dtron tron: " + reason);
+            return 1;
+        }
         OnlineTester tester = new OnlineTester(network, ti, adapter, options);
         if (verbosity >= 1 && !quiet) {
             tester.addListener(new EventPrinter(printer, unit));

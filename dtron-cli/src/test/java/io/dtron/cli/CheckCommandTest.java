@@ -65,11 +65,15 @@ class CheckCommandTest {
     }
 
     @Test
-    void badUsageExitsWithOneAndShowsUsage() {
+    void badUsageExitsWithOneAndSaysWhyAndWhereTheHelpIs() {
         Run unknown = dtron("check", "--frobnicate", "x.xml");
         assertEquals(1, unknown.exit());
         assertTrue(unknown.err().contains("Unknown option: '--frobnicate'"), unknown.err());
-        assertTrue(unknown.err().contains("Usage: dtron check"), unknown.err());
+        assertEquals("dtron check: Unknown option: '--frobnicate'" + System.lineSeparator() + "see 'dtron check --help'"
+                + System.lineSeparator(), unknown.err(), "the reason and where the help is, not the whole usage");
+        Run root = dtron("--frobnicate");
+        assertEquals(1, root.exit());
+        assertTrue(root.err().endsWith("see 'dtron --help'" + System.lineSeparator()), root.err());
         assertEquals(1, dtron("check").exit(), "a model is required");
         Run twoWithInterface = dtron("check", "a.xml", "b.xml", "--interface", "x.trn");
         assertEquals(1, twoWithInterface.exit());

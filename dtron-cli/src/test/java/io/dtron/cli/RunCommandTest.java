@@ -5,15 +5,29 @@ import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
+import io.dtron.api.Dtron;
+import io.dtron.api.IDtronChannel;
+import io.dtron.engine.AdapterContext;
+import io.dtron.engine.Event;
+import io.dtron.engine.TestClock;
+import io.dtron.model.ModelLoader;
+import io.dtron.model.TestInterface;
 import io.dtron.testadapter.BusTicker;
+import java.io.File;
 import java.io.IOException;
 import java.io.PrintWriter;
 import java.io.StringWriter;
+import java.net.InetAddress;
 import java.nio.file.Files;
 import java.nio.file.Path;
+import java.time.Duration;
 import java.util.ArrayList;
 import java.util.List;
+import java.util.Map;
 import java.util.UUID;
+import java.util.concurrent.TimeUnit;
+import java.util.regex.Matcher;
+import java.util.regex.Pattern;
 import org.junit.jupiter.api.BeforeAll;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
@@ -72,6 +86,20 @@ class RunCommandTest {
     }
 
     @Test
+    void aQuietRunInRealTimeShowsProgressWithTheNextDeadline() {
+        // 0.6 s per unit: the slow ticker's first tick is due by t=12 (7.2 s) and comes at t=13; nothing happens
+        // before, and a progress line comes after 5 s
+        Run r = dtron("run", model.toString(), "--sut", TickerForTests.class.getName() + ":slow", "--seed", "1",
+                "--timeunit", "600000", "--timeout", "100");
+        assertEquals(2, r.exit(), r.out() + r.err());
+        Matcher progress = Pattern.compile("progress: \\d+ s elapsed, t=(\\d+)\\.\\d{3}, 0 inputs, 0 outputs, an output"
+                + " is due by t=12\\.000\n").matcher(r.out().replace(System.lineSeparator(), "\n"));
+        assertTrue(progress.find(), r.out());
+        assertTrue(Integer.parseInt(progress.group(1)) <= 12, "the test time while waiting: " + r.out());
+        assertTrue(progress.start() < r.out().indexOf("FAILED: no output came by t=12.000"), r.out());
+    }
+
+    @Test
     void theSameSeedGivesTheSameTraceByteForByte() throws IOException {
         Path a = dir.resolve("a.jsonl");
         Path b = dir.resolve("b.jsonl");
@@ -104,7 +132,7 @@ class RunCommandTest {
         assertTrue(notAdapter.err().contains("does not implement io.dtron.engine.Adapter"), notAdapter.err());
         Run variant = dtron("run", model.toString(), "--sut", TickerForTests.class.getName() + ":weird");
         assertEquals(1, variant.exit());
-        assertTrue(variant.err().contains("unknown variant 'weird' (correct, slow)"), variant.err());
+        assertTrue(variant.err().contains("unknown variant 'weird' (correct, slow, broken)"), variant.err());
         Run policy = dtron("run", model.toString(), "--sut", TickerForTests.class.getName(), "--delay-policy", "soon");
         assertEquals(1, policy.exit());
         assertTrue(policy.err().contains("unknown delay policy 'soon'"), policy.err());
@@ -113,8 +141,61 @@ class RunCommandTest {
         assertTrue(badTimeout.err().contains("the timeout must be a positive number"), badTimeout.err());
         assertFalse((noClass.err() + variant.err() + policy.err()).contains("\tat "), "no stack traces");
         for (Run r : List.of(noClass, notAdapter, variant, policy, badTimeout)) {
-            assertTrue(r.err().contains("Usage: dtron run"), "a usage message: " + r.err());
+            assertOneLineUsageError(r);
         }
+    }
+
+    @Test
+    void theClasspathTakesThePlatformsPathSeparatorAndCommas() throws IOException {
+        Path a = Files.createDirectories(dir.resolve("cp-a"));
+        Path b = Files.createDirectories(dir.resolve("cp-b"));
+        Path c = Files.createDirectories(dir.resolve("cp-c"));
+        Run r = dtron("run", model.toString(), "--sut", TickerForTests.class.getName(), "--virtual-time", "--seed", "7",
+                "--timeout", "50", "--classpath", a + File.pathSeparator + b + "," + c);
+        assertEquals(0, r.exit(), r.out() + r.err());
+        Path missing = dir.resolve("cp-missing");
+        Run bad = dtron("run", model.toString(), "--sut", TickerForTests.class.getName(), "--virtual-time",
+                "--classpath", a + File.pathSeparator + missing);
+        assertOneLineUsageError(bad);
+        assertTrue(bad.err().contains("--classpath entry " + missing + " does not exist"), "one entry: " + bad.err());
+    }
+
+    @Test
+    void theHelpNamesEveryModelFormatAndThePathSeparator() {
+        Run help = dtron("run", "--help");
+        assertEquals(0, help.exit(), help.err());
+        String text = help.out().replaceAll("\\s+", " ");
+        assertTrue(text.contains("The model (.xml, .xta, or an Uppaal 3 .ta)."), help.out());
+        assertTrue(text.contains("separated by '" + File.pathSeparator + "' or commas"), help.out());
+    }
+
+    @Test
+    void aRunLongerThanDtronCanTimeIsAUsageErrorNamingTheLimit() {
+        Run r = dtron("run", model.toString(), "--sut", TickerForTests.class.getName(), "--virtual-time",
+                "--timeunit", Long.toString(Long.MAX_VALUE), "--timeout", Integer.toString(Integer.MAX_VALUE));
+        assertOneLineUsageError(r);
+        assertTrue(r.err().startsWith("dtron run: the timeout of 2147483647 time units of 9223372036854775807 us is"
+                + " longer than DTRON can time: at most 9223372036854775 us (about 292 years)"), r.err());
+        assertFalse(r.err().contains("Exception"), r.err());
+        Run bound = dtron("run", model.toString(), "--sut", TickerForTests.class.getName(), "--virtual-time",
+                "--delay-policy", "random-bounded", "--delay-bound", Long.toString(Long.MAX_VALUE));
+        assertOneLineUsageError(bound);
+        assertTrue(bound.err().contains("the delay bound of 9223372036854775807 time units of 1000 us is longer"),
+                bound.err());
+        Run longest = dtron("run", model.toString(), "--sut", TickerForTests.class.getName() + ":slow",
+                "--virtual-time", "--seed", "7", "--timeunit", "1000", "--timeout",
+                Long.toString(9_223_372_036_854_775L / 1000));
+        assertEquals(2, longest.exit(), "the longest run is timed without overflow: " + longest.out() + longest.err());
+        assertTrue(longest.out().contains("FAILED: no output came by t=12.000"), longest.out());
+    }
+
+    @Test
+    void aSystemUnderTestThatThrowsIsReportedOnOneLineWithoutAStackTrace() {
+        Run r = dtron("run", model.toString(), "--sut", TickerForTests.class.getName() + ":broken", "--virtual-time");
+        assertEquals(1, r.exit(), r.out() + r.err());
+        assertTrue(r.err().startsWith("dtron run: unexpected error: java.lang.IllegalStateException: the ticker is"
+                + " unplugged at io.dtron.cli.TickerForTests.start(TickerForTests.java:"), r.err());
+        assertEquals(1, r.err().lines().count(), r.err());
     }
 
     @Test
@@ -128,20 +209,34 @@ class RunCommandTest {
         assertTrue(typo.err().contains("Unmatched argument"), "a command name is not taken for a model: " + typo.err());
     }
 
+    /** A usage error is its reason and where the help is, not the whole usage message; exit code 1. */
+    private static void assertOneLineUsageError(Run r) {
+        assertEquals(1, r.exit(), r.out() + r.err());
+        assertTrue(r.err().startsWith("dtron run: "), r.err());
+        assertTrue(r.err().endsWith("see 'dtron run --help'" + System.lineSeparator()), r.err());
+        assertFalse(r.err().contains("Usage:") || r.err().contains("--wait-for-adapters=N"), r.err());
+        assertTrue(r.err().lines().count() <= 3, "the reason, maybe a suggestion, and the help: " + r.err());
+    }
+
     @Test
-    void unknownOptionsAndBadValuesGetAUsageMessage() {
+    void unknownOptionsAndBadValuesGetTheReasonAndWhereTheHelpIs() {
         Run unknown = dtron(model.toString(), "--bogus");
-        assertEquals(1, unknown.exit());
-        assertTrue(unknown.err().contains("Unknown option: '--bogus'"), unknown.err());
-        assertTrue(unknown.err().contains("Usage: dtron run"), unknown.err());
-        assertTrue(unknown.err().contains("--wait-for-adapters=N"), "the bus options are listed: " + unknown.err());
+        assertOneLineUsageError(unknown);
+        assertTrue(unknown.err().startsWith("dtron run: Unknown option: '--bogus'"), unknown.err());
         Run notANumber = dtron(model.toString(), "--wait-for-adapters", "two");
-        assertEquals(1, notANumber.exit());
+        assertOneLineUsageError(notANumber);
         assertTrue(notANumber.err().contains("Invalid value for option '--wait-for-adapters': 'two'"),
                 notANumber.err());
+        Run missing = dtron("run");
+        assertOneLineUsageError(missing);
+        assertTrue(missing.err().contains("Missing required parameter: 'MODEL'"), missing.err());
+        Run typo = dtron("run", model.toString(), "--sut", TickerForTests.class.getName(), "--virtual-tim");
+        assertOneLineUsageError(typo);
+        assertTrue(typo.err().contains("--virtual-time"), "a suggestion: " + typo.err());
         for (String[] args : List.of(
                 new String[] {"--wait-for-adapters", "-1"},
                 new String[] {"--wait-timeout", "0"},
+                new String[] {"--wait-timeout", Long.toString(Long.MAX_VALUE)},
                 new String[] {"--virtual-time"},
                 new String[] {"--bind", "no.such.host.invalid"},
                 new String[] {"--cluster", " "},
@@ -149,9 +244,7 @@ class RunCommandTest {
                 new String[] {"--sut", TickerForTests.class.getName(), "--cluster", "x"})) {
             List<String> all = new ArrayList<>(List.of(model.toString()));
             all.addAll(List.of(args));
-            Run r = dtron(all.toArray(new String[0]));
-            assertEquals(1, r.exit(), String.join(" ", args) + ": " + r.out() + r.err());
-            assertTrue(r.err().contains("Usage: dtron run"), String.join(" ", args) + ": " + r.err());
+            assertOneLineUsageError(dtron(all.toArray(new String[0])));
         }
         Run virtual = dtron(model.toString(), "--virtual-time");
         assertTrue(virtual.err().contains("--virtual-time needs --sut or --tron-adapter: the adapters on a bus live in real time"),
@@ -186,6 +279,69 @@ class RunCommandTest {
         assertEquals(2, r.exit(), r.out() + r.err());
         assertTrue(r.out().contains("FAILED: no output came by t=12.000"), r.out());
         assertTrue(r.out().contains("latency t2 - t1 of outputs: count "), r.out());
+    }
+
+    @Test
+    void outputsAfterTheEndAreCountedInTheSummary() throws Exception {
+        TestInterface testInterface = TestInterface.fromNames(ModelLoader.load(model));
+        List<Dtron> member = new ArrayList<>();
+        try (BusSession session = BusSession.open(testInterface, cluster(), InetAddress.getLoopbackAddress())) {
+            session.startAdapter(member::add);
+            assertTrue(session.awaitAdapters(1, Duration.ofSeconds(30)), session.bridge().members().toString());
+            session.bridge().start(new AdapterContext() {
+                @Override
+                public void report(Event output) {
+                }
+
+                @Override
+                public void report(Event output, long eventMicros) {
+                }
+
+                @Override
+                public void inputApplied(long ordinal, long eventMicros) {
+                }
+
+                @Override
+                public void inconclusive(String reason) {
+                }
+
+                @Override
+                public TestClock clock() {
+                    return new TestClock() {
+                        @Override
+                        public long nowMicros() {
+                            return 0;
+                        }
+
+                        @Override
+                        public Scheduled schedule(long delayMicros, Runnable task) {
+                            throw new UnsupportedOperationException("the bridge schedules nothing");
+                        }
+                    };
+                }
+
+                @Override
+                public TestInterface testInterface() {
+                    return testInterface;
+                }
+
+                @Override
+                public long timeUnitMicros() {
+                    return 1000;
+                }
+            });
+            session.bridge().stop();
+            IDtronChannel tick = IDtronChannel.of("tick", "seq");
+            member.get(0).send(tick.constructValued(Map.of("seq", 1)));
+            member.get(0).send(tick.constructValued(Map.of("seq", 2)));
+            long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(30);
+            while (session.bridge().outputsAfterEnd() < 2 && System.nanoTime() < deadline) {
+                Thread.sleep(10);
+            }
+            StringWriter summary = new StringWriter();
+            session.printSummary(new PrintWriter(summary, true));
+            assertTrue(summary.toString().contains(", 2 outputs after the end (not judged)"), summary.toString());
+        }
     }
 
     @Test

@@ -156,6 +156,32 @@ class RunWithTronTest {
     }
 
     @Test
+    void anAdapterTimeUnitTooLongForTheDefaultTimeoutIsRefusedWithTheReason() throws Exception {
+        try (ServerSocket server = new ServerSocket(0, 1, InetAddress.getLoopbackAddress())) {
+            CompletableFuture<String> adapter = CompletableFuture.supplyAsync(() -> {
+                try (var socket = server.accept(); RawClient c = RawClient.over(socket)) {
+                    c.bytes(1).string("grasp");
+                    assertEquals(1, c.readInt());
+                    c.bytes(5).int32(Integer.MAX_VALUE).int32(0);
+                    assertEquals(0, c.readInt(), "a time unit alone fits");
+                    c.bytes(64);
+                    return c.readString();
+                } catch (IOException e) {
+                    throw new IllegalStateException(e);
+                }
+            });
+            Run r = dtron("run", lightContr.toString(), "--tron-adapter", "127.0.0.1:" + server.getLocalPort());
+            String reason = "the timeout of 1000 time units of 2147483647000000 us is longer than DTRON can time: at"
+                    + " most 9223372036854775 us (about 292 years) (timeout from the default, time unit from the"
+                    + " adapter)";
+            assertEquals("DTRON refuses the start: " + reason, adapter.get(10, TimeUnit.SECONDS));
+            assertEquals(1, r.exit(), r.out() + r.err());
+            assertTrue(r.err().contains("dtron run: " + reason), r.err());
+            assertFalse(r.err().contains("Exception") || r.err().contains("\tat "), "no stack trace: " + r.err());
+        }
+    }
+
+    @Test
     void nobodyListeningAtTheTronAdapterAddressIsAClearError() throws Exception {
         int port;
         try (ServerSocket probe = new ServerSocket(0, 1, InetAddress.getLoopbackAddress())) {
@@ -213,6 +239,20 @@ class RunWithTronTest {
         assertTrue(out.contains("\nPASSED: the timeout of 300 time units was reached"), out);
         assertTrue(out.contains("statistics: 42 PASSED "), out);
         assertTrue(out.contains("tron: dtron tron: "), "TRON's own output is shown behind 'tron: ': " + out);
+    }
+
+    @Test
+    void aTimeoutBeyondTronsIsAUsageError() throws Exception {
+        Path log = dir.resolve("dtron-long.log");
+        Process p = dtronProcess(tronHome().toString(), "/usr/bin:/bin", log, "run", lightContr.toString(),
+                "--interface", tronModels.resolve("LightContr.trn").toString(), "--sut", LampSystem.class.getName(),
+                "--timeout", "3000000000", "--backend", "tron");
+        assertTrue(p.waitFor(90, TimeUnit.SECONDS), Files.readString(log));
+        String out = Files.readString(log);
+        assertEquals(1, p.exitValue(), out);
+        assertTrue(out.contains("dtron run: --backend tron: TRON's timeout is at most 2147483647 time units\n"
+                + "see 'dtron run --help'"), out);
+        assertFalse(out.contains("Exception"), out);
     }
 
     @Test

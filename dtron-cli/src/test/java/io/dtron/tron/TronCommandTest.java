@@ -13,6 +13,7 @@ import java.net.ServerSocket;
 import java.nio.file.Files;
 import java.nio.file.Path;
 import java.time.Duration;
+import java.util.List;
 import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.TimeUnit;
 import org.junit.jupiter.api.BeforeAll;
@@ -178,6 +179,63 @@ class TronCommandTest {
     }
 
     @Test
+    void aRunLongerThanDtronCanTimeIsRefusedToTheAdapterAndEndsWithTheReason() throws Exception {
+        try (ServerSocket server = new ServerSocket(0, 1, InetAddress.getLoopbackAddress())) {
+            CompletableFuture<String> adapter = CompletableFuture.supplyAsync(() -> {
+                try (var socket = server.accept(); RawClient c = RawClient.over(socket)) {
+                    c.bytes(1).string("grasp");
+                    assertEquals(1, c.readInt());
+                    c.bytes(5).int32(0).int32(1000);
+                    assertEquals(0, c.readInt());
+                    c.bytes(64);
+                    String reply = c.readString();
+                    assertTrue(c.closedByTester());
+                    return reply;
+                } catch (IOException e) {
+                    throw new IllegalStateException(e);
+                }
+            });
+            Run r = tron("-F", Long.toString(Long.MAX_VALUE), lightContr.toString(), "--", "127.0.0.1",
+                    Integer.toString(server.getLocalPort()));
+            String reason = "the timeout of 9223372036854775807 time units of 1000 us is longer than DTRON can time: at"
+                    + " most 9223372036854775 us (about 292 years) (timeout from -F, time unit from the adapter)";
+            assertEquals("DTRON refuses the start: " + reason, adapter.get(10, TimeUnit.SECONDS));
+            assertEquals(1, r.exit(), r.out() + r.err());
+            assertTrue(r.err().contains("dtron tron: " + reason), r.err());
+            assertFalse(r.err().contains("Exception") || r.err().contains("\tat "), "no stack trace: " + r.err());
+        }
+    }
+
+    @Test
+    void anAdapterConfiguringARunLongerThanDtronCanTimeGetsAnErrorCodeAndTheRunEndsWithTheReason()
+            throws Exception {
+        try (ServerSocket server = new ServerSocket(0, 1, InetAddress.getLoopbackAddress())) {
+            CompletableFuture<Integer> adapter = CompletableFuture.supplyAsync(() -> {
+                try (var socket = server.accept(); RawClient c = RawClient.over(socket)) {
+                    c.bytes(1).string("grasp");
+                    assertEquals(1, c.readInt());
+                    c.bytes(5).int32(0).int32(Integer.MAX_VALUE);
+                    assertEquals(0, c.readInt());
+                    c.bytes(6).int32(Integer.MAX_VALUE);
+                    int code = c.readInt();
+                    c.bytes(64);
+                    c.readString();
+                    return code;
+                } catch (IOException e) {
+                    throw new IllegalStateException(e);
+                }
+            });
+            Run r = tron(lightContr.toString(), "--", "127.0.0.1", Integer.toString(server.getLocalPort()));
+            assertEquals(-13, adapter.get(10, TimeUnit.SECONDS));
+            assertEquals(1, r.exit(), r.out() + r.err());
+            assertTrue(r.err().contains("dtron tron: the adapter's configuration failed: the test was not started: 1"
+                    + " registration was refused: timeout 2147483647: the timeout of 2147483647 time units of"
+                    + " 2147483647 us is longer than DTRON can time"), r.err());
+            assertFalse(r.err().contains("Exception") || r.err().contains("\tat "), "no stack trace: " + r.err());
+        }
+    }
+
+    @Test
     void usageErrorsSayWhatIsWrong() throws Exception {
         String model = lightContr.toString();
         Run otherAdapter = tron("-I", "TraceAdapter", model, "--", "9999");
@@ -198,9 +256,21 @@ class TronCommandTest {
         assertTrue(badPort.err().contains("'port' is not a port"), badPort.err());
         Run tooMany = tron(model, "--", "localhost", "1", "2");
         assertEquals(1, tooMany.exit());
+        assertTrue(tooMany.err().contains("too many arguments after the model"), tooMany.err());
         Run badUncertainty = tron("-U", "x", model, "--", "1");
         assertEquals(1, badUncertainty.exit());
         assertTrue(badUncertainty.err().contains("-U x: give a number"), badUncertainty.err());
+        Run longReplyTimeout = tron("--virtual-time", "--reply-timeout", Long.toString(Long.MAX_VALUE), model, "--",
+                "1");
+        assertEquals(1, longReplyTimeout.exit());
+        assertTrue(longReplyTimeout.err().contains("--reply-timeout must be a positive number of seconds, at most"
+                + " 9223372036 (about 292 years)"), longReplyTimeout.err());
+        for (Run r : List.of(otherAdapter, badDelay, unknown, noAddress, badPort, tooMany, badUncertainty,
+                longReplyTimeout)) {
+            assertTrue(r.err().startsWith("dtron tron: "), r.err());
+            assertTrue(r.err().endsWith("see 'dtron tron --help'" + System.lineSeparator()), r.err());
+            assertFalse(r.err().contains("Usage:"), "not the whole usage: " + r.err());
+        }
         Run missingModel = tron(dir.resolve("none.xml").toString(), "--", "1");
         assertEquals(1, missingModel.exit());
         assertTrue(missingModel.err().contains("none.xml"), missingModel.err());

@@ -24,6 +24,7 @@ import java.util.concurrent.ConcurrentHashMap;
 import java.util.concurrent.CountDownLatch;
 import java.util.concurrent.TimeUnit;
 import java.util.concurrent.atomic.AtomicBoolean;
+import java.util.concurrent.atomic.AtomicLong;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
@@ -57,7 +58,8 @@ public final class BusBridge implements Adapter, AutoCloseable {
     private final LatencyRecorder outputLatency = new LatencyRecorder();
     private final LatencyRecorder inputLatency = new LatencyRecorder();
     private final Set<String> watched = ConcurrentHashMap.newKeySet();
-    private final AtomicBoolean warnedOutsideRun = new AtomicBoolean();
+    private final AtomicBoolean warnedBeforeStart = new AtomicBoolean();
+    private final AtomicLong outputsAfterEnd = new AtomicLong();
     private volatile CountDownLatch ownStop = new CountDownLatch(1);
     private volatile AdapterContext context;
     private volatile boolean running;
@@ -222,6 +224,14 @@ public final class BusBridge implements Adapter, AutoCloseable {
         return inputLatency.summary();
     }
 
+    /**
+     * Returns how many outputs came after the end of the run ({@link #stop()}) so far: they are not judged, and
+     * are counted here rather than logged, since they follow the verdict.
+     */
+    public long outputsAfterEnd() {
+        return outputsAfterEnd.get();
+    }
+
     /** Returns the bus counters of this bridge: published, accepted and rejected messages, by reason. */
     public DtronStats stats() {
         return dtron.getStats();
@@ -254,12 +264,17 @@ public final class BusBridge implements Adapter, AutoCloseable {
             return;
         }
         outputLatency.record(message);
+        if (!running && context != null) {
+            outputsAfterEnd.incrementAndGet();
+            LOG.debug("Ignored output {}: the run is over", message);
+            return;
+        }
         if (!running) {
-            String when = context == null ? "has not started" : "is over";
-            if (warnedOutsideRun.compareAndSet(false, true)) {
-                LOG.warn("Ignored output {}: the run {} (more such outputs are logged at debug level)", message, when);
+            if (warnedBeforeStart.compareAndSet(false, true)) {
+                LOG.warn("Ignored output {}: the run has not started (more such outputs are logged at debug level)",
+                        message);
             } else {
-                LOG.debug("Ignored output {}: the run {}", message, when);
+                LOG.debug("Ignored output {}: the run has not started", message);
             }
             return;
         }

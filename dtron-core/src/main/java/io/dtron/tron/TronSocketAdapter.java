@@ -317,6 +317,26 @@ public final class TronSocketAdapter implements Adapter, Closeable {
         writer.write(frame);
     }
 
+    /**
+     * Refuses the adapter's start with {@code reason}, its reply to command 64, and closes the connection: for a
+     * configuration the adapter completed that the tester's own settings do not go with (a timeout of the tester's
+     * that makes the run, in the adapter's time unit, longer than DTRON can time; another time unit). Call it instead
+     * of running the test.
+     *
+     * @throws IllegalStateException if the test has started
+     */
+    public void refuse(String reason) {
+        if (context != null) {
+            throw new IllegalStateException("the test has started; it cannot be refused");
+        }
+        try {
+            reply(Wire.string(reason));
+        } catch (IOException e) {
+            LOG.debug("cannot refuse the start: {}", e.getMessage());
+        }
+        close();
+    }
+
     @Override
     public void start(AdapterContext runContext) {
         this.context = runContext;

@@ -6,6 +6,7 @@ import static org.junit.jupiter.api.Assertions.assertNull;
 import static org.junit.jupiter.api.Assertions.assertThrows;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
+import ch.qos.logback.classic.Level;
 import io.dtron.api.Dtron;
 import io.dtron.api.DtronOptions;
 import io.dtron.api.DtronStats;
@@ -24,6 +25,7 @@ import io.dtron.model.ModelException;
 import io.dtron.model.ModelLoader;
 import io.dtron.model.TestInterface;
 import io.dtron.testsupport.Inbox;
+import io.dtron.testsupport.LogCapture;
 import java.time.Duration;
 import java.util.List;
 import java.util.Map;
@@ -167,8 +169,15 @@ class BusBridgeTest {
         awaitOutputsSeen(1);
         bridge.start(context);
         bridge.stop();
-        adapter.send(DONE.constructValued(Map.of("amount", 2)));
-        awaitOutputsSeen(2);
+        assertEquals(0, bridge.outputsAfterEnd());
+        try (LogCapture log = new LogCapture(BusBridge.class)) {
+            adapter.send(DONE.constructValued(Map.of("amount", 2)));
+            adapter.send(DONE.constructValued(Map.of("amount", 3)));
+            awaitOutputsSeen(3);
+            assertEquals(2, bridge.outputsAfterEnd(), "outputs after the end are counted");
+            assertTrue(log.events(Level.WARN).isEmpty(), "and not logged as warnings after the verdict: "
+                    + log.messages());
+        }
         assertTrue(context.outputs.isEmpty(), context.outputs.toString());
     }
 

@@ -172,6 +172,55 @@ class TronProtocolRobustnessTest {
     }
 
     @Test
+    void aTimeoutTimesATimeUnitLongerThanTheEngineCanTimeIsRefusedWithAnErrorCode() throws Exception {
+        String limit = "is longer than DTRON can time: at most 9223372036854775 us (about 292 years)";
+        TronProtocolException unitFirst = configurationFails(c -> {
+            c.bytes(1).string("grasp");
+            assertEquals(1, c.readInt());
+            c.bytes(5).int32(0).int32(Integer.MAX_VALUE);
+            assertEquals(0, c.readInt());
+            c.bytes(6).int32(Integer.MAX_VALUE);
+            assertEquals(-13, c.readInt());
+            c.bytes(127).int32(-13);
+            assertEquals("timeout 2147483647: the timeout of 2147483647 time units of 2147483647 us " + limit,
+                    c.readString());
+            c.bytes(64);
+            assertTrue(c.readString().startsWith("1 registration was refused: timeout 2147483647: "));
+        });
+        assertTrue(unitFirst.getMessage().startsWith("the test was not started: 1 registration was refused: timeout"
+                + " 2147483647: the timeout of 2147483647 time units of 2147483647 us " + limit),
+                unitFirst.getMessage());
+        TronProtocolException timeoutFirst = configurationFails(c -> {
+            c.bytes(1).string("grasp");
+            assertEquals(1, c.readInt());
+            c.bytes(6).int32(Integer.MAX_VALUE);
+            assertEquals(0, c.readInt());
+            c.bytes(5).int32(Integer.MAX_VALUE).int32(0);
+            assertEquals(-13, c.readInt());
+            c.bytes(64);
+            assertTrue(c.readString().contains(limit));
+        });
+        assertTrue(timeoutFirst.getMessage().contains("time unit 2147483647 s 0 us: with it, the timeout of"
+                + " 2147483647 time units of 2147483647000000 us " + limit), timeoutFirst.getMessage());
+    }
+
+    @Test
+    void theTesterRefusesTheStartWithItsReasonWhenItsOwnSettingsDoNotFit() throws Exception {
+        CompletableFuture<Void> adapter = adapter(c -> {
+            c.bytes(1).string("grasp");
+            assertEquals(1, c.readInt());
+            c.bytes(5).int32(0).int32(1000);
+            assertEquals(0, c.readInt());
+            c.bytes(64);
+            assertEquals("the tester's timeout does not fit", c.readString());
+            assertTrue(c.closedByTester());
+        });
+        TronSocketAdapter tester = TronSocketAdapter.accept(server, lightContr, FAST);
+        tester.refuse("the tester's timeout does not fit");
+        adapter.get(10, TimeUnit.SECONDS);
+    }
+
+    @Test
     void anEventOnAChannelIdNeverRegisteredEndsTheRunInconclusive() throws Exception {
         TestResult r = runWith(FAST, c -> {
             c.configureLamp(LONG_RUN).int32(42).uint16(0);

@@ -251,6 +251,7 @@ public final class OnlineTester {
                 boolean deadline = !choice.isInput() && plan.hasDeadline() && choice.ticks() > plan.deadline()
                         && at < timeoutMicros;
                 long target = choice.isInput() ? at : deadline ? at + window : Math.min(timeoutMicros, at);
+                announceWait(now, target, choice, plan);
                 RunClock.TimedEvent event = clock.awaitUntil(target);
                 if (event != null) {
                     TestResult verdict = receive(event);
@@ -278,6 +279,18 @@ public final class OnlineTester {
             }
         }
 
+        private void announceWait(long now, long target, Plan.Choice choice, Plan plan) {
+            if (listeners.isEmpty()) {
+                return;
+            }
+            TestListener.Until until = choice.isInput() ? TestListener.Until.INPUT
+                    : plan.hasDeadline() ? TestListener.Until.OUTPUT_DEADLINE : TestListener.Until.END;
+            long untilMicros = until == TestListener.Until.OUTPUT_DEADLINE ? lastMicros + micros(plan.deadline())
+                    : target;
+            for (TestListener l : listeners) {
+                l.waiting(now, untilMicros, until);
+            }
+        }
         /** Commits to the pending events at or before {@code horizon}: nothing earlier can arrive any more. */
         private void commit(long horizon) {
             while (!pending.isEmpty() && pending.get(0).micros <= horizon) {

@@ -11,7 +11,25 @@ public interface TestListener {
     default void outputObserved(Event output, long micros) {
     }
 
+    /**
+     * The tester waits, from {@code nowMicros} since the start, for outputs until {@code untilMicros}: the time of
+     * its next input, the deadline by which the model requires an output, or the end of the test, as {@code until}
+     * says. Called on the tester's thread before every wait; for progress lines, so it must return at once.
+     */
+    default void waiting(long nowMicros, long untilMicros, Until until) {
+    }
+
     /** The run ended. */
     default void finished(TestResult result) {
+    }
+
+    /** What ends a wait of the tester, unless an output comes first. */
+    enum Until {
+        /** The tester applies its next input. */
+        INPUT,
+        /** The model requires an output by then; without one the run fails. */
+        OUTPUT_DEADLINE,
+        /** The timeout: the run passes. */
+        END
     }
 }

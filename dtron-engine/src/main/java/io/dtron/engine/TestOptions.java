@@ -21,6 +21,13 @@ import java.util.Objects;
  */
 public record TestOptions(long seed, long timeUnitMicros, long timeout, DelayPolicy delayPolicy, long delayBound,
                           boolean virtualTime, long reorderWindowMicros) {
+    /**
+     * The longest run DTRON can time, in microseconds (about 292 years): the engine counts time in nanoseconds and
+     * in up to 1000 ticks per time unit, so a duration in microseconds times 1000 must fit in a {@code long}. The
+     * timeout and the delay bound, times the time unit, must not exceed it.
+     */
+    public static final long MAX_DURATION_MICROS = Long.MAX_VALUE / 1000;
+
     public TestOptions {
         Objects.requireNonNull(delayPolicy, "delayPolicy");
         if (timeUnitMicros <= 0) {
@@ -32,9 +39,29 @@ public record TestOptions(long seed, long timeUnitMicros, long timeout, DelayPol
         if (delayBound < 0) {
             throw new IllegalArgumentException("the delay bound must not be negative");
         }
-        if (reorderWindowMicros < 0) {
-            throw new IllegalArgumentException("the reorder window must not be negative");
+        if (reorderWindowMicros < 0 || reorderWindowMicros > MAX_DURATION_MICROS) {
+            throw new IllegalArgumentException("the reorder window must be 0 to " + MAX_DURATION_MICROS + " us");
         }
+        if (!fits(timeout, timeUnitMicros)) {
+            throw new IllegalArgumentException(tooLong("the timeout", timeout, timeUnitMicros));
+        }
+        if (!fits(delayBound, timeUnitMicros)) {
+            throw new IllegalArgumentException(tooLong("the delay bound", delayBound, timeUnitMicros));
+        }
+    }
+
+    /**
+     * Whether {@code units} model time units of {@code timeUnitMicros} (positive) each last at most {@link
+     * #MAX_DURATION_MICROS}, computed without overflow: for checking settings where they come in.
+     */
+    public static boolean fits(long units, long timeUnitMicros) {
+        return units <= MAX_DURATION_MICROS / timeUnitMicros;
+    }
+
+    /** Why {@code units} time units of {@code timeUnitMicros} do not {@link #fits fit}, naming the limit. */
+    public static String tooLong(String what, long units, long timeUnitMicros) {
+        return what + " of " + units + " time units of " + timeUnitMicros + " us is longer than DTRON can time: at"
+                + " most " + MAX_DURATION_MICROS + " us (about 292 years)";
     }
 
     /** Options without a reorder window, for systems under test that report in time order. */

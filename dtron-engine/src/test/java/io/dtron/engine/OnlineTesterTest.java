@@ -118,6 +118,29 @@ class OnlineTesterTest {
     }
 
     @Test
+    void listenersLearnWhatTheTesterWaitsForAndUntilWhen() throws Exception {
+        Network n = ModelLoader.load("ticker.xta", TICKER);
+        List<String> waits = new ArrayList<>();
+        TestListener listener = new TestListener() {
+            @Override
+            public void waiting(long nowMicros, long untilMicros, Until until) {
+                waits.add(nowMicros + " " + until + " " + untilMicros);
+            }
+        };
+        TestOptions eager = TestOptions.defaults(5).withTimeout(300).withDelayPolicy(DelayPolicy.EAGER, 0);
+        TestResult slow = new OnlineTester(n, TestInterface.fromNames(n), new Ticker(13), eager).addListener(listener)
+                .run();
+        assertEquals(Verdict.FAILED, slow.verdict(), slow.explanation());
+        assertEquals("0 OUTPUT_DEADLINE 12000", waits.get(0), "the tick is due by t=12: " + waits);
+        waits.clear();
+        new OnlineTester(n, TestInterface.fromNames(n), new Ticker(10), eager.withTimeout(290)).addListener(listener)
+                .run();
+        assertTrue(waits.contains("20000 INPUT 25000"), "after the second tick, the reset at t=25: " + waits);
+        assertEquals("285000 END 290000", waits.get(waits.size() - 1), "the tick due by t=297 is after the end: "
+                + waits);
+    }
+
+    @Test
     void delayPoliciesPlaceInputsAtTheStartOrTheEndOfTheirWindows() throws Exception {
         // the environment may reset from e >= 25 on, without an upper bound: eager resets at exactly 25
         Network n = ModelLoader.load("ticker.xta", TICKER);
@@ -301,5 +324,22 @@ class OnlineTesterTest {
                 () -> new OnlineTester(n, TestInterface.fromNames(n), new Ticker(1), TestOptions.defaults(1)).run());
         assertTrue(e.getMessage().contains("process Confused sends output o_done but also sends input i_go"),
                 e.getMessage());
+    }
+
+    @Test
+    void aRunLongerThanTheEngineCanTimeIsRefusedWithTheLimit() {
+        IllegalArgumentException timeout = org.junit.jupiter.api.Assertions.assertThrows(
+                IllegalArgumentException.class, () -> new TestOptions(1, Long.MAX_VALUE, Integer.MAX_VALUE,
+                        DelayPolicy.RANDOM, 0, true));
+        assertEquals("the timeout of 2147483647 time units of 9223372036854775807 us is longer than DTRON can time: at"
+                + " most 9223372036854775 us (about 292 years)", timeout.getMessage());
+        IllegalArgumentException bound = org.junit.jupiter.api.Assertions.assertThrows(
+                IllegalArgumentException.class, () -> new TestOptions(1, 1000, 1000, DelayPolicy.RANDOM_BOUNDED,
+                        Long.MAX_VALUE / 1000, true));
+        assertTrue(bound.getMessage().startsWith("the delay bound of "), bound.getMessage());
+        TestOptions longest = new TestOptions(1, 1000, TestOptions.MAX_DURATION_MICROS / 1000, DelayPolicy.RANDOM, 0,
+                true);
+        assertTrue(TestOptions.fits(longest.timeout(), longest.timeUnitMicros()));
+        assertTrue(!TestOptions.fits(longest.timeout() + 1, longest.timeUnitMicros()));
     }
 }

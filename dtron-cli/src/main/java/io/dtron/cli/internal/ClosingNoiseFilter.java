@@ -1,21 +1,35 @@
 package io.dtron.cli.internal;
 
 import ch.qos.logback.classic.spi.ILoggingEvent;
+import ch.qos.logback.classic.spi.IThrowableProxy;
 import ch.qos.logback.core.filter.Filter;
 import ch.qos.logback.core.spi.FilterReply;
 
 /**
- * Not API. Drops the one error JGroups' TCP transport logs when two members on one host close at the same time
- * ("failed sending graceful close ... Socket closed"): the members are leaving anyway, and the run's results are
- * printed by then. Every other event passes. Referenced from {@code logback.xml}.
+ * Not API. Drops the two events JGroups' TCP transport logs when a member leaves the bus while a connection of its
+ * is busy, both about the member's own closing: "failed sending graceful close ... Socket closed" when two members
+ * on one host close at the same time, and "failed handling message" with an {@code IOException: Stream closed} and
+ * its stack trace, when the thread that read the member's last message (with direct message processing, the
+ * thread that delivers it) reads again from the connection the member has just closed. The member is leaving
+ * anyway, and the run's results are printed by then. No close order avoids the second: it comes from whichever
+ * member leaves while another is still on the bus. Every other event passes, including other failures of the same
+ * message. Referenced from {@code logback.xml}.
  */
 public final class ClosingNoiseFilter extends Filter<ILoggingEvent> {
     private static final String TCP_LOGGER = "org.jgroups.protocols.TCP";
 
     @Override
     public FilterReply decide(ILoggingEvent event) {
-        if (TCP_LOGGER.equals(event.getLoggerName()) && event.getFormattedMessage() != null
-                && event.getFormattedMessage().contains("failed sending graceful close")) {
+        String message = event.getFormattedMessage();
+        if (!TCP_LOGGER.equals(event.getLoggerName()) || message == null) {
+            return FilterReply.NEUTRAL;
+        }
+        if (message.contains("failed sending graceful close")) {
+            return FilterReply.DENY;
+        }
+        IThrowableProxy thrown = event.getThrowableProxy();
+        if (message.endsWith(": failed handling message") && thrown != null
+                && "java.io.IOException".equals(thrown.getClassName()) && "Stream closed".equals(thrown.getMessage())) {
             return FilterReply.DENY;
         }
         return FilterReply.NEUTRAL;

@@ -7,6 +7,7 @@ import ch.qos.logback.classic.Logger;
 import ch.qos.logback.classic.LoggerContext;
 import ch.qos.logback.classic.spi.LoggingEvent;
 import ch.qos.logback.core.spi.FilterReply;
+import java.io.IOException;
 import org.junit.jupiter.api.Test;
 
 class ClosingNoiseFilterTest {
@@ -14,8 +15,12 @@ class ClosingNoiseFilterTest {
     private final ClosingNoiseFilter filter = new ClosingNoiseFilter();
 
     private FilterReply decide(String logger, String message) {
+        return decide(logger, Level.ERROR, message, null);
+    }
+
+    private FilterReply decide(String logger, Level level, String message, Throwable thrown) {
         Logger l = context.getLogger(logger);
-        return filter.decide(new LoggingEvent(Logger.class.getName(), l, Level.ERROR, message, null, null));
+        return filter.decide(new LoggingEvent(Logger.class.getName(), l, level, message, thrown, null));
     }
 
     @Test
@@ -24,5 +29,20 @@ class ClosingNoiseFilterTest {
                 "127.0.0.1:7801: failed sending graceful close to 127.0.0.1:7800: Socket closed"));
         assertEquals(FilterReply.NEUTRAL, decide("org.jgroups.protocols.TCP", "127.0.0.1:7801: failed connecting"));
         assertEquals(FilterReply.NEUTRAL, decide("io.dtron.api.Dtron", "failed sending graceful close"));
+    }
+
+    /** What JGroups 5.5 logs, with a stack trace, when a leaving member reads from the connection it closed. */
+    @Test
+    void dropsOnlyTheStreamClosedFailureOfAMemberReadingItsOwnClosedConnection() {
+        String message = "127.0.0.1:7802: failed handling message";
+        assertEquals(FilterReply.DENY, decide("org.jgroups.protocols.TCP", Level.WARN, message,
+                new IOException("Stream closed")));
+        assertEquals(FilterReply.NEUTRAL, decide("org.jgroups.protocols.TCP", Level.WARN, message,
+                new IOException("Connection reset")), "another failure of a connection is news");
+        assertEquals(FilterReply.NEUTRAL, decide("org.jgroups.protocols.TCP", Level.WARN, message,
+                new IllegalStateException("Stream closed")), "so is another exception");
+        assertEquals(FilterReply.NEUTRAL, decide("org.jgroups.protocols.TCP", Level.WARN, message, null));
+        assertEquals(FilterReply.NEUTRAL, decide("io.dtron.api.Dtron", Level.WARN, message,
+                new IOException("Stream closed")));
     }
 }

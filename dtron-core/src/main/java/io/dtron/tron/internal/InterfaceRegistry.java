@@ -1,5 +1,6 @@
 package io.dtron.tron.internal;
 
+import io.dtron.engine.TestOptions;
 import io.dtron.model.ChannelVariable;
 import io.dtron.model.Network;
 import io.dtron.model.TestInterface;
@@ -43,6 +44,8 @@ public final class InterfaceRegistry {
     public static final int BAD_TIMEOUT = -11;
     /** The shared virtual clock was asked for in a real-time run. */
     public static final int NO_VIRTUAL_CLOCK = -12;
+    /** The timeout times the time unit is longer than the engine can time ({@link TestOptions#MAX_DURATION_MICROS}). */
+    public static final int RUN_TOO_LONG = -13;
 
     private static final Map<Integer, String> GENERIC = Map.ofEntries(
             Map.entry(UNKNOWN_COMMAND, "unknown command; the tester closes the connection"),
@@ -56,7 +59,9 @@ public final class InterfaceRegistry {
             Map.entry(VARIABLE_TWICE, "the variable is already attached to that channel"),
             Map.entry(BAD_TIME_UNIT, "the time unit must be a positive number of microseconds"),
             Map.entry(BAD_TIMEOUT, "the timeout must be a positive number of model time units"),
-            Map.entry(NO_VIRTUAL_CLOCK, "the shared virtual clock needs a run in virtual time"));
+            Map.entry(NO_VIRTUAL_CLOCK, "the shared virtual clock needs a run in virtual time"),
+            Map.entry(RUN_TOO_LONG, "the timeout times the time unit is longer than DTRON can time: at most "
+                    + TestOptions.MAX_DURATION_MICROS + " us"));
 
     private final Network network;
     private final Map<String, Integer> channelIndexByName = new LinkedHashMap<>();
@@ -185,6 +190,10 @@ public final class InterfaceRegistry {
             return refuse(BAD_TIME_UNIT, "time unit " + seconds + " s " + micros + " us: it must be a positive number"
                     + " of microseconds");
         }
+        if (timeout != null && !TestOptions.fits(timeout, total)) {
+            return refuse(RUN_TOO_LONG, "time unit " + seconds + " s " + micros + " us: "
+                    + TestOptions.tooLong("with it, the timeout", timeout, total));
+        }
         timeUnitMicros = total;
         return 0;
     }
@@ -193,6 +202,10 @@ public final class InterfaceRegistry {
     public int setTimeout(int units) {
         if (units <= 0) {
             return refuse(BAD_TIMEOUT, "timeout " + units + ": it must be a positive number of model time units");
+        }
+        if (timeUnitMicros != null && !TestOptions.fits(units, timeUnitMicros)) {
+            return refuse(RUN_TOO_LONG, "timeout " + units + ": " + TestOptions.tooLong("the timeout", units,
+                    timeUnitMicros));
         }
         timeout = (long) units;
         return 0;
