@@ -230,6 +230,15 @@ public final class OnlineTester {
                 }
                 commit(now - window);
                 if (now >= timeoutMicros) {
+                    RunClock.TimedEvent last = now >= timeoutMicros + window ? clock.drain() : null;
+                    if (last != null) {
+                        // reported (or due) before the end: judged before the verdict
+                        TestResult verdict = receive(last);
+                        if (verdict != null) {
+                            return verdict;
+                        }
+                        continue;
+                    }
                     if (now >= timeoutMicros + window) {
                         return result(Verdict.PASSED, "the timeout of " + options.timeout() + " time units was"
                                 + " reached after " + inputs + " inputs and " + outputs + " outputs, all as the model"
