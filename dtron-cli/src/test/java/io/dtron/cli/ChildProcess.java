@@ -36,7 +36,10 @@ final class ChildProcess implements AutoCloseable {
                 .redirectErrorStream(true)
                 .redirectOutput(log.toFile());
         if (command.get(0).equals(mvn())) {
-            // a quick-starting Maven JVM unless the build was given its own options
+            // a Maven of its own, not the build's project (its launcher exports these), quick to start unless the
+            // build was given its own options
+            builder.environment().remove("MAVEN_PROJECTBASEDIR");
+            builder.environment().remove("MAVEN_CMD_LINE_ARGS");
             builder.environment().putIfAbsent("MAVEN_OPTS", "-XX:TieredStopAtLevel=1 -XX:+UseSerialGC");
         }
         return new ChildProcess(List.copyOf(command), builder.start(), log);
