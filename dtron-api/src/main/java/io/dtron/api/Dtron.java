@@ -68,7 +68,8 @@ public final class Dtron implements AutoCloseable {
      * tester's clock the acknowledgement carries). By default a member acknowledges an input when its last
      * listener of the input's channel returned (see {@link DtronListener#autoAcknowledge()} and
      * {@link #acknowledge(IDtronChannelValued, long)}); a tester listens to this channel. Only {@code Dtron}
-     * publishes on it. A model channel may not have this name.
+     * publishes on it, and {@link #getStats()} does not count acknowledgements. A model channel may not have this
+     * name.
      */
     public static final IDtronChannel ACK = IDtronChannel.of("dtron_ack");
 
@@ -575,7 +576,6 @@ public final class Dtron implements AutoCloseable {
             }
             throw (RuntimeException) e;
         }
-        counters.published();
         return true;
     }
 
@@ -637,7 +637,7 @@ public final class Dtron implements AutoCloseable {
         } else if (group.equals(RUN_STOP.getChannelName())) {
             runStopped();
         }
-        if (declared.isPresent() || registration != null) {
+        if ((declared.isPresent() || registration != null) && !group.equals(ACK.getChannelName())) {
             counters.accepted();
         }
         if (registration != null) {
