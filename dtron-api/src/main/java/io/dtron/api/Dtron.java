@@ -158,14 +158,16 @@ public final class Dtron implements AutoCloseable {
     }
 
     /**
-     * Checks a declared template: a reserved name is allowed only for {@link #RUN_START}, {@link #RUN_STOP} and
-     * {@link #ACK} themselves.
+     * Checks a declared template: a reserved name is allowed only for {@link #RUN_START} and {@link #RUN_STOP}
+     * themselves, which a tester declares with its model's channels.
      *
-     * @throws IllegalArgumentException if the channel has a reserved name and is not that channel
+     * @throws IllegalArgumentException if the channel has a reserved name and is not one of those two
      */
     static void checkNotReserved(IDtronChannel channel) {
-        DtronChannel reserved = RESERVED.get(channel.getChannelName());
-        if (reserved != null && (CONTROL.contains(channel.getChannelName()) || !reserved.isCompatible(channel))) {
+        String name = channel.getChannelName();
+        DtronChannel reserved = RESERVED.get(name);
+        boolean runChannel = name.equals(RUN_START.getChannelName()) || name.equals(RUN_STOP.getChannelName());
+        if (reserved != null && (!runChannel || !reserved.isCompatible(channel))) {
             throw new IllegalArgumentException("channel '" + channel.getChannelName() + "' is reserved by DTRON"
                     + " (for the start and end of runs, acknowledgements and clock offsets); a model channel may not"
                     + " have this name");
@@ -717,7 +719,11 @@ public final class Dtron implements AutoCloseable {
             try {
                 publishAck(value, appliedAt);
             } catch (DtronException | IllegalStateException e) {
-                LOG.warn("{} cannot acknowledge {}: {}", getMemberId(), value, e.getMessage());
+                if (closed) {
+                    LOG.debug("{} closed before acknowledging {}", getMemberId(), value);
+                } else {
+                    LOG.warn("{} cannot acknowledge {}: {}", getMemberId(), value, e.getMessage());
+                }
             }
         }
     }

@@ -232,11 +232,10 @@ public final class DtronOptions {
          * and listeners and sent messages must use these templates.
          * Without this call, messages on channels without a listener are ignored.
          * DTRON's own channels ({@link Dtron#isReservedChannel}) are always known and
-         * need not be declared; {@link Dtron#RUN_START}, {@link Dtron#RUN_STOP} and
-         * {@link Dtron#ACK} may be.
+         * need not be declared; {@link Dtron#RUN_START} and {@link Dtron#RUN_STOP} may be.
          *
          * @throws IllegalArgumentException if two templates have the same name, or one has the name of a channel
-         *                                  DTRON reserves (and is not that channel)
+         *                                  DTRON reserves and is not {@code RUN_START} or {@code RUN_STOP}
          */
         public Builder channels(Collection<? extends IDtronChannel> declared) {
             Map<String, IDtronChannel> byName = new LinkedHashMap<>();

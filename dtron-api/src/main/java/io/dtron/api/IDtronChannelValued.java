@@ -25,7 +25,11 @@ public interface IDtronChannelValued extends IChannelSkeleton {
     /** Returns the id of the member that published the message, or "" if it was not received from the bus. */
     String getSender();
 
-    /** Returns the sender's sequence number of the message (from 1), or 0 if unknown. */
+    /**
+     * Returns the sender's sequence number of the message (from 1), or 0 if unknown. Each message a member
+     * publishes takes the next number, DTRON's own messages (acknowledgements, the clock-offset protocol)
+     * included, so a sender's numbers on one channel may skip some.
+     */
     long getSequence();
 
     /** Returns the sender's wall-clock publish time in nanoseconds since the epoch, or 0 if unknown. */

@@ -121,7 +121,8 @@ class EventTimeTest {
         }
         assertTrue(!Dtron.isReservedChannel("move") && !Dtron.isReservedChannel("dtron_other"));
         DtronOptions.Builder options = DtronOptions.builder();
-        options.channels(List.of(DONE, Dtron.RUN_START, Dtron.RUN_STOP, Dtron.ACK));
+        options.channels(List.of(DONE, Dtron.RUN_START, Dtron.RUN_STOP));
+        assertThrows(IllegalArgumentException.class, () -> options.channels(List.of(Dtron.ACK)));
         assertThrows(IllegalArgumentException.class,
                 () -> options.channels(List.of(IDtronChannel.of("dtron_ack", "amount"))));
         assertThrows(IllegalArgumentException.class,
