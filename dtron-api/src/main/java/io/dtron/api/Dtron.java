@@ -6,7 +6,6 @@ import io.dtron.api.internal.ClockSync;
 import io.dtron.api.internal.Counters;
 import io.dtron.api.internal.DtronChannel;
 import io.dtron.api.internal.DtronChannelValued;
-import io.dtron.api.internal.OffsetEstimator.Estimate;
 import io.dtron.api.internal.SerialExecutor;
 import io.dtron.api.internal.Stamp;
 import io.dtron.api.internal.SyncCodec;
@@ -406,28 +405,37 @@ public final class Dtron implements AutoCloseable {
     }
 
     /**
-     * Returns whether this member has an estimate of the tester's clock: after a ping's round trip to a tester it
-     * knows, or always when it is the tester.
+     * Returns this member's estimate of how far the tester's wall clock is from its own: from the ping with the
+     * shortest round trip among the last few to the tester it knows (see {@link #getTester()}), exact on the
+     * tester itself; empty before the first ping came back, or when it knows no tester. Members ping the tester
+     * when they learn of it and about once a second afterwards, so the estimate changes; this one value is
+     * consistent.
      */
+    public Optional<ClockOffset> getClockOffset() {
+        return clockSync.estimate();
+    }
+
+    /** Returns whether this member has an estimate of the tester's clock: {@code getClockOffset().isPresent()}. */
     public boolean hasClockOffset() {
         return clockSync.estimate().isPresent();
     }
 
     /**
-     * Returns this member's estimate of (the tester's wall clock - its own wall clock) in nanoseconds, from the
-     * ping with the shortest round trip among the last few; 0 when there is none or this member is the tester.
+     * Returns this member's current estimate of (the tester's wall clock - its own wall clock) in nanoseconds; 0
+     * when there is none or this member is the tester. Use {@link #getClockOffset()} for an offset and its error
+     * bound from the same estimate.
      */
     public long getClockOffsetNanos() {
-        return clockSync.estimate().map(Estimate::offsetNanos).orElse(0L);
+        return clockSync.estimate().map(ClockOffset::offsetNanos).orElse(0L);
     }
 
     /**
-     * Returns the error bound of {@link #getClockOffsetNanos()} in nanoseconds: half the round trip of the ping
-     * it comes from (the true offset is within this of the estimate). 0 when there is no estimate or this member
-     * is the tester.
+     * Returns the error bound of the current estimate in nanoseconds: half the round trip of the ping it comes
+     * from (the true offset is within this of the estimate); 0 when there is no estimate or this member is the
+     * tester. Use {@link #getClockOffset()} for an offset and its error bound from the same estimate.
      */
     public long getClockErrorNanos() {
-        return clockSync.estimate().map(Estimate::errorNanos).orElse(0L);
+        return clockSync.estimate().map(ClockOffset::errorNanos).orElse(0L);
     }
 
     /** Returns this member's id on the bus, which every message it sends carries. */
@@ -552,9 +560,12 @@ public final class Dtron implements AutoCloseable {
 
     private Stamp stamp(long seq, long publishTimeNanos, long eventTimeNanos, String ackedSender,
             long ackedSequence) {
-        Estimate estimate = clockSync.isTester() ? Estimate.EXACT : clockSync.estimate().orElse(Estimate.EXACT);
+        // the tester's offset is 0 by definition; a member without an estimate sends none (0, 0)
+        Optional<ClockOffset> estimate = clockSync.estimate();
+        long offset = estimate.map(ClockOffset::offsetNanos).orElse(0L);
+        long error = estimate.map(ClockOffset::errorNanos).orElse(0L);
         return new Stamp(getMemberId(), seq, publishTimeNanos, eventTimeNanos, getRunId(), ackedSender,
-                ackedSequence, estimate.offsetNanos(), estimate.errorNanos());
+                ackedSequence, offset, error);
     }
 
     /** Publishes an acknowledgement unless this member acknowledged the message before. */
@@ -596,7 +607,7 @@ public final class Dtron implements AutoCloseable {
     }
 
     private long runClockOffset() {
-        return clockSync.isTester() ? 0 : clockSync.estimate().map(Estimate::offsetNanos).orElse(0L);
+        return clockSync.estimate().map(ClockOffset::offsetNanos).orElse(0L);
     }
 
     private void offsetChanged() {

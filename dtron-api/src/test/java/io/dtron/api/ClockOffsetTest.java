@@ -57,13 +57,20 @@ class ClockOffsetTest {
             assertEquals(0, tester.getClockOffsetNanos());
             assertEquals(0, tester.getClockErrorNanos());
             assertEquals(Optional.of("tester"), tester.getTester());
-            // every estimate of the window, while they come, is within its bound
+            assertEquals(Optional.of(new ClockOffset("tester", 0, 0)), tester.getClockOffset());
+            // every estimate, while they come, is within its bound
             long until = System.nanoTime() + TimeUnit.MILLISECONDS.toNanos(1_500);
             while (System.nanoTime() < until) {
-                assertWithinBound(TimeUnit.MILLISECONDS.toNanos(SHIFT_MILLIS), ahead.getClockOffsetNanos(),
-                        ahead.getClockErrorNanos(), "ahead");
-                assertWithinBound(-TimeUnit.MILLISECONDS.toNanos(SHIFT_MILLIS), behind.getClockOffsetNanos(),
-                        behind.getClockErrorNanos(), "behind");
+                ClockOffset aheadOffset = ahead.getClockOffset().orElseThrow();
+                ClockOffset behindOffset = behind.getClockOffset().orElseThrow();
+                assertEquals("tester", aheadOffset.tester());
+                assertWithinBound(TimeUnit.MILLISECONDS.toNanos(SHIFT_MILLIS), aheadOffset.offsetNanos(),
+                        aheadOffset.errorNanos(), "ahead");
+                assertWithinBound(-TimeUnit.MILLISECONDS.toNanos(SHIFT_MILLIS), behindOffset.offsetNanos(),
+                        behindOffset.errorNanos(), "behind");
+                long own = ahead.currentTimeNanos();
+                assertTrue(Math.abs(aheadOffset.toTesterNanos(own) - EpochClock.nowNanos()) < 20_000_000,
+                        "the tester's clock is the test's");
                 Thread.sleep(50);
             }
             assertEquals(0, tester.getStats().getPublished(), "hellos and pongs are not counted");
@@ -87,6 +94,7 @@ class ClockOffsetTest {
                 Thread.sleep(20);
             }
             assertEquals(Optional.empty(), member.getTester());
+            assertEquals(Optional.empty(), member.getClockOffset());
             assertEquals(0, member.getClockErrorNanos());
         }
     }
@@ -136,7 +144,8 @@ class ClockOffsetTest {
                     long error = fire.getClockErrorNanos();
                     String what = fire.getSender() + " fired at " + firedAt / 1e6 + " ms (arrived " + arrived / 1e6
                             + " ms, error " + error / 1e6 + " ms), due at " + fireAtNanos / 1e6 + " ms";
-                    assertTrue(arrived >= fireAtNanos - 2 * error - 2_000_000, what);
+                    // not early beyond the estimate's error (and a little, as the estimate may have changed since)
+                    assertTrue(arrived >= fireAtNanos - 2 * error - 10_000_000, what);
                     assertTrue(arrived <= fireAtNanos + 250_000_000, what);
                     assertTrue(Math.abs(firedAt - fireAtNanos) <= 2 * error + 100_000_000, what);
                 }

@@ -71,7 +71,8 @@ class RunClockTest {
     private static void assertFiredAt(long dueNanos, long firedNanos, long errorNanos) {
         String what = "fired at " + firedNanos / 1e6 + " ms of the run, due at " + dueNanos / 1e6 + " ms (error "
                 + errorNanos / 1e6 + " ms)";
-        assertTrue(firedNanos >= dueNanos - errorNanos - 2 * MS, what);
+        // not early beyond the estimate's error (and a little, as the estimate may have changed since it fired)
+        assertTrue(firedNanos >= dueNanos - errorNanos - 10 * MS, what);
         assertTrue(firedNanos <= dueNanos + 200 * MS, what);
     }
 

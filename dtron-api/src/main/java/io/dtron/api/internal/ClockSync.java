@@ -1,5 +1,6 @@
 package io.dtron.api.internal;
 
+import io.dtron.api.ClockOffset;
 import io.dtron.api.internal.OffsetEstimator.Estimate;
 import java.util.LinkedHashMap;
 import java.util.List;
@@ -74,7 +75,7 @@ public final class ClockSync implements AutoCloseable {
     private boolean selfTester;
     private long pingGeneration;
     private ScheduledFuture<?> pinging;
-    private volatile Optional<Estimate> estimate = Optional.empty();
+    private volatile Optional<ClockOffset> estimate = Optional.empty();
     private volatile boolean closed;
 
     /**
@@ -108,7 +109,7 @@ public final class ClockSync implements AutoCloseable {
             synchronized (this) {
                 selfTester = true;
                 tester = me;
-                estimate = Optional.of(Estimate.EXACT);
+                estimate = Optional.of(new ClockOffset(me, 0, 0));
             }
             submit(this::hello);
             scheduleHellos();
@@ -126,7 +127,7 @@ public final class ClockSync implements AutoCloseable {
     }
 
     /** Returns the estimate of (tester's clock - own clock): exact 0 on the tester, empty when there is none. */
-    public Optional<Estimate> estimate() {
+    public Optional<ClockOffset> estimate() {
         return estimate;
     }
 
@@ -144,7 +145,7 @@ public final class ClockSync implements AutoCloseable {
                 tester = me;
                 stopPinging();
                 estimator.clear();
-                estimate = Optional.of(Estimate.EXACT);
+                estimate = Optional.of(new ClockOffset(me, 0, 0));
                 LOG.debug("{} is the tester now", me);
             } else {
                 if (announced) {
@@ -206,8 +207,8 @@ public final class ClockSync implements AutoCloseable {
         if (!ackedSender.equals(me)) {
             return;
         }
-        Optional<Estimate> before;
-        Optional<Estimate> after;
+        Optional<ClockOffset> before;
+        Optional<ClockOffset> after;
         synchronized (this) {
             if (closed || selfTester || !from.equals(tester)) {
                 return;
@@ -217,7 +218,8 @@ public final class ClockSync implements AutoCloseable {
                 return;
             }
             before = estimate;
-            after = estimator.add(sentAt, testerTimeNanos, receiveTimeNanos);
+            Optional<Estimate> sampled = estimator.add(sentAt, testerTimeNanos, receiveTimeNanos);
+            after = sampled.map(e -> new ClockOffset(from, e.offsetNanos(), e.errorNanos()));
             estimate = after;
         }
         if (!after.equals(before)) {

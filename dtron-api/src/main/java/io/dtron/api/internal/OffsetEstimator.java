@@ -22,8 +22,6 @@ public final class OffsetEstimator {
      * @param errorNanos  half the round trip of the sample, rounded up; at least 1
      */
     public record Estimate(long offsetNanos, long errorNanos) {
-        /** The tester's own estimate: exact. */
-        public static final Estimate EXACT = new Estimate(0, 0);
     }
 
     private record Sample(long offsetNanos, long roundTripNanos) {
