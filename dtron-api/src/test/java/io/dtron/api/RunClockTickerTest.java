@@ -1,0 +1,71 @@
+package io.dtron.api;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertNull;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+import io.dtron.testadapter.RunClockTicker;
+import io.dtron.testsupport.Inbox;
+import java.time.Duration;
+import java.util.Map;
+import java.util.concurrent.TimeUnit;
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.Timeout;
+
+/**
+ * A ticker on the run clock, its clock 80 ms ahead of the tester's, ticks at the tester's run times: each tick
+ * happened (event time plus the offset it carries) at a multiple of the period from time 0 or from the last reset.
+ */
+@Timeout(value = 60, unit = TimeUnit.SECONDS)
+class RunClockTickerTest {
+    private static final long MS = 1_000_000;
+    private static final IDtronChannel TICK = IDtronChannel.of("tick", "seq");
+    private static final IDtronChannel RESET = IDtronChannel.of("reset");
+    private static final long PERIOD = 10 * 20 * MS; // 10 units of 20 ms
+
+    private static void assertTickAt(long due, IDtronChannelValued tick, long timeZero, int seq) {
+        long happened = tick.getEventTimeNanos() + tick.getClockOffsetNanos() - timeZero;
+        long arrived = tick.getReceiveTimeNanos() - timeZero;
+        String what = "tick " + tick.getVariables() + " happened at " + happened / 1e6 + " ms, arrived at "
+                + arrived / 1e6 + " ms, due at " + due / 1e6 + " ms (error " + tick.getClockErrorNanos() / 1e6 + ")";
+        assertEquals(seq, tick.getVariables().get("seq"), what);
+        assertTrue(Math.abs(happened - due) <= tick.getClockErrorNanos() + 100 * MS, what);
+        assertTrue(arrived >= due - tick.getClockErrorNanos() - 10 * MS && arrived <= due + 200 * MS, what);
+    }
+
+    @Test
+    void ticksAtTheTestersRunTimesAndRestartsAtTheResetsRunTime() throws Exception {
+        String cluster = TestClusters.uniqueName("runClockTicker");
+        try (Dtron tester = Dtron.connect(TestClusters.inJvm(cluster).memberName("tester").tester(true).build());
+                Dtron adapter = Dtron.connect(TestClusters.inJvm(cluster).memberName("ticker")
+                        .clockShiftForTesting(Duration.ofMillis(80)).build());
+                RunClockTicker ticker = new RunClockTicker()) {
+            ticker.start(adapter);
+            ClockOffsetTest.awaitOffset(adapter);
+            Inbox ticks = new Inbox(TICK);
+            Inbox starts = new Inbox(Dtron.RUN_START);
+            Inbox resets = new Inbox(RESET);
+            tester.addDtronListener(ticks);
+            tester.addDtronListener(starts);
+            tester.addDtronListener(resets);
+
+            tester.send(Dtron.RUN_START.constructValued(Map.of("timeunit", 20_000)));
+            long timeZero = starts.take().getEventTimeNanos();
+            for (int k = 1; k <= 3; k++) {
+                assertTickAt(k * PERIOD, ticks.take(), timeZero, k);
+            }
+            Thread.sleep(PERIOD / MS / 2);
+            tester.send(RESET.constructValued(Map.of()));
+            long resetAt = resets.take().getEventTimeNanos() - timeZero;
+            for (int k = 1; k <= 2; k++) {
+                assertTickAt(resetAt + k * PERIOD, ticks.take(), timeZero, k);
+            }
+            tester.send(Dtron.RUN_STOP.constructValued(Map.of()));
+            Thread.sleep(100);
+            while (ticks.poll(0) != null) {
+                // a tick sent before the stop arrived
+            }
+            assertNull(ticks.poll(PERIOD / MS + 100), "no tick after the run stopped");
+        }
+    }
+}
