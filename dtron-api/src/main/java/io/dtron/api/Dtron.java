@@ -297,11 +297,13 @@ public final class Dtron implements AutoCloseable {
      * @throws InvalidMessageException  if the channel is not declared (when channels are declared) or its
      *                                  variables do not fit the template known here
      * @throws IllegalArgumentException if the channel is {@link #ACK} or another channel only DTRON sends on
+     * @return the message as published: with this member as sender, its sequence number, publish and event time,
+     *         run id and clock offset (and receive time 0), so that a tester can match acknowledgements to it
      * @throws IllegalStateException    if this {@code Dtron} is closed
      * @throws DtronException           if the bus did not take the message
      */
-    public void send(IDtronChannelValued message) {
-        publish(message, 0);
+    public IDtronChannelValued send(IDtronChannelValued message) {
+        return publish(message, 0);
     }
 
     /**
@@ -312,15 +314,16 @@ public final class Dtron implements AutoCloseable {
      *
      * @param eventTimeEpochNanos when the event happened on this member's wall clock, in nanoseconds since the
      *                            epoch (as {@link #currentTimeNanos()} reads it)
+     * @return the message as published
      * @throws IllegalArgumentException if the event time is not positive, or the channel is one only DTRON
      *                                  sends on
      * @see #send(IDtronChannelValued)
      */
-    public void send(IDtronChannelValued message, long eventTimeEpochNanos) {
+    public IDtronChannelValued send(IDtronChannelValued message, long eventTimeEpochNanos) {
         if (eventTimeEpochNanos <= 0) {
             throw new IllegalArgumentException("event time must be positive: " + eventTimeEpochNanos);
         }
-        publish(message, eventTimeEpochNanos);
+        return publish(message, eventTimeEpochNanos);
     }
 
     /**
@@ -523,7 +526,7 @@ public final class Dtron implements AutoCloseable {
     }
 
     /** Publishes a message of a model channel, or RUN_START or RUN_STOP; event time 0 is the publish time. */
-    private void publish(IDtronChannelValued message, long eventTimeNanos) {
+    private IDtronChannelValued publish(IDtronChannelValued message, long eventTimeNanos) {
         Objects.requireNonNull(message, "message");
         requireOpen();
         String name = message.getChannelName();
@@ -543,14 +546,16 @@ public final class Dtron implements AutoCloseable {
             template.checkVariables(message.getVariables().keySet());
         }
         long now = currentTimeNanos();
-        byte[] bytes = SyncCodec.encode(name, message.getVariables(),
-                stamp(now, eventTimeNanos == 0 ? now : eventTimeNanos, "", 0));
+        Stamp stamp = stamp(now, eventTimeNanos == 0 ? now : eventTimeNanos, "", 0);
+        byte[] bytes = SyncCodec.encode(name, message.getVariables(), stamp);
         try {
             transport.publish(name, bytes);
         } catch (IOException e) {
             throw new DtronException("cannot publish " + message, e);
         }
         counters.published();
+        return DtronChannelValued.published(template != null ? template : DtronChannel.copyOf(message.getChannel()),
+                message.getVariables(), stamp);
     }
 
     /** Stamps a message this member publishes now, with the next sequence number. */

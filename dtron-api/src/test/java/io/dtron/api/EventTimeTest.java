@@ -31,8 +31,12 @@ class EventTimeTest {
             Inbox dones = new Inbox(DONE);
             tester.addDtronListener(dones);
 
-            adapter.send(DONE.constructValued(Map.of("amount", 1)));
+            IDtronChannelValued sent = adapter.send(DONE.constructValued(Map.of("amount", 1)));
             IDtronChannelValued now = dones.take();
+            assertEquals(List.of("adapter", now.getSequence(), now.getPublishTimeNanos(), now.getEventTimeNanos(),
+                    now.getVariables(), 0L), List.of(sent.getSender(), sent.getSequence(), sent.getPublishTimeNanos(),
+                    sent.getEventTimeNanos(), sent.getVariables(), sent.getReceiveTimeNanos()),
+                    "send returns the message as published");
             assertTrue(now.getPublishTimeNanos() > 0);
             assertEquals(now.getPublishTimeNanos(), now.getEventTimeNanos());
             assertEquals(0, now.getClockOffsetNanos(), "no tester known, no estimate");
@@ -42,7 +46,7 @@ class EventTimeTest {
             assertEquals(0, now.getAckedSequence());
 
             long sawIt = adapter.currentTimeNanos() - 5_000_000;
-            adapter.send(DONE.constructValued(Map.of("amount", 2)), sawIt);
+            assertEquals(sawIt, adapter.send(DONE.constructValued(Map.of("amount", 2)), sawIt).getEventTimeNanos());
             IDtronChannelValued earlier = dones.take();
             assertEquals(sawIt, earlier.getEventTimeNanos());
             assertTrue(earlier.getPublishTimeNanos() >= sawIt + 5_000_000);

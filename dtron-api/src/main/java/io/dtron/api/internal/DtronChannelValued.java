@@ -21,6 +21,14 @@ public final class DtronChannelValued implements IDtronChannelValued {
         this.receiveTimeNanos = receiveTimeNanos;
     }
 
+    /** Returns a message as this member published it: stamped, not received (receive time 0). */
+    public static DtronChannelValued published(DtronChannel channel, Map<String, Integer> variables, Stamp stamp) {
+        Map<String, Integer> ordered = new LinkedHashMap<>();
+        channel.getVariableNames().forEach(name -> ordered.put(name, variables.get(name)));
+        variables.forEach(ordered::putIfAbsent);
+        return new DtronChannelValued(channel, ordered, stamp, 0);
+    }
+
     /** Returns what the message carries besides its channel and variables, as on the wire. */
     public Stamp stamp() {
         return stamp;
