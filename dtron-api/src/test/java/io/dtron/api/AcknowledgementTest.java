@@ -154,6 +154,7 @@ class AcknowledgementTest {
         assertNull(acks.poll(2 * APPLYING_MILLIS + 300), "one listener opted out: no automatic acknowledgement");
 
         long appliedAt = input.getReceiveTimeNanos() + 1_234_567;
+        ClockOffsetTest.awaitOffset(adapter);
         assertTrue(adapter.acknowledge(input, appliedAt));
         IDtronChannelValued ack = acks.take();
         assertEquals(appliedAt, ack.getEventTimeNanos());
