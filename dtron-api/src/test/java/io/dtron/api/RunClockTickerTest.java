@@ -5,18 +5,21 @@ import static org.junit.jupiter.api.Assertions.assertNull;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import io.dtron.testadapter.RunClockTicker;
+import io.dtron.testadapter.RunClockTickerMain;
 import io.dtron.testsupport.Inbox;
+import java.nio.file.Path;
 import java.time.Duration;
 import java.util.Map;
 import java.util.concurrent.TimeUnit;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.Timeout;
+import org.junit.jupiter.api.io.TempDir;
 
 /**
  * A ticker on the run clock, its clock 80 ms ahead of the tester's, ticks at the tester's run times: each tick
  * happened (event time plus the offset it carries) at a multiple of the period from time 0 or from the last reset.
  */
-@Timeout(value = 60, unit = TimeUnit.SECONDS)
+@Timeout(value = 120, unit = TimeUnit.SECONDS)
 class RunClockTickerTest {
     private static final long MS = 1_000_000;
     private static final IDtronChannel TICK = IDtronChannel.of("tick", "seq");
@@ -66,6 +69,46 @@ class RunClockTickerTest {
                 // a tick sent before the stop arrived
             }
             assertNull(ticks.poll(PERIOD / MS + 100), "no tick after the run stopped");
+        }
+    }
+
+    @Test
+    void aTickerInItsOwnJvmWithItsClock120MsBehindTicksAtTheTestersRunTimes(@TempDir Path dir) throws Exception {
+        String cluster = TestClusters.uniqueName("runClockTickerJvm");
+        Dtron tester = Dtron.connect(DtronOptions.builder().clusterName(cluster).memberName("tester").tester(true)
+                .build());
+        try (ChildJvm child = ChildJvm.start(RunClockTickerMain.class, dir.resolve("ticker.log"), cluster, "ticker",
+                "correct", "-120", "1")) {
+            child.awaitOutput("joined", Duration.ofSeconds(60));
+            Inbox ticks = new Inbox(TICK);
+            Inbox starts = new Inbox(Dtron.RUN_START);
+            tester.addDtronListener(ticks);
+            tester.addDtronListener(starts);
+            // the ticker estimates its offset from the tester's hello; its ticks say when it has one
+            long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(30);
+            boolean estimated = false;
+            while (!estimated) {
+                tester.send(Dtron.RUN_START.constructValued(Map.of("timeunit", 20_000)));
+                long timeZero = starts.take().getEventTimeNanos();
+                IDtronChannelValued first = ticks.take();
+                estimated = first.getClockErrorNanos() > 0;
+                if (estimated) {
+                    assertTickAt(PERIOD, first, timeZero, 1);
+                    assertTickAt(2 * PERIOD, ticks.take(), timeZero, 2);
+                    assertTrue(Math.abs(first.getClockOffsetNanos() - 120 * MS) <= first.getClockErrorNanos(),
+                            first.getClockOffsetNanos() + " +/- " + first.getClockErrorNanos());
+                }
+                tester.send(Dtron.RUN_STOP.constructValued(Map.of()));
+                Thread.sleep(PERIOD / MS);
+                while (ticks.poll(0) != null) {
+                    // ticks of that run
+                }
+                assertTrue(System.nanoTime() < deadline, "no offset estimate: " + child.output());
+            }
+            tester.close();
+            assertEquals(0, child.waitFor(Duration.ofSeconds(30)), child.output());
+        } finally {
+            tester.close();
         }
     }
 }
