@@ -52,6 +52,7 @@ public final class RunClock {
     private final Condition changed = lock.newCondition();
     private final PriorityQueue<Entry> queue = new PriorityQueue<>();
     private Thread thread;
+    private Entry executing;
     private boolean closed;
     private final AtomicLong entries = new AtomicLong();
     // the current or last run, written with the lock held and read without it
@@ -363,6 +364,9 @@ public final class RunClock {
         List<Entry> pending = new ArrayList<>(queue);
         queue.clear();
         pending.forEach(entry -> entry.cancelled.set(true));
+        if (executing != null && executing.periodNanos > 0) {
+            executing.cancelled.set(true); // runs to its end, and no more
+        }
         changed.signalAll();
     }
 
@@ -383,17 +387,25 @@ public final class RunClock {
                 }
                 queue.poll();
                 if (next.isCancelled() || next.generation != current.generation()) {
+                    next.cancelled.set(true);
                     continue;
                 }
+                executing = next;
                 lock.unlock();
                 try {
                     runTask(next);
                 } finally {
                     lock.lock();
+                    executing = null;
                 }
-                if (next.periodNanos > 0 && !next.isCancelled() && !closed && run == current) {
-                    next.due += next.periodNanos;
-                    queue.add(next);
+                if (next.periodNanos > 0) {
+                    if (!next.isCancelled() && !closed && run == current) {
+                        next.due += next.periodNanos;
+                        queue.add(next);
+                    } else {
+                        // the run stopped (or another started) while it ran: it was out of the queue then
+                        next.cancelled.set(true);
+                    }
                 }
             }
         } catch (InterruptedException e) {
