@@ -69,11 +69,16 @@ class RunClockTest {
     }
 
     private static void assertFiredAt(long dueNanos, long firedNanos, long errorNanos) {
-        String what = "fired at " + firedNanos / 1e6 + " ms of the run, due at " + dueNanos / 1e6 + " ms (error "
+        assertFiredAt(dueNanos, firedNanos, errorNanos, "");
+    }
+
+    private static void assertFiredAt(long dueNanos, long firedNanos, long errorNanos, String context) {
+        String what = context + "fired at " + firedNanos / 1e6 + " ms of the run, due at " + dueNanos / 1e6 + " ms (error "
                 + errorNanos / 1e6 + " ms)";
         // not early beyond the estimate's error (and a little, as the estimate may have changed since it fired)
         assertTrue(firedNanos >= dueNanos - errorNanos - 10 * MS, what);
-        assertTrue(firedNanos <= dueNanos + 200 * MS, what);
+        // late only by what a loaded machine takes to wake the clock's thread
+        assertTrue(firedNanos <= dueNanos + 400 * MS, what);
     }
 
     @Test
@@ -94,18 +99,19 @@ class RunClockTest {
             BlockingQueue<Long> aheadFired = fireAtFromRunStart(ahead, 10, aheadSawStart);
             BlockingQueue<Long> behindFired = fireAtFromRunStart(behind, 10, behindSawStart);
 
-            // RUN_START reaches the listeners 600 ms after the slow message: 6 units late, less what the test
-            // thread took to send it; a task due 10 units after the listener was called would fire at 1600 ms
-            tester.send(SLOW.constructValued(Map.of("millis", 600)));
+            // RUN_START reaches the listeners 800 ms after the slow message: 8 units late, less what the test
+            // thread took to send it; a task due 10 units after the listener was called would fire at 1800 ms
+            tester.send(SLOW.constructValued(Map.of("millis", 800)));
             long timeZero = startRun(tester, starts, 100_000); // 10 units = 1000 ms
             Long aheadAt = aheadFired.poll(10, TimeUnit.SECONDS);
             Long behindAt = behindFired.poll(10, TimeUnit.SECONDS);
             assertNotNull(aheadAt);
             assertNotNull(behindAt);
-            assertTrue(aheadSawStart.get() >= 4, "RUN_START reached the listener late: " + aheadSawStart.get());
-            assertTrue(behindSawStart.get() >= 4, "RUN_START reached the listener late: " + behindSawStart.get());
-            assertFiredAt(1000 * MS, aheadAt - timeZero, ahead.getClockErrorNanos());
-            assertFiredAt(1000 * MS, behindAt - timeZero, behind.getClockErrorNanos());
+            String seen = "RUN_START reached the listeners at " + aheadSawStart.get() + " and " + behindSawStart.get()
+                    + " units; ";
+            assertTrue(aheadSawStart.get() >= 6 && behindSawStart.get() >= 6, seen);
+            assertFiredAt(1000 * MS, aheadAt - timeZero, ahead.getClockErrorNanos(), seen);
+            assertFiredAt(1000 * MS, behindAt - timeZero, behind.getClockErrorNanos(), seen);
         }
     }
 

@@ -32,8 +32,9 @@ class RunClockTickerTest {
         String what = "tick " + tick.getVariables() + " happened at " + happened / 1e6 + " ms, arrived at "
                 + arrived / 1e6 + " ms, due at " + due / 1e6 + " ms (error " + tick.getClockErrorNanos() / 1e6 + ")";
         assertEquals(seq, tick.getVariables().get("seq"), what);
-        assertTrue(Math.abs(happened - due) <= tick.getClockErrorNanos() + 100 * MS, what);
-        assertTrue(arrived >= due - tick.getClockErrorNanos() - 10 * MS && arrived <= due + 200 * MS, what);
+        // late only by what a loaded machine takes to wake the clock's thread and deliver the tick
+        assertTrue(Math.abs(happened - due) <= tick.getClockErrorNanos() + 300 * MS, what);
+        assertTrue(arrived >= due - tick.getClockErrorNanos() - 10 * MS && arrived <= due + 400 * MS, what);
     }
 
     @Test
