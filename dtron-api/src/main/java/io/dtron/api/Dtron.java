@@ -2,11 +2,14 @@ package io.dtron.api;
 
 import io.dtron.api.InvalidMessageException.Reason;
 import io.dtron.api.internal.BusConnector;
+import io.dtron.api.internal.ClockSync;
 import io.dtron.api.internal.Counters;
 import io.dtron.api.internal.DtronChannel;
 import io.dtron.api.internal.DtronChannelValued;
 import io.dtron.api.internal.SerialExecutor;
+import io.dtron.api.internal.Stamp;
 import io.dtron.api.internal.SyncCodec;
+import io.dtron.api.internal.proto.Sync;
 import io.dtron.bus.BusMessage;
 import io.dtron.bus.MembershipView;
 import io.dtron.bus.Subscription;
@@ -19,6 +22,7 @@ import java.util.List;
 import java.util.Map;
 import java.util.Objects;
 import java.util.Optional;
+import java.util.Set;
 import java.util.concurrent.ConcurrentHashMap;
 import java.util.concurrent.CopyOnWriteArrayList;
 import java.util.concurrent.TimeUnit;
@@ -54,6 +58,33 @@ public final class Dtron implements AutoCloseable {
      */
     public static final IDtronChannel RUN_STOP = IDtronChannel.of("dtron_stop");
 
+    /**
+     * The channel of acknowledgements, without variables: a member acknowledges an input of the current run's
+     * tester when it has applied it, with {@link IDtronChannelValued#getAckedSender()} and
+     * {@link IDtronChannelValued#getAckedSequence()} naming the input and the
+     * {@linkplain IDtronChannelValued#getEventTimeNanos() event time} telling when it was applied, on the
+     * acknowledging member's clock (whose {@linkplain IDtronChannelValued#getClockOffsetNanos() offset} to the
+     * tester's clock the acknowledgement carries). By default a member acknowledges an input when its last
+     * listener of the input's channel returned (see {@link DtronListener#autoAcknowledge()} and
+     * {@link #acknowledge(IDtronChannelValued, long)}); a tester listens to this channel. Only {@code Dtron}
+     * publishes on it, and {@link #getStats()} does not count acknowledgements. A model channel may not have this
+     * name.
+     */
+    public static final IDtronChannel ACK = IDtronChannel.of("dtron_ack");
+
+    /** DTRON's channels, by name: the public ones and those of the clock-offset protocol. */
+    private static final Map<String, DtronChannel> RESERVED = Map.of(
+            RUN_START.getChannelName(), DtronChannel.copyOf(RUN_START),
+            RUN_STOP.getChannelName(), DtronChannel.copyOf(RUN_STOP),
+            ACK.getChannelName(), DtronChannel.copyOf(ACK),
+            ClockSync.HELLO, new DtronChannel(ClockSync.HELLO, List.of()),
+            ClockSync.PING, new DtronChannel(ClockSync.PING, List.of()),
+            ClockSync.PONG, new DtronChannel(ClockSync.PONG, List.of()));
+    /** The channels only Dtron itself sends on and listens to. */
+    private static final Set<String> CONTROL = Set.of(ClockSync.HELLO, ClockSync.PING, ClockSync.PONG);
+    /** How many acknowledged messages a member remembers, so as to acknowledge each once. */
+    private static final int ACKED_MEMORY = 65_536;
+
     private static final Logger LOG = LoggerFactory.getLogger(Dtron.class);
     private static final Duration CLOSE_TIMEOUT = Duration.ofSeconds(5);
 
@@ -68,8 +99,26 @@ public final class Dtron implements AutoCloseable {
     private final Object lock = new Object();
     private final Subscription viewSubscription;
     private final Optional<Subscription> allGroups;
+    private final List<Subscription> ownGroups;
+    private final long clockShiftNanos;
+    private final ClockSync clockSync;
+    private final RunClock runClock;
+    private final Map<AckKey, Boolean> acknowledged = new LinkedHashMap<>() {
+        @Override
+        protected boolean removeEldestEntry(Map.Entry<AckKey, Boolean> eldest) {
+            return size() > ACKED_MEMORY;
+        }
+    };
     private MembershipView lastView;
+    private volatile String runIdSet = "";
+    /** The current run's id and tester as of the last message received from the bus, in the bus's order. */
+    private volatile String runId = "";
+    private volatile String runTester;
     private volatile boolean closed;
+
+    /** A message a member acknowledged. */
+    private record AckKey(String sender, long sequence) {
+    }
 
     /** The listeners of one channel and the template their messages must fit. */
     private record Registration(DtronChannel template, List<DtronListener> listeners, Optional<Subscription> group) {
@@ -84,9 +133,44 @@ public final class Dtron implements AutoCloseable {
             return Map.copyOf(copy);
         });
         this.dispatcher = new SerialExecutor("dtron-listeners-" + transport.localMember());
+        this.clockShiftNanos = options.getClockShiftForTesting().toNanos();
+        this.clockSync = new ClockSync(transport.localMember(), options.isTester(), this::currentTimeNanos,
+                sequence::incrementAndGet, this::publishControl, this::offsetChanged);
+        this.runClock = new RunClock(transport.localMember(), this::currentTimeNanos, this::runClockOffset);
         this.lastView = transport.view();
         this.viewSubscription = transport.addViewListener(this::viewChanged);
         this.allGroups = declared.map(d -> transport.subscribeAll(this::received));
+        this.ownGroups = declared.isPresent()
+                ? List.of()
+                : List.of(RUN_START.getChannelName(), RUN_STOP.getChannelName(), ClockSync.HELLO, ClockSync.PING,
+                        ClockSync.PONG).stream().map(group -> transport.subscribe(group, this::received)).toList();
+        clockSync.start();
+    }
+
+    /**
+     * Returns whether DTRON reserves a channel name for itself: {@link #RUN_START}, {@link #RUN_STOP},
+     * {@link #ACK} and the channels of the clock-offset protocol ({@code dtron_hello}, {@code dtron_ping},
+     * {@code dtron_pong}). No model channel may have such a name.
+     */
+    public static boolean isReservedChannel(String channelName) {
+        return RESERVED.containsKey(Objects.requireNonNull(channelName, "channelName"));
+    }
+
+    /**
+     * Checks a declared template: a reserved name is allowed only for {@link #RUN_START} and {@link #RUN_STOP}
+     * themselves, which a tester declares with its model's channels.
+     *
+     * @throws IllegalArgumentException if the channel has a reserved name and is not one of those two
+     */
+    static void checkNotReserved(IDtronChannel channel) {
+        String name = channel.getChannelName();
+        DtronChannel reserved = RESERVED.get(name);
+        boolean runChannel = name.equals(RUN_START.getChannelName()) || name.equals(RUN_STOP.getChannelName());
+        if (reserved != null && (!runChannel || !reserved.isCompatible(channel))) {
+            throw new IllegalArgumentException("channel '" + channel.getChannelName() + "' is reserved by DTRON"
+                    + " (for the start and end of runs, acknowledgements and clock offsets); a model channel may not"
+                    + " have this name");
+        }
     }
 
     /**
@@ -138,12 +222,17 @@ public final class Dtron implements AutoCloseable {
         Objects.requireNonNull(listener, "listener");
         DtronChannel template = DtronChannel.copyOf(listener.getChannel());
         String name = template.getChannelName();
+        if (CONTROL.contains(name)) {
+            throw new IllegalArgumentException("channel '" + name + "' is DTRON's own; no listener can be added");
+        }
         synchronized (lock) {
             requireOpen();
             Registration registration = registrations.get(name);
             DtronChannel known = registration != null
                     ? registration.template()
-                    : declared.map(d -> requireDeclared(d, name)).orElse(template);
+                    : RESERVED.containsKey(name)
+                            ? RESERVED.get(name)
+                            : declared.map(d -> requireDeclared(d, name)).orElse(template);
             if (!known.isCompatible(template)) {
                 throw new IllegalArgumentException("listener template " + template + " differs from " + known);
             }
@@ -151,7 +240,8 @@ public final class Dtron implements AutoCloseable {
                 throw new IllegalStateException("listener " + listener + " belongs to another Dtron");
             }
             if (registration == null) {
-                Optional<Subscription> group = declared.isPresent()
+                Optional<Subscription> group = declared.isPresent() || name.equals(RUN_START.getChannelName())
+                        || name.equals(RUN_STOP.getChannelName())
                         ? Optional.empty()
                         : Optional.of(transport.subscribe(name, this::received));
                 registration = new Registration(known, new CopyOnWriteArrayList<>(), group);
@@ -201,35 +291,154 @@ public final class Dtron implements AutoCloseable {
     }
 
     /**
-     * Publishes a message to every member, stamped with this member's id, the
-     * next sequence number and the publish time.
+     * Publishes a message to every member, stamped with this member's id, the next sequence number, the publish
+     * time as event time, the run id ({@link #setRunId}) and this member's clock offset estimate.
      *
-     * @throws InvalidMessageException if the channel is not declared (when channels are declared) or its
-     *                                 variables do not fit the template known here
-     * @throws IllegalStateException   if this {@code Dtron} is closed
-     * @throws DtronException          if the bus did not take the message
+     * @throws InvalidMessageException  if the channel is not declared (when channels are declared) or its
+     *                                  variables do not fit the template known here
+     * @throws IllegalArgumentException if the channel is {@link #ACK} or another channel only DTRON sends on
+     * @return the message as published: with this member as sender, its sequence number, publish and event time,
+     *         run id and clock offset (and receive time 0), so that a tester can match acknowledgements to it
+     * @throws IllegalStateException    if this {@code Dtron} is closed
+     * @throws DtronException           if the bus did not take the message
      */
-    public void send(IDtronChannelValued message) {
+    public IDtronChannelValued send(IDtronChannelValued message) {
+        return publish(message, 0);
+    }
+
+    /**
+     * Publishes a message, as {@link #send(IDtronChannelValued)} does, for an event that happened earlier: an
+     * output that the system under test produced at {@code eventTimeEpochNanos}. The tester takes the output as
+     * happened then (on its clock: the event time plus this member's clock offset estimate), not when the message
+     * arrived.
+     *
+     * @param eventTimeEpochNanos when the event happened on this member's wall clock, in nanoseconds since the
+     *                            epoch (as {@link #currentTimeNanos()} reads it)
+     * @return the message as published
+     * @throws IllegalArgumentException if the event time is not positive, or the channel is one only DTRON
+     *                                  sends on
+     * @see #send(IDtronChannelValued)
+     */
+    public IDtronChannelValued send(IDtronChannelValued message, long eventTimeEpochNanos) {
+        if (eventTimeEpochNanos <= 0) {
+            throw new IllegalArgumentException("event time must be positive: " + eventTimeEpochNanos);
+        }
+        return publish(message, eventTimeEpochNanos);
+    }
+
+    /**
+     * Acknowledges an input now: publishes on {@link #ACK} that this member applied it at {@link
+     * #currentTimeNanos()}. For a listener that does not leave this to the {@code Dtron} (see {@link
+     * DtronListener#autoAcknowledge()}).
+     *
+     * @return true if the acknowledgement was published, false if this member had acknowledged the message before
+     * @see #acknowledge(IDtronChannelValued, long)
+     */
+    public boolean acknowledge(IDtronChannelValued message) {
+        return acknowledge(message, currentTimeNanos());
+    }
+
+    /**
+     * Acknowledges an input: publishes on {@link #ACK} that this member applied it at {@code
+     * appliedAtEpochNanos}. A member acknowledges each message once; a message it acknowledged before (itself or
+     * automatically when its listeners returned) is not acknowledged again.
+     *
+     * @param message             a message received from the bus, on a channel of the model
+     * @param appliedAtEpochNanos when the input took effect, on this member's wall clock in nanoseconds since the
+     *                            epoch (as {@link #currentTimeNanos()} reads it)
+     * @return true if the acknowledgement was published, false if this member had acknowledged the message before
+     * @throws IllegalArgumentException if the message did not come from the bus (it has no sender or sequence
+     *                                  number), is on a channel DTRON reserves, or the time is not positive
+     * @throws IllegalStateException    if this {@code Dtron} is closed
+     * @throws DtronException           if the bus did not take the acknowledgement
+     */
+    public boolean acknowledge(IDtronChannelValued message, long appliedAtEpochNanos) {
         Objects.requireNonNull(message, "message");
+        if (message.getSender().isEmpty() || message.getSequence() <= 0) {
+            throw new IllegalArgumentException("only a message received from the bus can be acknowledged: " + message);
+        }
+        if (isReservedChannel(message.getChannelName())) {
+            throw new IllegalArgumentException("a message on DTRON's channel '" + message.getChannelName()
+                    + "' is not acknowledged");
+        }
+        if (appliedAtEpochNanos <= 0) {
+            throw new IllegalArgumentException("time must be positive: " + appliedAtEpochNanos);
+        }
         requireOpen();
-        String name = message.getChannelName();
-        DtronChannel template = declared.isPresent()
-                ? declared.get().get(name)
-                : Optional.ofNullable(registrations.get(name)).map(Registration::template).orElse(null);
-        if (template == null && declared.isPresent()) {
-            throw new InvalidMessageException(Reason.UNKNOWN_CHANNEL, "channel '" + name + "' is not declared");
-        }
-        if (template != null) {
-            template.checkVariables(message.getVariables().keySet());
-        }
-        byte[] bytes = SyncCodec.encode(name, message.getVariables(), getMemberId(), sequence.incrementAndGet(),
-                EpochClock.nowNanos());
-        try {
-            transport.publish(name, bytes);
-        } catch (IOException e) {
-            throw new DtronException("cannot publish " + message, e);
-        }
-        counters.published();
+        return publishAck(message, appliedAtEpochNanos);
+    }
+
+    /**
+     * Sets the run id this member stamps on the messages it sends from now on; "" for none. A member that sets
+     * none stamps the id of the current run, as the run's {@link #RUN_START} carried it, until the run stops. A
+     * tester sets it before publishing {@code RUN_START}.
+     */
+    public void setRunId(String id) {
+        runIdSet = Objects.requireNonNull(id, "id");
+    }
+
+    /** Returns the run id this member stamps on the messages it sends now (see {@link #setRunId}), or "". */
+    public String getRunId() {
+        String set = runIdSet;
+        return set.isEmpty() ? runId : set;
+    }
+
+    /**
+     * Returns this member's wall clock in nanoseconds since the epoch, as it stamps messages: {@link
+     * java.time.Instant#now()}, plus the shift of {@link DtronOptions.Builder#clockShiftForTesting} in tests.
+     */
+    public long currentTimeNanos() {
+        return EpochClock.nowNanos() + clockShiftNanos;
+    }
+
+    /**
+     * Returns this member's clock for the current run: the run's time on the tester's clock, and tasks scheduled
+     * at run times.
+     */
+    public RunClock runClock() {
+        return runClock;
+    }
+
+    /**
+     * Returns the tester this member knows: the sender of the last {@link #RUN_START}, or a member connected as
+     * the {@linkplain DtronOptions.Builder#tester tester}, while it is on the bus. This member if it is the tester.
+     */
+    public Optional<String> getTester() {
+        return clockSync.tester();
+    }
+
+    /**
+     * Returns this member's estimate of how far the tester's wall clock is from its own: from the ping with the
+     * shortest round trip among the last few to the tester it knows (see {@link #getTester()}), exact on the
+     * tester itself; empty before the first ping came back, or when it knows no tester. Members ping the tester
+     * when they learn of it and about once a second afterwards, so the estimate changes; this one value is
+     * consistent.
+     */
+    public Optional<ClockOffset> getClockOffset() {
+        return clockSync.estimate();
+    }
+
+    /** Returns whether this member has an estimate of the tester's clock: {@code getClockOffset().isPresent()}. */
+    public boolean hasClockOffset() {
+        return clockSync.estimate().isPresent();
+    }
+
+    /**
+     * Returns this member's current estimate of (the tester's wall clock - its own wall clock) in nanoseconds; 0
+     * when there is none or this member is the tester. Use {@link #getClockOffset()} for an offset and its error
+     * bound from the same estimate.
+     */
+    public long getClockOffsetNanos() {
+        return clockSync.estimate().map(ClockOffset::offsetNanos).orElse(0L);
+    }
+
+    /**
+     * Returns the error bound of the current estimate in nanoseconds: half the round trip of the ping it comes
+     * from (the true offset is within this of the estimate); 0 when there is no estimate or this member is the
+     * tester. Use {@link #getClockOffset()} for an offset and its error bound from the same estimate.
+     */
+    public long getClockErrorNanos() {
+        return clockSync.estimate().map(ClockOffset::errorNanos).orElse(0L);
     }
 
     /** Returns this member's id on the bus, which every message it sends carries. */
@@ -280,7 +489,10 @@ public final class Dtron implements AutoCloseable {
             closed = true;
             lock.notifyAll();
         }
+        runClock.close();
+        clockSync.close();
         allGroups.ifPresent(Subscription::close);
+        ownGroups.forEach(Subscription::close);
         viewSubscription.close();
         transport.close();
         if (!dispatcher.shutdown(CLOSE_TIMEOUT) && !dispatcher.inExecutorThread()) {
@@ -313,16 +525,117 @@ public final class Dtron implements AutoCloseable {
         return channel;
     }
 
+    /** Publishes a message of a model channel, or RUN_START or RUN_STOP; event time 0 is the publish time. */
+    private IDtronChannelValued publish(IDtronChannelValued message, long eventTimeNanos) {
+        Objects.requireNonNull(message, "message");
+        requireOpen();
+        String name = message.getChannelName();
+        DtronChannel template = RESERVED.containsKey(name)
+                ? RESERVED.get(name)
+                : declared.isPresent()
+                        ? declared.get().get(name)
+                        : Optional.ofNullable(registrations.get(name)).map(Registration::template).orElse(null);
+        if (name.equals(ACK.getChannelName()) || CONTROL.contains(name)) {
+            throw new IllegalArgumentException("only DTRON publishes on channel '" + name + "'"
+                    + (name.equals(ACK.getChannelName()) ? "; use acknowledge" : ""));
+        }
+        if (template == null && declared.isPresent()) {
+            throw new InvalidMessageException(Reason.UNKNOWN_CHANNEL, "channel '" + name + "' is not declared");
+        }
+        if (template != null) {
+            template.checkVariables(message.getVariables().keySet());
+        }
+        long now = currentTimeNanos();
+        Stamp stamp = stamp(now, eventTimeNanos == 0 ? now : eventTimeNanos, "", 0);
+        byte[] bytes = SyncCodec.encode(name, message.getVariables(), stamp);
+        try {
+            transport.publish(name, bytes);
+        } catch (IOException e) {
+            throw new DtronException("cannot publish " + message, e);
+        }
+        counters.published();
+        return DtronChannelValued.published(template != null ? template : DtronChannel.copyOf(message.getChannel()),
+                message.getVariables(), stamp);
+    }
+
+    /** Stamps a message this member publishes now, with the next sequence number. */
+    private Stamp stamp(long publishTimeNanos, long eventTimeNanos, String ackedSender, long ackedSequence) {
+        return stamp(sequence.incrementAndGet(), publishTimeNanos, eventTimeNanos, ackedSender, ackedSequence);
+    }
+
+    private Stamp stamp(long seq, long publishTimeNanos, long eventTimeNanos, String ackedSender,
+            long ackedSequence) {
+        // the tester's offset is 0 by definition; a member without an estimate sends none (0, 0)
+        Optional<ClockOffset> estimate = clockSync.estimate();
+        long offset = estimate.map(ClockOffset::offsetNanos).orElse(0L);
+        long error = estimate.map(ClockOffset::errorNanos).orElse(0L);
+        return new Stamp(getMemberId(), seq, publishTimeNanos, eventTimeNanos, getRunId(), ackedSender,
+                ackedSequence, offset, error);
+    }
+
+    /** Publishes an acknowledgement unless this member acknowledged the message before. */
+    private boolean publishAck(IDtronChannelValued message, long appliedAtNanos) {
+        AckKey key = new AckKey(message.getSender(), message.getSequence());
+        synchronized (acknowledged) {
+            if (acknowledged.putIfAbsent(key, Boolean.TRUE) != null) {
+                return false;
+            }
+        }
+        byte[] bytes = SyncCodec.encode(ACK.getChannelName(), Map.of(),
+                stamp(currentTimeNanos(), appliedAtNanos, message.getSender(), message.getSequence()));
+        try {
+            transport.publish(ACK.getChannelName(), bytes);
+        } catch (IOException | RuntimeException e) {
+            synchronized (acknowledged) {
+                acknowledged.remove(key);
+            }
+            if (e instanceof IOException) {
+                throw new DtronException("cannot acknowledge " + message, e);
+            }
+            throw (RuntimeException) e;
+        }
+        return true;
+    }
+
+    /** Publishes a message of the clock-offset protocol; not counted. Called on the clock's thread. */
+    private void publishControl(String channel, long seq, long publishTimeNanos, long eventTimeNanos,
+            String ackedSender, long ackedSequence) {
+        if (closed) {
+            return;
+        }
+        try {
+            transport.publish(channel, SyncCodec.encode(channel, Map.of(),
+                    stamp(seq, publishTimeNanos, eventTimeNanos, ackedSender, ackedSequence)));
+        } catch (IOException | RuntimeException e) {
+            LOG.debug("{} cannot publish on {}: {}", getMemberId(), channel, e.toString());
+        }
+    }
+
+    private long runClockOffset() {
+        return clockSync.estimate().map(ClockOffset::offsetNanos).orElse(0L);
+    }
+
+    private void offsetChanged() {
+        runClock.offsetChanged();
+    }
+
     /** Called on the transport's thread: checks the message and queues it for the listeners. */
     private void received(BusMessage message) {
         if (closed) {
             return;
         }
         String group = message.group();
+        long receiveTime = message.receiveTimeNanos() + clockShiftNanos;
+        if (CONTROL.contains(group)) {
+            controlReceived(message, receiveTime);
+            return;
+        }
         Registration registration = registrations.get(group);
-        DtronChannel template = declared.isPresent()
-                ? declared.get().get(group)
-                : registration == null ? null : registration.template();
+        DtronChannel template = RESERVED.containsKey(group)
+                ? RESERVED.get(group)
+                : declared.isPresent()
+                        ? declared.get().get(group)
+                        : registration == null ? null : registration.template();
         if (template == null) {
             if (declared.isPresent()) {
                 reject(message, new InvalidMessageException(Reason.UNKNOWN_CHANNEL,
@@ -332,16 +645,63 @@ public final class Dtron implements AutoCloseable {
         }
         DtronChannelValued value;
         try {
-            value = SyncCodec.decode(template, SyncCodec.parse(message.payload()), message.sender(),
-                    message.receiveTimeNanos());
+            value = SyncCodec.decode(template, SyncCodec.parse(message.payload()), message.sender(), receiveTime);
         } catch (InvalidMessageException e) {
             reject(message, e);
             return;
         }
-        counters.accepted();
-        if (registration != null) {
-            dispatcher.execute(() -> deliver(value));
+        if (group.equals(RUN_START.getChannelName())) {
+            runStarted(value);
+        } else if (group.equals(RUN_STOP.getChannelName())) {
+            runStopped();
         }
+        if ((declared.isPresent() || registration != null) && !group.equals(ACK.getChannelName())) {
+            counters.accepted();
+        }
+        if (registration != null) {
+            // decided here, in the bus's order: an input of the current run's tester is acknowledged
+            boolean acknowledge = !RESERVED.containsKey(group) && value.getSequence() > 0
+                    && value.getSender().equals(runTester) && !value.getSender().equals(getMemberId());
+            dispatcher.execute(() -> deliver(value, acknowledge));
+        }
+    }
+
+    /** A hello, ping or pong: for the clock offset, not for listeners. */
+    private void controlReceived(BusMessage message, long receiveTime) {
+        Sync sync;
+        try {
+            sync = SyncCodec.parse(message.payload());
+        } catch (InvalidMessageException e) {
+            reject(message, e);
+            return;
+        }
+        Stamp stamp = SyncCodec.stamp(sync, message.sender());
+        switch (message.group()) {
+            case ClockSync.HELLO -> {
+                if (!stamp.sender().equals(getMemberId())) {
+                    clockSync.testerAnnounced(stamp.sender());
+                }
+            }
+            case ClockSync.PING -> clockSync.pingReceived(stamp.sender(), stamp.sequence(), receiveTime);
+            case ClockSync.PONG -> clockSync.pongReceived(stamp.sender(), stamp.ackedSender(), stamp.ackedSequence(),
+                    stamp.effectiveEventTimeNanos(), receiveTime);
+            default -> throw new IllegalStateException("not a control channel: " + message.group());
+        }
+    }
+
+    /** Called on the transport's thread, in the bus's order. */
+    private void runStarted(IDtronChannelValued start) {
+        runTester = start.getSender();
+        runId = start.getRunId();
+        clockSync.testerAnnounced(start.getSender());
+        runClock.start(start.getEventTimeNanos(), start.getVariables().get("timeunit"), start.getRunId());
+    }
+
+    /** Called on the transport's thread, in the bus's order. */
+    private void runStopped() {
+        runTester = null;
+        runId = "";
+        runClock.stop();
     }
 
     private void reject(BusMessage message, InvalidMessageException reason) {
@@ -350,13 +710,16 @@ public final class Dtron implements AutoCloseable {
                 message.payloadLength(), reason.getReason(), reason.getMessage());
     }
 
-    /** Called on the dispatcher thread, in the bus's order. */
-    private void deliver(IDtronChannelValued value) {
+    /** Called on the dispatcher thread, in the bus's order; acknowledges the message after its listeners. */
+    private void deliver(IDtronChannelValued value, boolean acknowledge) {
         Registration registration = registrations.get(value.getChannelName());
         if (registration == null) {
             return;
         }
+        boolean called = false;
+        boolean automatic = true;
         for (DtronListener listener : registration.listeners()) {
+            called = true;
             try {
                 listener.messageReceived(value);
             } catch (VirtualMachineError e) {
@@ -365,6 +728,28 @@ public final class Dtron implements AutoCloseable {
                 counters.listenerFailed();
                 LOG.error("Listener {} failed on message {}", listener, value, e);
             }
+            automatic &= autoAcknowledges(listener);
+        }
+        if (acknowledge && called && automatic) {
+            long appliedAt = currentTimeNanos();
+            try {
+                publishAck(value, appliedAt);
+            } catch (DtronException | IllegalStateException e) {
+                if (closed) {
+                    LOG.debug("{} closed before acknowledging {}", getMemberId(), value);
+                } else {
+                    LOG.warn("{} cannot acknowledge {}: {}", getMemberId(), value, e.getMessage());
+                }
+            }
+        }
+    }
+
+    private static boolean autoAcknowledges(DtronListener listener) {
+        try {
+            return listener.autoAcknowledge();
+        } catch (RuntimeException e) {
+            LOG.warn("Listener {} failed to tell whether to acknowledge: {}", listener, e.toString());
+            return true;
         }
     }
 
@@ -374,6 +759,12 @@ public final class Dtron implements AutoCloseable {
         List<String> joined = view.joinedSince(lastView);
         List<String> left = view.leftSince(lastView);
         lastView = view;
+        String tester = runTester;
+        if (tester != null && left.contains(tester)) {
+            LOG.info("The run's tester {} left the bus; the run clock stops", tester);
+            runStopped();
+        }
+        clockSync.viewChanged(view.members(), !joined.isEmpty());
         synchronized (lock) {
             lock.notifyAll();
         }

@@ -9,6 +9,11 @@ import java.util.Objects;
  * a time, in the bus's total order. A listener may reply inline through
  * {@link #getDtron()}. An exception thrown by {@link #messageReceived} is logged
  * with the message and counted; the listener keeps receiving.
+ *
+ * <p>An input of the current run's tester is {@linkplain Dtron#ACK acknowledged}
+ * when the last listener of its channel has returned (or thrown), with that
+ * time as the time the input was applied, unless a listener says otherwise
+ * through {@link #autoAcknowledge()}.
  */
 public abstract class DtronListener {
     private final IDtronChannel channel;
@@ -43,6 +48,17 @@ public abstract class DtronListener {
 
     /** Called with every valid message of the channel. */
     public abstract void messageReceived(IDtronChannelValued message);
+
+    /**
+     * Returns whether the {@code Dtron} may acknowledge the inputs this listener receives as applied when its
+     * listeners of the channel have returned; true unless overridden. A listener that applies an input later (on
+     * a thread of its own) or knows better when it took effect returns false and acknowledges each input itself
+     * with {@link Dtron#acknowledge(IDtronChannelValued, long)}; the input is not acknowledged automatically if
+     * any listener of its channel returns false.
+     */
+    protected boolean autoAcknowledge() {
+        return true;
+    }
 
     /** Attaches this listener to a {@code Dtron}; false if it already is attached to another one. */
     final synchronized boolean attach(Dtron owner) {

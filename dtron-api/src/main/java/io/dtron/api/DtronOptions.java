@@ -2,6 +2,7 @@ package io.dtron.api;
 
 import java.net.InetAddress;
 import java.net.InetSocketAddress;
+import java.time.Duration;
 import java.util.Collection;
 import java.util.Collections;
 import java.util.LinkedHashMap;
@@ -42,6 +43,8 @@ public final class DtronOptions {
     private final boolean encrypt;
     private final boolean inJvm;
     private final Optional<Map<String, IDtronChannel>> channels;
+    private final boolean tester;
+    private final Duration clockShift;
 
     private DtronOptions(Builder b) {
         clusterName = b.clusterName;
@@ -54,6 +57,8 @@ public final class DtronOptions {
         encrypt = b.encrypt;
         inJvm = b.inJvm;
         channels = b.channels;
+        tester = b.tester;
+        clockShift = b.clockShift;
     }
 
     /** Returns a builder with the defaults. */
@@ -114,13 +119,24 @@ public final class DtronOptions {
         return channels;
     }
 
+    /** Returns whether this member is the tester, which announces itself and answers clock-offset pings. */
+    public boolean isTester() {
+        return tester;
+    }
+
+    /** Returns the shift added to this member's wall clock, for tests only; zero normally. */
+    public Duration getClockShiftForTesting() {
+        return clockShift;
+    }
+
     @Override
     public String toString() {
         return "DtronOptions[cluster=" + clusterName + memberName.map(n -> ", member=" + n).orElse("")
                 + (inJvm ? ", in-JVM" : ", bind=" + bindAddress.getHostAddress() + ", port=" + port + "+" + portRange
                         + (initialMembers.isEmpty() ? "" : ", initialMembers=" + initialMembers))
                 + ", auth=" + secret.isPresent() + ", encrypt=" + encrypt
-                + channels.map(c -> ", channels=" + c.keySet()).orElse("") + "]";
+                + channels.map(c -> ", channels=" + c.keySet()).orElse("") + (tester ? ", tester" : "")
+                + (clockShift.isZero() ? "" : ", clockShift=" + clockShift) + "]";
     }
 
     /** Builds {@link DtronOptions}. Not thread-safe. */
@@ -135,6 +151,8 @@ public final class DtronOptions {
         private boolean encrypt;
         private boolean inJvm;
         private Optional<Map<String, IDtronChannel>> channels = Optional.empty();
+        private boolean tester;
+        private Duration clockShift = Duration.ZERO;
 
         private Builder() {
         }
@@ -213,17 +231,40 @@ public final class DtronOptions {
          * model: a message on any other channel is then rejected as unknown,
          * and listeners and sent messages must use these templates.
          * Without this call, messages on channels without a listener are ignored.
+         * DTRON's own channels ({@link Dtron#isReservedChannel}) are always known and
+         * need not be declared; {@link Dtron#RUN_START} and {@link Dtron#RUN_STOP} may be.
          *
-         * @throws IllegalArgumentException if two templates have the same name
+         * @throws IllegalArgumentException if two templates have the same name, or one has the name of a channel
+         *                                  DTRON reserves and is not {@code RUN_START} or {@code RUN_STOP}
          */
         public Builder channels(Collection<? extends IDtronChannel> declared) {
             Map<String, IDtronChannel> byName = new LinkedHashMap<>();
             for (IDtronChannel channel : declared) {
+                Dtron.checkNotReserved(channel);
                 if (byName.put(channel.getChannelName(), channel) != null) {
                     throw new IllegalArgumentException("channel declared twice: " + channel.getChannelName());
                 }
             }
             channels = Optional.of(Collections.unmodifiableMap(byName));
+            return this;
+        }
+
+        /**
+         * Makes this member the tester (default: off): it announces itself on the bus when it joins and when
+         * members join, and answers the other members' pings, by which they estimate their clock's offset to its
+         * clock. A member that publishes {@link Dtron#RUN_START} becomes the tester anyway, from then on.
+         */
+        public Builder tester(boolean on) {
+            tester = on;
+            return this;
+        }
+
+        /**
+         * For tests only: adds {@code shift} to every time this member reads from its wall clock (publish, event,
+         * receive and ping times, the run clock), as if its host's clock were off by that much (default: zero).
+         */
+        public Builder clockShiftForTesting(Duration shift) {
+            clockShift = Objects.requireNonNull(shift, "shift");
             return this;
         }
 

@@ -6,7 +6,11 @@ import java.util.Locale;
 import java.util.Map;
 import java.util.Objects;
 
-/** What one {@link Dtron} has done so far: an immutable snapshot of its counters. */
+/**
+ * What one {@link Dtron} has done so far: an immutable snapshot of its counters. They count channel messages,
+ * {@link Dtron#RUN_START} and {@link Dtron#RUN_STOP} included; acknowledgements ({@link Dtron#ACK}) and the
+ * messages by which members estimate their clock offsets are not counted.
+ */
 public final class DtronStats {
     private final long published;
     private final long accepted;

@@ -5,6 +5,14 @@ import java.util.Map;
 /**
  * One message of a channel: its variable values and, for a message received
  * from the bus, who sent it and when. Immutable; equal when all of that is equal.
+ *
+ * <p>Times are wall-clock times in nanoseconds since the epoch, each on the
+ * clock of the member that took it: the publish and event times on the
+ * sender's, the receive time on this member's. A sender that is not the
+ * tester also sends its estimate of the difference between the tester's clock
+ * and its own ({@link #getClockOffsetNanos()}), so that the tester's time of
+ * the event is {@code getEventTimeNanos() + getClockOffsetNanos()}, give or
+ * take {@link #getClockErrorNanos()}.
  */
 public interface IDtronChannelValued extends IChannelSkeleton {
 
@@ -17,7 +25,11 @@ public interface IDtronChannelValued extends IChannelSkeleton {
     /** Returns the id of the member that published the message, or "" if it was not received from the bus. */
     String getSender();
 
-    /** Returns the sender's sequence number of the message (from 1), or 0 if unknown. */
+    /**
+     * Returns the sender's sequence number of the message (from 1), or 0 if unknown. Each message a member
+     * publishes takes the next number, DTRON's own messages (acknowledgements, the clock-offset protocol)
+     * included, so a sender's numbers on one channel may skip some.
+     */
     long getSequence();
 
     /** Returns the sender's wall-clock publish time in nanoseconds since the epoch, or 0 if unknown. */
@@ -26,6 +38,53 @@ public interface IDtronChannelValued extends IChannelSkeleton {
     /** Returns this member's wall-clock receive time in nanoseconds since the epoch, or 0 if not received. */
     long getReceiveTimeNanos();
 
-    /** Encodes the channel name and values as a {@code Sync} protocol-buffer message. */
+    /**
+     * Returns when the event happened on the sender's wall clock, in nanoseconds since the epoch: for an output
+     * when the system produced it (see {@link Dtron#send(IDtronChannelValued, long)}), for an acknowledgement
+     * ({@link Dtron#ACK}) when the input was applied. Equals {@link #getPublishTimeNanos()} when the sender gave
+     * none (as older senders do); 0 if unknown.
+     */
+    default long getEventTimeNanos() {
+        return getPublishTimeNanos();
+    }
+
+    /** Returns the id of the test run the sender stamped on the message (see {@link Dtron#setRunId}), or "". */
+    default String getRunId() {
+        return "";
+    }
+
+    /**
+     * Returns, on an acknowledgement ({@link Dtron#ACK}), the sender of the message it acknowledges; "" on other
+     * messages.
+     */
+    default String getAckedSender() {
+        return "";
+    }
+
+    /**
+     * Returns, on an acknowledgement ({@link Dtron#ACK}), the sequence number of the message it acknowledges; 0 on
+     * other messages.
+     */
+    default long getAckedSequence() {
+        return 0;
+    }
+
+    /**
+     * Returns the sender's estimate, when it sent the message, of the tester's clock minus its own clock in
+     * nanoseconds; 0 when it had none or is the tester (see {@link Dtron#hasClockOffset()}).
+     */
+    default long getClockOffsetNanos() {
+        return 0;
+    }
+
+    /**
+     * Returns the error bound of {@link #getClockOffsetNanos()} in nanoseconds: greater than 0 whenever the sender
+     * sent an estimate, 0 when it had none or is the tester.
+     */
+    default long getClockErrorNanos() {
+        return 0;
+    }
+
+    /** Encodes the message as a {@code Sync} protocol-buffer message: channel name, values, and what it carries. */
     byte[] toByteArray();
 }

@@ -27,5 +27,10 @@
  * {@link io.dtron.api.Dtron#RUN_START} and its end on
  * {@link io.dtron.api.Dtron#RUN_STOP}; a {@link io.dtron.api.DtronAdapter}
  * can run in the tester's JVM.
+ *
+ * <p>Messages carry event times and their senders' clock offsets to the
+ * tester; a member acknowledges the tester's inputs on
+ * {@link io.dtron.api.Dtron#ACK} when it has applied them, and its
+ * {@link io.dtron.api.RunClock} counts the run's time on the tester's clock.
  */
 package io.dtron.api;

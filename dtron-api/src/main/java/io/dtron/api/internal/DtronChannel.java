@@ -111,7 +111,7 @@ public final class DtronChannel implements IDtronChannel {
         for (String variable : variableNames) {
             ordered.put(variable, Objects.requireNonNull(values.get(variable), () -> "value of " + variable));
         }
-        return new DtronChannelValued(this, ordered, "", 0, 0, 0);
+        return new DtronChannelValued(this, ordered, Stamp.NONE, 0);
     }
 
     @Override

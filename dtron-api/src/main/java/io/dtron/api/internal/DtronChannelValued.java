@@ -11,19 +11,27 @@ import java.util.Objects;
 public final class DtronChannelValued implements IDtronChannelValued {
     private final DtronChannel channel;
     private final Map<String, Integer> variables;
-    private final String sender;
-    private final long sequence;
-    private final long publishTimeNanos;
+    private final Stamp stamp;
     private final long receiveTimeNanos;
 
-    DtronChannelValued(DtronChannel channel, Map<String, Integer> variables, String sender, long sequence,
-            long publishTimeNanos, long receiveTimeNanos) {
+    DtronChannelValued(DtronChannel channel, Map<String, Integer> variables, Stamp stamp, long receiveTimeNanos) {
         this.channel = channel;
         this.variables = Collections.unmodifiableMap(new LinkedHashMap<>(variables));
-        this.sender = Objects.requireNonNull(sender, "sender");
-        this.sequence = sequence;
-        this.publishTimeNanos = publishTimeNanos;
+        this.stamp = Objects.requireNonNull(stamp, "stamp");
         this.receiveTimeNanos = receiveTimeNanos;
+    }
+
+    /** Returns a message as this member published it: stamped, not received (receive time 0). */
+    public static DtronChannelValued published(DtronChannel channel, Map<String, Integer> variables, Stamp stamp) {
+        Map<String, Integer> ordered = new LinkedHashMap<>();
+        channel.getVariableNames().forEach(name -> ordered.put(name, variables.get(name)));
+        variables.forEach(ordered::putIfAbsent);
+        return new DtronChannelValued(channel, ordered, stamp, 0);
+    }
+
+    /** Returns what the message carries besides its channel and variables, as on the wire. */
+    public Stamp stamp() {
+        return stamp;
     }
 
     @Override
@@ -43,17 +51,22 @@ public final class DtronChannelValued implements IDtronChannelValued {
 
     @Override
     public String getSender() {
-        return sender;
+        return stamp.sender();
     }
 
     @Override
     public long getSequence() {
-        return sequence;
+        return stamp.sequence();
     }
 
     @Override
     public long getPublishTimeNanos() {
-        return publishTimeNanos;
+        return stamp.publishTimeNanos();
+    }
+
+    @Override
+    public long getEventTimeNanos() {
+        return stamp.effectiveEventTimeNanos();
     }
 
     @Override
@@ -62,8 +75,33 @@ public final class DtronChannelValued implements IDtronChannelValued {
     }
 
     @Override
+    public String getRunId() {
+        return stamp.runId();
+    }
+
+    @Override
+    public String getAckedSender() {
+        return stamp.ackedSender();
+    }
+
+    @Override
+    public long getAckedSequence() {
+        return stamp.ackedSequence();
+    }
+
+    @Override
+    public long getClockOffsetNanos() {
+        return stamp.clockOffsetNanos();
+    }
+
+    @Override
+    public long getClockErrorNanos() {
+        return stamp.clockErrorNanos();
+    }
+
+    @Override
     public byte[] toByteArray() {
-        return SyncCodec.encode(getChannelName(), variables, sender, sequence, publishTimeNanos);
+        return SyncCodec.encode(getChannelName(), variables, stamp);
     }
 
     @Override
@@ -71,22 +109,23 @@ public final class DtronChannelValued implements IDtronChannelValued {
         return o instanceof DtronChannelValued other
                 && channel.equals(other.channel)
                 && variables.equals(other.variables)
-                && sender.equals(other.sender)
-                && sequence == other.sequence
-                && publishTimeNanos == other.publishTimeNanos
+                && stamp.equals(other.stamp)
                 && receiveTimeNanos == other.receiveTimeNanos;
     }
 
     @Override
     public int hashCode() {
-        return Objects.hash(channel, variables, sender, sequence, publishTimeNanos, receiveTimeNanos);
+        return Objects.hash(channel, variables, stamp, receiveTimeNanos);
     }
 
     @Override
     public String toString() {
         StringBuilder text = new StringBuilder(channel.getChannelName()).append(variables);
-        if (!sender.isEmpty()) {
-            text.append(" from ").append(sender).append('#').append(sequence);
+        if (!stamp.sender().isEmpty()) {
+            text.append(" from ").append(stamp.sender()).append('#').append(stamp.sequence());
+        }
+        if (!stamp.ackedSender().isEmpty()) {
+            text.append(" acknowledging ").append(stamp.ackedSender()).append('#').append(stamp.ackedSequence());
         }
         return text.toString();
     }

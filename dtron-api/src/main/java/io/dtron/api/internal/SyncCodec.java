@@ -13,16 +13,39 @@ public final class SyncCodec {
     private SyncCodec() {
     }
 
-    /** Encodes a message; old fields are always written, new fields when not 0 or empty. */
+    /** Encodes a message with sender, sequence and publish time only (the event time is the publish time). */
     public static byte[] encode(String channelName, Map<String, Integer> variables, String sender, long sequence,
             long publishTimeNanos) {
+        return encode(channelName, variables, new Stamp(sender, sequence, publishTimeNanos, 0, "", "", 0, 0, 0));
+    }
+
+    /**
+     * Encodes a message; fields 1 and 2 are always written, the others when not 0 or empty. The event time is left
+     * out when it equals the publish time.
+     */
+    public static byte[] encode(String channelName, Map<String, Integer> variables, Stamp stamp) {
         Sync.Builder sync = Sync.newBuilder()
                 .setName(channelName)
-                .setSender(sender)
-                .setSequence(sequence)
-                .setPublishTimeNs(publishTimeNanos);
+                .setSender(stamp.sender())
+                .setSequence(stamp.sequence())
+                .setPublishTimeNs(stamp.publishTimeNanos())
+                .setRunId(stamp.runId())
+                .setAckedSender(stamp.ackedSender())
+                .setAckedSequence(stamp.ackedSequence())
+                .setClockOffsetNs(stamp.clockOffsetNanos())
+                .setClockErrorNs(stamp.clockErrorNanos());
+        if (stamp.eventTimeNanos() != stamp.publishTimeNanos()) {
+            sync.setEventTimeNs(stamp.eventTimeNanos());
+        }
         variables.forEach((name, value) -> sync.addVariables(Variable.newBuilder().setName(name).setValue(value)));
         return sync.build().toByteArray();
+    }
+
+    /** Returns the stamp a parsed message carries, with {@code transportSender} when it names no sender. */
+    public static Stamp stamp(Sync sync, String transportSender) {
+        String sender = sync.getSender().isEmpty() ? transportSender : sync.getSender();
+        return new Stamp(sender, sync.getSequence(), sync.getPublishTimeNs(), sync.getEventTimeNs(), sync.getRunId(),
+                sync.getAckedSender(), sync.getAckedSequence(), sync.getClockOffsetNs(), sync.getClockErrorNs());
     }
 
     /**
@@ -81,8 +104,6 @@ public final class SyncCodec {
         template.checkVariables(values.keySet());
         Map<String, Integer> ordered = new LinkedHashMap<>();
         template.getVariableNames().forEach(name -> ordered.put(name, values.get(name)));
-        String sender = sync.getSender().isEmpty() ? transportSender : sync.getSender();
-        return new DtronChannelValued(template, ordered, sender, sync.getSequence(), sync.getPublishTimeNs(),
-                receiveTimeNanos);
+        return new DtronChannelValued(template, ordered, stamp(sync, transportSender), receiveTimeNanos);
     }
 }

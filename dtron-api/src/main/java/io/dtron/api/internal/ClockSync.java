@@ -1,0 +1,314 @@
+package io.dtron.api.internal;
+
+import io.dtron.api.ClockOffset;
+import io.dtron.api.internal.OffsetEstimator.Estimate;
+import java.util.LinkedHashMap;
+import java.util.List;
+import java.util.Map;
+import java.util.Optional;
+import java.util.concurrent.Executors;
+import java.util.concurrent.RejectedExecutionException;
+import java.util.concurrent.ScheduledExecutorService;
+import java.util.concurrent.ScheduledFuture;
+import java.util.concurrent.TimeUnit;
+import java.util.function.LongSupplier;
+import org.slf4j.Logger;
+import org.slf4j.LoggerFactory;
+
+/**
+ * Not API. One member's side of the clock-offset protocol.
+ *
+ * <p>The tester (a member connected with the tester option, or one that sent the last run start) publishes a hello
+ * when it joins and after members joined, and answers every ping with a pong that names the ping and carries, as
+ * event time, its clock when the ping arrived. Every other member learns the tester from its hello or run start,
+ * pings it a few times at once and then about once a second while it is on the bus, and keeps an
+ * {@link OffsetEstimator estimate} of (tester's clock - own clock). Messages are published on a thread of its own;
+ * the receive methods are called on the transport's thread. Thread-safe.
+ */
+public final class ClockSync implements AutoCloseable {
+    /** The channel of the tester's hello. */
+    public static final String HELLO = "dtron_hello";
+    /** The channel of a member's ping to the tester. */
+    public static final String PING = "dtron_ping";
+    /** The channel of the tester's answer to a ping. */
+    public static final String PONG = "dtron_pong";
+
+    private static final Logger LOG = LoggerFactory.getLogger(ClockSync.class);
+    private static final int BURST = OffsetEstimator.WINDOW;
+    private static final long BURST_SPACING_MILLIS = 20;
+    private static final long PING_PERIOD_MILLIS = 1_000;
+    private static final long[] HELLO_DELAYS_MILLIS = {100, 1_000};
+    private static final int MAX_PENDING_PINGS = 64;
+
+    /** Publishes one control message; must not throw. */
+    @FunctionalInterface
+    public interface ControlPublisher {
+        /**
+         * Publishes a message without variables.
+         *
+         * @param channel          {@link #HELLO}, {@link #PING} or {@link #PONG}
+         * @param sequence         its sequence number
+         * @param publishTimeNanos the own clock now
+         * @param eventTimeNanos   its event time
+         * @param ackedSender      on a pong the ping's sender, else ""
+         * @param ackedSequence    on a pong the ping's sequence number, else 0
+         */
+        void publish(String channel, long sequence, long publishTimeNanos, long eventTimeNanos, String ackedSender,
+                long ackedSequence);
+    }
+
+    private final String me;
+    private final boolean announced;
+    private final LongSupplier clock;
+    private final LongSupplier nextSequence;
+    private final ControlPublisher publisher;
+    private final Runnable estimateChanged;
+    private final ScheduledExecutorService executor;
+    private final OffsetEstimator estimator = new OffsetEstimator();
+    private final Map<Long, Long> pendingPings = new LinkedHashMap<>() {
+        @Override
+        protected boolean removeEldestEntry(Map.Entry<Long, Long> eldest) {
+            return size() > MAX_PENDING_PINGS;
+        }
+    };
+    private String tester;
+    private boolean selfTester;
+    private long pingGeneration;
+    private ScheduledFuture<?> pinging;
+    private volatile Optional<ClockOffset> estimate = Optional.empty();
+    private volatile boolean closed;
+
+    /**
+     * Creates the member's side; {@link #start} begins it.
+     *
+     * @param me              this member's id
+     * @param tester          whether this member is the tester from the start (and says so with hellos)
+     * @param clock           this member's wall clock, ns since the epoch
+     * @param nextSequence    hands out this member's sequence numbers
+     * @param publisher       publishes control messages
+     * @param estimateChanged called (on any thread, without locks held) when {@link #estimate()} changed
+     */
+    public ClockSync(String me, boolean tester, LongSupplier clock, LongSupplier nextSequence,
+            ControlPublisher publisher, Runnable estimateChanged) {
+        this.me = me;
+        this.announced = tester;
+        this.clock = clock;
+        this.nextSequence = nextSequence;
+        this.publisher = publisher;
+        this.estimateChanged = estimateChanged;
+        this.executor = Executors.newSingleThreadScheduledExecutor(task -> {
+            Thread thread = new Thread(task, "dtron-clock-" + me);
+            thread.setDaemon(true);
+            return thread;
+        });
+    }
+
+    /** Starts: a tester announces itself. */
+    public void start() {
+        if (announced) {
+            synchronized (this) {
+                selfTester = true;
+                tester = me;
+                estimate = Optional.of(new ClockOffset(me, 0, 0));
+            }
+            submit(this::hello);
+            scheduleHellos();
+        }
+    }
+
+    /** Returns whether this member is the tester now. */
+    public synchronized boolean isTester() {
+        return selfTester;
+    }
+
+    /** Returns the tester this member knows of, itself included. */
+    public synchronized Optional<String> tester() {
+        return Optional.ofNullable(tester);
+    }
+
+    /** Returns the estimate of (tester's clock - own clock): exact 0 on the tester, empty when there is none. */
+    public Optional<ClockOffset> estimate() {
+        return estimate;
+    }
+
+    /** Called when a member announced itself as the tester, by a hello or a run start. */
+    public void testerAnnounced(String member) {
+        synchronized (this) {
+            if (closed) {
+                return;
+            }
+            if (member.equals(me)) {
+                if (selfTester) {
+                    return;
+                }
+                selfTester = true;
+                tester = me;
+                stopPinging();
+                estimator.clear();
+                estimate = Optional.of(new ClockOffset(me, 0, 0));
+                LOG.debug("{} is the tester now", me);
+            } else {
+                if (announced) {
+                    LOG.warn("Member {} announced itself as the tester, but {} is; ignored", member, me);
+                    return;
+                }
+                if (member.equals(tester)) {
+                    return;
+                }
+                selfTester = false;
+                tester = member;
+                estimator.clear();
+                estimate = Optional.empty();
+                startPinging();
+                LOG.debug("{} learned the tester {}; estimating the clock offset", me, member);
+            }
+        }
+        estimateChanged.run();
+    }
+
+    /** Called with every membership view: forgets a tester that left; a tester greets members that joined. */
+    public void viewChanged(List<String> members, boolean someoneJoined) {
+        boolean forgot = false;
+        boolean greet;
+        synchronized (this) {
+            if (closed) {
+                return;
+            }
+            if (tester != null && !selfTester && !members.contains(tester)) {
+                LOG.debug("{}: the tester {} left; no clock offset any more", me, tester);
+                tester = null;
+                stopPinging();
+                estimator.clear();
+                estimate = Optional.empty();
+                forgot = true;
+            }
+            greet = selfTester && someoneJoined;
+        }
+        if (greet) {
+            scheduleHellos();
+        }
+        if (forgot) {
+            estimateChanged.run();
+        }
+    }
+
+    /** Called when a ping arrived: the tester answers it with its clock at {@code receiveTimeNanos}. */
+    public void pingReceived(String from, long sequence, long receiveTimeNanos) {
+        if (from.equals(me) || !isTester()) {
+            return;
+        }
+        submit(() -> publisher.publish(PONG, nextSequence.getAsLong(), clock.getAsLong(), receiveTimeNanos, from,
+                sequence));
+    }
+
+    /** Called when a pong arrived: one of this member's pings answered by its tester gives a sample. */
+    public void pongReceived(String from, String ackedSender, long ackedSequence, long testerTimeNanos,
+            long receiveTimeNanos) {
+        if (!ackedSender.equals(me)) {
+            return;
+        }
+        Optional<ClockOffset> before;
+        Optional<ClockOffset> after;
+        synchronized (this) {
+            if (closed || selfTester || !from.equals(tester)) {
+                return;
+            }
+            Long sentAt = pendingPings.remove(ackedSequence);
+            if (sentAt == null) {
+                return;
+            }
+            before = estimate;
+            Optional<Estimate> sampled = estimator.add(sentAt, testerTimeNanos, receiveTimeNanos);
+            after = sampled.map(e -> new ClockOffset(from, e.offsetNanos(), e.errorNanos()));
+            estimate = after;
+        }
+        if (!after.equals(before)) {
+            if (before.isEmpty()) {
+                after.ifPresent(e -> LOG.info("Clock offset to the tester {}: {} ms +/- {} ms", from,
+                        millis(e.offsetNanos()), millis(e.errorNanos())));
+            } else {
+                after.ifPresent(e -> LOG.debug("Clock offset to the tester {}: {} ms +/- {} ms", from,
+                        millis(e.offsetNanos()), millis(e.errorNanos())));
+            }
+            estimateChanged.run();
+        }
+    }
+
+    /** Stops pinging and greeting; closing twice does nothing. */
+    @Override
+    public void close() {
+        synchronized (this) {
+            closed = true;
+            stopPinging();
+        }
+        executor.shutdownNow();
+    }
+
+    private static String millis(long nanos) {
+        return String.format(java.util.Locale.ROOT, "%.3f", nanos / 1e6);
+    }
+
+    /** Called with the lock held. */
+    private void startPinging() {
+        stopPinging();
+        long generation = pingGeneration;
+        pinging = schedule(() -> ping(generation, 0), 0);
+    }
+
+    /** Called with the lock held. */
+    private void stopPinging() {
+        pingGeneration++;
+        if (pinging != null) {
+            pinging.cancel(false);
+            pinging = null;
+        }
+        pendingPings.clear();
+    }
+
+    private void ping(long generation, int count) {
+        long sequence;
+        long sentAt;
+        synchronized (this) {
+            if (closed || generation != pingGeneration) {
+                return;
+            }
+            sequence = nextSequence.getAsLong();
+            sentAt = clock.getAsLong();
+            pendingPings.put(sequence, sentAt);
+            pinging = schedule(() -> ping(generation, count + 1),
+                    count + 1 < BURST ? BURST_SPACING_MILLIS : PING_PERIOD_MILLIS);
+        }
+        publisher.publish(PING, sequence, sentAt, sentAt, "", 0);
+    }
+
+    private void hello() {
+        if (isTester()) {
+            long now = clock.getAsLong();
+            publisher.publish(HELLO, nextSequence.getAsLong(), now, now, "", 0);
+        }
+    }
+
+    private void scheduleHellos() {
+        for (long delay : HELLO_DELAYS_MILLIS) {
+            schedule(this::hello, delay);
+        }
+    }
+
+    private void submit(Runnable task) {
+        schedule(task, 0);
+    }
+
+    private ScheduledFuture<?> schedule(Runnable task, long delayMillis) {
+        try {
+            return executor.schedule(() -> {
+                try {
+                    task.run();
+                } catch (RuntimeException e) {
+                    LOG.warn("Clock offset task of {} failed: {}", me, e.toString());
+                }
+            }, delayMillis, TimeUnit.MILLISECONDS);
+        } catch (RejectedExecutionException e) {
+            return null; // closed
+        }
+    }
+}

@@ -1,0 +1,33 @@
+package io.dtron.testadapter;
+
+import io.dtron.api.Dtron;
+import io.dtron.api.DtronOptions;
+import java.time.Duration;
+import java.util.concurrent.CountDownLatch;
+import java.util.concurrent.TimeUnit;
+
+/**
+ * A {@link RunClockTicker} process, using only {@code io.dtron.api}, whose clock may be off. Arguments: cluster
+ * name, member name, variant ({@code correct} or {@code slow}), clock shift in milliseconds (as if this host's
+ * clock were off by that much), the number of testers to serve. Prints {@code joined} once on the bus and leaves
+ * when that many other members have left. Exit code 0, or 2 if they did not come and go within ten minutes.
+ */
+public final class RunClockTickerMain {
+    private RunClockTickerMain() {
+    }
+
+    public static void main(String[] args) throws InterruptedException {
+        DtronOptions options = DtronOptions.builder().clusterName(args[0]).memberName(args[1])
+                .clockShiftForTesting(Duration.ofMillis(Long.parseLong(args[3]))).build();
+        CountDownLatch testersGone = new CountDownLatch(Integer.parseInt(args[4]));
+        boolean done;
+        try (Dtron dtron = Dtron.connect(options); RunClockTicker ticker = new RunClockTicker(args[2])) {
+            dtron.addMembershipListener((members, joined, left) -> left.forEach(member -> testersGone.countDown()));
+            ticker.start(dtron);
+            System.out.println("joined " + dtron.getMembers());
+            System.out.flush();
+            done = testersGone.await(10, TimeUnit.MINUTES);
+        }
+        System.exit(done ? 0 : 2);
+    }
+}
