@@ -408,6 +408,15 @@ public final class Dtron implements AutoCloseable {
     }
 
     /**
+     * Returns the other members that announced themselves as a tester (connected with the {@linkplain
+     * DtronOptions.Builder#tester tester} option, or by publishing {@link #RUN_START}) and are on the bus now. A
+     * tester that finds another one here shares its bus with another run: its adapters would follow both.
+     */
+    public Set<String> getOtherTesters() {
+        return clockSync.otherTesters();
+    }
+
+    /**
      * Returns this member's estimate of how far the tester's wall clock is from its own: from the ping with the
      * shortest round trip among the last few to the tester it knows (see {@link #getTester()}), exact on the
      * tester itself; empty before the first ping came back, or when it knows no tester. Members ping the tester
@@ -679,7 +688,7 @@ public final class Dtron implements AutoCloseable {
         switch (message.group()) {
             case ClockSync.HELLO -> {
                 if (!stamp.sender().equals(getMemberId())) {
-                    clockSync.testerAnnounced(stamp.sender());
+                    clockSync.testerAnnounced(stamp.sender(), false);
                 }
             }
             case ClockSync.PING -> clockSync.pingReceived(stamp.sender(), stamp.sequence(), receiveTime);
@@ -693,7 +702,7 @@ public final class Dtron implements AutoCloseable {
     private void runStarted(IDtronChannelValued start) {
         runTester = start.getSender();
         runId = start.getRunId();
-        clockSync.testerAnnounced(start.getSender());
+        clockSync.testerAnnounced(start.getSender(), true);
         runClock.start(start.getEventTimeNanos(), start.getVariables().get("timeunit"), start.getRunId());
     }
 

@@ -10,6 +10,7 @@ import java.net.InetAddress;
 import java.time.Duration;
 import java.util.ArrayList;
 import java.util.List;
+import java.util.Set;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
@@ -22,12 +23,16 @@ final class BusSession implements AutoCloseable {
     private static final Logger LOG = LoggerFactory.getLogger(BusSession.class);
     /** How long adapters that just joined get to add their listeners before the run starts. */
     private static final Duration SETTLE = Duration.ofMillis(250);
+    /** How long after joining a tester of another run has surely greeted this one (it does 100 ms after a join). */
+    private static final Duration GREETING = Duration.ofMillis(400);
 
     private final String cluster;
     private final InetAddress bind;
     private final BusBridge bridge;
     private final List<DtronAdapter> adapters = new ArrayList<>();
     private final List<Dtron> adapterMembers = new ArrayList<>();
+
+    private final long openedNanos = System.nanoTime();
 
     private BusSession(String cluster, InetAddress bind, BusBridge bridge) {
         this.cluster = cluster;
@@ -84,6 +89,20 @@ final class BusSession implements AutoCloseable {
     }
 
     /**
+     * Returns the testers of other runs on this bus, after giving them the time to greet this tester: a run here
+     * would share their adapters.
+     *
+     * @throws InterruptedException if the thread was interrupted while waiting
+     */
+    Set<String> otherTesters() throws InterruptedException {
+        long waited = System.nanoTime() - openedNanos;
+        if (waited < GREETING.toNanos()) {
+            Thread.sleep((GREETING.toNanos() - waited) / 1_000_000);
+        }
+        return bridge.otherTesters();
+    }
+
+    /**
      * Prints the latency of the messages, the bus counters and, when some came, how many outputs came after the end
      * of the run (they are not judged).
      */
@@ -91,8 +110,10 @@ final class BusSession implements AutoCloseable {
         out.println("latency t2 - t1 of outputs: " + bridge.outputLatency());
         out.println("latency t2 - t1 of inputs back from the bus: " + bridge.inputLatency());
         long late = bridge.outputsAfterEnd();
+        long others = bridge.messagesOfOtherRuns();
         out.println("bus: " + bridge.stats() + (late == 0 ? "" : ", " + late + " output" + (late == 1 ? "" : "s")
-                + " after the end (not judged)"));
+                + " after the end (not judged)") + (others == 0 ? "" : ", " + others + " message"
+                + (others == 1 ? "" : "s") + " of other runs (ignored)"));
     }
 
     @Override

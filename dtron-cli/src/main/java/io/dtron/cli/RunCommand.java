@@ -30,6 +30,7 @@ import java.util.ArrayList;
 import java.util.List;
 import java.util.Locale;
 import java.util.Optional;
+import java.util.Set;
 import java.util.concurrent.Callable;
 import java.util.regex.Pattern;
 import picocli.CommandLine.Command;
@@ -367,6 +368,20 @@ final class RunCommand implements Callable<Integer> {
                 }
                 out.println("dtron run: members " + session.bridge().members());
                 out.flush();
+            }
+            try {
+                Set<String> others = session.otherTesters();
+                if (!others.isEmpty()) {
+                    err.println("dtron run: bus '" + clusterName + "' at " + address.getHostAddress() + " has a run"
+                            + " in progress: tester " + String.join(", ", others) + " is on it, and its adapters"
+                            + " would serve both runs. Give this run a bus of its own with --cluster NAME (and"
+                            + " its adapters the same name), or wait until the other run is over");
+                    return 1;
+                }
+            } catch (InterruptedException e) {
+                Thread.currentThread().interrupt();
+                err.println("dtron run: interrupted while joining the bus");
+                return 1;
             }
             TestResult result = judge.test(testInterface, session.bridge(), options.withReorderWindow(reorderWindow()),
                     out);

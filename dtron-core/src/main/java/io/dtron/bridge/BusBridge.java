@@ -13,8 +13,8 @@ import io.dtron.engine.AdapterContext;
 import io.dtron.engine.Event;
 import io.dtron.model.TestInterface;
 import java.time.Duration;
-import java.time.Instant;
 import java.util.ArrayList;
+import java.util.HashMap;
 import java.util.LinkedHashMap;
 import java.util.List;
 import java.util.Map;
@@ -22,6 +22,7 @@ import java.util.Objects;
 import java.util.Set;
 import java.util.concurrent.ConcurrentHashMap;
 import java.util.concurrent.CountDownLatch;
+import java.util.concurrent.ThreadLocalRandom;
 import java.util.concurrent.TimeUnit;
 import java.util.concurrent.atomic.AtomicBoolean;
 import java.util.concurrent.atomic.AtomicLong;
@@ -36,9 +37,13 @@ import org.slf4j.LoggerFactory;
  * no valid {@code Sync}, is rejected, logged and counted in {@link #stats()}. When the run starts it publishes
  * {@link Dtron#RUN_START} with the run's time unit, and when it ends {@link Dtron#RUN_STOP}. Every input the engine applies is published on the input's
  * channel; every message another member publishes on an output channel is reported to the engine as it arrives.
- * The bridge's own inputs come back in the bus's total order and are not outputs. An output is reported with the
- * time its sender stamped on it (its publish time, in the run's time since time 0), not the time it arrived, so a
- * message that crossed another on the bus is judged in its true place (within the run's reorder window, see
+ * The bridge's own inputs come back in the bus's total order and are not outputs. The bridge is the bus's
+ * {@linkplain DtronOptions.Builder#tester tester}: adapters estimate their clock's offset to its clock, and its runs
+ * carry a run id, so messages of another run on the same bus are ignored ({@link #messagesOfOtherRuns()}). An
+ * output is reported with its event time (when its sender says the system produced it, corrected by the sender's
+ * clock offset, on the run's clock since time 0), not the time it arrived, and an input is placed where its
+ * adapter's {@linkplain Dtron#ACK acknowledgement} says it was applied; so a message that crossed another on the
+ * bus is judged in its true place (within the run's reorder window, see
  * {@link io.dtron.engine.TestOptions#reorderWindowMicros()}). For every message received, t1
  * (its publish time) and t2 (its receive time) are recorded: {@link #outputLatency()} and
  * {@link #inputLatency()} summarise t2 - t1.
@@ -61,9 +66,14 @@ public final class BusBridge implements Adapter, AutoCloseable {
     private final AtomicBoolean warnedBeforeStart = new AtomicBoolean();
     private final AtomicLong outputsAfterEnd = new AtomicLong();
     private volatile CountDownLatch ownStop = new CountDownLatch(1);
+    private final AtomicLong otherRuns = new AtomicLong();
+    /** The number of each input of the run (1 for the first) by the sequence number of its message. */
+    private final Map<Long, Long> inputNumbers = new HashMap<>();
+    private long performed;
     private volatile AdapterContext context;
     private volatile boolean running;
-    /** The wall-clock time of the run's time 0, in nanoseconds since the epoch. */
+    private volatile String runId = "";
+    /** The tester's wall-clock time of the run's time 0, in nanoseconds since the epoch. */
     private volatile long zeroEpochNanos;
 
     private BusBridge(Dtron dtron, Map<String, IDtronChannel> channels, TestInterface testInterface) {
@@ -80,6 +90,12 @@ public final class BusBridge implements Adapter, AutoCloseable {
                 }
             });
         }
+        dtron.addDtronListener(new DtronListener(Dtron.ACK) {
+            @Override
+            public void messageReceived(IDtronChannelValued message) {
+                acknowledged(message);
+            }
+        });
         dtron.addDtronListener(new DtronListener(Dtron.RUN_STOP) {
             @Override
             public void messageReceived(IDtronChannelValued message) {
@@ -107,7 +123,7 @@ public final class BusBridge implements Adapter, AutoCloseable {
         List<IDtronChannel> declared = new ArrayList<>(channels.values());
         declared.add(Dtron.RUN_START);
         declared.add(Dtron.RUN_STOP);
-        Dtron dtron = Dtron.connect(options.channels(declared).build());
+        Dtron dtron = Dtron.connect(options.channels(declared).tester(true).build());
         try {
             return new BusBridge(dtron, channels, testInterface);
         } catch (RuntimeException e) {
@@ -122,8 +138,7 @@ public final class BusBridge implements Adapter, AutoCloseable {
         List<TestInterface.ObservableChannel> all = new ArrayList<>(testInterface.inputs());
         all.addAll(testInterface.outputs());
         for (TestInterface.ObservableChannel c : all) {
-            if (c.name().equals(Dtron.RUN_START.getChannelName()) || c.name().equals(Dtron.RUN_STOP
-                    .getChannelName())) {
+            if (Dtron.isReservedChannel(c.name())) {
                 throw new IllegalArgumentException("channel '" + c.name() + "' of the model's interface has a name"
                         + " DTRON reserves for announcing the start and end of a run; rename it");
             }
@@ -168,16 +183,40 @@ public final class BusBridge implements Adapter, AutoCloseable {
     @Override
     public void start(AdapterContext runContext) {
         context = Objects.requireNonNull(runContext, "runContext");
-        long before = epochNanos();
-        long runMicros = runContext.clock().nowMicros();
-        long after = epochNanos();
-        zeroEpochNanos = before + (after - before) / 2 - runMicros * 1000;
         watched.addAll(dtron.getMembers());
         watched.remove(dtron.getMemberId());
-        running = true;
+        synchronized (inputNumbers) {
+            inputNumbers.clear();
+            performed = 0;
+        }
+        runId = Long.toHexString(ThreadLocalRandom.current().nextLong() >>> 16);
+        dtron.setRunId(runId);
         // a time unit beyond int range (35 minutes) does not occur in practice; the message carries an int
         int unit = (int) Math.min(Integer.MAX_VALUE, runContext.timeUnitMicros());
-        publish(Dtron.RUN_START.constructValued(Map.of("timeunit", unit)), "the start of the run");
+        long nowNanos = dtron.currentTimeNanos();
+        long runMicros = runContext.clock().nowMicros();
+        // the adapters' time 0 is the start's event time: the engine's time 0, however late the start is published
+        zeroEpochNanos = nowNanos - runMicros * 1000;
+        running = true;
+        try {
+            dtron.send(Dtron.RUN_START.constructValued(Map.of("timeunit", unit)), zeroEpochNanos);
+        } catch (DtronException | IllegalStateException e) {
+            LOG.warn("Cannot publish the start of the run: {}", e.getMessage());
+            context.inconclusive("cannot publish the start of the run on the bus: " + e.getMessage());
+        }
+    }
+
+    /**
+     * Returns the other testers on this bus: members that announced themselves as testers (see {@link
+     * Dtron#getOtherTesters()}). A run on a bus with another tester would share its adapters with another run.
+     */
+    public Set<String> otherTesters() {
+        return dtron.getOtherTesters();
+    }
+
+    /** Returns the id of the current (or last) run, which its messages carry; "" before the first. */
+    public String runId() {
+        return runId;
     }
 
     @Override
@@ -186,7 +225,14 @@ public final class BusBridge implements Adapter, AutoCloseable {
         if (channel == null) {
             throw new IllegalArgumentException("'" + input.channel() + "' is not an input of the interface");
         }
-        publish(channel.constructValued(input.values()), "input " + input);
+        // the lock holds an acknowledgement that comes back before its input's number is known
+        synchronized (inputNumbers) {
+            IDtronChannelValued sent = publish(channel.constructValued(input.values()), "input " + input);
+            performed++;
+            if (sent != null) {
+                inputNumbers.put(sent.getSequence(), performed);
+            }
+        }
     }
 
     /**
@@ -243,12 +289,54 @@ public final class BusBridge implements Adapter, AutoCloseable {
         dtron.close();
     }
 
-    private void publish(IDtronChannelValued message, String what) {
+    /** Publishes a message; returns it as published, or null when the bus did not take it (the run then ends). */
+    private IDtronChannelValued publish(IDtronChannelValued message, String what) {
         try {
-            dtron.send(message);
+            return dtron.send(message);
         } catch (DtronException | IllegalStateException e) {
             LOG.warn("Cannot publish {}: {}", what, e.getMessage());
             context.inconclusive("cannot publish " + what + " on the bus: " + e.getMessage());
+            return null;
+        }
+    }
+
+    /**
+     * Returns how many messages of other runs (another tester's, on the same bus) this bridge ignored so far: they
+     * are neither counted as outputs nor judged.
+     */
+    public long messagesOfOtherRuns() {
+        return otherRuns.get();
+    }
+
+    /** Whether a message belongs to another run than this bridge's: it carries another run's id. */
+    private boolean ofOtherRun(IDtronChannelValued message) {
+        String id = message.getRunId();
+        if (id.isEmpty() || id.equals(runId)) {
+            return false; // senders that know no run id (older adapters) are taken as this run's
+        }
+        otherRuns.incrementAndGet();
+        LOG.debug("Ignored {} of run {}: this bridge's run is {}", message, id, runId);
+        return true;
+    }
+
+    /** The time of an event on the run's clock, in microseconds: its sender's time corrected by its offset. */
+    private long runMicros(IDtronChannelValued message) {
+        long testerNanos = message.getEventTimeNanos() + message.getClockOffsetNanos();
+        return Math.floorDiv(testerNanos - zeroEpochNanos, 1000);
+    }
+
+    /** An adapter applied one of this run's inputs: the engine places the input at that time. */
+    private void acknowledged(IDtronChannelValued ack) {
+        if (!running || !ack.getAckedSender().equals(dtron.getMemberId()) || ofOtherRun(ack)) {
+            return;
+        }
+        // the first acknowledgement of an input counts: one member applies it
+        Long number;
+        synchronized (inputNumbers) {
+            number = inputNumbers.remove(ack.getAckedSequence());
+        }
+        if (number != null) {
+            context.inputApplied(number, runMicros(ack));
         }
     }
 
@@ -257,6 +345,9 @@ public final class BusBridge implements Adapter, AutoCloseable {
         String channel = message.getChannelName();
         if (message.getSender().equals(dtron.getMemberId())) {
             inputLatency.record(message);
+            return;
+        }
+        if (ofOtherRun(message)) {
             return;
         }
         if (!outputs.contains(channel)) {
@@ -279,14 +370,7 @@ public final class BusBridge implements Adapter, AutoCloseable {
             return;
         }
         // stamped before time 0 (it was ordered before the start on the bus): it counts from the start
-        long eventMicros = Math.max(0, Math.floorDiv(message.getPublishTimeNanos() - zeroEpochNanos, 1000));
-        context.report(new Event(channel, message.getVariables()), eventMicros);
-    }
-
-    /** The wall clock, as members stamp their messages: nanoseconds since the epoch. */
-    private static long epochNanos() {
-        Instant now = Instant.now();
-        return now.getEpochSecond() * 1_000_000_000L + now.getNano();
+        context.report(new Event(channel, message.getVariables()), Math.max(0, runMicros(message)));
     }
 
     /**

@@ -3,9 +3,11 @@ package io.dtron.api.internal;
 import io.dtron.api.ClockOffset;
 import io.dtron.api.internal.OffsetEstimator.Estimate;
 import java.util.LinkedHashMap;
+import java.util.LinkedHashSet;
 import java.util.List;
 import java.util.Map;
 import java.util.Optional;
+import java.util.Set;
 import java.util.concurrent.Executors;
 import java.util.concurrent.RejectedExecutionException;
 import java.util.concurrent.ScheduledExecutorService;
@@ -73,6 +75,8 @@ public final class ClockSync implements AutoCloseable {
     };
     private String tester;
     private boolean selfTester;
+    /** The members other than this one that announced themselves as the tester, while they are on the bus. */
+    private final Set<String> otherTesters = new LinkedHashSet<>();
     private long pingGeneration;
     private ScheduledFuture<?> pinging;
     private volatile Optional<ClockOffset> estimate = Optional.empty();
@@ -121,6 +125,14 @@ public final class ClockSync implements AutoCloseable {
         return selfTester;
     }
 
+    /**
+     * Returns the members other than this one that announced themselves as the tester (by a hello or a run start)
+     * and are still on the bus: for a tester, testers of other runs on the same bus.
+     */
+    public synchronized Set<String> otherTesters() {
+        return Set.copyOf(otherTesters);
+    }
+
     /** Returns the tester this member knows of, itself included. */
     public synchronized Optional<String> tester() {
         return Optional.ofNullable(tester);
@@ -131,8 +143,11 @@ public final class ClockSync implements AutoCloseable {
         return estimate;
     }
 
-    /** Called when a member announced itself as the tester, by a hello or a run start. */
-    public void testerAnnounced(String member) {
+    /**
+     * Called when a member announced itself as the tester, by a hello or a run start. A hello does not take a member
+     * away from the tester it knows (another tester's hello is another run's); a run start does.
+     */
+    public void testerAnnounced(String member, boolean byRunStart) {
         synchronized (this) {
             if (closed) {
                 return;
@@ -148,11 +163,12 @@ public final class ClockSync implements AutoCloseable {
                 estimate = Optional.of(new ClockOffset(me, 0, 0));
                 LOG.debug("{} is the tester now", me);
             } else {
+                otherTesters.add(member);
                 if (announced) {
-                    LOG.warn("Member {} announced itself as the tester, but {} is; ignored", member, me);
+                    LOG.debug("Member {} announced itself as the tester, but {} is; ignored", member, me);
                     return;
                 }
-                if (member.equals(tester)) {
+                if (member.equals(tester) || !byRunStart && tester != null && !selfTester) {
                     return;
                 }
                 selfTester = false;
@@ -174,6 +190,7 @@ public final class ClockSync implements AutoCloseable {
             if (closed) {
                 return;
             }
+            otherTesters.retainAll(members);
             if (tester != null && !selfTester && !members.contains(tester)) {
                 LOG.debug("{}: the tester {} left; no clock offset any more", me, tester);
                 tester = null;

@@ -6,23 +6,24 @@ import io.dtron.api.DtronException;
 import io.dtron.api.DtronListener;
 import io.dtron.api.IDtronChannel;
 import io.dtron.api.IDtronChannelValued;
-import java.time.Instant;
+import io.dtron.api.RunClock;
 import java.util.Map;
-import java.util.concurrent.Executors;
-import java.util.concurrent.ScheduledExecutorService;
-import java.util.concurrent.ScheduledFuture;
-import java.util.concurrent.TimeUnit;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
 /**
  * The ticker of {@link TickerSystem} as a bus adapter, for the bundled model {@code io/dtron/models/ticker.xml},
- * using nothing of DTRON but {@code io.dtron.api}. When a run starts ({@link Dtron#RUN_START}, which carries the
- * run's time unit) it publishes {@code tick(seq)} every period, in real time, numbering the ticks from 1; an input
- * {@code reset} restarts the period and the numbering; when the run ends ({@link Dtron#RUN_STOP}) it stops. A period starts at the publish time of the message that
- * starts it, so that the message's own latency does not delay the ticks (exactly so on one host, where the sender
- * and this adapter share the clock). The variants are those of {@link TickerSystem}: {@code correct} (the
- * default) ticks every 10 time units, {@code slow} every 13.
+ * using nothing of DTRON but {@code io.dtron.api}. It keeps the tester's time with the bus's {@link RunClock}: from
+ * time 0 of a run it publishes {@code tick(seq)} one period after the previous tick (or the start), numbering the
+ * ticks from 1; an input {@code reset} restarts the period and the numbering from when the reset was applied (its
+ * listener returning is the acknowledgement the tester places it by); the run's end stops it. Because the ticks are
+ * scheduled at run times, a start message that reaches this adapter late, or a clock of this host that is off, does
+ * not move them. The variants are those of {@link TickerSystem}: {@code correct} (the default) ticks every 10 time
+ * units, {@code slow} every 13.
+ *
+ * <p>It checks its own schedule: a tick that this adapter itself published more than {@value #TOLERANCE} time
+ * units away from its period after the previous tick or reset (its JVM was held up) is logged as a warning, so
+ * that a FAILED verdict can be told apart: the ticker was late, or the verdict was wrong.
  *
  * <p>The bundled sample end to end, in one command:
  * {@code java -jar dtron.jar ticker.xml --classpath models/target/classes --adapter
@@ -33,21 +34,18 @@ public final class TickerBusAdapter implements DtronAdapter {
     public static final IDtronChannel RESET = IDtronChannel.of("reset");
     /** The model's output {@code o_tick}, with the tick's number {@code o_tick_seq}. */
     public static final IDtronChannel TICK = IDtronChannel.of("tick", "seq");
+    /** The model's tolerance T either side of the period, in time units. */
+    static final int TOLERANCE = 2;
 
     private static final Logger LOG = LoggerFactory.getLogger(TickerBusAdapter.class);
 
     private final TickerVariant variant;
-    private final ScheduledExecutorService timer = Executors.newSingleThreadScheduledExecutor(task -> {
-        Thread thread = new Thread(task, "ticker");
-        thread.setDaemon(true);
-        return thread;
-    });
-    private final Object lock = new Object();
     private Dtron dtron;
-    private long periodMicros;
-    private ScheduledFuture<?> ticking;
+    private RunClock.Task next;
     private long generation;
     private int seq;
+    /** The run time, in units, of the last tick or reset: the next tick is due a period later. */
+    private double last;
 
     /** The correct ticker. */
     public TickerBusAdapter() {
@@ -69,94 +67,81 @@ public final class TickerBusAdapter implements DtronAdapter {
     }
 
     @Override
-    public void start(Dtron bus) {
-        synchronized (lock) {
-            dtron = bus;
-        }
+    public synchronized void start(Dtron bus) {
+        dtron = bus;
         bus.addDtronListener(new DtronListener(Dtron.RUN_START) {
             @Override
             public void messageReceived(IDtronChannelValued message) {
-                long period = variant.period * (long) message.getVariables().get("timeunit");
-                restart(period, period - age(message, period));
-            }
-        });
-        bus.addDtronListener(new DtronListener(Dtron.RUN_STOP) {
-            @Override
-            public void messageReceived(IDtronChannelValued message) {
-                pause();
+                restart(0);
             }
         });
         bus.addDtronListener(new DtronListener(RESET) {
             @Override
             public void messageReceived(IDtronChannelValued message) {
-                synchronized (lock) {
-                    if (periodMicros > 0) {
-                        restart(periodMicros, periodMicros - age(message, periodMicros));
-                    }
+                RunClock clock = getDtron().runClock();
+                if (clock.isRunning()) {
+                    restart(clock.nowUnits());
                 }
             }
         });
     }
 
-    /** Stops ticking until the next run starts; resets meanwhile are ignored. */
-    private void pause() {
-        synchronized (lock) {
-            generation++;
-            periodMicros = 0;
-            if (ticking != null) {
-                ticking.cancel(false);
-            }
+    /** Stops ticking; later messages are ignored. */
+    @Override
+    public synchronized void close() {
+        generation++;
+        if (next != null) {
+            next.cancel();
         }
     }
 
-    /** Stops ticking; later messages are ignored. */
-    @Override
-    public void close() {
-        synchronized (lock) {
-            timer.shutdownNow();
+    /** Numbers the ticks from 1 again, the next one due a period after run time {@code fromUnits}. */
+    private synchronized void restart(double fromUnits) {
+        if (next != null) {
+            next.cancel();
         }
+        seq = 0;
+        last = fromUnits;
+        schedule(++generation);
+    }
+
+    private void schedule(long ofGeneration) {
+        next = dtron.runClock().scheduleAt(last + variant.period, () -> tick(ofGeneration));
     }
 
     /**
-     * How long ago, in microseconds, a message was published, by the clocks of its sender and of this host: exact
-     * on one host. Kept within [0, period / 2], so that the clock of another host that is off does not shift the
-     * ticks by more than that.
+     * Runs on the run clock's thread; a tick of a restarted period that was already waiting is dropped. The tick is
+     * published with the time it happened as its event time.
      */
-    private static long age(IDtronChannelValued message, long period) {
-        Instant now = Instant.now();
-        long nowNanos = now.getEpochSecond() * 1_000_000_000L + now.getNano();
-        return Math.max(0, Math.min(period / 2, (nowNanos - message.getPublishTimeNanos()) / 1000));
+    private synchronized void tick(long ofGeneration) {
+        if (ofGeneration != generation) {
+            return;
+        }
+        // the tick happens now; publishing it takes a moment more (much more, the first time in a fresh JVM)
+        long tickedAt = dtron.currentTimeNanos();
+        seq = (seq + 1) % 1000;
+        IDtronChannelValued sent;
+        try {
+            sent = dtron.send(TICK.constructValued(Map.of("seq", seq)), tickedAt);
+        } catch (DtronException e) {
+            LOG.warn("Cannot publish tick {}: {}", seq, e.getMessage());
+            return;
+        } catch (IllegalStateException e) {
+            return; // closed
+        }
+        RunClock clock = dtron.runClock();
+        double at = clock.runNanosOf(sent) / (clock.timeUnitMicros() * 1000.0);
+        double after = at - last;
+        if (Math.abs(after - variant.period) > TOLERANCE) {
+            LOG.warn("Tick {} at t={} by this adapter's run clock (due at t={}), {} time units after the previous"
+                    + " tick or reset: outside its period {} +/- {} (this JVM was held up)", seq, units(at),
+                    units(last + variant.period), units(after), variant.period, TOLERANCE);
+        }
+        last = at;
+        schedule(ofGeneration);
     }
 
-    private void restart(long period, long firstDelay) {
-        synchronized (lock) {
-            if (timer.isShutdown()) {
-                return;
-            }
-            if (ticking != null) {
-                ticking.cancel(false);
-            }
-            periodMicros = period;
-            seq = 0;
-            long current = ++generation;
-            ticking = timer.scheduleAtFixedRate(() -> tick(current), firstDelay, period, TimeUnit.MICROSECONDS);
-        }
-    }
-
-    /** Runs on the timer; a tick of a cancelled period that was already waiting for the lock is dropped. */
-    private void tick(long ofGeneration) {
-        synchronized (lock) {
-            if (ofGeneration != generation) {
-                return;
-            }
-            seq = (seq + 1) % 1000;
-            try {
-                dtron.send(TICK.constructValued(Map.of("seq", seq)));
-            } catch (DtronException e) {
-                LOG.warn("Cannot publish tick {}: {}", seq, e.getMessage());
-            } catch (IllegalStateException e) {
-                ticking.cancel(false);
-            }
-        }
+    private static String units(double value) {
+        return String.format(java.util.Locale.ROOT, "%.3f", value);
     }
 }
