@@ -62,24 +62,28 @@ class BusBridgeTest {
     private BusBridge bridge;
     private Dtron adapter;
 
-    /** The engine's side: keeps what the bridge reports. */
+    /** The engine's side: keeps what the bridge reports, with a real clock from its creation. */
     private static final class Context implements AdapterContext {
         final BlockingQueue<Event> outputs = new LinkedBlockingQueue<>();
+        final BlockingQueue<Long> outputTimes = new LinkedBlockingQueue<>();
+        final BlockingQueue<long[]> applied = new LinkedBlockingQueue<>();
         final BlockingQueue<String> inconclusive = new LinkedBlockingQueue<>();
+        final long zero = System.nanoTime();
 
         @Override
         public void report(Event output) {
-            outputs.add(output);
+            throw new AssertionError("the bridge reports outputs with their event times");
         }
 
         @Override
         public void report(Event output, long eventMicros) {
+            outputTimes.add(eventMicros);
             outputs.add(output);
         }
 
         @Override
         public void inputApplied(long ordinal, long eventMicros) {
-            throw new AssertionError("the bridge acknowledges no inputs yet");
+            applied.add(new long[] {ordinal, eventMicros});
         }
 
         @Override
@@ -89,7 +93,17 @@ class BusBridgeTest {
 
         @Override
         public TestClock clock() {
-            throw new UnsupportedOperationException("the bridge needs no clock");
+            return new TestClock() {
+                @Override
+                public long nowMicros() {
+                    return (System.nanoTime() - zero) / 1000;
+                }
+
+                @Override
+                public Scheduled schedule(long delayMicros, Runnable task) {
+                    throw new UnsupportedOperationException("the bridge schedules nothing");
+                }
+            };
         }
 
         @Override
@@ -149,6 +163,58 @@ class BusBridgeTest {
         assertEquals(3, stats.getPublished(), stats.toString());
         assertEquals(0, stats.getRejectedTotal(), stats.toString());
         assertTrue(context.inconclusive.isEmpty(), context.inconclusive.toString());
+    }
+
+    @Test
+    void outputsAreReportedAtTheTimeTheirSenderStampedOnTheRunsClock() throws Exception {
+        Inbox start = new Inbox(Dtron.RUN_START);
+        adapter.addDtronListener(start);
+        bridge.start(context);
+        long zero = start.take().getEventTimeNanos();
+        long before = context.clock().nowMicros();
+        // an output the system produced 7 ms after time 0, published later
+        adapter.send(DONE.constructValued(Map.of("amount", 1)), zero + 7_000_000);
+        assertEquals(Event.of("done", "amount", 1), context.outputs.poll(10, TimeUnit.SECONDS));
+        long at = context.outputTimes.take();
+        // on one host only the adapter's estimate of its offset to the tester's clock (within its error) differs
+        long error = adapter.getClockOffset().map(o -> o.errorNanos() / 1000).orElse(0L) + 1000;
+        assertTrue(Math.abs(at - 7000) <= error, "reported at " + at + " us, stamped at 7000 us (error " + error
+                + " us); time 0 was " + before + " us before the send on the run's clock");
+    }
+
+    @Test
+    void inputsAreAcknowledgedWhereTheAdapterAppliedThem() throws Exception {
+        Inbox moves = new Inbox(MOVE);
+        adapter.addDtronListener(moves);
+        bridge.start(context);
+        bridge.perform(Event.of("move", "amount", 1));
+        bridge.perform(Event.of("move", "amount", 2));
+        long[] first = context.applied.poll(10, TimeUnit.SECONDS);
+        long[] second = context.applied.poll(10, TimeUnit.SECONDS);
+        assertNotNull(second, "both inputs acknowledged");
+        assertEquals(1, first[0], "inputs are numbered from 1, in the order performed");
+        assertEquals(2, second[0]);
+        assertTrue(first[1] >= 0 && first[1] <= second[1] + 1000, first[1] + " " + second[1]);
+        assertTrue(second[1] <= context.clock().nowMicros() + 1000, "applied before now: " + second[1]);
+    }
+
+    @Test
+    void messagesOfAnotherRunAreIgnoredAndCounted() throws Exception {
+        bridge.start(context);
+        try (Dtron other = Dtron.connect(DtronOptions.builder().clusterName(cluster).memberName("other-run")
+                .inJvm(true).build())) {
+            other.setRunId("another-run");
+            other.send(DONE.constructValued(Map.of("amount", 5)));
+            adapter.send(DONE.constructValued(Map.of("amount", 6)));
+            assertEquals(Event.of("done", "amount", 6), context.outputs.poll(10, TimeUnit.SECONDS),
+                    "the other run's output is not this run's");
+            long deadline = System.nanoTime() + WAIT.toNanos();
+            while (bridge.messagesOfOtherRuns() < 1 && System.nanoTime() < deadline) {
+                Thread.sleep(10);
+            }
+            assertEquals(1, bridge.messagesOfOtherRuns());
+            assertTrue(context.outputs.isEmpty(), context.outputs.toString());
+        }
     }
 
     @Test

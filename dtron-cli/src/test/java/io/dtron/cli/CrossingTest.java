@@ -1,0 +1,84 @@
+package io.dtron.cli;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+
+import io.dtron.api.ChildJvm;
+import io.dtron.api.DtronOptions;
+import io.dtron.bridge.BusBridge;
+import io.dtron.engine.DelayPolicy;
+import io.dtron.engine.OnlineTester;
+import io.dtron.engine.TestOptions;
+import io.dtron.engine.TestResult;
+import io.dtron.engine.Verdict;
+import io.dtron.model.ModelLoader;
+import io.dtron.model.Network;
+import io.dtron.model.TestInterface;
+import java.io.InputStream;
+import java.nio.charset.StandardCharsets;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.time.Duration;
+import java.util.ArrayList;
+import java.util.List;
+import java.util.Map;
+import java.util.TreeMap;
+import java.util.UUID;
+import java.util.concurrent.TimeUnit;
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.Timeout;
+import org.junit.jupiter.api.io.TempDir;
+
+/**
+ * An output that crosses an input on the bus is judged where it happened: the system of {@code crossing.xta},
+ * behind an adapter in a JVM of its own, produces x just before input y reaches it, and x reaches the tester after
+ * the tester sent y (held up 5 ms between stamping and sending). Judged by arrival, the correct system would fail
+ * every run; judged by event times (x's stamp, y's acknowledgement) it passes every run, and the same adapter with
+ * x truly after y fails every run. Real time, 10 ms per unit, both on one bus for many runs.
+ */
+@Timeout(value = 5, unit = TimeUnit.MINUTES)
+class CrossingTest {
+    /** Runs per variant; scripts/verdict-stats.sh style soak runs go further outside the test command. */
+    private static final int RUNS = 30;
+
+    @TempDir
+    Path dir;
+
+    private Map<Verdict, List<String>> runs(String variant) throws Exception {
+        String model;
+        try (InputStream in = CrossingTest.class.getResourceAsStream("crossing.xta")) {
+            model = new String(in.readAllBytes(), StandardCharsets.UTF_8);
+        }
+        Network network = ModelLoader.load("crossing.xta", model);
+        TestInterface testInterface = TestInterface.fromNames(network);
+        String cluster = "crossing-" + UUID.randomUUID().toString().substring(0, 8);
+        Path log = dir.resolve(variant + ".log");
+        Map<Verdict, List<String>> verdicts = new TreeMap<>();
+        try (BusBridge bridge = BusBridge.connect(testInterface, DtronOptions.builder().clusterName(cluster));
+                ChildJvm adapter = ChildJvm.start(CrossingAdapterMain.class, log, cluster, variant)) {
+            adapter.awaitOutput("ready", Duration.ofSeconds(60));
+            for (int seed = 1; seed <= RUNS; seed++) {
+                TestOptions options = new TestOptions(seed, 10_000, 20, DelayPolicy.RANDOM, 0, false, 50_000);
+                TestResult result = new OnlineTester(network, testInterface, bridge, options).run();
+                verdicts.computeIfAbsent(result.verdict(), v -> new ArrayList<>()).add(seed + ": "
+                        + result.explanation());
+            }
+        } finally {
+            if (Files.exists(log)) {
+                System.out.println(variant + " adapter: " + Files.readString(log));
+            }
+        }
+        return verdicts;
+    }
+
+    @Test
+    void anOutputThatCrossedAnInputOnTheBusPassesEveryRun() throws Exception {
+        Map<Verdict, List<String>> verdicts = runs("crossing");
+        assertEquals(RUNS, verdicts.getOrDefault(Verdict.PASSED, List.of()).size(), verdicts.toString());
+    }
+
+    @Test
+    void anOutputTrulyAfterTheInputFailsEveryRun() throws Exception {
+        Map<Verdict, List<String>> verdicts = runs("late");
+        assertEquals(RUNS, verdicts.getOrDefault(Verdict.FAILED, List.of()).size(), verdicts.toString());
+    }
+}
