@@ -124,6 +124,52 @@ class AdapterMachineryTest {
         }
     }
 
+    /** The output of a {@code dtron run} of greet.xml in this JVM with an adapter class, and its exit code. */
+    private record Run(int exit, String out) {
+    }
+
+    private static Run runGreet(String adapter, int timeout) throws Exception {
+        StringWriter out = new StringWriter();
+        StringWriter err = new StringWriter();
+        try (TestSite site = new TestSite()) {
+            System.setProperty("BASE_URL", site.url());
+            Path model = Path.of(AdapterMachineryTest.class.getResource("greet.xml").toURI());
+            int exit = DtronCommand.run(new String[] {"run", model.toString(), "--adapter", adapter, "--cluster",
+                    "selenium-" + UUID.randomUUID().toString().substring(0, 8), "--timeunit", "100000", "--timeout",
+                    Integer.toString(timeout), "--delay-policy", "random-bounded", "--delay-bound", "3", "--seed",
+                    "1"}, new PrintWriter(out), new PrintWriter(err));
+            return new Run(exit, out + "\n" + err);
+        } finally {
+            System.clearProperty("BASE_URL");
+        }
+    }
+
+    /**
+     * The walkthrough's failure: a browser's first page load, slow on a busy machine, made in the first step counts
+     * against the page (greet.xml allows it 5 s) and fails the run although the page did nothing wrong. The log
+     * now says where the step's time went while it ran.
+     */
+    @Test
+    void aBrowsersSlowFirstPageLoadInTheFirstStepCountsAgainstThePage() throws Exception {
+        try (LogCapture watch = new LogCapture(StepWatch.class)) {
+            Run run = runGreet(FirstLoadAdapters.class.getName() + ":cold", 70);
+            assertEquals(2, run.exit(), run.out());
+            assertTrue(run.out().contains("\nFAILED: no output came by "), run.out());
+            assertTrue(watch.messages().stream().anyMatch(m -> m.startsWith("Greet[greet[user]] on greet{user=0} for"
+                    + " user 0 is still running after ") && m.contains(": waiting in the WebDriver call ")
+                    && m.contains(" at io.dtron.selenium.sample.Greet.execute(Greet.java:")), watch.messages()
+                    .toString());
+        }
+    }
+
+    /** The fix: the start page is the browser's first page load, before the run; the same run passes. */
+    @Test
+    void withAStartPageTheFirstPageLoadIsDoneBeforeTheRunAndThePagePasses() throws Exception {
+        Run run = runGreet(FirstLoadAdapters.class.getName() + ":warm", 70);
+        assertEquals(0, run.exit(), run.out());
+        assertTrue(run.out().contains("\nPASSED: the timeout of 70 time units was reached"), run.out());
+    }
+
     @Test
     void aRunWhoseStepsStallInTheBrowserIsInconclusiveNotFailed() throws Exception {
         StringWriter out = new StringWriter();
