@@ -9,6 +9,7 @@ import io.dtron.selenium.internal.BrowserFailure;
 import io.dtron.selenium.internal.Locators;
 import io.dtron.selenium.internal.Messages;
 import io.dtron.selenium.internal.StepWatch;
+import java.net.http.HttpTimeoutException;
 import java.time.Duration;
 import java.util.List;
 import java.util.Locale;
@@ -312,9 +313,16 @@ public abstract class AbstractSeleniumAdapter {
      */
     static boolean isMachinery(Throwable e) {
         if (e instanceof BrowserFailure || e instanceof NoSuchSessionException
-                || e instanceof SessionNotCreatedException || e instanceof UnreachableBrowserException
-                || e instanceof TimeoutException) {
+                || e instanceof SessionNotCreatedException || e instanceof UnreachableBrowserException) {
             return true;
+        }
+        if (e instanceof TimeoutException) {
+            // chromedriver gave no answer in time; a WebDriverWait that timed out is about the page, not this
+            for (Throwable c = e.getCause(); c != null; c = c.getCause()) {
+                if (c instanceof java.util.concurrent.TimeoutException || c instanceof HttpTimeoutException) {
+                    return true;
+                }
+            }
         }
         if (e instanceof WebDriverException && !(e instanceof NotFoundException)) {
             String first = Messages.firstLine(e.getMessage()).toLowerCase(Locale.ROOT);

@@ -50,6 +50,14 @@ import org.slf4j.LoggerFactory;
  * {@link Builder#properties(Path)}, a system property with the name of a key already defined, and
  * {@link Builder#property}. Each adapter class is created once, so adapters injected into each other are the
  * ones that serve their channels. Closing stops the adapters and quits the browsers.
+ *
+ * <p>Besides the adapters' own keys, the properties may set {@value #BROWSERS_PROPERTY} and
+ * {@value #START_PAGE_PROPERTY} (browsers started, and a page loaded in each, before the run),
+ * {@value #SLOW_STEP_PROPERTY} (when a step still running is logged with the WebDriver call it waits for) and
+ * {@value #STEP_TIMEOUT_PROPERTY} (when a step is given up). A step given up, or one that fails on the adapters'
+ * own machinery (a browser that does not start or is gone, chromedriver not answering, a WebDriver call that
+ * timed out), reports no result: the adapters log the user, the step and what it waited for and leave the bus,
+ * so that the tester ends the run INCONCLUSIVE rather than FAILED.
  */
 public final class SeleniumAdapters implements DtronAdapter {
     /** The properties file read from each scanned package. */
@@ -92,7 +100,7 @@ public final class SeleniumAdapters implements DtronAdapter {
     private final long slowStepMillis;
     private final long stepTimeoutMillis;
     private final AtomicBoolean gaveUp = new AtomicBoolean();
-    private Dtron dtron;
+    private volatile Dtron dtron;
     private final List<AbstractSeleniumAdapter> adapters;
     private UserSessions sessions;
     private boolean started;
@@ -249,8 +257,9 @@ public final class SeleniumAdapters implements DtronAdapter {
             LOG.info("Also: {}", reason);
             return;
         }
-        LOG.error("{}. That is the adapters' own machinery, not the system under test: the Selenium adapters stop"
-                + " and leave the bus, so that the run ends INCONCLUSIVE", reason);
+        LOG.error("{}. No result can be reported for it that would not blame the system under test for what may"
+                + " be the adapters' own trouble: the Selenium adapters stop and leave the bus, so that the run ends"
+                + " INCONCLUSIVE", reason);
         adapters.forEach(AbstractSeleniumAdapter::detach);
         Dtron member = dtron;
         // not on a user's thread or the bus's: closing the member waits for its listeners
@@ -376,8 +385,10 @@ public final class SeleniumAdapters implements DtronAdapter {
         }
 
         /**
-         * Sets the page every browser opens when it starts (default: none, a blank page). With
-         * {@link #browsers}, the first steps of a test then find the browsers warmed up.
+         * Sets the page every browser opens when it starts (default: the property {@value #START_PAGE_PROPERTY},
+         * else none, a blank page). With {@link #browsers}, the first steps of a test then find the browsers warmed
+         * up: a browser's first page load (its renderer starting) takes seconds on a busy machine, and would else
+         * count against the system under test in the first step of each user.
          */
         public Builder startPage(String url) {
             startPage = Objects.requireNonNull(url, "url");
