@@ -79,6 +79,7 @@ public final class UserSessions implements AutoCloseable {
                     throw new BrowserFailure("the browser of user " + id + " did not start: " + Messages.firstLine(
                             e.getMessage()), e);
                 }
+                long loadStart = System.nanoTime();
                 if (startPage != null) {
                     try {
                         browser.get(startPage);
@@ -88,15 +89,18 @@ public final class UserSessions implements AutoCloseable {
                                 + startPage + ": " + Messages.firstLine(e.getMessage()), e);
                     }
                 }
-                long nanos = System.nanoTime() - start;
+                long end = System.nanoTime();
+                long nanos = end - start;
+                String load = startPage == null ? "" : " (" + (end - loadStart) / 1_000_000 + " ms of it loading "
+                        + startPage + ")";
                 StepWatch.Step step = watch.current(id);
                 if (step != null) {
                     step.browserStarted(nanos);
-                    LOG.warn("Started the browser of user {} in {} ms, within a step: that time counts against the"
-                            + " system under test; start the browsers before the run ({})", id, nanos / 1_000_000,
-                            "property dtron.browsers");
+                    LOG.warn("Started the browser of user {} in {} ms{}, within a step: that time counts against"
+                            + " the system under test; start the browsers before the run (property dtron.browsers)",
+                            id, nanos / 1_000_000, load);
                 } else {
-                    LOG.info("Started the browser of user {} in {} ms", id, nanos / 1_000_000);
+                    LOG.info("Started the browser of user {} in {} ms{}", id, nanos / 1_000_000, load);
                 }
             }
             return browser;
