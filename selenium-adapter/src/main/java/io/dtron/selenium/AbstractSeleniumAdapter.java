@@ -337,6 +337,11 @@ public abstract class AbstractSeleniumAdapter {
         if (call.step != null) {
             call.step.reported();
         }
+        if (runtime.gaveUp().getAsBoolean()) {
+            LOG.info("{} did not report {} {} for user {}: the adapters gave up the run", this, RESULT_CODE, code,
+                    call.user);
+            return;
+        }
         IDtronChannel result = call.withUser ? RESULT_FOR_USER : RESULT;
         Map<String, Integer> values = call.withUser ? Map.of(USER_VARIABLE, call.user, RESULT_CODE, code)
                 : Map.of(RESULT_CODE, code);
