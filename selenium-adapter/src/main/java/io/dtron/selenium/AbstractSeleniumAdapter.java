@@ -269,6 +269,9 @@ public abstract class AbstractSeleniumAdapter {
                 LOG.debug("{} did {} for user {} in {}", this, text(call.message), call.user, call.step.timing());
             }
         } catch (VirtualMachineError e) {
+            // out of memory or threads: the adapters' own trouble; the user's thread ends, with a log
+            runtime.giveUp().accept(this + " could not do " + text(call.message) + " for user " + call.user + ": "
+                    + e);
             throw e;
         } catch (AdapterException | WebDriverException | AssertionError e) {
             failed(call, e, false);

@@ -124,6 +124,22 @@ class AdapterMachineryTest {
         }
     }
 
+    @Test
+    void aStepThatDiesOfAVirtualMachineErrorIsLoggedAndTheAdaptersLeave() throws Exception {
+        try (LogCapture adapters = new LogCapture(SeleniumAdapters.class);
+             LogCapture sessions = new LogCapture(io.dtron.selenium.internal.UserSessions.class);
+             Bus bus = new Bus(SeleniumAdapters.builder().scan("io.dtron.selenium.broken"))) {
+            bus.tester.send(IDtronChannel.of("overflow", "user").constructValued(Map.of("user", 1)));
+            assertTrue(bus.adaptersLeft(10_000), "the adapters gave up the run and left the bus");
+            assertNull(bus.results.poll(300));
+            assertTrue(adapters.messages().stream().anyMatch(m -> m.startsWith("Overflow[overflow[user]] could not do"
+                    + " overflow{user=1} for user 1: java.lang.StackOverflowError: deliberate")),
+                    adapters.messages().toString());
+            assertTrue(sessions.messages().contains("A step of user 1 ended with an unexpected"
+                    + " java.lang.StackOverflowError"), sessions.messages().toString());
+        }
+    }
+
     /** The output of a {@code dtron run} of greet.xml in this JVM with an adapter class, and its exit code. */
     private record Run(int exit, String out) {
     }
