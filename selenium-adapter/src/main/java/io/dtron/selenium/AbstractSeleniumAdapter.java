@@ -1,11 +1,15 @@
 package io.dtron.selenium;
 
 import io.dtron.api.Dtron;
+import io.dtron.api.DtronException;
 import io.dtron.api.DtronListener;
 import io.dtron.api.IDtronChannel;
 import io.dtron.api.IDtronChannelValued;
+import io.dtron.selenium.internal.BrowserFailure;
 import io.dtron.selenium.internal.Locators;
 import io.dtron.selenium.internal.Messages;
+import io.dtron.selenium.internal.StepWatch;
+import java.net.http.HttpTimeoutException;
 import java.time.Duration;
 import java.util.List;
 import java.util.Locale;
@@ -13,9 +17,14 @@ import java.util.Map;
 import java.util.Objects;
 import org.openqa.selenium.By;
 import org.openqa.selenium.NoSuchElementException;
+import org.openqa.selenium.NoSuchSessionException;
+import org.openqa.selenium.NotFoundException;
+import org.openqa.selenium.SessionNotCreatedException;
+import org.openqa.selenium.TimeoutException;
 import org.openqa.selenium.WebDriver;
 import org.openqa.selenium.WebDriverException;
 import org.openqa.selenium.WebElement;
+import org.openqa.selenium.remote.UnreachableBrowserException;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
@@ -27,7 +36,12 @@ import org.slf4j.LoggerFactory;
  * <p>Every message is answered with one output {@value #RESULT_CHANNEL} (the model's {@code o_result}): after
  * {@code execute} returns its {@value #RESULT_CODE} is {@link #RESULT_OK}; when it throws, it is
  * {@link #RESULT_FAILED} and the exception's message is logged. An adapter may report its own code with
- * {@link #reportResult}, which turns the automatic report off for that message.
+ * {@link #reportResult}, which turns the automatic report off for that message. When a step fails because of the
+ * adapters' own machinery (the user's browser did not start, its session is gone, chromedriver or the browser
+ * did not answer in time) or runs longer than the step timeout, no result is reported: the adapters log the
+ * user, the step and what it waited for, and leave the bus, so that the tester ends the run INCONCLUSIVE rather
+ * than blame the system under test. A step that runs longer than the slow-step threshold is logged while it
+ * runs, with the WebDriver call it waits for (see {@link SeleniumAdapters}).
  *
  * <p>When the channel has a variable {@value #USER_VARIABLE}, each simulated user has a browser and a thread of
  * its own: the message runs in the browser of its user, after the earlier messages of that user, in parallel with
@@ -64,6 +78,8 @@ public abstract class AbstractSeleniumAdapter {
         private final int user;
         private final boolean withUser;
         private final IDtronChannelValued message;
+        private final long queuedNanos = System.nanoTime();
+        private StepWatch.Step step;
         private boolean reported;
 
         Call(int user, boolean withUser, IDtronChannelValued message) {
@@ -238,28 +254,51 @@ public abstract class AbstractSeleniumAdapter {
 
     private void run(Call call) {
         CURRENT.set(call);
-        long start = System.nanoTime();
+        StepWatch watch = runtime.sessions().watch();
+        call.step = watch.begin(call.user, this + " on " + text(call.message), getClass(), call.queuedNanos);
         try {
+            LOG.debug("{} starts {} for user {} after {} ms in the user's queue", this, text(call.message), call.user,
+                    call.step.queuedMillis());
             execute(call.message);
             if (!call.reported) {
                 report(call, RESULT_OK);
             }
-            LOG.debug("{} did {} for user {} in {} ms", this, text(call.message), call.user, millisSince(start));
+            if (call.step.millis() >= watch.slowMillis()) {
+                LOG.warn("{} did {} for user {} in {}", this, text(call.message), call.user, call.step.timing());
+            } else {
+                LOG.debug("{} did {} for user {} in {}", this, text(call.message), call.user, call.step.timing());
+            }
         } catch (VirtualMachineError e) {
+            // out of memory or threads: the adapters' own trouble; the user's thread ends, with a log
+            runtime.giveUp().accept(this + " could not do " + text(call.message) + " for user " + call.user + ": "
+                    + e);
             throw e;
         } catch (AdapterException | WebDriverException | AssertionError e) {
-            failed(call, e, false, start);
+            failed(call, e, false);
         } catch (Throwable e) {
-            failed(call, e, true, start);
+            failed(call, e, true);
         } finally {
+            watch.end(call.step);
             CURRENT.remove();
         }
     }
 
-    private void failed(Call call, Throwable e, boolean unexpected, long start) {
+    private void failed(Call call, Throwable e, boolean unexpected) {
+        if (runtime.gaveUp().getAsBoolean()) {
+            LOG.info("{} ended {} for user {} after the adapters gave up the run, reporting nothing: {}", this,
+                    text(call.message), call.user, describe(e));
+            return;
+        }
+        if (!call.reported && isMachinery(e)) {
+            call.reported = true;
+            call.step.reported();
+            runtime.giveUp().accept(this + " could not do " + text(call.message) + " for user " + call.user + " after "
+                    + call.step.timing() + ": " + describe(e));
+            return;
+        }
         boolean report = !call.reported;
-        String text = "{} failed on {} for user {} after {} ms{}: {}";
-        Object[] args = {this, text(call.message), call.user, millisSince(start),
+        String text = "{} failed on {} for user {} after {}{}: {}";
+        Object[] args = {this, text(call.message), call.user, call.step.timing(),
                 report ? ", reporting " + RESULT_CODE + " " + RESULT_FAILED : "", describe(e)};
         if (unexpected) {
             LOG.error(text, withCause(args, e));
@@ -271,8 +310,41 @@ public abstract class AbstractSeleniumAdapter {
         }
     }
 
+    /**
+     * Whether a step failed because of the adapters' own machinery rather than the system under test: the user's
+     * browser did not start, its session is gone, chromedriver or the browser did not answer in time.
+     */
+    static boolean isMachinery(Throwable e) {
+        if (e instanceof BrowserFailure || e instanceof NoSuchSessionException
+                || e instanceof SessionNotCreatedException || e instanceof UnreachableBrowserException) {
+            return true;
+        }
+        if (e instanceof TimeoutException) {
+            // chromedriver gave no answer in time; a WebDriverWait that timed out is about the page, not this
+            for (Throwable c = e.getCause(); c != null; c = c.getCause()) {
+                if (c instanceof java.util.concurrent.TimeoutException || c instanceof HttpTimeoutException) {
+                    return true;
+                }
+            }
+        }
+        if (e instanceof WebDriverException && !(e instanceof NotFoundException)) {
+            String first = Messages.firstLine(e.getMessage()).toLowerCase(Locale.ROOT);
+            return first.contains("not reachable") || first.contains("disconnected: ")
+                    || first.contains("timed out receiving message from renderer");
+        }
+        return false;
+    }
+
     private void report(Call call, int code) {
         call.reported = true;
+        if (call.step != null) {
+            call.step.reported();
+        }
+        if (runtime.gaveUp().getAsBoolean()) {
+            LOG.info("{} did not report {} {} for user {}: the adapters gave up the run", this, RESULT_CODE, code,
+                    call.user);
+            return;
+        }
         IDtronChannel result = call.withUser ? RESULT_FOR_USER : RESULT;
         Map<String, Integer> values = call.withUser ? Map.of(USER_VARIABLE, call.user, RESULT_CODE, code)
                 : Map.of(RESULT_CODE, code);
@@ -280,6 +352,9 @@ public abstract class AbstractSeleniumAdapter {
             runtime.dtron().send(result.constructValued(values));
         } catch (IllegalStateException e) {
             LOG.info("{} could not report {} {} for user {}: the bus is closed", this, RESULT_CODE, code, call.user);
+        } catch (DtronException e) {
+            runtime.giveUp().accept(this + " could not publish the result of " + text(call.message) + " for user "
+                    + call.user + " (" + RESULT_CODE + " " + code + "): " + e.getMessage());
         }
     }
 
@@ -301,10 +376,6 @@ public abstract class AbstractSeleniumAdapter {
         System.arraycopy(args, 0, all, 0, args.length);
         all[args.length] = e;
         return all;
-    }
-
-    private static long millisSince(long start) {
-        return (System.nanoTime() - start) / 1_000_000;
     }
 
     private static String where(WebDriver driver) {

@@ -16,13 +16,15 @@ import org.openqa.selenium.WebDriverException;
 import org.openqa.selenium.chrome.ChromeDriver;
 import org.openqa.selenium.chrome.ChromeDriverService;
 import org.openqa.selenium.chrome.ChromeOptions;
+import org.openqa.selenium.remote.http.ClientConfig;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
 /**
  * Starts headless Chromium through chromedriver, one browser with a fresh profile folder per call, with the
  * flags a locked-down machine needs (no sandbox, no GPU, no connections of Chromium's own to the outside), and
- * with timeouts that make a wrong locator or a page that does not load fail fast instead of hanging. Quitting
+ * with timeouts that make a wrong locator or a page that does not load fail fast instead of hanging, and a bound on
+ * every WebDriver call ({@link #commandTimeout()}), so that a browser that stops answering cannot hold a step. Quitting
  * the browser stops its chromedriver and deletes its profile. Thread-safe.
  */
 public final class HeadlessChrome implements WebDriverFactory {
@@ -32,6 +34,7 @@ public final class HeadlessChrome implements WebDriverFactory {
             "--disable-sync", "--disable-dev-shm-usage", "--window-size=1280,900");
 
     private static final Logger LOG = LoggerFactory.getLogger(HeadlessChrome.class);
+    private static final Duration COMMAND_MARGIN = Duration.ofSeconds(15);
     /**
      * Selenium warns through java.util.logging, at every start, that it has no DevTools support for a Chromium
      * newer than itself; the adapters do not use DevTools. Kept in a field: java.util.logging holds loggers
@@ -96,7 +99,7 @@ public final class HeadlessChrome implements WebDriverFactory {
         long start = System.nanoTime();
         ChromeDriver driver;
         try {
-            driver = new ProfileChromeDriver(service, options, profile);
+            driver = new ProfileChromeDriver(service, options, clientConfig(), profile);
         } catch (WebDriverException e) {
             service.stop();
             deleteProfile(profile);
@@ -113,6 +116,19 @@ public final class HeadlessChrome implements WebDriverFactory {
         LOG.debug("Started headless Chromium in {} ms with profile {}", (System.nanoTime() - start) / 1_000_000,
                 profile);
         return driver;
+    }
+
+    /**
+     * Returns how long a WebDriver call may wait for chromedriver's answer: the page-load timeout and 15 s more, so
+     * that a chromedriver or browser that does not answer fails the call (a {@code TimeoutException}) instead of
+     * holding the user's step for Selenium's default of three minutes.
+     */
+    public Duration commandTimeout() {
+        return pageLoadTimeout.plus(COMMAND_MARGIN);
+    }
+
+    private ClientConfig clientConfig() {
+        return ClientConfig.defaultConfig().readTimeout(commandTimeout());
     }
 
     @Override
@@ -152,8 +168,8 @@ public final class HeadlessChrome implements WebDriverFactory {
     private static final class ProfileChromeDriver extends ChromeDriver {
         private final Path profile;
 
-        ProfileChromeDriver(ChromeDriverService service, ChromeOptions options, Path profile) {
-            super(service, options);
+        ProfileChromeDriver(ChromeDriverService service, ChromeOptions options, ClientConfig config, Path profile) {
+            super(service, options, config);
             this.profile = profile;
         }
 

@@ -14,6 +14,7 @@ import io.dtron.api.DtronAdapter;
 import io.dtron.selenium.internal.ClassScanner;
 import io.dtron.selenium.internal.Locators;
 import io.dtron.selenium.internal.Messages;
+import io.dtron.selenium.internal.StepWatch;
 import io.dtron.selenium.internal.UserSessions;
 import java.io.IOException;
 import java.io.InputStream;
@@ -33,6 +34,7 @@ import java.util.Map;
 import java.util.Objects;
 import java.util.Properties;
 import java.util.Set;
+import java.util.concurrent.atomic.AtomicBoolean;
 import java.util.stream.Collectors;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
@@ -48,6 +50,14 @@ import org.slf4j.LoggerFactory;
  * {@link Builder#properties(Path)}, a system property with the name of a key already defined, and
  * {@link Builder#property}. Each adapter class is created once, so adapters injected into each other are the
  * ones that serve their channels. Closing stops the adapters and quits the browsers.
+ *
+ * <p>Besides the adapters' own keys, the properties may set {@value #BROWSERS_PROPERTY} and
+ * {@value #START_PAGE_PROPERTY} (browsers started, and a page loaded in each, before the run),
+ * {@value #SLOW_STEP_PROPERTY} (when a step still running is logged with the WebDriver call it waits for) and
+ * {@value #STEP_TIMEOUT_PROPERTY} (when a step is given up). A step given up, or one that fails on the adapters'
+ * own machinery (a browser that does not start or is gone, chromedriver not answering, a WebDriver call that
+ * timed out), reports no result: the adapters log the user, the step and what it waited for and leave the bus,
+ * so that the tester ends the run INCONCLUSIVE rather than FAILED.
  */
 public final class SeleniumAdapters implements DtronAdapter {
     /** The properties file read from each scanned package. */
@@ -58,6 +68,28 @@ public final class SeleniumAdapters implements DtronAdapter {
      * not make the first steps of a test wait for their browser to start.
      */
     public static final String BROWSERS_PROPERTY = "dtron.browsers";
+    /**
+     * The property that says after how many milliseconds a step still running is logged with what it is doing
+     * (the WebDriver call it waits for), and a step that took as long is logged with its times (default
+     * {@value #DEFAULT_SLOW_STEP_MILLIS}).
+     */
+    public static final String SLOW_STEP_PROPERTY = "dtron.slowStepMillis";
+    /** The default of {@link #SLOW_STEP_PROPERTY}. */
+    public static final long DEFAULT_SLOW_STEP_MILLIS = 2000;
+    /**
+     * The property that bounds a step, in milliseconds (default {@value #DEFAULT_STEP_TIMEOUT_MILLIS}): a step
+     * still running then is given up, with the user, the step and the WebDriver call it waits for in the log, and
+     * the adapters leave the bus, so that the tester ends the run INCONCLUSIVE; its result never comes.
+     */
+    public static final String STEP_TIMEOUT_PROPERTY = "dtron.stepTimeoutMillis";
+    /** The default of {@link #STEP_TIMEOUT_PROPERTY}. */
+    public static final long DEFAULT_STEP_TIMEOUT_MILLIS = 30_000;
+    /**
+     * The property that names the page every browser opens when it starts, when the builder's
+     * {@link Builder#startPage} is not called: with {@value #BROWSERS_PROPERTY}, the browsers load it before the
+     * run, so that the first steps do not pay for a browser's first page load.
+     */
+    public static final String START_PAGE_PROPERTY = "dtron.startPage";
 
     private static final Logger LOG = LoggerFactory.getLogger(SeleniumAdapters.class);
 
@@ -65,6 +97,10 @@ public final class SeleniumAdapters implements DtronAdapter {
     private final WebDriverFactory driverFactory;
     private final String startPage;
     private final int prestartBrowsers;
+    private final long slowStepMillis;
+    private final long stepTimeoutMillis;
+    private final AtomicBoolean gaveUp = new AtomicBoolean();
+    private volatile Dtron dtron;
     private final List<AbstractSeleniumAdapter> adapters;
     private UserSessions sessions;
     private boolean started;
@@ -87,9 +123,15 @@ public final class SeleniumAdapters implements DtronAdapter {
         }
         this.properties = builder.resolveProperties();
         this.driverFactory = builder.driverFactory;
-        this.startPage = builder.startPage;
+        this.startPage = builder.startPage != null ? builder.startPage : properties.get(START_PAGE_PROPERTY);
         this.prestartBrowsers = builder.prestartBrowsers != null ? builder.prestartBrowsers
                 : browsersProperty(properties);
+        this.slowStepMillis = positiveProperty(properties, SLOW_STEP_PROPERTY, DEFAULT_SLOW_STEP_MILLIS);
+        this.stepTimeoutMillis = positiveProperty(properties, STEP_TIMEOUT_PROPERTY, DEFAULT_STEP_TIMEOUT_MILLIS);
+        if (stepTimeoutMillis < slowStepMillis) {
+            throw new IllegalArgumentException("property " + STEP_TIMEOUT_PROPERTY + " (" + stepTimeoutMillis
+                    + " ms) is below " + SLOW_STEP_PROPERTY + " (" + slowStepMillis + " ms)");
+        }
         this.adapters = create(builder.types, properties);
     }
 
@@ -108,6 +150,23 @@ public final class SeleniumAdapters implements DtronAdapter {
         }
         throw new IllegalArgumentException("property " + BROWSERS_PROPERTY + " = '" + value + "': give the number"
                 + " of browsers to start before the run (0 or more)");
+    }
+
+    private static long positiveProperty(Map<String, String> properties, String key, long defaultValue) {
+        String value = properties.get(key);
+        if (value == null) {
+            return defaultValue;
+        }
+        try {
+            long n = Long.parseLong(value.strip());
+            if (n > 0) {
+                return n;
+            }
+        } catch (NumberFormatException e) {
+            // refused below
+        }
+        throw new IllegalArgumentException("property " + key + " = '" + value + "': give a positive number of"
+                + " milliseconds");
     }
 
     /** Returns a builder. */
@@ -167,16 +226,46 @@ public final class SeleniumAdapters implements DtronAdapter {
             throw new IllegalStateException("the adapters can be started once");
         }
         started = true;
-        sessions = new UserSessions(driverFactory, startPage);
-        AdapterRuntime runtime = new AdapterRuntime(dtron, sessions, new Locators(properties));
+        this.dtron = dtron;
+        sessions = new UserSessions(driverFactory, startPage, new StepWatch(slowStepMillis, stepTimeoutMillis,
+                this::giveUp));
+        AdapterRuntime runtime = new AdapterRuntime(dtron, sessions, new Locators(properties), this::giveUp,
+                gaveUp::get);
         try {
+            long begin = System.nanoTime();
             sessions.prestart(prestartBrowsers);
+            if (prestartBrowsers > 0) {
+                LOG.info("Started the browsers of users 0 to {} in {} ms{}; a user from {} on starts its browser in"
+                        + " its first step", prestartBrowsers - 1, (System.nanoTime() - begin) / 1_000_000,
+                        startPage == null ? "" : ", each with " + startPage, prestartBrowsers);
+            }
             adapters.forEach(a -> a.attach(runtime));
         } catch (RuntimeException e) {
             close();
             throw e;
         }
         LOG.info("Started Selenium adapters {} on {}", adapters, dtron);
+    }
+
+    /**
+     * The adapters' own machinery failed or a step outlived the step timeout: logs why, stops listening and leaves
+     * the bus, so that the tester ends the run INCONCLUSIVE (a member of the system under test left) instead of
+     * taking the missing result for a fault of the system under test. Once per run.
+     */
+    private void giveUp(String reason) {
+        if (!gaveUp.compareAndSet(false, true)) {
+            LOG.info("Also: {}", reason);
+            return;
+        }
+        LOG.error("{}. No result can be reported for it that would not blame the system under test for what may"
+                + " be the adapters' own trouble: the Selenium adapters stop and leave the bus, so that the run ends"
+                + " INCONCLUSIVE", reason);
+        adapters.forEach(AbstractSeleniumAdapter::detach);
+        Dtron member = dtron;
+        // not on a user's thread or the bus's: closing the member waits for its listeners
+        Thread leave = new Thread(member::close, "selenium-give-up");
+        leave.setDaemon(true);
+        leave.start();
     }
 
     /** Returns the adapters, sorted by class name. */
@@ -203,7 +292,7 @@ public final class SeleniumAdapters implements DtronAdapter {
         closed = true;
         if (sessions != null) {
             adapters.forEach(AbstractSeleniumAdapter::detach);
-            sessions.close();
+            sessions.close(!gaveUp.get());
         }
     }
 
@@ -296,8 +385,10 @@ public final class SeleniumAdapters implements DtronAdapter {
         }
 
         /**
-         * Sets the page every browser opens when it starts (default: none, a blank page). With
-         * {@link #browsers}, the first steps of a test then find the browsers warmed up.
+         * Sets the page every browser opens when it starts (default: the property {@value #START_PAGE_PROPERTY},
+         * else none, a blank page). With {@link #browsers}, the first steps of a test then find the browsers warmed
+         * up: a browser's first page load (its renderer starting) takes seconds on a busy machine, and would else
+         * count against the system under test in the first step of each user.
          */
         public Builder startPage(String url) {
             startPage = Objects.requireNonNull(url, "url");

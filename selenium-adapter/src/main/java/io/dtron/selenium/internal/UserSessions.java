@@ -28,17 +28,26 @@ public final class UserSessions implements AutoCloseable {
 
     private final WebDriverFactory factory;
     private final String startPage;
+    private final StepWatch watch;
     private final Map<Integer, User> users = new ConcurrentHashMap<>();
     private volatile boolean closed;
 
     /**
      * Users whose browsers come from {@code factory} and open {@code startPage} when they start.
      *
-     * @param startPage an address, or null to leave new browsers on their blank page
+     * @param startPage the address every new browser opens before its first step (so that the browser's first
+     *                  page load is done before the run), or null to leave new browsers on their blank page
+     * @param watch     the watch of the users' steps; closed with the sessions
      */
-    public UserSessions(WebDriverFactory factory, String startPage) {
+    public UserSessions(WebDriverFactory factory, String startPage, StepWatch watch) {
         this.factory = Objects.requireNonNull(factory, "factory");
         this.startPage = startPage;
+        this.watch = Objects.requireNonNull(watch, "watch");
+    }
+
+    /** Returns the watch of the users' steps. */
+    public StepWatch watch() {
+        return watch;
     }
 
     /** One user: a worker thread and a browser. */
@@ -52,6 +61,8 @@ public final class UserSessions implements AutoCloseable {
             this.worker = Executors.newSingleThreadExecutor(r -> {
                 Thread t = new Thread(r, "selenium-user-" + id);
                 t.setDaemon(true);
+                // a launcher such as Maven's exec:java may swallow what a thread of its own dies of
+                t.setUncaughtExceptionHandler((thread, e) -> LOG.error("The thread of user {} died", id, e));
                 return t;
             });
         }
@@ -62,18 +73,35 @@ public final class UserSessions implements AutoCloseable {
                     throw new AdapterException("the adapters are closed");
                 }
                 long start = System.nanoTime();
-                browser = factory.create();
+                try {
+                    browser = factory.create();
+                } catch (AdapterException | WebDriverException e) {
+                    throw new BrowserFailure("the browser of user " + id + " did not start: " + Messages.firstLine(
+                            e.getMessage()), e);
+                }
+                long loadStart = System.nanoTime();
                 if (startPage != null) {
                     try {
                         browser.get(startPage);
                     } catch (WebDriverException e) {
                         quit();
-                        throw new AdapterException("the browser of user " + id + " cannot open its start page "
-                                + startPage + ": " + Messages.firstLine(e.getMessage()),
-                                e);
+                        throw new BrowserFailure("the browser of user " + id + " cannot open its start page "
+                                + startPage + ": " + Messages.firstLine(e.getMessage()), e);
                     }
                 }
-                LOG.info("Started the browser of user {} in {} ms", id, (System.nanoTime() - start) / 1_000_000);
+                long end = System.nanoTime();
+                long nanos = end - start;
+                String load = startPage == null ? "" : " (" + (end - loadStart) / 1_000_000 + " ms of it loading "
+                        + startPage + ")";
+                StepWatch.Step step = watch.current(id);
+                if (step != null) {
+                    step.browserStarted(nanos);
+                    LOG.warn("Started the browser of user {} in {} ms{}, within a step: that time counts against"
+                            + " the system under test; start the browsers before the run (property dtron.browsers)",
+                            id, nanos / 1_000_000, load);
+                } else {
+                    LOG.info("Started the browser of user {} in {} ms{}", id, nanos / 1_000_000, load);
+                }
             }
             return browser;
         }
@@ -100,9 +128,14 @@ public final class UserSessions implements AutoCloseable {
         try {
             user(user).worker.execute(() -> {
                 if (closed) {
-                    LOG.debug("Dropped a step of user {}: the adapters are closed", user);
-                } else {
+                    LOG.info("Dropped a step of user {}: the adapters are closed", user);
+                    return;
+                }
+                try {
                     task.run();
+                } catch (Throwable e) {
+                    LOG.error("A step of user {} ended with an unexpected {}", user, e.getClass().getName(), e);
+                    throw e;
                 }
             });
             return true;
@@ -148,17 +181,33 @@ public final class UserSessions implements AutoCloseable {
     /** Lets the tasks under way finish (a few seconds at most), then quits every browser, in parallel. */
     @Override
     public void close() {
+        close(true);
+    }
+
+    /**
+     * Quits every browser, in parallel, after letting the tasks under way finish (a few seconds at most) if
+     * {@code drain}, else at once: the steps under way are interrupted.
+     */
+    public void close(boolean drain) {
         if (closed) {
             return;
         }
         closed = true;
+        watch.close();
         List<User> all = new ArrayList<>(users.values());
-        all.forEach(u -> u.worker.shutdown());
-        long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(DRAIN_SECONDS);
+        all.forEach(u -> {
+            if (drain) {
+                u.worker.shutdown();
+            } else {
+                u.worker.shutdownNow();
+            }
+        });
+        long seconds = drain ? DRAIN_SECONDS : 1;
+        long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(seconds);
         for (User user : all) {
             try {
                 if (!user.worker.awaitTermination(Math.max(0, deadline - System.nanoTime()), TimeUnit.NANOSECONDS)) {
-                    LOG.warn("User {} is still busy after {} s; stopping it", user.id, DRAIN_SECONDS);
+                    LOG.warn("User {} is still busy after {} s; stopping it", user.id, seconds);
                     user.worker.shutdownNow();
                 }
             } catch (InterruptedException e) {
