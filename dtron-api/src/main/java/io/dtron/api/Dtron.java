@@ -17,7 +17,9 @@ import io.dtron.bus.Transport;
 import io.dtron.bus.internal.EpochClock;
 import java.io.IOException;
 import java.time.Duration;
+import java.util.Collection;
 import java.util.LinkedHashMap;
+import java.util.LinkedHashSet;
 import java.util.List;
 import java.util.Map;
 import java.util.Objects;
@@ -25,6 +27,7 @@ import java.util.Optional;
 import java.util.Set;
 import java.util.concurrent.ConcurrentHashMap;
 import java.util.concurrent.CopyOnWriteArrayList;
+import java.util.concurrent.CountDownLatch;
 import java.util.concurrent.TimeUnit;
 import java.util.concurrent.atomic.AtomicLong;
 import org.slf4j.Logger;
@@ -414,6 +417,27 @@ public final class Dtron implements AutoCloseable {
      */
     public Set<String> getOtherTesters() {
         return clockSync.otherTesters();
+    }
+
+    /**
+     * Asks members whether they are there, for a tester: pings the bus and waits until each of {@code members}
+     * answered, or the timeout passed. A member answers its tester's ping from its own thread, as long as its
+     * process runs and reaches the bus; a member that was killed, stopped or cut off does not. Since every member's
+     * messages arrive in the order it sent them, an answer also means that the messages it sent before have
+     * arrived: when this returns, they have been delivered to this member's listeners.
+     *
+     * @return the members of {@code members} that answered
+     * @throws InterruptedException if the thread was interrupted while waiting
+     */
+    public Set<String> probe(Collection<String> members, Duration timeout) throws InterruptedException {
+        long deadline = System.nanoTime() + timeout.toNanos();
+        Set<String> answered = new LinkedHashSet<>(clockSync.probe(members, timeout));
+        answered.retainAll(members);
+        // what the members sent before their answers is delivered once the listeners' queue has passed this point
+        CountDownLatch delivered = new CountDownLatch(1);
+        dispatcher.execute(delivered::countDown);
+        delivered.await(Math.max(0, deadline - System.nanoTime()), TimeUnit.NANOSECONDS);
+        return answered;
     }
 
     /**

@@ -70,6 +70,23 @@ public final class ChildJvm implements AutoCloseable {
         process.destroyForcibly();
     }
 
+    /** Stops the JVM (SIGSTOP), as a debugger or an overloaded host would: it neither runs nor leaves the bus. */
+    public void suspend() throws IOException, InterruptedException {
+        signal("-STOP");
+    }
+
+    /** Lets a {@linkplain #suspend suspended} JVM run again (SIGCONT). */
+    public void resume() throws IOException, InterruptedException {
+        signal("-CONT");
+    }
+
+    private void signal(String signal) throws IOException, InterruptedException {
+        int code = new ProcessBuilder("kill", signal, Long.toString(process.pid())).inheritIO().start().waitFor();
+        if (code != 0) {
+            fail("kill " + signal + " " + process.pid() + " exited with " + code);
+        }
+    }
+
     /** Returns what the JVM printed so far. */
     public String output() throws IOException {
         return Files.readString(log);

@@ -19,6 +19,7 @@ import java.util.LinkedHashMap;
 import java.util.List;
 import java.util.Map;
 import java.util.Objects;
+import java.util.Optional;
 import java.util.Set;
 import java.util.concurrent.ConcurrentHashMap;
 import java.util.concurrent.CountDownLatch;
@@ -56,6 +57,8 @@ public final class BusBridge implements Adapter, AutoCloseable {
     private static final Logger LOG = LoggerFactory.getLogger(BusBridge.class);
     /** How long {@link #stop()} waits for its own end-of-run message to come back from the bus. */
     static final Duration STOP_ECHO_TIMEOUT = Duration.ofSeconds(2);
+    /** How long an adapter member gets to answer the tester's probe before a missed deadline (see unreachable). */
+    static final Duration PROBE_TIMEOUT = Duration.ofSeconds(1);
 
     private final Dtron dtron;
     private final Map<String, IDtronChannel> inputs;
@@ -258,6 +261,34 @@ public final class BusBridge implements Adapter, AutoCloseable {
         } catch (InterruptedException e) {
             Thread.currentThread().interrupt();
         }
+    }
+
+    /**
+     * Before the engine declares a deadline missed: probes the adapter members of the run (they answer from their
+     * own threads as long as their processes run and reach the bus); those that do not answer within {@link
+     * #PROBE_TIMEOUT} are named as the reason the system may not have acted. The answers also flush what the
+     * members sent before them, so an output still in transit is delivered before the engine decides.
+     */
+    @Override
+    public Optional<String> unreachable() {
+        List<String> expected = dtron.getMembers().stream().filter(watched::contains).toList();
+        if (expected.isEmpty()) {
+            return Optional.empty();
+        }
+        Set<String> answered;
+        try {
+            answered = dtron.probe(expected, PROBE_TIMEOUT);
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+            return Optional.of("the tester was interrupted while it asked the adapters whether they are there");
+        }
+        List<String> silent = expected.stream().filter(m -> !answered.contains(m)).toList();
+        if (silent.isEmpty()) {
+            return Optional.empty();
+        }
+        return Optional.of("adapter member" + (silent.size() == 1 ? " " : "s ") + String.join(", ", silent)
+                + (silent.size() == 1 ? " does" : " do") + " not answer (asked for " + PROBE_TIMEOUT.toMillis()
+                + " ms): stopped, overloaded or cut off from the bus");
     }
 
     /** Returns t2 - t1 of the outputs received from other members so far. */

@@ -1,5 +1,7 @@
 package io.dtron.engine;
 
+import java.util.Optional;
+
 /**
  * The engine's view of the system under test, shaped like Uppaal TRON's adapter API but typed: the engine
  * asks the adapter to {@link #perform} inputs; the adapter reports outputs through its {@link AdapterContext}
@@ -20,8 +22,8 @@ public interface Adapter {
      * empty when nothing is known against it. With a reason the run ends INCONCLUSIVE naming it, not FAILED. May
      * take a moment to find out (a probe of the adapter's processes); by default nothing is known.
      */
-    default java.util.Optional<String> unreachable() {
-        return java.util.Optional.empty();
+    default Optional<String> unreachable() {
+        return Optional.empty();
     }
 
     /** Called once at the end of the run (the verdict is known). */

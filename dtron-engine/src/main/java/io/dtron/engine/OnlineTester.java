@@ -276,6 +276,15 @@ public final class OnlineTester {
                 } else if (deadline) {
                     String deadlineAt = time(lastMicros + micros(plan.deadline()));
                     java.util.Optional<String> unreachable = adapter.unreachable();
+                    RunClock.TimedEvent meanwhile = clock.drain();
+                    if (meanwhile != null) {
+                        // came in while the adapter found out: judged first
+                        TestResult verdict = receive(meanwhile);
+                        if (verdict != null) {
+                            return verdict;
+                        }
+                        continue;
+                    }
                     if (unreachable.isPresent()) {
                         return result(Verdict.INCONCLUSIVE, "no output came by " + deadlineAt + ", and the system"
                                 + " under test may not have been able to act: " + unreachable.get());

@@ -2,12 +2,15 @@ package io.dtron.api.internal;
 
 import io.dtron.api.ClockOffset;
 import io.dtron.api.internal.OffsetEstimator.Estimate;
+import java.time.Duration;
+import java.util.Collection;
 import java.util.LinkedHashMap;
 import java.util.LinkedHashSet;
 import java.util.List;
 import java.util.Map;
 import java.util.Optional;
 import java.util.Set;
+import java.util.concurrent.ConcurrentHashMap;
 import java.util.concurrent.Executors;
 import java.util.concurrent.RejectedExecutionException;
 import java.util.concurrent.ScheduledExecutorService;
@@ -77,6 +80,8 @@ public final class ClockSync implements AutoCloseable {
     private boolean selfTester;
     /** The members other than this one that announced themselves as the tester, while they are on the bus. */
     private final Set<String> otherTesters = new LinkedHashSet<>();
+    /** The members that answered each of this member's probes, by the probe's sequence number. */
+    private final Map<Long, Set<String>> probes = new ConcurrentHashMap<>();
     private long pingGeneration;
     private ScheduledFuture<?> pinging;
     private volatile Optional<ClockOffset> estimate = Optional.empty();
@@ -209,10 +214,18 @@ public final class ClockSync implements AutoCloseable {
         }
     }
 
-    /** Called when a ping arrived: the tester answers it with its clock at {@code receiveTimeNanos}. */
+    /**
+     * Called when a ping arrived: the tester answers it with its clock at {@code receiveTimeNanos}, and a member
+     * answers its tester's ping (a {@link #probe}) the same way.
+     */
     public void pingReceived(String from, long sequence, long receiveTimeNanos) {
-        if (from.equals(me) || !isTester()) {
+        if (from.equals(me)) {
             return;
+        }
+        synchronized (this) {
+            if (!selfTester && !from.equals(tester)) {
+                return;
+            }
         }
         submit(() -> publisher.publish(PONG, nextSequence.getAsLong(), clock.getAsLong(), receiveTimeNanos, from,
                 sequence));
@@ -222,6 +235,14 @@ public final class ClockSync implements AutoCloseable {
     public void pongReceived(String from, String ackedSender, long ackedSequence, long testerTimeNanos,
             long receiveTimeNanos) {
         if (!ackedSender.equals(me)) {
+            return;
+        }
+        Set<String> answered = probes.get(ackedSequence);
+        if (answered != null) {
+            synchronized (answered) {
+                answered.add(from);
+                answered.notifyAll();
+            }
             return;
         }
         Optional<ClockOffset> before;
@@ -248,6 +269,37 @@ public final class ClockSync implements AutoCloseable {
                         millis(e.offsetNanos()), millis(e.errorNanos())));
             }
             estimateChanged.run();
+        }
+    }
+
+    /**
+     * Pings every member and waits until each of {@code expected} answered, or the timeout passed: a member whose
+     * tester this member is answers a ping as the tester answers theirs. Messages are delivered in each member's
+     * order, so an answer also means that everything the member sent before it has arrived.
+     *
+     * @return the members that answered
+     * @throws InterruptedException if the thread was interrupted while waiting
+     */
+    public Set<String> probe(Collection<String> expected, Duration timeout) throws InterruptedException {
+        long sequence = nextSequence.getAsLong();
+        long now = clock.getAsLong();
+        Set<String> answered = new LinkedHashSet<>();
+        probes.put(sequence, answered);
+        try {
+            publisher.publish(PING, sequence, now, now, "", 0);
+            long deadline = System.nanoTime() + timeout.toNanos();
+            synchronized (answered) {
+                while (!answered.containsAll(expected)) {
+                    long left = deadline - System.nanoTime();
+                    if (left <= 0) {
+                        break;
+                    }
+                    TimeUnit.NANOSECONDS.timedWait(answered, left);
+                }
+                return Set.copyOf(answered);
+            }
+        } finally {
+            probes.remove(sequence);
         }
     }
 

@@ -1,0 +1,88 @@
+package io.dtron.cli;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+import io.dtron.api.ChildJvm;
+import io.dtron.api.DtronOptions;
+import io.dtron.bridge.BusBridge;
+import io.dtron.engine.DelayPolicy;
+import io.dtron.engine.OnlineTester;
+import io.dtron.engine.TestOptions;
+import io.dtron.engine.TestResult;
+import io.dtron.engine.Verdict;
+import io.dtron.model.ModelLoader;
+import io.dtron.model.Network;
+import io.dtron.model.TestInterface;
+import io.dtron.testadapter.RunClockTickerMain;
+import java.nio.file.Path;
+import java.time.Duration;
+import java.util.UUID;
+import java.util.concurrent.CompletableFuture;
+import java.util.concurrent.TimeUnit;
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.Timeout;
+import org.junit.jupiter.api.io.TempDir;
+
+/**
+ * An adapter that goes silent mid-run (its JVM stopped or killed) is named in an INCONCLUSIVE verdict; the system
+ * behind it is not blamed with FAILED for the deadline it could not meet. The ticker runs in a JVM of its own.
+ */
+@Timeout(value = 2, unit = TimeUnit.MINUTES)
+class SilentAdapterTest {
+    private static final String TICKER = """
+            chan i_reset, o_tick;
+            int[0,999] o_tick_seq;
+            process Ticker() { clock x; state Running { x <= 12 }; init Running;
+                trans Running -> Running { guard x >= 8; sync o_tick!; assign o_tick_seq = (o_tick_seq + 1) % 1000,
+                        x = 0; },
+                      Running -> Running { sync i_reset?; assign x = 0, o_tick_seq = 0; }; }
+            process Env() { clock e; state Watching; init Watching;
+                trans Watching -> Watching { guard e >= 25; sync i_reset!; assign e = 0; },
+                      Watching -> Watching { sync o_tick?; }; }
+            system Ticker, Env;
+            """;
+
+    @TempDir
+    Path dir;
+
+    private void silenced(boolean kill) throws Exception {
+        Network network = ModelLoader.load("ticker.xta", TICKER);
+        TestInterface testInterface = TestInterface.fromNames(network);
+        String cluster = "silent-" + UUID.randomUUID().toString().substring(0, 8);
+        String member = "ticker-" + UUID.randomUUID().toString().substring(0, 8);
+        try (BusBridge bridge = BusBridge.connect(testInterface, DtronOptions.builder().clusterName(cluster));
+                ChildJvm ticker = ChildJvm.start(RunClockTickerMain.class, dir.resolve("ticker.log"), cluster, member,
+                        "correct", "0", "1")) {
+            ticker.awaitOutput("joined", Duration.ofSeconds(60));
+            assertTrue(bridge.awaitAdapters(1, Duration.ofSeconds(30)));
+            Thread.sleep(500); // the ticker's clock offset estimate
+            TestOptions options = new TestOptions(1, 10_000, 1000, DelayPolicy.RANDOM, 0, false, 50_000);
+            CompletableFuture<TestResult> run = CompletableFuture.supplyAsync(
+                    () -> new OnlineTester(network, testInterface, bridge, options).run());
+            Thread.sleep(1000);
+            if (kill) {
+                ticker.kill();
+            } else {
+                ticker.suspend();
+            }
+            TestResult result = run.get(60, TimeUnit.SECONDS);
+            if (!kill) {
+                ticker.resume();
+            }
+            assertEquals(Verdict.INCONCLUSIVE, result.verdict(), result.explanation() + "\n" + ticker.output());
+            assertTrue(result.explanation().contains(member), result.explanation());
+            assertTrue(result.outputs() >= 5, "it ticked before it went silent: " + result);
+        }
+    }
+
+    @Test
+    void aStoppedAdapterIsNamedAndTheRunIsInconclusive() throws Exception {
+        silenced(false);
+    }
+
+    @Test
+    void aKilledAdapterIsNamedAndTheRunIsInconclusive() throws Exception {
+        silenced(true);
+    }
+}
