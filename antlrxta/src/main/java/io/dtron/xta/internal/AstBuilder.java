@@ -266,7 +266,7 @@ final class AstBuilder {
             }
             return new TypeExpr.StructType(pos, qualifiers, fields);
         } else {
-            return new TypeExpr.NamedType(pos, qualifiers, ((NamedTypeContext) id).ID().getText());
+            return new TypeExpr.NamedType(pos, qualifiers, ((NamedTypeContext) id).ID().getText().intern());
         }
     }
 
@@ -459,7 +459,11 @@ final class AstBuilder {
         }
     }
 
+    /**
+     * The name an identifier spells. Names are interned: a large model repeats few names many times, and its
+     * AST and the network compiled from it keep one string per name instead of one per use.
+     */
     static String name(IdentifierContext ctx) {
-        return ctx.getText();
+        return ctx.getStart().getText().intern();
     }
 }
