@@ -2,13 +2,9 @@ package io.dtron.model.bench;
 
 import io.dtron.model.ModelLoader;
 import io.dtron.model.Network;
-import java.io.File;
 import java.io.IOException;
 import java.lang.management.ManagementFactory;
 import java.lang.ref.Reference;
-import java.net.URISyntaxException;
-import java.net.URL;
-import java.net.URLClassLoader;
 import java.nio.charset.StandardCharsets;
 import java.nio.file.Files;
 import java.nio.file.Path;
@@ -33,9 +29,9 @@ import java.util.regex.Pattern;
  * </ul>
  *
  * <p>Arguments: the model sizes in MB (default 10 50). A size whose load does not fit in the largest heap is
- * reported as such. The children run on this class's classpath (exec:java's, when run from Maven); see the
- * loader section of {@code src/site/markdown/benchmarks.md}. With {@code child FILE} it is the child: it
- * loads FILE once and prints one line of figures.
+ * reported as such. Run it from a plain {@code java} command with the classpath of xtaapi's tests (the
+ * children reuse it); see the loader section of {@code src/site/markdown/benchmarks.md}. With
+ * {@code child FILE} it is the child: it loads FILE once and prints one line of figures.
  */
 public final class LoaderMemoryBench {
     private static final long MB = 1 << 20;
@@ -111,7 +107,7 @@ public final class LoaderMemoryBench {
         Path log = Files.createTempFile("loader-bench-", ".log");
         try {
             Process child = new ProcessBuilder(Path.of(System.getProperty("java.home"), "bin", "java").toString(),
-                    "-Xmx" + heapMb + "m", "-cp", classpath(),
+                    "-Xmx" + heapMb + "m", "-cp", System.getProperty("java.class.path"),
                     LoaderMemoryBench.class.getName(), "child", file.toString())
                     .redirectErrorStream(true).redirectOutput(log.toFile()).start();
             boolean ended = patienceMillis == 0 ? child.waitFor() >= 0
@@ -129,22 +125,6 @@ public final class LoaderMemoryBench {
         } finally {
             Files.deleteIfExists(log);
         }
-    }
-
-    /** The classpath of this class: exec:java's class loader when run from Maven, else the JVM's. */
-    private static String classpath() throws IOException {
-        if (LoaderMemoryBench.class.getClassLoader() instanceof URLClassLoader loader) {
-            List<String> entries = new ArrayList<>();
-            for (URL url : loader.getURLs()) {
-                try {
-                    entries.add(Path.of(url.toURI()).toString());
-                } catch (URISyntaxException e) {
-                    throw new IOException("classpath entry " + url, e);
-                }
-            }
-            return String.join(File.pathSeparator, entries);
-        }
-        return System.getProperty("java.class.path");
     }
 
     private static void child(Path file) throws Exception {
