@@ -19,6 +19,9 @@ import org.antlr.v4.runtime.Vocabulary;
 
 /** The implementations behind {@link io.dtron.xta.ModelSyntax}. */
 public final class Parsing {
+    /** The type of the {@code system} keyword's token. */
+    private static final int SYSTEM_KEYWORD = literalTokenType("'system'");
+
     private Parsing() {
     }
 
@@ -36,9 +39,6 @@ public final class Parsing {
                 UppaalParser.XtaFileContext::topItem, UppaalParser.XtaFileContext::systemLine, diagnostics);
         return new Parsed<>(s == null ? null : new Nta(file, s.declarations(), s.system(), List.of()), diagnostics);
     }
-
-    /** The type of the {@code system} keyword's token. */
-    private static final int SYSTEM_KEYWORD = literalTokenType("'system'");
 
     private static int literalTokenType(String literal) {
         Vocabulary vocabulary = UppaalParser.VOCABULARY;
