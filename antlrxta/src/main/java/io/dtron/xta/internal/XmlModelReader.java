@@ -57,7 +57,9 @@ final class XmlModelReader {
         XMLInputFactory factory = XMLInputFactory.newFactory();
         factory.setProperty(XMLInputFactory.SUPPORT_DTD, false);
         factory.setProperty(XMLInputFactory.IS_SUPPORTING_EXTERNAL_ENTITIES, false);
-        factory.setProperty(XMLInputFactory.IS_COALESCING, true);
+        // not coalescing: the reader would hold the whole of a large text in a buffer of its own (2 bytes per
+        // character) until the end of the file; elementText() joins the pieces instead
+        factory.setProperty(XMLInputFactory.IS_COALESCING, false);
         List<Decl> globals = new ArrayList<>();
         List<Decl> templates = new ArrayList<>();
         List<Decl> systemDecls = new ArrayList<>();
@@ -397,7 +399,7 @@ final class XmlModelReader {
     /** The text of the current element as a fragment whose positions point into the file. */
     private Fragment text(String kind) throws XMLStreamException {
         int start = contentOffset();
-        String content = reader.getElementText();
+        String content = elementText();
         Fragment.Offsets offsets = offsetsOf(content, start);
         if (offsets == null) {
             offsets = new Fragment.Offsets();
@@ -406,6 +408,27 @@ final class XmlModelReader {
             }
         }
         return Fragment.ofPart(file, currentTemplate, kind, content, lines, offsets);
+    }
+
+    /** The text content of the current element, read piece by piece up to its end tag, as getElementText. */
+    private String elementText() throws XMLStreamException {
+        String element = reader.getLocalName();
+        StringBuilder text = new StringBuilder();
+        while (true) {
+            switch (reader.next()) {
+                case XMLStreamConstants.CHARACTERS, XMLStreamConstants.CDATA, XMLStreamConstants.SPACE ->
+                        text.append(reader.getTextCharacters(), reader.getTextStart(), reader.getTextLength());
+                case XMLStreamConstants.ENTITY_REFERENCE -> text.append(reader.getText());
+                case XMLStreamConstants.COMMENT, XMLStreamConstants.PROCESSING_INSTRUCTION -> {
+                    // not part of the text
+                }
+                case XMLStreamConstants.END_ELEMENT -> {
+                    return text.toString();
+                }
+                default -> throw new XMLStreamException("element <" + element + "> may contain only text",
+                        reader.getLocation());
+            }
+        }
     }
 
     /**
