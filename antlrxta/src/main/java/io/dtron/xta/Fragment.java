@@ -1,5 +1,6 @@
 package io.dtron.xta;
 
+import java.util.Arrays;
 import java.util.Objects;
 
 /**
@@ -14,20 +15,25 @@ public final class Fragment {
     private final String kind;
     private final String text;
     private final LineMap fileLines;
-    private final int[] fileOffsets;
+    /** Where the runs of consecutive file offsets start in the text, or null for a whole file. */
+    private final int[] runStarts;
+    /** The file offset of each run's first character. */
+    private final int[] runFileStarts;
 
-    private Fragment(String file, String template, String kind, String text, LineMap fileLines, int[] fileOffsets) {
+    private Fragment(String file, String template, String kind, String text, LineMap fileLines, int[] runStarts,
+                     int[] runFileStarts) {
         this.file = Objects.requireNonNull(file, "file");
         this.template = template;
         this.kind = kind;
         this.text = Objects.requireNonNull(text, "text");
         this.fileLines = Objects.requireNonNull(fileLines, "fileLines");
-        this.fileOffsets = fileOffsets;
+        this.runStarts = runStarts;
+        this.runFileStarts = runFileStarts;
     }
 
     /** A whole text file: its offsets are the file's offsets. */
     public static Fragment ofFile(String file, String text) {
-        return new Fragment(file, null, null, text, LineMap.of(text), null);
+        return new Fragment(file, null, null, text, LineMap.of(text), null, null);
     }
 
     /**
@@ -35,16 +41,45 @@ public final class Fragment {
      * two differ). {@code fileOffsets} has one entry per character of {@code text}, plus one for its end.
      */
     public static Fragment ofPart(String file, String template, String kind, String text, LineMap fileLines,
-                                  int[] fileOffsets) {
-        if (fileOffsets.length != text.length() + 1) {
+                                  Offsets fileOffsets) {
+        if (fileOffsets.count != text.length() + 1) {
             throw new IllegalArgumentException("need one file offset per character plus one");
         }
-        return new Fragment(file, template, kind, text, fileLines, fileOffsets.clone());
+        return new Fragment(file, template, kind, text, fileLines, Arrays.copyOf(fileOffsets.starts, fileOffsets.runs),
+                Arrays.copyOf(fileOffsets.fileStarts, fileOffsets.runs));
+    }
+
+    /**
+     * The file offsets of a part's characters, given one by one and kept as runs of consecutive offsets: a part
+     * needs memory for each place where its text and the file's differ (an entity reference, a CDATA section,
+     * a {@code \r\n}), not for each character.
+     */
+    public static final class Offsets {
+        private int[] starts = new int[4];
+        private int[] fileStarts = new int[4];
+        private int runs;
+        private int count;
+        private int nextFileOffset;
+
+        /** Adds the file offset of the next character (or, last, of the part's end). */
+        public void add(int fileOffset) {
+            if (runs == 0 || fileOffset != nextFileOffset) {
+                if (runs == starts.length) {
+                    starts = Arrays.copyOf(starts, runs * 2);
+                    fileStarts = Arrays.copyOf(fileStarts, runs * 2);
+                }
+                starts[runs] = count;
+                fileStarts[runs] = fileOffset;
+                runs++;
+            }
+            count++;
+            nextFileOffset = fileOffset + 1;
+        }
     }
 
     /** The same text attributed to {@code template} (for a template's name, read before it is known). */
     public Fragment withTemplate(String template) {
-        return new Fragment(file, template, kind, text, fileLines, fileOffsets);
+        return new Fragment(file, template, kind, text, fileLines, runStarts, runFileStarts);
     }
 
     /** The file name as the user gave it. */
@@ -69,13 +104,20 @@ public final class Fragment {
 
     /** Whether this fragment is a part of a larger file (an XML element or label). */
     public boolean isPart() {
-        return fileOffsets != null;
+        return runStarts != null;
     }
 
     /** The offset in the file of the character at {@code offset} in this fragment. */
     public int fileOffset(int offset) {
         int clamped = Math.max(0, Math.min(offset, text.length()));
-        return fileOffsets == null ? clamped : fileOffsets[clamped];
+        if (runStarts == null) {
+            return clamped;
+        }
+        int run = Arrays.binarySearch(runStarts, clamped);
+        if (run < 0) {
+            run = -run - 2;
+        }
+        return runFileStarts[run] + clamped - runStarts[run];
     }
 
     /** The 1-based line in the file of the character at {@code offset}. */

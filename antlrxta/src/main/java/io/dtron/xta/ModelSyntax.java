@@ -15,6 +15,10 @@ import java.util.regex.Pattern;
  * The entry point of the front end's syntax stage: turns model text into the AST of {@link io.dtron.xta.ast}
  * with every syntax error reported as a {@link Diagnostic} (file, line, column; for XML labels also template,
  * label kind and column inside the label). Nothing here resolves names or checks types.
+ *
+ * <p>Expressions, statements, initialiser braces and types nested deeper than 1,000 levels are errors. Parsing
+ * runs on a thread with a large stack ({@link LargeStack}), so that nesting up to that limit parses whatever
+ * thread asks.
  */
 public final class ModelSyntax {
     private static final Pattern XML_ENCODING =
@@ -41,27 +45,37 @@ public final class ModelSyntax {
 
     /** An Uppaal XML model (any DTD version). */
     public static Parsed<Nta> parseXml(String file, String text) {
-        return Parsing.xml(file, stripBom(text));
+        return onLargeStack(file, () -> Parsing.xml(file, stripBom(text)));
     }
 
     /** An {@code .xta} file, or an Uppaal 3 {@code .ta} file. */
     public static Parsed<Nta> parseXta(String file, String text) {
-        return Parsing.xta(file, stripBom(text));
+        return onLargeStack(file, () -> Parsing.xta(file, stripBom(text)));
     }
 
     /** A {@code .q} file of TCTL queries. */
     public static Parsed<List<Query>> parseQueries(String file, String text) {
-        return Parsing.queries(file, stripBom(text));
+        return onLargeStack(file, () -> Parsing.queries(file, stripBom(text)));
     }
 
     /** A TRON interface file ({@code .trn}). */
     public static Parsed<InterfaceSpec> parseInterface(String file, String text) {
-        return Parsing.trn(file, stripBom(text));
+        return onLargeStack(file, () -> Parsing.trn(file, stripBom(text)));
     }
 
     /** One expression, e.g. a guard typed on a command line. */
     public static Parsed<Expr> parseExpression(String file, String text) {
-        return Parsing.expression(file, text);
+        return onLargeStack(file, () -> Parsing.expression(file, text));
+    }
+
+    /** Runs {@code parse} on a large stack; should that still overflow, the text is too deeply nested. */
+    private static <T> Parsed<T> onLargeStack(String file, LargeStack.Work<Parsed<T>, RuntimeException> parse) {
+        try {
+            return LargeStack.call(parse);
+        } catch (StackOverflowError e) {
+            return new Parsed<>(null, List.of(Diagnostic.fileError(file, "nested too deeply to parse: the parser"
+                    + " overflowed its stack of " + LargeStack.MEGABYTES + " MB")));
+        }
     }
 
     /**

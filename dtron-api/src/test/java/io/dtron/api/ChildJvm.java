@@ -25,6 +25,16 @@ public final class ChildJvm implements AutoCloseable {
         return start(List.of("-cp", System.getProperty("java.class.path"), main.getName()), log, args);
     }
 
+    /**
+     * Starts {@code main} on the test classpath with JVM options of its own (after the defaults, so that e.g. an
+     * {@code -Xmx} of theirs wins) and the arguments; its stdout and stderr go to {@code log}.
+     */
+    public static ChildJvm start(List<String> jvmOptions, Class<?> main, Path log, String... args) throws IOException {
+        List<String> what = new ArrayList<>(jvmOptions);
+        what.addAll(List.of("-cp", System.getProperty("java.class.path"), main.getName()));
+        return start(what, log, args);
+    }
+
     /** Starts {@code java -jar jar} with the arguments; its stdout and stderr go to {@code log}. */
     public static ChildJvm startJar(Path jar, Path log, String... args) throws IOException {
         return start(List.of("-jar", jar.toString()), log, args);

@@ -60,6 +60,9 @@ final class CheckCommand implements Callable<Integer> {
             } catch (ModelException e) {
                 failed++;
                 printErrors(model, e, err);
+            } catch (OutOfMemoryError e) {
+                failed++;
+                err.println("dtron check: " + JvmLimits.modelTooLarge("check", model));
             }
         }
         out.flush();

@@ -33,12 +33,32 @@ public final class DtronCommand implements Callable<Integer> {
     @Spec
     private CommandSpec spec;
 
-    /** Runs the command line and exits with its exit code. */
+    /**
+     * Runs the command line and exits with its exit code. Running out of heap or stack in any thread ends the
+     * JVM with one line and exit code 1, not with a stack trace.
+     */
     public static void main(String[] args) {
+        Thread.UncaughtExceptionHandler others = Thread.getDefaultUncaughtExceptionHandler();
+        Thread.setDefaultUncaughtExceptionHandler((thread, e) -> {
+            String limit = JvmLimits.describe(e);
+            if (limit == null) {
+                if (others != null) {
+                    others.uncaughtException(thread, e);
+                } else {
+                    thread.getThreadGroup().uncaughtException(thread, e);
+                }
+                return;
+            }
+            System.err.println("dtron: " + limit + " (in thread " + thread.getName() + ")");
+            System.exit(1);
+        });
         System.exit(run(args, new PrintWriter(System.out, true), new PrintWriter(System.err, true)));
     }
 
-    /** Runs the command line with the given output streams and returns the exit code. */
+    /**
+     * Runs the command line with the given output streams and returns the exit code. Running out of heap or
+     * stack is one line on {@code err} and exit code 1.
+     */
     public static int run(String[] args, PrintWriter out, PrintWriter err) {
         CommandLine cli = new CommandLine(new DtronCommand());
         cli.setOut(out);
@@ -52,7 +72,14 @@ public final class DtronCommand implements Callable<Integer> {
             LOG.debug("internal error", e);
             return 1;
         });
-        return cli.execute(withDefaultCommand(cli, args));
+        try {
+            return cli.execute(withDefaultCommand(cli, args));
+        } catch (OutOfMemoryError | StackOverflowError e) {
+            // the stack that held the command's data has unwound: its memory is garbage, so printing works
+            err.println("dtron: " + JvmLimits.describe(e));
+            err.flush();
+            return 1;
+        }
     }
 
     /**

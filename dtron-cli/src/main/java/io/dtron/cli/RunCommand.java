@@ -156,6 +156,14 @@ final class RunCommand implements Callable<Integer> {
         TestInterface testInterface;
         try {
             network = ModelLoader.load(model);
+        } catch (ModelException e) {
+            CheckCommand.printErrors(model, e, err);
+            return 1;
+        } catch (OutOfMemoryError e) {
+            err.println("dtron run: " + JvmLimits.modelTooLarge("run", model));
+            return 1;
+        }
+        try {
             if (tronAdapter != null) {
                 return runAgainstTronAdapter(network, policy, out, err);
             }

@@ -162,6 +162,9 @@ final class TronCommand implements Callable<Integer> {
         } catch (ModelException e) {
             CheckCommand.printErrors(model, e, err);
             return 1;
+        } catch (OutOfMemoryError e) {
+            err.println("dtron tron: " + JvmLimits.modelTooLarge("tron", model));
+            return 1;
         }
         if (!quiet) {
             notes(err, choice);

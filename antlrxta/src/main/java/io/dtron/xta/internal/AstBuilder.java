@@ -30,6 +30,8 @@ import org.antlr.v4.runtime.Token;
 final class AstBuilder {
     private final Fragment fragment;
     private final List<Diagnostic> diagnostics;
+    private int expressionDepth;
+    private boolean tooDeepReported;
 
     AstBuilder(Fragment fragment, List<Diagnostic> diagnostics) {
         this.fragment = fragment;
@@ -56,15 +58,20 @@ final class AstBuilder {
     Section section(List<TopItemContext> items, SystemLineContext systemLine) {
         List<Decl> decls = new ArrayList<>();
         for (TopItemContext item : items) {
-            if (item.declaration() != null) {
-                declaration(item.declaration(), decls);
-            } else if (item.processDecl() != null) {
-                decls.add(process(item.processDecl()));
-            } else {
-                decls.add(instantiation(item.instantiation()));
-            }
+            topItem(item, decls);
         }
         return new Section(decls, systemLine == null ? null : systemLine(systemLine));
+    }
+
+    /** A declaration, process or instantiation of an .xta file or a system section. */
+    void topItem(TopItemContext item, List<Decl> out) {
+        if (item.declaration() != null) {
+            declaration(item.declaration(), out);
+        } else if (item.processDecl() != null) {
+            out.add(process(item.processDecl()));
+        } else {
+            out.add(instantiation(item.instantiation()));
+        }
     }
 
     List<Decl> declarations(List<DeclarationContext> contexts) {
@@ -259,7 +266,7 @@ final class AstBuilder {
             }
             return new TypeExpr.StructType(pos, qualifiers, fields);
         } else {
-            return new TypeExpr.NamedType(pos, qualifiers, ((NamedTypeContext) id).ID().getText());
+            return new TypeExpr.NamedType(pos, qualifiers, ((NamedTypeContext) id).ID().getText().intern());
         }
     }
 
@@ -328,7 +335,29 @@ final class AstBuilder {
         return ctx == null ? List.of() : exprs(ctx.expression());
     }
 
+    /**
+     * The AST of an expression. A chain of left-associative operators is a tree as deep as it is long, although
+     * the parser read it in a loop; deeper than {@link NestingLimit#LEVELS} it is an error (once per fragment)
+     * and the part past the limit becomes a 0.
+     */
     Expr expr(ExpressionContext ctx) {
+        if (expressionDepth >= NestingLimit.LEVELS) {
+            if (!tooDeepReported) {
+                tooDeepReported = true;
+                Token at = ctx instanceof BinaryExprContext b ? b.op : ctx.getStart();
+                diagnostics.add(Diagnostic.error(pos(at), NestingLimit.message("expression")));
+            }
+            return new Expr.IntLit(pos(ctx), 0);
+        }
+        expressionDepth++;
+        try {
+            return expression(ctx);
+        } finally {
+            expressionDepth--;
+        }
+    }
+
+    private Expr expression(ExpressionContext ctx) {
         Pos pos = pos(ctx);
         if (ctx instanceof PrimaryExprContext p) {
             return primary(p.primary());
@@ -430,7 +459,11 @@ final class AstBuilder {
         }
     }
 
+    /**
+     * The name an identifier spells. Names are interned: a large model repeats few names many times, and its
+     * AST and the network compiled from it keep one string per name instead of one per use.
+     */
     static String name(IdentifierContext ctx) {
-        return ctx.getText();
+        return ctx.getStart().getText().intern();
     }
 }

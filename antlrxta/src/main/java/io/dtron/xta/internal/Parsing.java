@@ -4,16 +4,24 @@ import io.dtron.xta.Diagnostic;
 import io.dtron.xta.Fragment;
 import io.dtron.xta.Parsed;
 import io.dtron.xta.Pos;
+import io.dtron.xta.ast.Decl;
 import io.dtron.xta.ast.Expr;
 import io.dtron.xta.ast.InterfaceSpec;
 import io.dtron.xta.ast.Nta;
 import io.dtron.xta.ast.Query;
+import io.dtron.xta.ast.SystemLine;
 import io.dtron.xta.internal.parser.UppaalParser;
 import java.util.ArrayList;
 import java.util.List;
+import java.util.function.Function;
+import org.antlr.v4.runtime.ParserRuleContext;
+import org.antlr.v4.runtime.Vocabulary;
 
 /** The implementations behind {@link io.dtron.xta.ModelSyntax}. */
 public final class Parsing {
+    /** The type of the {@code system} keyword's token. */
+    private static final int SYSTEM_KEYWORD = literalTokenType("'system'");
+
     private Parsing() {
     }
 
@@ -27,13 +35,58 @@ public final class Parsing {
     /** Parses an XTA or TA file. */
     public static Parsed<Nta> xta(String file, String text) {
         List<Diagnostic> diagnostics = new ArrayList<>();
-        Fragment fragment = Fragment.ofFile(file, text);
-        UppaalParser.XtaFileContext ctx = ParserDriver.parse(fragment, UppaalParser::xtaFile, diagnostics);
-        if (ctx == null) {
-            return new Parsed<>(null, diagnostics);
+        AstBuilder.Section s = section(Fragment.ofFile(file, text), UppaalParser::xtaFile,
+                UppaalParser.XtaFileContext::topItem, UppaalParser.XtaFileContext::systemLine, diagnostics);
+        return new Parsed<>(s == null ? null : new Nta(file, s.declarations(), s.system(), List.of()), diagnostics);
+    }
+
+    private static int literalTokenType(String literal) {
+        Vocabulary vocabulary = UppaalParser.VOCABULARY;
+        for (int type = 0; type <= vocabulary.getMaxTokenType(); type++) {
+            if (literal.equals(vocabulary.getLiteralName(type))) {
+                return type;
+            }
         }
-        AstBuilder.Section s = new AstBuilder(fragment, diagnostics).section(ctx.topItem(), ctx.systemLine());
-        return new Parsed<>(new Nta(file, s.declarations(), s.system(), List.of()), diagnostics);
+        throw new IllegalStateException("the grammar has no token " + literal);
+    }
+
+    /**
+     * The declarations of a declarations text, parsed one by one; null with the errors added to {@code out}
+     * when there are syntax errors.
+     */
+    static List<Decl> declarations(Fragment fragment, List<Diagnostic> out) {
+        List<Diagnostic> built = new ArrayList<>();
+        AstBuilder builder = new AstBuilder(fragment, built);
+        List<Decl> decls = new ArrayList<>();
+        if (ParserDriver.parseItems(fragment, UppaalParser::declaration, type -> true,
+                d -> builder.declaration(d, decls), UppaalParser::declarationsText, end -> { }, out)) {
+            out.addAll(built);
+            return decls;
+        }
+        UppaalParser.DeclarationsTextContext ctx = ParserDriver.parse(fragment, UppaalParser::declarationsText, out);
+        return ctx == null ? null : new AstBuilder(fragment, out).declarations(ctx.declaration());
+    }
+
+    /**
+     * The top-level items and the system line of an .xta file or a system section, parsed item by item; null
+     * with the errors added to {@code out} when there are syntax errors. The rule {@code whole} for the whole
+     * text, with its {@code items} and {@code systemLine}, reports the errors.
+     */
+    static <T extends ParserRuleContext> AstBuilder.Section section(
+            Fragment fragment, Function<UppaalParser, T> whole, Function<T, List<UppaalParser.TopItemContext>> items,
+            Function<T, UppaalParser.SystemLineContext> systemLine, List<Diagnostic> out) {
+        List<Diagnostic> built = new ArrayList<>();
+        AstBuilder builder = new AstBuilder(fragment, built);
+        List<Decl> decls = new ArrayList<>();
+        SystemLine[] system = new SystemLine[1];
+        if (ParserDriver.parseItems(fragment, UppaalParser::topItem, type -> type != SYSTEM_KEYWORD,
+                item -> builder.topItem(item, decls), UppaalParser::sectionEnd,
+                end -> system[0] = end.systemLine() == null ? null : builder.systemLine(end.systemLine()), out)) {
+            out.addAll(built);
+            return new AstBuilder.Section(decls, system[0]);
+        }
+        T ctx = ParserDriver.parse(fragment, whole, out);
+        return ctx == null ? null : new AstBuilder(fragment, out).section(items.apply(ctx), systemLine.apply(ctx));
     }
 
     /** Parses a .q file. */

@@ -57,7 +57,9 @@ final class XmlModelReader {
         XMLInputFactory factory = XMLInputFactory.newFactory();
         factory.setProperty(XMLInputFactory.SUPPORT_DTD, false);
         factory.setProperty(XMLInputFactory.IS_SUPPORTING_EXTERNAL_ENTITIES, false);
-        factory.setProperty(XMLInputFactory.IS_COALESCING, true);
+        // not coalescing: the reader would hold the whole of a large text in a buffer of its own (2 bytes per
+        // character) until the end of the file; elementText() joins the pieces instead
+        factory.setProperty(XMLInputFactory.IS_COALESCING, false);
         List<Decl> globals = new ArrayList<>();
         List<Decl> templates = new ArrayList<>();
         List<Decl> systemDecls = new ArrayList<>();
@@ -85,7 +87,7 @@ final class XmlModelReader {
                     case "template" -> templates.add(template());
                     case "instantiation", "system" -> {
                         String kind = reader.getLocalName();
-                        SystemParts parts = parseSystem(text(kind));
+                        AstBuilder.Section parts = parseSystem(text(kind));
                         systemDecls.addAll(parts.declarations());
                         if (parts.system() != null) {
                             system = parts.system();
@@ -284,20 +286,14 @@ final class XmlModelReader {
     }
 
     private List<Decl> parseDeclarations(Fragment f) {
-        UppaalParser.DeclarationsTextContext ctx = parseRule(f, UppaalParser::declarationsText);
-        return ctx == null ? List.of() : new AstBuilder(f, diagnostics).declarations(ctx.declaration());
+        List<Decl> decls = Parsing.declarations(f, diagnostics);
+        return decls == null ? List.of() : decls;
     }
 
-    private record SystemParts(List<Decl> declarations, SystemLine system) {
-    }
-
-    private SystemParts parseSystem(Fragment f) {
-        UppaalParser.SystemTextContext ctx = parseRule(f, UppaalParser::systemText);
-        if (ctx == null) {
-            return new SystemParts(List.of(), null);
-        }
-        AstBuilder.Section s = new AstBuilder(f, diagnostics).section(ctx.topItem(), ctx.systemLine());
-        return new SystemParts(s.declarations(), s.system());
+    private AstBuilder.Section parseSystem(Fragment f) {
+        AstBuilder.Section s = Parsing.section(f, UppaalParser::systemText, UppaalParser.SystemTextContext::topItem,
+                UppaalParser.SystemTextContext::systemLine, diagnostics);
+        return s == null ? new AstBuilder.Section(List.of(), null) : s;
     }
 
     private List<Param> parseParams(Fragment f) {
@@ -391,9 +387,9 @@ final class XmlModelReader {
         int end = contentOffset();
         int lt = raw.lastIndexOf('<', Math.max(0, end - 1));
         int start = lt < 0 ? end : lt;
-        int[] offsets = new int[end - start + 1];
-        for (int i = 0; i < offsets.length; i++) {
-            offsets[i] = start + i;
+        Fragment.Offsets offsets = new Fragment.Offsets();
+        for (int i = start; i <= end; i++) {
+            offsets.add(i);
         }
         Fragment tag = Fragment.ofPart(file, currentTemplate, reader.getLocalName(), raw.substring(start, end), lines,
                 offsets);
@@ -403,23 +399,59 @@ final class XmlModelReader {
     /** The text of the current element as a fragment whose positions point into the file. */
     private Fragment text(String kind) throws XMLStreamException {
         int start = contentOffset();
-        String content = reader.getElementText();
-        StringBuilder decoded = new StringBuilder(content.length());
-        int[] offsets = new int[content.length() + 1];
+        String content = elementText();
+        Fragment.Offsets offsets = offsetsOf(content, start);
+        if (offsets == null) {
+            offsets = new Fragment.Offsets();
+            for (int k = 0; k <= content.length(); k++) {
+                offsets.add(Math.min(raw.length(), start + k));
+            }
+        }
+        return Fragment.ofPart(file, currentTemplate, kind, content, lines, offsets);
+    }
+
+    /** The text content of the current element, read piece by piece up to its end tag, as getElementText. */
+    private String elementText() throws XMLStreamException {
+        String element = reader.getLocalName();
+        StringBuilder text = new StringBuilder();
+        while (true) {
+            switch (reader.next()) {
+                case XMLStreamConstants.CHARACTERS, XMLStreamConstants.CDATA, XMLStreamConstants.SPACE ->
+                        text.append(reader.getTextCharacters(), reader.getTextStart(), reader.getTextLength());
+                case XMLStreamConstants.ENTITY_REFERENCE -> text.append(reader.getText());
+                case XMLStreamConstants.COMMENT, XMLStreamConstants.PROCESSING_INSTRUCTION -> {
+                    // not part of the text
+                }
+                case XMLStreamConstants.END_ELEMENT -> {
+                    return text.toString();
+                }
+                default -> throw new XMLStreamException("element <" + element + "> may contain only text",
+                        reader.getLocation());
+            }
+        }
+    }
+
+    /**
+     * Where each character of an element's decoded {@code content} stands in the file, reading the raw text
+     * from {@code start} (entity references, CDATA sections, comments, line ends); null when the raw text does
+     * not decode to the content.
+     */
+    private Fragment.Offsets offsetsOf(String content, int start) {
+        Fragment.Offsets offsets = new Fragment.Offsets();
+        int n = 0;
         int i = start;
-        boolean exact = true;
-        while (i < raw.length() && decoded.length() <= content.length()) {
+        while (i < raw.length()) {
             if (raw.startsWith("<![CDATA[", i)) {
                 int end = raw.indexOf("]]>", i);
                 if (end < 0) {
-                    exact = false;
-                    break;
+                    return null;
                 }
                 for (int j = i + 9; j < end; j++) {
-                    if (decoded.length() < content.length()) {
-                        offsets[decoded.length()] = j;
+                    if (n >= content.length() || content.charAt(n) != raw.charAt(j)) {
+                        return null;
                     }
-                    decoded.append(raw.charAt(j));
+                    offsets.add(j);
+                    n++;
                 }
                 i = end + 3;
             } else if (raw.startsWith("<!--", i)) {
@@ -429,42 +461,37 @@ final class XmlModelReader {
                 break;
             } else if (raw.charAt(i) == '&') {
                 int semi = raw.indexOf(';', i);
-                String entity = semi < 0 ? "" : raw.substring(i + 1, semi);
-                String value = entity(entity);
-                if (value == null) {
-                    exact = false;
-                    break;
+                String value = entity(semi < 0 ? "" : raw.substring(i + 1, semi));
+                if (value == null || !content.startsWith(value, n)) {
+                    return null;
                 }
                 for (int k = 0; k < value.length(); k++) {
-                    if (decoded.length() < content.length()) {
-                        offsets[decoded.length()] = i;
-                    }
-                    decoded.append(value.charAt(k));
+                    offsets.add(i);
                 }
+                n += value.length();
                 i = semi + 1;
             } else if (raw.charAt(i) == '\r') {
                 // XML turns \r\n and lone \r into \n
-                if (decoded.length() < content.length()) {
-                    offsets[decoded.length()] = i;
+                if (n >= content.length() || content.charAt(n) != '\n') {
+                    return null;
                 }
-                decoded.append('\n');
+                offsets.add(i);
+                n++;
                 i += i + 1 < raw.length() && raw.charAt(i + 1) == '\n' ? 2 : 1;
             } else {
-                if (decoded.length() < content.length()) {
-                    offsets[decoded.length()] = i;
+                if (n >= content.length() || content.charAt(n) != raw.charAt(i)) {
+                    return null;
                 }
-                decoded.append(raw.charAt(i));
+                offsets.add(i);
+                n++;
                 i++;
             }
         }
-        if (!exact || !decoded.toString().equals(content)) {
-            for (int k = 0; k <= content.length(); k++) {
-                offsets[k] = Math.min(raw.length(), start + k);
-            }
-        } else {
-            offsets[content.length()] = i;
+        if (n != content.length()) {
+            return null;
         }
-        return Fragment.ofPart(file, currentTemplate, kind, content, lines, offsets);
+        offsets.add(i);
+        return offsets;
     }
 
     private static String entity(String name) {

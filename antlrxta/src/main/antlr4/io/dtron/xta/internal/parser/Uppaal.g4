@@ -19,6 +19,9 @@ declarationsText : declaration* EOF ;
 /** A <system> (or <instantiation>) element: declarations, instantiations, the system line. */
 systemText : topItem* systemLine? trailer* EOF ;
 
+/** What follows the top-level items of an .xta file or a system section, when those are parsed one by one. */
+sectionEnd : systemLine? trailer* EOF ;
+
 /** A <parameter> element. */
 parametersText : parameterList? EOF ;
 
