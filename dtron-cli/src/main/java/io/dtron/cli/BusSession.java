@@ -109,6 +109,8 @@ final class BusSession implements AutoCloseable {
     void printSummary(PrintWriter out) {
         out.println("latency t2 - t1 of outputs: " + bridge.outputLatency());
         out.println("latency t2 - t1 of inputs back from the bus: " + bridge.inputLatency());
+        bridge.clockOffsets().forEach((member, offset) -> out.println("clock offset of " + member + " to the tester: "
+                + offset));
         long late = bridge.outputsAfterEnd();
         long others = bridge.messagesOfOtherRuns();
         out.println("bus: " + bridge.stats() + (late == 0 ? "" : ", " + late + " output" + (late == 1 ? "" : "s")

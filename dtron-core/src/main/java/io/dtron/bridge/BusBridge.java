@@ -70,6 +70,8 @@ public final class BusBridge implements Adapter, AutoCloseable {
     private final AtomicLong outputsAfterEnd = new AtomicLong();
     private volatile CountDownLatch ownStop = new CountDownLatch(1);
     private final AtomicLong otherRuns = new AtomicLong();
+    /** The latest clock offset estimate each member sent, with its error bound, in nanoseconds. */
+    private final Map<String, long[]> offsets = new ConcurrentHashMap<>();
     /** The number of each input of the run (1 for the first) by the sequence number of its message. */
     private final Map<Long, Long> inputNumbers = new HashMap<>();
     private long performed;
@@ -350,8 +352,27 @@ public final class BusBridge implements Adapter, AutoCloseable {
         return true;
     }
 
+    /**
+     * Returns the latest estimate each adapter member sent of the tester's clock minus its own, with its error
+     * bound, as "member: offset ms +/- error ms", by member; members that sent none are left out.
+     */
+    public Map<String, String> clockOffsets() {
+        Map<String, String> out = new java.util.TreeMap<>();
+        offsets.forEach((member, o) -> out.put(member, String.format(java.util.Locale.ROOT, "%.3f ms +/- %.3f ms",
+                o[0] / 1e6, o[1] / 1e6)));
+        return out;
+    }
+
+    /** Returns the latest clock offset estimate {@code member} sent and its error bound, in ns, if it sent one. */
+    public Optional<long[]> clockOffset(String member) {
+        return Optional.ofNullable(offsets.get(member)).map(long[]::clone);
+    }
+
     /** The time of an event on the run's clock, in microseconds: its sender's time corrected by its offset. */
     private long runMicros(IDtronChannelValued message) {
+        if (message.getClockErrorNanos() > 0) {
+            offsets.put(message.getSender(), new long[] {message.getClockOffsetNanos(), message.getClockErrorNanos()});
+        }
         long testerNanos = message.getEventTimeNanos() + message.getClockOffsetNanos();
         return Math.floorDiv(testerNanos - zeroEpochNanos, 1000);
     }

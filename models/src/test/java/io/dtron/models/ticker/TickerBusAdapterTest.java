@@ -91,8 +91,9 @@ class TickerBusAdapterTest {
         assertEquals(2, DtronCommand.run(readme, new PrintWriter(slow), new PrintWriter(new StringWriter())),
                 slow.toString());
         // the slow ticker's first tick, at 13 on the run's clock, is judged at that time
-        assertTrue(slow.toString().contains("FAILED: output tick(seq=1) observed at t=13.000 is too late"),
-                slow.toString());
+        assertTrue(slow.toString().contains("FAILED: output tick(seq=1) observed at t=13."), slow.toString());
+        assertTrue(slow.toString().contains("is too late: The model allowed these outputs: tick between t=8.000 and"
+                + " t=12.000"), slow.toString());
     }
 
     private static int seq(BlockingQueue<IDtronChannelValued> ticks) throws InterruptedException {

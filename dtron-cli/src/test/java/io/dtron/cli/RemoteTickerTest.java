@@ -25,11 +25,13 @@ import org.junit.jupiter.api.Timeout;
 import org.junit.jupiter.api.io.TempDir;
 
 /**
- * An adapter that goes silent mid-run (its JVM stopped or killed) is named in an INCONCLUSIVE verdict; the system
- * behind it is not blamed with FAILED for the deadline it could not meet. The ticker runs in a JVM of its own.
+ * A ticker on the run clock in a JVM of its own: with its clock 50 ms off either way it passes, and the tester
+ * reports its offset within the estimate's error bound; when it goes silent mid-run (its JVM stopped or killed) it
+ * is named in an INCONCLUSIVE verdict, and the system behind it is not blamed with FAILED for the deadline it could
+ * not meet.
  */
 @Timeout(value = 2, unit = TimeUnit.MINUTES)
-class SilentAdapterTest {
+class RemoteTickerTest {
     private static final String TICKER = """
             chan i_reset, o_tick;
             int[0,999] o_tick_seq;
@@ -73,6 +75,33 @@ class SilentAdapterTest {
             assertEquals(Verdict.INCONCLUSIVE, result.verdict(), result.explanation() + "\n" + ticker.output());
             assertTrue(result.explanation().contains(member), result.explanation());
             assertTrue(result.outputs() >= 5, "it ticked before it went silent: " + result);
+        }
+    }
+
+    @Test
+    void anAdapterWhoseClockIsOff50MillisecondsPassesAndEstimatesItsOffset() throws Exception {
+        Network network = ModelLoader.load("ticker.xta", TICKER);
+        TestInterface testInterface = TestInterface.fromNames(network);
+        String cluster = "shifted-" + UUID.randomUUID().toString().substring(0, 8);
+        for (String shift : new String[] {"50", "-50"}) {
+            try (BusBridge bridge = BusBridge.connect(testInterface, DtronOptions.builder().clusterName(cluster));
+                    ChildJvm ticker = ChildJvm.start(RunClockTickerMain.class, dir.resolve("shifted" + shift + ".log"),
+                            cluster, "shifted-ticker", "correct", shift, "1")) {
+                ticker.awaitOutput("joined", Duration.ofSeconds(60));
+                assertTrue(bridge.awaitAdapters(1, Duration.ofSeconds(30)));
+                Thread.sleep(500); // the ticker's clock offset estimate
+                // 10 ms per unit: a clock 50 ms off, uncorrected, would put every tick 5 units (beyond the model's
+                // tolerance of 2) away from where the tester expects it
+                TestOptions options = new TestOptions(1, 10_000, 150, DelayPolicy.EAGER, 0, false, 50_000);
+                TestResult result = new OnlineTester(network, testInterface, bridge, options).run();
+                assertEquals(Verdict.PASSED, result.verdict(), result.explanation() + "\n" + ticker.output());
+                assertTrue(result.outputs() >= 10, result.toString());
+                // the tester's clock minus the ticker's: minus the shift, within the estimate's error bound
+                long[] offset = bridge.clockOffset("shifted-ticker").orElseThrow();
+                long expected = -Long.parseLong(shift) * 1_000_000;
+                assertTrue(Math.abs(offset[0] - expected) <= offset[1], "offset " + offset[0] + " +/- " + offset[1]
+                        + " ns, expected " + expected);
+            }
         }
     }
 
