@@ -85,7 +85,7 @@ final class RunCommand implements Callable<Integer> {
 
     @Option(names = "--wait-for-adapters", paramLabel = "N",
             description = "Bus mode: start when N members besides the tester are on the bus, --adapter ones included"
-                    + " (default: 0, start at once).")
+                    + " (default: 1 without --adapter, so that a run does not start alone; 0 with --adapter).")
     private Integer waitForAdapters;
 
     @Option(names = "--wait-timeout", paramLabel = "SECONDS",
@@ -355,7 +355,8 @@ final class RunCommand implements Callable<Integer> {
                 }
                 out.println("dtron run: adapter " + adapterClasses.get(i) + " joined as " + member);
             }
-            int wanted = waitForAdapters == null ? 0 : waitForAdapters;
+            // a run without any adapter could only fail: without --adapter, wait for one in another process
+            int wanted = waitForAdapters != null ? waitForAdapters : adapterClasses.isEmpty() ? 1 : 0;
             if (wanted > 0) {
                 long seconds = waitTimeout == null ? 30 : waitTimeout;
                 out.println("dtron run: waiting up to " + seconds + " s for " + wanted + " adapter"

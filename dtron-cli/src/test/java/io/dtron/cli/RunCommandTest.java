@@ -283,6 +283,30 @@ class RunCommandTest {
     }
 
     @Test
+    void aSecondTesterOnABusWithARunRefusesToStartAndNamesTheOtherTester() throws Exception {
+        TestInterface testInterface = TestInterface.fromNames(ModelLoader.load(model));
+        String shared = cluster();
+        try (BusSession first = BusSession.open(testInterface, shared, InetAddress.getLoopbackAddress())) {
+            String tester = first.bridge().memberId();
+            Run second = dtron(model.toString(), "--adapter", BusTicker.class.getName(), "--cluster", shared,
+                    "--timeunit", "10000", "--timeout", "100");
+            assertEquals(1, second.exit(), second.out() + second.err());
+            assertTrue(second.err().contains("dtron run: bus '" + shared + "' at 127.0.0.1 has a run in progress:"
+                    + " tester " + tester + " is on it"), second.err());
+            assertTrue(second.err().contains("--cluster NAME"), second.err());
+            assertFalse(second.out().contains("PASSED") || second.out().contains("FAILED"), second.out());
+        }
+    }
+
+    @Test
+    void withoutAdaptersARunWaitsForOneAndSaysSoWhenNoneCame() {
+        Run alone = dtron(model.toString(), "--cluster", cluster(), "--wait-timeout", "1");
+        assertEquals(1, alone.exit(), alone.out() + alone.err());
+        assertTrue(alone.out().contains("waiting up to 1 s for 1 adapter to join bus"), alone.out());
+        assertTrue(alone.err().contains("only 0 of 1 adapters joined bus"), alone.err());
+    }
+
+    @Test
     void outputsAfterTheEndAreCountedInTheSummary() throws Exception {
         TestInterface testInterface = TestInterface.fromNames(ModelLoader.load(model));
         List<Dtron> member = new ArrayList<>();
