@@ -229,12 +229,6 @@ public abstract class AbstractSeleniumAdapter {
             public void messageReceived(IDtronChannelValued message) {
                 deliver(message);
             }
-
-            /** The input reaches the page when its step starts on the user's thread, not when it is queued. */
-            @Override
-            protected boolean autoAcknowledge() {
-                return false;
-            }
         };
         adapterRuntime.dtron().addDtronListener(l);
         listener = l;
@@ -265,7 +259,6 @@ public abstract class AbstractSeleniumAdapter {
         try {
             LOG.debug("{} starts {} for user {} after {} ms in the user's queue", this, text(call.message), call.user,
                     call.step.queuedMillis());
-            acknowledge(call);
             execute(call.message);
             if (!call.reported) {
                 report(call, RESULT_OK);
@@ -287,15 +280,6 @@ public abstract class AbstractSeleniumAdapter {
         } finally {
             watch.end(call.step);
             CURRENT.remove();
-        }
-    }
-
-    /** Tells the tester that the input is applied now: its step starts (time spent queued is the adapter's). */
-    private void acknowledge(Call call) {
-        try {
-            runtime.dtron().acknowledge(call.message);
-        } catch (RuntimeException e) {
-            LOG.debug("{} could not acknowledge {}: {}", this, text(call.message), e.toString());
         }
     }
 
