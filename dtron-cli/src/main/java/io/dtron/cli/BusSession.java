@@ -10,6 +10,7 @@ import java.net.InetAddress;
 import java.time.Duration;
 import java.util.ArrayList;
 import java.util.List;
+import java.util.Locale;
 import java.util.Set;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
@@ -109,8 +110,9 @@ final class BusSession implements AutoCloseable {
     void printSummary(PrintWriter out) {
         out.println("latency t2 - t1 of outputs: " + bridge.outputLatency());
         out.println("latency t2 - t1 of inputs back from the bus: " + bridge.inputLatency());
-        bridge.clockOffsets().forEach((member, offset) -> out.println("clock offset of " + member + " to the tester: "
-                + offset));
+        bridge.clockOffsets().forEach((member, offset) -> out.printf(Locale.ROOT,
+                "clock offset of %s to the tester: %.3f ms +/- %.3f ms%n", member, offset.offsetNanos() / 1e6,
+                offset.errorNanos() / 1e6));
         long late = bridge.outputsAfterEnd();
         long others = bridge.messagesOfOtherRuns();
         out.println("bus: " + bridge.stats() + (late == 0 ? "" : ", " + late + " output" + (late == 1 ? "" : "s")

@@ -4,6 +4,7 @@ import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import io.dtron.api.ChildJvm;
+import io.dtron.api.ClockOffset;
 import io.dtron.api.DtronOptions;
 import io.dtron.bridge.BusBridge;
 import io.dtron.engine.DelayPolicy;
@@ -97,10 +98,10 @@ class RemoteTickerTest {
                 assertEquals(Verdict.PASSED, result.verdict(), result.explanation() + "\n" + ticker.output());
                 assertTrue(result.outputs() >= 10, result.toString());
                 // the tester's clock minus the ticker's: minus the shift, within the estimate's error bound
-                long[] offset = bridge.clockOffset("shifted-ticker").orElseThrow();
+                ClockOffset offset = bridge.clockOffsets().get("shifted-ticker");
                 long expected = -Long.parseLong(shift) * 1_000_000;
-                assertTrue(Math.abs(offset[0] - expected) <= offset[1], "offset " + offset[0] + " +/- " + offset[1]
-                        + " ns, expected " + expected);
+                assertTrue(offset != null && Math.abs(offset.offsetNanos() - expected) <= offset.errorNanos(),
+                        "offset " + offset + ", expected " + expected + " ns");
             }
         }
     }

@@ -1,5 +1,6 @@
 package io.dtron.bridge;
 
+import io.dtron.api.ClockOffset;
 import io.dtron.api.Dtron;
 import io.dtron.api.DtronException;
 import io.dtron.api.DtronListener;
@@ -14,6 +15,7 @@ import io.dtron.engine.Event;
 import io.dtron.model.TestInterface;
 import java.time.Duration;
 import java.util.ArrayList;
+import java.util.Collections;
 import java.util.HashMap;
 import java.util.LinkedHashMap;
 import java.util.List;
@@ -21,6 +23,7 @@ import java.util.Map;
 import java.util.Objects;
 import java.util.Optional;
 import java.util.Set;
+import java.util.TreeMap;
 import java.util.concurrent.ConcurrentHashMap;
 import java.util.concurrent.CountDownLatch;
 import java.util.concurrent.ThreadLocalRandom;
@@ -70,8 +73,8 @@ public final class BusBridge implements Adapter, AutoCloseable {
     private final AtomicLong outputsAfterEnd = new AtomicLong();
     private volatile CountDownLatch ownStop = new CountDownLatch(1);
     private final AtomicLong otherRuns = new AtomicLong();
-    /** The latest clock offset estimate each member sent, with its error bound, in nanoseconds. */
-    private final Map<String, long[]> offsets = new ConcurrentHashMap<>();
+    /** The latest clock offset estimate each adapter member sent, by member. */
+    private final Map<String, ClockOffset> offsets = new ConcurrentHashMap<>();
     /** The number of each input of the run (1 for the first) by the sequence number of its message. */
     private final Map<Long, Long> inputNumbers = new HashMap<>();
     private long performed;
@@ -362,26 +365,23 @@ public final class BusBridge implements Adapter, AutoCloseable {
     }
 
     /**
-     * Returns the latest estimate each adapter member sent of the tester's clock minus its own, with its error
-     * bound, as "member: offset ms +/- error ms", by member; members that sent none are left out.
+     * Returns the latest estimate each adapter member sent of this tester's clock minus its own, with its error
+     * bound, by member (in member order); members that sent none are left out.
      */
-    public Map<String, String> clockOffsets() {
-        Map<String, String> out = new java.util.TreeMap<>();
-        offsets.forEach((member, o) -> out.put(member, String.format(java.util.Locale.ROOT, "%.3f ms +/- %.3f ms",
-                o[0] / 1e6, o[1] / 1e6)));
-        return out;
+    public Map<String, ClockOffset> clockOffsets() {
+        return Collections.unmodifiableMap(new TreeMap<>(offsets));
     }
 
-    /** Returns the latest clock offset estimate {@code member} sent and its error bound, in ns, if it sent one. */
-    public Optional<long[]> clockOffset(String member) {
-        return Optional.ofNullable(offsets.get(member)).map(long[]::clone);
+    /** Keeps the clock offset estimate a member's message carries, for {@link #clockOffsets()}. */
+    private void recordOffset(IDtronChannelValued message) {
+        if (message.getClockErrorNanos() > 0) {
+            offsets.put(message.getSender(), new ClockOffset(dtron.getMemberId(), message.getClockOffsetNanos(),
+                    message.getClockErrorNanos()));
+        }
     }
 
     /** The time of an event on the run's clock, in microseconds: its sender's time corrected by its offset. */
     private long runMicros(IDtronChannelValued message) {
-        if (message.getClockErrorNanos() > 0) {
-            offsets.put(message.getSender(), new long[] {message.getClockOffsetNanos(), message.getClockErrorNanos()});
-        }
         long testerNanos = message.getEventTimeNanos() + message.getClockOffsetNanos();
         return Math.floorDiv(testerNanos - zeroEpochNanos, 1000);
     }
@@ -396,6 +396,7 @@ public final class BusBridge implements Adapter, AutoCloseable {
         synchronized (inputNumbers) {
             number = inputNumbers.remove(ack.getAckedSequence());
         }
+        recordOffset(ack);
         if (number != null) {
             context.inputApplied(number, runMicros(ack));
         }
@@ -431,6 +432,7 @@ public final class BusBridge implements Adapter, AutoCloseable {
             return;
         }
         // stamped before time 0 (it was ordered before the start on the bus): it counts from the start
+        recordOffset(message);
         context.report(new Event(channel, message.getVariables()), Math.max(0, runMicros(message)));
     }
 
