@@ -6,8 +6,6 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import io.dtron.api.ChildJvm;
 import java.io.IOException;
-import java.io.PrintWriter;
-import java.io.StringWriter;
 import java.io.Writer;
 import java.nio.charset.StandardCharsets;
 import java.nio.file.Files;
@@ -33,16 +31,6 @@ class JvmLimitsTest {
     @TempDir
     Path dir;
 
-    private record Run(int exit, String out, String err) {
-    }
-
-    private static Run dtron(String... args) {
-        StringWriter out = new StringWriter();
-        StringWriter err = new StringWriter();
-        int exit = DtronCommand.run(args, new PrintWriter(out), new PrintWriter(err));
-        return new Run(exit, out.toString(), err.toString());
-    }
-
     private Path deepModel() throws IOException {
         Path model = dir.resolve("deep.xml");
         Files.writeString(model, "<nta><declaration>chan i_go, o_done;\nint x = " + "(".repeat(4000) + "1"
@@ -59,7 +47,7 @@ class JvmLimitsTest {
         for (String[] args : List.of(new String[] {"check", model.toString()},
                 new String[] {"run", model.toString(), "--sut", "io.dtron.cli.TickerForTests", "--virtual-time"},
                 new String[] {"tron", "-I", "SocketAdapter", model.toString(), "--", "localhost", "1"})) {
-            Run r = dtron(args);
+            CommandRun r = CommandRun.of(args);
             assertEquals(1, r.exit(), args[0] + ": " + r.err());
             assertEquals(model + ": 1 error\n  " + error + "\n", r.err().replace(System.lineSeparator(), "\n"),
                     args[0]);

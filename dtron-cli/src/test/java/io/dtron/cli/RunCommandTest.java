@@ -56,19 +56,9 @@ class RunCommandTest {
         Files.writeString(model, TICKER);
     }
 
-    private record Run(int exit, String out, String err) {
-    }
-
-    private static Run dtron(String... args) {
-        StringWriter out = new StringWriter();
-        StringWriter err = new StringWriter();
-        int exit = DtronCommand.run(args, new PrintWriter(out), new PrintWriter(err));
-        return new Run(exit, out.toString(), err.toString());
-    }
-
     @Test
     void aCorrectSystemPassesWithExitCodeZero() {
-        Run r = dtron("run", model.toString(), "--sut", TickerForTests.class.getName(), "--virtual-time", "--seed", "7",
+        CommandRun r = CommandRun.of("run", model.toString(), "--sut", TickerForTests.class.getName(), "--virtual-time", "--seed", "7",
                 "--timeout", "300");
         assertEquals(0, r.exit(), r.out() + r.err());
         assertTrue(r.out().contains("seed 7"), r.out());
@@ -78,7 +68,7 @@ class RunCommandTest {
 
     @Test
     void aFaultySystemFailsWithExitCodeTwoAndAnExplanation() {
-        Run r = dtron("run", model.toString(), "--sut", TickerForTests.class.getName() + ":slow", "--virtual-time",
+        CommandRun r = CommandRun.of("run", model.toString(), "--sut", TickerForTests.class.getName() + ":slow", "--virtual-time",
                 "--seed", "7", "--timeout", "300");
         assertEquals(2, r.exit(), r.out() + r.err());
         assertTrue(r.out().contains("FAILED: no output came by t=12.000"), r.out());
@@ -89,7 +79,7 @@ class RunCommandTest {
     void aQuietRunInRealTimeShowsProgressWithTheNextDeadline() {
         // 0.6 s per unit: the slow ticker's first tick is due by t=12 (7.2 s) and comes at t=13; nothing happens
         // before, and a progress line comes after 5 s
-        Run r = dtron("run", model.toString(), "--sut", TickerForTests.class.getName() + ":slow", "--seed", "1",
+        CommandRun r = CommandRun.of("run", model.toString(), "--sut", TickerForTests.class.getName() + ":slow", "--seed", "1",
                 "--timeunit", "600000", "--timeout", "100");
         assertEquals(2, r.exit(), r.out() + r.err());
         Matcher progress = Pattern.compile("progress: \\d+ s elapsed, t=(\\d+)\\.\\d{3}, 0 inputs, 0 outputs, an output"
@@ -104,7 +94,7 @@ class RunCommandTest {
         Path a = dir.resolve("a.jsonl");
         Path b = dir.resolve("b.jsonl");
         for (Path trace : List.of(a, b)) {
-            Run r = dtron("run", model.toString(), "--sut", TickerForTests.class.getName(), "--virtual-time", "--seed",
+            CommandRun r = CommandRun.of("run", model.toString(), "--sut", TickerForTests.class.getName(), "--virtual-time", "--seed",
                     "42", "--timeout", "500", "--trace", trace.toString());
             assertEquals(0, r.exit(), r.out() + r.err());
         }
@@ -117,30 +107,30 @@ class RunCommandTest {
         assertTrue(lines.get(lines.size() - 1).startsWith("{\"kind\":\"verdict\",\"t_us\":500000,\"verdict\":\"PASSED\""),
                 lines.get(lines.size() - 1));
         Path c = dir.resolve("c.jsonl");
-        dtron("run", model.toString(), "--sut", TickerForTests.class.getName(), "--virtual-time", "--seed", "43",
+        CommandRun.of("run", model.toString(), "--sut", TickerForTests.class.getName(), "--virtual-time", "--seed", "43",
                 "--timeout", "500", "--trace", c.toString());
         assertFalse(java.util.Arrays.equals(Files.readAllBytes(a), Files.readAllBytes(c)), "another seed, another run");
     }
 
     @Test
     void usageErrorsExitWithOneAndSayWhy() {
-        Run noClass = dtron("run", model.toString(), "--sut", "no.such.Sut", "--virtual-time");
+        CommandRun noClass = CommandRun.of("run", model.toString(), "--sut", "no.such.Sut", "--virtual-time");
         assertEquals(1, noClass.exit());
         assertTrue(noClass.err().contains("no class no.such.Sut on the classpath"), noClass.err());
-        Run notAdapter = dtron("run", model.toString(), "--sut", "java.lang.String", "--virtual-time");
+        CommandRun notAdapter = CommandRun.of("run", model.toString(), "--sut", "java.lang.String", "--virtual-time");
         assertEquals(1, notAdapter.exit());
         assertTrue(notAdapter.err().contains("does not implement io.dtron.engine.Adapter"), notAdapter.err());
-        Run variant = dtron("run", model.toString(), "--sut", TickerForTests.class.getName() + ":weird");
+        CommandRun variant = CommandRun.of("run", model.toString(), "--sut", TickerForTests.class.getName() + ":weird");
         assertEquals(1, variant.exit());
         assertTrue(variant.err().contains("unknown variant 'weird' (correct, slow, broken)"), variant.err());
-        Run policy = dtron("run", model.toString(), "--sut", TickerForTests.class.getName(), "--delay-policy", "soon");
+        CommandRun policy = CommandRun.of("run", model.toString(), "--sut", TickerForTests.class.getName(), "--delay-policy", "soon");
         assertEquals(1, policy.exit());
         assertTrue(policy.err().contains("unknown delay policy 'soon'"), policy.err());
-        Run badTimeout = dtron("run", model.toString(), "--sut", TickerForTests.class.getName(), "--timeout", "0");
+        CommandRun badTimeout = CommandRun.of("run", model.toString(), "--sut", TickerForTests.class.getName(), "--timeout", "0");
         assertEquals(1, badTimeout.exit());
         assertTrue(badTimeout.err().contains("the timeout must be a positive number"), badTimeout.err());
         assertFalse((noClass.err() + variant.err() + policy.err()).contains("\tat "), "no stack traces");
-        for (Run r : List.of(noClass, notAdapter, variant, policy, badTimeout)) {
+        for (CommandRun r : List.of(noClass, notAdapter, variant, policy, badTimeout)) {
             assertOneLineUsageError(r);
         }
     }
@@ -150,11 +140,11 @@ class RunCommandTest {
         Path a = Files.createDirectories(dir.resolve("cp-a"));
         Path b = Files.createDirectories(dir.resolve("cp-b"));
         Path c = Files.createDirectories(dir.resolve("cp-c"));
-        Run r = dtron("run", model.toString(), "--sut", TickerForTests.class.getName(), "--virtual-time", "--seed", "7",
+        CommandRun r = CommandRun.of("run", model.toString(), "--sut", TickerForTests.class.getName(), "--virtual-time", "--seed", "7",
                 "--timeout", "50", "--classpath", a + File.pathSeparator + b + "," + c);
         assertEquals(0, r.exit(), r.out() + r.err());
         Path missing = dir.resolve("cp-missing");
-        Run bad = dtron("run", model.toString(), "--sut", TickerForTests.class.getName(), "--virtual-time",
+        CommandRun bad = CommandRun.of("run", model.toString(), "--sut", TickerForTests.class.getName(), "--virtual-time",
                 "--classpath", a + File.pathSeparator + missing);
         assertOneLineUsageError(bad);
         assertTrue(bad.err().contains("--classpath entry " + missing + " does not exist"), "one entry: " + bad.err());
@@ -162,7 +152,7 @@ class RunCommandTest {
 
     @Test
     void theHelpNamesEveryModelFormatAndThePathSeparator() {
-        Run help = dtron("run", "--help");
+        CommandRun help = CommandRun.of("run", "--help");
         assertEquals(0, help.exit(), help.err());
         String text = help.out().replaceAll("\\s+", " ");
         assertTrue(text.contains("The model (.xml, .xta, or an Uppaal 3 .ta)."), help.out());
@@ -171,18 +161,18 @@ class RunCommandTest {
 
     @Test
     void aRunLongerThanDtronCanTimeIsAUsageErrorNamingTheLimit() {
-        Run r = dtron("run", model.toString(), "--sut", TickerForTests.class.getName(), "--virtual-time",
+        CommandRun r = CommandRun.of("run", model.toString(), "--sut", TickerForTests.class.getName(), "--virtual-time",
                 "--timeunit", Long.toString(Long.MAX_VALUE), "--timeout", Integer.toString(Integer.MAX_VALUE));
         assertOneLineUsageError(r);
         assertTrue(r.err().startsWith("dtron run: the timeout of 2147483647 time units of 9223372036854775807 us is"
                 + " longer than DTRON can time: at most 9223372036854775 us (about 292 years)"), r.err());
         assertFalse(r.err().contains("Exception"), r.err());
-        Run bound = dtron("run", model.toString(), "--sut", TickerForTests.class.getName(), "--virtual-time",
+        CommandRun bound = CommandRun.of("run", model.toString(), "--sut", TickerForTests.class.getName(), "--virtual-time",
                 "--delay-policy", "random-bounded", "--delay-bound", Long.toString(Long.MAX_VALUE));
         assertOneLineUsageError(bound);
         assertTrue(bound.err().contains("the delay bound of 9223372036854775807 time units of 1000 us is longer"),
                 bound.err());
-        Run longest = dtron("run", model.toString(), "--sut", TickerForTests.class.getName() + ":slow",
+        CommandRun longest = CommandRun.of("run", model.toString(), "--sut", TickerForTests.class.getName() + ":slow",
                 "--virtual-time", "--seed", "7", "--timeunit", "1000", "--timeout",
                 Long.toString(9_223_372_036_854_775L / 1000));
         assertEquals(2, longest.exit(), "the longest run is timed without overflow: " + longest.out() + longest.err());
@@ -191,7 +181,7 @@ class RunCommandTest {
 
     @Test
     void aSystemUnderTestThatThrowsIsReportedOnOneLineWithoutAStackTrace() {
-        Run r = dtron("run", model.toString(), "--sut", TickerForTests.class.getName() + ":broken", "--virtual-time");
+        CommandRun r = CommandRun.of("run", model.toString(), "--sut", TickerForTests.class.getName() + ":broken", "--virtual-time");
         assertEquals(1, r.exit(), r.out() + r.err());
         assertTrue(r.err().startsWith("dtron run: unexpected error: java.lang.IllegalStateException: the ticker is"
                 + " unplugged at io.dtron.cli.TickerForTests.start(TickerForTests.java:"), r.err());
@@ -200,17 +190,17 @@ class RunCommandTest {
 
     @Test
     void aModelFileAloneMeansRun() {
-        Run r = dtron(model.toString(), "--sut", TickerForTests.class.getName(), "--virtual-time", "--seed", "7",
+        CommandRun r = CommandRun.of(model.toString(), "--sut", TickerForTests.class.getName(), "--virtual-time", "--seed", "7",
                 "--timeout", "300");
         assertEquals(0, r.exit(), r.out() + r.err());
         assertTrue(r.out().contains("PASSED: the timeout of 300 time units was reached"), r.out());
-        Run typo = dtron("chek", model.toString());
+        CommandRun typo = CommandRun.of("chek", model.toString());
         assertEquals(1, typo.exit());
         assertTrue(typo.err().contains("Unmatched argument"), "a command name is not taken for a model: " + typo.err());
     }
 
     /** A usage error is its reason and where the help is, not the whole usage message; exit code 1. */
-    private static void assertOneLineUsageError(Run r) {
+    private static void assertOneLineUsageError(CommandRun r) {
         assertEquals(1, r.exit(), r.out() + r.err());
         assertTrue(r.err().startsWith("dtron run: "), r.err());
         assertTrue(r.err().endsWith("see 'dtron run --help'" + System.lineSeparator()), r.err());
@@ -220,17 +210,17 @@ class RunCommandTest {
 
     @Test
     void unknownOptionsAndBadValuesGetTheReasonAndWhereTheHelpIs() {
-        Run unknown = dtron(model.toString(), "--bogus");
+        CommandRun unknown = CommandRun.of(model.toString(), "--bogus");
         assertOneLineUsageError(unknown);
         assertTrue(unknown.err().startsWith("dtron run: Unknown option: '--bogus'"), unknown.err());
-        Run notANumber = dtron(model.toString(), "--wait-for-adapters", "two");
+        CommandRun notANumber = CommandRun.of(model.toString(), "--wait-for-adapters", "two");
         assertOneLineUsageError(notANumber);
         assertTrue(notANumber.err().contains("Invalid value for option '--wait-for-adapters': 'two'"),
                 notANumber.err());
-        Run missing = dtron("run");
+        CommandRun missing = CommandRun.of("run");
         assertOneLineUsageError(missing);
         assertTrue(missing.err().contains("Missing required parameter: 'MODEL'"), missing.err());
-        Run typo = dtron("run", model.toString(), "--sut", TickerForTests.class.getName(), "--virtual-tim");
+        CommandRun typo = CommandRun.of("run", model.toString(), "--sut", TickerForTests.class.getName(), "--virtual-tim");
         assertOneLineUsageError(typo);
         assertTrue(typo.err().contains("--virtual-time"), "a suggestion: " + typo.err());
         for (String[] args : List.of(
@@ -244,24 +234,24 @@ class RunCommandTest {
                 new String[] {"--sut", TickerForTests.class.getName(), "--cluster", "x"})) {
             List<String> all = new ArrayList<>(List.of(model.toString()));
             all.addAll(List.of(args));
-            assertOneLineUsageError(dtron(all.toArray(new String[0])));
+            assertOneLineUsageError(CommandRun.of(all.toArray(new String[0])));
         }
-        Run virtual = dtron(model.toString(), "--virtual-time");
+        CommandRun virtual = CommandRun.of(model.toString(), "--virtual-time");
         assertTrue(virtual.err().contains("--virtual-time needs --sut or --tron-adapter: the adapters on a bus live in real time"),
                 virtual.err());
-        Run notBusAdapter = dtron(model.toString(), "--adapter", "java.lang.String");
+        CommandRun notBusAdapter = CommandRun.of(model.toString(), "--adapter", "java.lang.String");
         assertTrue(notBusAdapter.err().contains("java.lang.String is not a bus adapter: it does not implement"
                 + " io.dtron.api.DtronAdapter"), notBusAdapter.err());
-        Run mixed = dtron(model.toString(), "--sut", TickerForTests.class.getName(), "--cluster", "x");
+        CommandRun mixed = CommandRun.of(model.toString(), "--sut", TickerForTests.class.getName(), "--cluster", "x");
         assertTrue(mixed.err().contains("are for testing the adapters on a bus, without --sut"), mixed.err());
-        Run bindWithSut = dtron(model.toString(), "--sut", TickerForTests.class.getName(), "--bind", "127.0.0.1");
+        CommandRun bindWithSut = CommandRun.of(model.toString(), "--sut", TickerForTests.class.getName(), "--bind", "127.0.0.1");
         assertEquals(1, bindWithSut.exit());
         assertTrue(bindWithSut.err().contains("with --sut leave it out"), bindWithSut.err());
     }
 
     @Test
     void aBusAdapterInThisJvmPassesAndPrintsTheLatency() {
-        Run r = dtron(model.toString(), "--adapter", BusTicker.class.getName(), "--cluster", cluster(), "--timeunit",
+        CommandRun r = CommandRun.of(model.toString(), "--adapter", BusTicker.class.getName(), "--cluster", cluster(), "--timeunit",
                 "10000", "--timeout", "100", "--delay-policy", "eager", "--seed", "3");
         assertEquals(0, r.exit(), r.out() + r.err());
         assertTrue(r.out().contains("adapter " + BusTicker.class.getName() + " joined as "), r.out());
@@ -274,7 +264,7 @@ class RunCommandTest {
 
     @Test
     void aFaultyBusAdapterFails() {
-        Run r = dtron(model.toString(), "--adapter", BusTicker.class.getName() + ":slow", "--cluster", cluster(),
+        CommandRun r = CommandRun.of(model.toString(), "--adapter", BusTicker.class.getName() + ":slow", "--cluster", cluster(),
                 "--timeunit", "10000", "--timeout", "100", "--seed", "3");
         assertEquals(2, r.exit(), r.out() + r.err());
         // the tick due by 12 comes at 13 by the adapter's clock, within the reorder window: judged at its time
@@ -288,7 +278,7 @@ class RunCommandTest {
         String shared = cluster();
         try (BusSession first = BusSession.open(testInterface, shared, InetAddress.getLoopbackAddress())) {
             String tester = first.bridge().memberId();
-            Run second = dtron(model.toString(), "--adapter", BusTicker.class.getName(), "--cluster", shared,
+            CommandRun second = CommandRun.of(model.toString(), "--adapter", BusTicker.class.getName(), "--cluster", shared,
                     "--timeunit", "10000", "--timeout", "100");
             assertEquals(1, second.exit(), second.out() + second.err());
             assertTrue(second.err().contains("dtron run: bus '" + shared + "' at 127.0.0.1 has a run in progress:"
@@ -300,7 +290,7 @@ class RunCommandTest {
 
     @Test
     void withoutAdaptersARunWaitsForOneAndSaysSoWhenNoneCame() {
-        Run alone = dtron(model.toString(), "--cluster", cluster(), "--wait-timeout", "1");
+        CommandRun alone = CommandRun.of(model.toString(), "--cluster", cluster(), "--wait-timeout", "1");
         assertEquals(1, alone.exit(), alone.out() + alone.err());
         assertTrue(alone.out().contains("waiting up to 1 s for 1 adapter to join bus"), alone.out());
         assertTrue(alone.err().contains("only 0 of 1 adapters joined bus"), alone.err());
@@ -371,7 +361,7 @@ class RunCommandTest {
 
     @Test
     void waitingForAdaptersThatDoNotComeEndsWithAClearMessage() {
-        Run r = dtron(model.toString(), "--cluster", cluster(), "--wait-for-adapters", "1", "--wait-timeout", "1");
+        CommandRun r = CommandRun.of(model.toString(), "--cluster", cluster(), "--wait-for-adapters", "1", "--wait-timeout", "1");
         assertEquals(1, r.exit(), r.out() + r.err());
         assertTrue(r.out().contains("waiting up to 1 s for 1 adapter to join bus '"), r.out());
         assertTrue(r.err().contains("only 0 of 1 adapters joined bus '"), r.err());

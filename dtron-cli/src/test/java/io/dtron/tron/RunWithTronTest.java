@@ -4,11 +4,10 @@ import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
+import io.dtron.cli.CommandRun;
 import io.dtron.cli.DtronCommand;
 import io.dtron.testadapter.BusTicker;
 import java.io.IOException;
-import java.io.PrintWriter;
-import java.io.StringWriter;
 import java.net.InetAddress;
 import java.net.ServerSocket;
 import java.nio.file.Files;
@@ -46,22 +45,12 @@ class RunWithTronTest {
         Warmup.lightContr(io.dtron.model.ModelLoader.load(lightContr));
     }
 
-    private record Run(int exit, String out, String err) {
-    }
-
-    private static Run dtron(String... args) {
-        StringWriter out = new StringWriter();
-        StringWriter err = new StringWriter();
-        int exit = DtronCommand.run(args, new PrintWriter(out, true), new PrintWriter(err, true));
-        return new Run(exit, out.toString(), err.toString());
-    }
-
     /** The lamp's adapter listens, as in TRON's sample; dtron run connects to it. */
-    private Run againstListeningLamp(String variant) throws Exception {
+    private CommandRun againstListeningLamp(String variant) throws Exception {
         try (ChildProcess lamp = ChildProcess.start(LampIutMain.class, dir.resolve("lamp.log"), "listen",
                 "REAL_TIME", variant, "300", Integer.toString(TronLampEndToEndTest.REAL_TIME_UNIT))) {
             int port = lamp.awaitPort(Duration.ofSeconds(30));
-            Run r = dtron("run", lightContr.toString(), "--tron-adapter", "127.0.0.1:" + port, "--seed", "7",
+            CommandRun r = CommandRun.of("run", lightContr.toString(), "--tron-adapter", "127.0.0.1:" + port, "--seed", "7",
                     "--delay-policy", "random-bounded", "--delay-bound", "200");
             assertEquals(0, lamp.waitFor(Duration.ofSeconds(30)), lamp.output());
             return r;
@@ -70,7 +59,7 @@ class RunWithTronTest {
 
     @Test
     void theCorrectTronAdapterPasses() throws Exception {
-        Run r = againstListeningLamp("correct");
+        CommandRun r = againstListeningLamp("correct");
         assertEquals(0, r.exit(), r.out() + r.err());
         assertTrue(r.out().contains("against the TRON adapter at 127.0.0.1:"), r.out());
         assertTrue(r.out().contains("seed 7, 300 time units of " + TronLampEndToEndTest.REAL_TIME_UNIT + " us"),
@@ -80,7 +69,7 @@ class RunWithTronTest {
 
     @Test
     void aFaultyTronAdapterFails() throws Exception {
-        Run r = againstListeningLamp("late");
+        CommandRun r = againstListeningLamp("late");
         assertEquals(2, r.exit(), r.out() + r.err());
         assertTrue(r.out().contains("\nFAILED: "), r.out());
         assertTrue(r.out().contains("level"), r.out());
@@ -89,7 +78,7 @@ class RunWithTronTest {
     @Test
     void listensForTheTronAdapterInVirtualTime() throws Exception {
         int port = freePort();
-        Run r = withLampConnecting(port, "run", lightContr.toString(), "--tron-adapter", Integer.toString(port),
+        CommandRun r = withLampConnecting(port, "run", lightContr.toString(), "--tron-adapter", Integer.toString(port),
                 "--virtual-time", "--timeout", "3000", "--seed", "3");
         assertEquals(0, r.exit(), r.out() + r.err());
         assertTrue(r.out().contains("dtron run: waiting for the TRON adapter on 127.0.0.1:" + port), r.out());
@@ -100,7 +89,7 @@ class RunWithTronTest {
     @Test
     void listensWhereBindSays() throws Exception {
         int port = freePort();
-        Run r = withLampConnecting(port, "run", lightContr.toString(), "--tron-adapter", Integer.toString(port),
+        CommandRun r = withLampConnecting(port, "run", lightContr.toString(), "--tron-adapter", Integer.toString(port),
                 "--bind", "0.0.0.0", "--virtual-time", "--timeout", "1000", "--seed", "3");
         assertEquals(0, r.exit(), r.out() + r.err());
         assertTrue(r.out().contains("dtron run: waiting for the TRON adapter on 0.0.0.0:" + port), r.out());
@@ -114,8 +103,8 @@ class RunWithTronTest {
     }
 
     /** Runs dtron, which listens on {@code port}, and the lamp in this JVM, which connects as soon as it can. */
-    private Run withLampConnecting(int port, String... args) throws Exception {
-        CompletableFuture<Run> run = CompletableFuture.supplyAsync(() -> dtron(args));
+    private CommandRun withLampConnecting(int port, String... args) throws Exception {
+        CompletableFuture<CommandRun> run = CompletableFuture.supplyAsync(() -> CommandRun.of(args));
         TronLamp.runWhenListening(port);
         return run.get(60, TimeUnit.SECONDS);
     }
@@ -123,34 +112,34 @@ class RunWithTronTest {
     @Test
     void tronAdapterOptionsThatCannotGoTogetherAreUsageErrors() throws Exception {
         String model = lightContr.toString();
-        Run withSut = dtron("run", model, "--tron-adapter", "9999", "--sut", LampSystem.class.getName());
+        CommandRun withSut = CommandRun.of("run", model, "--tron-adapter", "9999", "--sut", LampSystem.class.getName());
         assertEquals(1, withSut.exit());
         assertTrue(withSut.err().contains("--sut and --tron-adapter each name the system under test"), withSut.err());
-        Run withInterface = dtron("run", model, "--tron-adapter", "9999", "--interface",
+        CommandRun withInterface = CommandRun.of("run", model, "--tron-adapter", "9999", "--interface",
                 tronModels.resolve("LightContr.trn").toString());
         assertEquals(1, withInterface.exit());
         assertTrue(withInterface.err().contains("the adapter's configuration defines the interface: leave out"
                 + " --interface"), withInterface.err());
-        Run withTron = dtron("run", model, "--tron-adapter", "localhost:9999", "--backend", "tron");
+        CommandRun withTron = CommandRun.of("run", model, "--tron-adapter", "localhost:9999", "--backend", "tron");
         assertEquals(1, withTron.exit());
         assertTrue(withTron.err().contains("leave out --backend tron"), withTron.err());
-        Run withBus = dtron("run", model, "--tron-adapter", "9999", "--cluster", "x");
+        CommandRun withBus = CommandRun.of("run", model, "--tron-adapter", "9999", "--cluster", "x");
         assertEquals(1, withBus.exit());
         assertTrue(withBus.err().contains("are for testing the adapters on a bus"), withBus.err());
-        Run bindToConnect = dtron("run", model, "--tron-adapter", "localhost:9999", "--bind", "0.0.0.0");
+        CommandRun bindToConnect = CommandRun.of("run", model, "--tron-adapter", "localhost:9999", "--bind", "0.0.0.0");
         assertEquals(1, bindToConnect.exit());
         assertTrue(bindToConnect.err().contains("--bind is the bus's network interface, or where --tron-adapter PORT"
                 + " listens; with --tron-adapter HOST:PORT (DTRON connects) leave it out"), bindToConnect.err());
-        Run unknownBind = dtron("run", model, "--tron-adapter", "9999", "--bind", "no-such-host.invalid");
+        CommandRun unknownBind = CommandRun.of("run", model, "--tron-adapter", "9999", "--bind", "no-such-host.invalid");
         assertEquals(1, unknownBind.exit());
         assertTrue(unknownBind.err().contains("--bind: unknown address 'no-such-host.invalid'"), unknownBind.err());
         for (String bad : List.of("host:", "localhost:port", "70000", "localhost:0", ":80")) {
-            Run r = dtron("run", model, "--tron-adapter", bad);
+            CommandRun r = CommandRun.of("run", model, "--tron-adapter", bad);
             assertEquals(1, r.exit(), bad);
             assertTrue(r.err().contains("--tron-adapter " + bad + ": give HOST:PORT to connect to the adapter, or"
                     + " PORT to listen for it"), r.err());
         }
-        Run badBackend = dtron("run", model, "--backend", "uppaal");
+        CommandRun badBackend = CommandRun.of("run", model, "--backend", "uppaal");
         assertEquals(1, badBackend.exit());
         assertTrue(badBackend.err().contains("unknown backend 'uppaal' (use engine or tron)"), badBackend.err());
     }
@@ -170,7 +159,7 @@ class RunWithTronTest {
                     throw new IllegalStateException(e);
                 }
             });
-            Run r = dtron("run", lightContr.toString(), "--tron-adapter", "127.0.0.1:" + server.getLocalPort());
+            CommandRun r = CommandRun.of("run", lightContr.toString(), "--tron-adapter", "127.0.0.1:" + server.getLocalPort());
             String reason = "the timeout of 1000 time units of 2147483647000000 us is longer than DTRON can time: at"
                     + " most 9223372036854775 us (about 292 years) (timeout from the default, time unit from the"
                     + " adapter)";
@@ -187,7 +176,7 @@ class RunWithTronTest {
         try (ServerSocket probe = new ServerSocket(0, 1, InetAddress.getLoopbackAddress())) {
             port = probe.getLocalPort();
         }
-        Run r = dtron("run", lightContr.toString(), "--tron-adapter", "127.0.0.1:" + port);
+        CommandRun r = CommandRun.of("run", lightContr.toString(), "--tron-adapter", "127.0.0.1:" + port);
         assertEquals(1, r.exit());
         assertTrue(r.err().contains("dtron run: the TRON adapter's configuration failed: cannot connect to the"
                 + " adapter at 127.0.0.1:" + port), r.err());

@@ -4,10 +4,8 @@ import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
-import io.dtron.cli.DtronCommand;
+import io.dtron.cli.CommandRun;
 import java.io.IOException;
-import java.io.PrintWriter;
-import java.io.StringWriter;
 import java.net.InetAddress;
 import java.net.ServerSocket;
 import java.nio.file.Files;
@@ -35,21 +33,15 @@ class TronCommandTest {
         Warmup.lightContr(io.dtron.model.ModelLoader.load(lightContr));
     }
 
-    private record Run(int exit, String out, String err) {
-    }
-
-    private static Run tron(String... args) {
-        StringWriter out = new StringWriter();
-        StringWriter err = new StringWriter();
+    private static CommandRun tron(String... args) {
         String[] withCommand = new String[args.length + 1];
         withCommand[0] = "tron";
         System.arraycopy(args, 0, withCommand, 1, args.length);
-        int exit = DtronCommand.run(withCommand, new PrintWriter(out, true), new PrintWriter(err, true));
-        return new Run(exit, out.toString(), err.toString());
+        return CommandRun.of(withCommand);
     }
 
     /** TRON's sample: the lamp listens, the tester connects, with delays -P 10,200 and -F 300. */
-    private Run sample(String variant, String... extra) throws Exception {
+    private CommandRun sample(String variant, String... extra) throws Exception {
         try (ChildProcess lamp = ChildProcess.start(LampIutMain.class, dir.resolve("lamp.log"), "listen",
                 "REAL_TIME", variant, "300", Integer.toString(TronLampEndToEndTest.REAL_TIME_UNIT))) {
             int port = lamp.awaitPort(Duration.ofSeconds(30));
@@ -59,7 +51,7 @@ class TronCommandTest {
             System.arraycopy(head, 0, args, 0, head.length);
             System.arraycopy(extra, 0, args, head.length, extra.length);
             System.arraycopy(tail, 0, args, head.length + extra.length, tail.length);
-            Run r = tron(args);
+            CommandRun r = tron(args);
             assertEquals(0, lamp.waitFor(Duration.ofSeconds(30)), lamp.output());
             return r;
         }
@@ -69,7 +61,7 @@ class TronCommandTest {
     void tronsSampleSetupPassesTheCorrectLampWithStatisticsAndALog() throws Exception {
         Path stats = dir.resolve("stats.txt");
         Path log = dir.resolve("tron.log");
-        Run r = sample("correct", "-v", "2", "-S", stats.toString(), "-o", log.toString());
+        CommandRun r = sample("correct", "-v", "2", "-S", stats.toString(), "-o", log.toString());
         assertEquals(0, r.exit(), r.out() + r.err());
         assertTrue(r.out().contains("random seed 42, connecting to 127.0.0.1:"), r.out());
         assertTrue(r.out().contains("300 time units of 10000 us; inputs grasp(), release(); outputs level(adapLevel)"),
@@ -84,7 +76,7 @@ class TronCommandTest {
 
     @Test
     void tronsSampleSetupFailsTheLateLampWithExitCode2() throws Exception {
-        Run r = sample("late", "-Q");
+        CommandRun r = sample("late", "-Q");
         assertEquals(2, r.exit(), r.out() + r.err());
         assertTrue(r.out().startsWith("TEST FAILED: "), r.out());
         assertEquals(1, r.out().lines().count(), r.out());
@@ -96,10 +88,10 @@ class TronCommandTest {
         try (ServerSocket probe = new ServerSocket(0, 1, InetAddress.getLoopbackAddress())) {
             port = probe.getLocalPort();
         }
-        CompletableFuture<Run> run = CompletableFuture.supplyAsync(() -> tron("--virtual-time", "-X", "9", "-F",
+        CompletableFuture<CommandRun> run = CompletableFuture.supplyAsync(() -> tron("--virtual-time", "-X", "9", "-F",
                 "3000", lightContr.toString(), "--", Integer.toString(port)));
         TronLamp.runWhenListening(port);
-        Run r = run.get(60, TimeUnit.SECONDS);
+        CommandRun r = run.get(60, TimeUnit.SECONDS);
         assertEquals(0, r.exit(), r.out() + r.err());
         assertTrue(r.out().contains("dtron tron: waiting for the adapter on 127.0.0.1:" + port), r.out());
         assertTrue(r.out().contains("3000 time units of 1000 us"), r.out());
@@ -109,10 +101,10 @@ class TronCommandTest {
     @Test
     void anUnwritableTraceOrStatisticsFileIsAClearError() throws Exception {
         Path trace = dir.resolve("no-such-folder").resolve("trace.jsonl");
-        Run noTrace = withLampInVirtualTime("--trace", trace.toString());
+        CommandRun noTrace = withLampInVirtualTime("--trace", trace.toString());
         assertEquals(1, noTrace.exit(), noTrace.out() + noTrace.err());
         assertTrue(noTrace.err().contains("dtron tron: cannot write the trace " + trace + ": "), noTrace.err());
-        Run noStats = withLampInVirtualTime("-S", dir.toString());
+        CommandRun noStats = withLampInVirtualTime("-S", dir.toString());
         assertEquals(1, noStats.exit(), noStats.out() + noStats.err());
         assertTrue(noStats.out().contains("TEST PASSED"), noStats.out());
         assertTrue(noStats.err().contains("dtron tron: cannot write the statistics " + dir + ": "), noStats.err());
@@ -120,7 +112,7 @@ class TronCommandTest {
     }
 
     /** Runs dtron tron listening, with the lamp connecting in virtual time; the lamp may be cut off. */
-    private Run withLampInVirtualTime(String... options) throws Exception {
+    private CommandRun withLampInVirtualTime(String... options) throws Exception {
         int port;
         try (ServerSocket probe = new ServerSocket(0, 1, InetAddress.getLoopbackAddress())) {
             port = probe.getLocalPort();
@@ -131,7 +123,7 @@ class TronCommandTest {
                 args, options.length, 7);
         String[] withPort = java.util.Arrays.copyOf(args, args.length + 1);
         withPort[args.length] = Integer.toString(port);
-        CompletableFuture<Run> run = CompletableFuture.supplyAsync(() -> tron(withPort));
+        CompletableFuture<CommandRun> run = CompletableFuture.supplyAsync(() -> tron(withPort));
         try {
             TronLamp.runWhenListening(port);
         } catch (RuntimeException e) {
@@ -151,7 +143,7 @@ class TronCommandTest {
                     throw new IllegalStateException(e);
                 }
             });
-            Run r = tron(lightContr.toString(), "--", "127.0.0.1", Integer.toString(server.getLocalPort()));
+            CommandRun r = tron(lightContr.toString(), "--", "127.0.0.1", Integer.toString(server.getLocalPort()));
             adapter.get(10, TimeUnit.SECONDS);
             assertEquals(3, r.exit(), r.out() + r.err());
             assertTrue(r.out().contains("TEST INCONCLUSIVE: protocol error: the adapter sent an event on channel id"
@@ -170,7 +162,7 @@ class TronCommandTest {
                     throw new IllegalStateException(e);
                 }
             });
-            Run r = tron(lightContr.toString(), "--", "127.0.0.1", Integer.toString(server.getLocalPort()));
+            CommandRun r = tron(lightContr.toString(), "--", "127.0.0.1", Integer.toString(server.getLocalPort()));
             adapter.get(10, TimeUnit.SECONDS);
             assertEquals(1, r.exit(), r.out() + r.err());
             assertTrue(r.err().contains("dtron tron: the adapter's configuration failed: unknown command byte 42"),
@@ -195,7 +187,7 @@ class TronCommandTest {
                     throw new IllegalStateException(e);
                 }
             });
-            Run r = tron("-F", Long.toString(Long.MAX_VALUE), lightContr.toString(), "--", "127.0.0.1",
+            CommandRun r = tron("-F", Long.toString(Long.MAX_VALUE), lightContr.toString(), "--", "127.0.0.1",
                     Integer.toString(server.getLocalPort()));
             String reason = "the timeout of 9223372036854775807 time units of 1000 us is longer than DTRON can time: at"
                     + " most 9223372036854775 us (about 292 years) (timeout from -F, time unit from the adapter)";
@@ -225,7 +217,7 @@ class TronCommandTest {
                     throw new IllegalStateException(e);
                 }
             });
-            Run r = tron(lightContr.toString(), "--", "127.0.0.1", Integer.toString(server.getLocalPort()));
+            CommandRun r = tron(lightContr.toString(), "--", "127.0.0.1", Integer.toString(server.getLocalPort()));
             assertEquals(-13, adapter.get(10, TimeUnit.SECONDS));
             assertEquals(1, r.exit(), r.out() + r.err());
             assertTrue(r.err().contains("dtron tron: the adapter's configuration failed: the test was not started: 1"
@@ -238,40 +230,40 @@ class TronCommandTest {
     @Test
     void usageErrorsSayWhatIsWrong() throws Exception {
         String model = lightContr.toString();
-        Run otherAdapter = tron("-I", "TraceAdapter", model, "--", "9999");
+        CommandRun otherAdapter = tron("-I", "TraceAdapter", model, "--", "9999");
         assertEquals(1, otherAdapter.exit());
         assertTrue(otherAdapter.err().contains("-I TraceAdapter is not supported: DTRON speaks TRON's socket adapter"
                 + " protocol only"), otherAdapter.err());
-        Run badDelay = tron("-P", "200,10", model, "--", "9999");
+        CommandRun badDelay = tron("-P", "200,10", model, "--", "9999");
         assertEquals(1, badDelay.exit());
         assertTrue(badDelay.err().contains("-P 200,10: use random, eager, lazy, MAX or MIN,MAX"), badDelay.err());
-        Run unknown = tron("-Z", "1", model, "--", "9999");
+        CommandRun unknown = tron("-Z", "1", model, "--", "9999");
         assertEquals(1, unknown.exit());
         assertTrue(unknown.err().contains("Unknown option: '-Z'"), unknown.err());
-        Run noAddress = tron(model);
+        CommandRun noAddress = tron(model);
         assertEquals(1, noAddress.exit());
         assertTrue(noAddress.err().contains("give the adapter's address after the model"), noAddress.err());
-        Run badPort = tron(model, "--", "localhost", "port");
+        CommandRun badPort = tron(model, "--", "localhost", "port");
         assertEquals(1, badPort.exit());
         assertTrue(badPort.err().contains("'port' is not a port"), badPort.err());
-        Run tooMany = tron(model, "--", "localhost", "1", "2");
+        CommandRun tooMany = tron(model, "--", "localhost", "1", "2");
         assertEquals(1, tooMany.exit());
         assertTrue(tooMany.err().contains("too many arguments after the model"), tooMany.err());
-        Run badUncertainty = tron("-U", "x", model, "--", "1");
+        CommandRun badUncertainty = tron("-U", "x", model, "--", "1");
         assertEquals(1, badUncertainty.exit());
         assertTrue(badUncertainty.err().contains("-U x: give a number"), badUncertainty.err());
-        Run longReplyTimeout = tron("--virtual-time", "--reply-timeout", Long.toString(Long.MAX_VALUE), model, "--",
+        CommandRun longReplyTimeout = tron("--virtual-time", "--reply-timeout", Long.toString(Long.MAX_VALUE), model, "--",
                 "1");
         assertEquals(1, longReplyTimeout.exit());
         assertTrue(longReplyTimeout.err().contains("--reply-timeout must be a positive number of seconds, at most"
                 + " 9223372036 (about 292 years)"), longReplyTimeout.err());
-        for (Run r : List.of(otherAdapter, badDelay, unknown, noAddress, badPort, tooMany, badUncertainty,
+        for (CommandRun r : List.of(otherAdapter, badDelay, unknown, noAddress, badPort, tooMany, badUncertainty,
                 longReplyTimeout)) {
             assertTrue(r.err().startsWith("dtron tron: "), r.err());
             assertTrue(r.err().endsWith("see 'dtron tron --help'" + System.lineSeparator()), r.err());
             assertFalse(r.err().contains("Usage:"), "not the whole usage: " + r.err());
         }
-        Run missingModel = tron(dir.resolve("none.xml").toString(), "--", "1");
+        CommandRun missingModel = tron(dir.resolve("none.xml").toString(), "--", "1");
         assertEquals(1, missingModel.exit());
         assertTrue(missingModel.err().contains("none.xml"), missingModel.err());
     }
@@ -282,7 +274,7 @@ class TronCommandTest {
         try (ServerSocket probe = new ServerSocket(0, 1, InetAddress.getLoopbackAddress())) {
             port = probe.getLocalPort();
         }
-        Run r = tron("-U", "5", lightContr.toString(), "--", "127.0.0.1", Integer.toString(port));
+        CommandRun r = tron("-U", "5", lightContr.toString(), "--", "127.0.0.1", Integer.toString(port));
         assertEquals(1, r.exit());
         assertTrue(r.err().contains("cannot connect to the adapter at 127.0.0.1:" + port), r.err());
         assertTrue(r.err().contains("note: -U 5 is accepted and not applied"), r.err());
