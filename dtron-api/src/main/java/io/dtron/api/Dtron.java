@@ -2,6 +2,7 @@ package io.dtron.api;
 
 import io.dtron.api.InvalidMessageException.Reason;
 import io.dtron.api.internal.BusConnector;
+import io.dtron.api.internal.ChannelHandshake;
 import io.dtron.api.internal.ClockSync;
 import io.dtron.api.internal.Counters;
 import io.dtron.api.internal.DtronChannel;
@@ -17,6 +18,7 @@ import io.dtron.bus.Transport;
 import io.dtron.bus.internal.EpochClock;
 import java.io.IOException;
 import java.time.Duration;
+import java.util.ArrayList;
 import java.util.Collection;
 import java.util.LinkedHashMap;
 import java.util.LinkedHashSet;
@@ -82,9 +84,11 @@ public final class Dtron implements AutoCloseable {
             ACK.getChannelName(), DtronChannel.copyOf(ACK),
             ClockSync.HELLO, new DtronChannel(ClockSync.HELLO, List.of()),
             ClockSync.PING, new DtronChannel(ClockSync.PING, List.of()),
-            ClockSync.PONG, new DtronChannel(ClockSync.PONG, List.of()));
+            ClockSync.PONG, new DtronChannel(ClockSync.PONG, List.of()),
+            ChannelHandshake.SERVE, new DtronChannel(ChannelHandshake.SERVE, List.of()));
     /** The channels only Dtron itself sends on and listens to. */
-    private static final Set<String> CONTROL = Set.of(ClockSync.HELLO, ClockSync.PING, ClockSync.PONG);
+    private static final Set<String> CONTROL = Set.of(ClockSync.HELLO, ClockSync.PING, ClockSync.PONG,
+            ChannelHandshake.SERVE);
     /** How many acknowledged messages a member remembers, so as to acknowledge each once. */
     private static final int ACKED_MEMORY = 65_536;
 
@@ -105,6 +109,7 @@ public final class Dtron implements AutoCloseable {
     private final List<Subscription> ownGroups;
     private final long clockShiftNanos;
     private final ClockSync clockSync;
+    private final ChannelHandshake handshake;
     private final RunClock runClock;
     private final Map<AckKey, Boolean> acknowledged = new LinkedHashMap<>() {
         @Override
@@ -139,6 +144,8 @@ public final class Dtron implements AutoCloseable {
         this.clockShiftNanos = options.getClockShiftForTesting().toNanos();
         this.clockSync = new ClockSync(transport.localMember(), options.isTester(), this::currentTimeNanos,
                 sequence::incrementAndGet, this::publishControl, this::offsetChanged);
+        this.handshake = new ChannelHandshake(transport.localMember(), options.isTester(), dispatcher::execute,
+                this::publishServed, this::wakeWaiters);
         this.runClock = new RunClock(transport.localMember(), this::currentTimeNanos, this::runClockOffset);
         this.lastView = transport.view();
         this.viewSubscription = transport.addViewListener(this::viewChanged);
@@ -146,14 +153,15 @@ public final class Dtron implements AutoCloseable {
         this.ownGroups = declared.isPresent()
                 ? List.of()
                 : List.of(RUN_START.getChannelName(), RUN_STOP.getChannelName(), ClockSync.HELLO, ClockSync.PING,
-                        ClockSync.PONG).stream().map(group -> transport.subscribe(group, this::received)).toList();
+                        ClockSync.PONG, ChannelHandshake.SERVE).stream().map(group -> transport.subscribe(group, this::received)).toList();
         clockSync.start();
     }
 
     /**
      * Returns whether DTRON reserves a channel name for itself: {@link #RUN_START}, {@link #RUN_STOP},
-     * {@link #ACK} and the channels of the clock-offset protocol ({@code dtron_hello}, {@code dtron_ping},
-     * {@code dtron_pong}). No model channel may have such a name.
+     * {@link #ACK}, the channels of the clock-offset protocol ({@code dtron_hello}, {@code dtron_ping},
+     * {@code dtron_pong}) and of the channel-serving handshake ({@code dtron_serve}). No model channel may have such
+     * a name.
      */
     public static boolean isReservedChannel(String channelName) {
         return RESERVED.containsKey(Objects.requireNonNull(channelName, "channelName"));
@@ -254,6 +262,9 @@ public final class Dtron implements AutoCloseable {
                 registration.listeners().add(listener);
             }
         }
+        if (!RESERVED.containsKey(name)) {
+            handshake.receiving(name, true);
+        }
     }
 
     /** Removes a listener; it receives no further messages. Removing an unknown listener does nothing. */
@@ -269,8 +280,56 @@ public final class Dtron implements AutoCloseable {
             if (registration.listeners().isEmpty()) {
                 registrations.remove(name);
                 registration.group().ifPresent(Subscription::close);
+                handshake.receiving(name, false);
             }
         }
+    }
+
+    /**
+     * Declares the channels this member publishes (a tester's outputs), so that a tester waiting until every
+     * channel of its model is served knows before this member sends the first message on them. The channels this
+     * member listens to are declared by {@link #addDtronListener}, and a channel it sends on is added when it first
+     * does; declaring twice does nothing. Members tell each tester that greets the bus, and tell the bus again
+     * whenever the channels change (see {@link #getServedChannels()}).
+     *
+     * @throws IllegalArgumentException if a channel is one DTRON reserves
+     */
+    public void declareOutputs(IDtronChannel... channels) {
+        declareOutputs(List.of(channels));
+    }
+
+    /**
+     * Declares the channels this member publishes; see {@link #declareOutputs(IDtronChannel...)}.
+     *
+     * @throws IllegalArgumentException if a channel is one DTRON reserves
+     */
+    public void declareOutputs(Collection<? extends IDtronChannel> channels) {
+        List<String> names = new ArrayList<>();
+        for (IDtronChannel channel : channels) {
+            String name = Objects.requireNonNull(channel, "channel").getChannelName();
+            if (RESERVED.containsKey(name)) {
+                throw new IllegalArgumentException("channel '" + name + "' is DTRON's own; it is not served");
+            }
+            names.add(name);
+        }
+        handshake.sending(names);
+    }
+
+    /**
+     * Returns the channels this member serves: those it has listeners for and those it declared or sent on. A
+     * member that is not a tester tells the bus whenever they change, and each tester that greets the bus.
+     */
+    public ServedChannels getServedChannels() {
+        return handshake.own();
+    }
+
+    /**
+     * Returns what the other members on the bus said they serve, by member id in id order; members that said
+     * nothing (testers, and adapters built against an API without the handshake) are left out. A tester waits
+     * until its model's channels are all served before it starts a run.
+     */
+    public Map<String, ServedChannels> getMembersServedChannels() {
+        return handshake.others();
     }
 
     /**
@@ -578,6 +637,9 @@ public final class Dtron implements AutoCloseable {
         if (template != null) {
             template.checkVariables(message.getVariables().keySet());
         }
+        if (!RESERVED.containsKey(name)) {
+            handshake.sending(List.of(name));
+        }
         long now = currentTimeNanos();
         Stamp stamp = stamp(now, eventTimeNanos == 0 ? now : eventTimeNanos, "", 0);
         byte[] bytes = SyncCodec.encode(name, message.getVariables(), stamp);
@@ -644,6 +706,26 @@ public final class Dtron implements AutoCloseable {
         }
     }
 
+    /** Publishes this member's part of the channel-serving handshake; not counted. Called on the dispatcher. */
+    private void publishServed(ServedChannels served) {
+        if (closed) {
+            return;
+        }
+        long now = currentTimeNanos();
+        try {
+            transport.publish(ChannelHandshake.SERVE, SyncCodec.encodeServed(ChannelHandshake.SERVE,
+                    stamp(now, now, "", 0), served.receives(), served.sends()));
+        } catch (IOException | RuntimeException e) {
+            LOG.debug("{} cannot publish the channels it serves: {}", getMemberId(), e.toString());
+        }
+    }
+
+    private void wakeWaiters() {
+        synchronized (lock) {
+            lock.notifyAll();
+        }
+    }
+
     private long runClockOffset() {
         return clockSync.estimate().map(ClockOffset::offsetNanos).orElse(0L);
     }
@@ -699,7 +781,7 @@ public final class Dtron implements AutoCloseable {
         }
     }
 
-    /** A hello, ping or pong: for the clock offset, not for listeners. */
+    /** A hello, ping, pong or serve: for the clock offset and the handshake, not for listeners. */
     private void controlReceived(BusMessage message, long receiveTime) {
         Sync sync;
         try {
@@ -713,8 +795,11 @@ public final class Dtron implements AutoCloseable {
             case ClockSync.HELLO -> {
                 if (!stamp.sender().equals(getMemberId())) {
                     clockSync.testerAnnounced(stamp.sender(), false);
+                    handshake.helloReceived(stamp.sender());
                 }
             }
+            case ChannelHandshake.SERVE -> handshake.servedReceived(new ServedChannels(stamp.sender(),
+                    Set.copyOf(sync.getReceivesList()), Set.copyOf(sync.getSendsList())));
             case ClockSync.PING -> clockSync.pingReceived(stamp.sender(), stamp.sequence(), receiveTime);
             case ClockSync.PONG -> clockSync.pongReceived(stamp.sender(), stamp.ackedSender(), stamp.ackedSequence(),
                     stamp.effectiveEventTimeNanos(), receiveTime);
@@ -798,6 +883,7 @@ public final class Dtron implements AutoCloseable {
             runStopped();
         }
         clockSync.viewChanged(view.members(), !joined.isEmpty());
+        handshake.viewChanged(view.members());
         synchronized (lock) {
             lock.notifyAll();
         }

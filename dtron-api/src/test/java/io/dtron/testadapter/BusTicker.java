@@ -52,6 +52,7 @@ public final class BusTicker implements DtronAdapter {
     @Override
     public synchronized void start(Dtron bus) {
         dtron = bus;
+        bus.declareOutputs(TICK);
         bus.addDtronListener(new DtronListener(Dtron.RUN_START) {
             @Override
             public void messageReceived(IDtronChannelValued message) {

@@ -41,6 +41,7 @@ public final class RunClockTicker implements DtronAdapter {
     @Override
     public synchronized void start(Dtron bus) {
         dtron = bus;
+        bus.declareOutputs(TICK);
         bus.addDtronListener(new DtronListener(Dtron.RUN_START) {
             @Override
             public void messageReceived(IDtronChannelValued message) {

@@ -3,6 +3,8 @@ package io.dtron.cli;
 import io.dtron.api.DtronAdapter;
 import io.dtron.api.DtronException;
 import io.dtron.api.DtronOptions;
+import io.dtron.api.ServedChannels;
+import io.dtron.bridge.BusBridge;
 import io.dtron.engine.Adapter;
 import io.dtron.engine.DelayPolicy;
 import io.dtron.engine.OnlineTester;
@@ -28,10 +30,12 @@ import java.nio.file.Path;
 import java.time.Duration;
 import java.util.ArrayList;
 import java.util.List;
+import java.util.Map;
 import java.util.Locale;
 import java.util.Optional;
 import java.util.Set;
 import java.util.concurrent.Callable;
+import java.util.concurrent.TimeUnit;
 import java.util.regex.Pattern;
 import picocli.CommandLine.Command;
 import picocli.CommandLine.Model.CommandSpec;
@@ -83,10 +87,11 @@ final class RunCommand implements Callable<Integer> {
                     + " PORT: the address to listen on (default: loopback).")
     private String bind;
 
-    @Option(names = "--wait-for-adapters", paramLabel = "N",
-            description = "Bus mode: start when N members besides the tester are on the bus, --adapter ones included"
-                    + " (default: 1 without --adapter, so that a run does not start alone; 0 with --adapter).")
-    private Integer waitForAdapters;
+    @Option(names = "--wait-for-adapters", paramLabel = "channels|N",
+            description = "Bus mode: start when every channel of the model is served by an adapter on the bus, as"
+                    + " adapters say when they join (channels, the default), or when N members besides the tester"
+                    + " are on the bus, --adapter ones included (for adapters that do not say; 0 starts at once).")
+    private String waitForAdapters;
 
     @Option(names = "--wait-timeout", paramLabel = "SECONDS",
             description = "Bus mode: how long to wait for the adapters (default: 30).")
@@ -251,6 +256,27 @@ final class RunCommand implements Callable<Integer> {
         throw usage("--delta takes a number of microseconds (0 or more) or auto: " + delta);
     }
 
+    /** The bus's cluster name: {@code --cluster}, or the default. */
+    private String clusterName() {
+        return cluster != null ? cluster : DtronOptions.DEFAULT_CLUSTER;
+    }
+
+    /** {@code --wait-for-adapters N}: how many members to wait for; -1 for channels (the default). */
+    private int adaptersWanted() {
+        if (waitForAdapters == null || waitForAdapters.equalsIgnoreCase("channels")) {
+            return -1;
+        }
+        try {
+            int count = Integer.parseInt(waitForAdapters);
+            if (count >= 0) {
+                return count;
+            }
+        } catch (NumberFormatException e) {
+            // reported below
+        }
+        throw usage("--wait-for-adapters takes 'channels' or a number of adapters (0 or more): " + waitForAdapters);
+    }
+
     /** Rejects options that belong to another mode, and bad values of the bus options. */
     private void checkModeOptions(boolean busMode, boolean tronBackend) {
         if (sut != null && tronAdapter != null) {
@@ -287,8 +313,8 @@ final class RunCommand implements Callable<Integer> {
         if (busMode) {
             reorderWindow();
         }
-        if (waitForAdapters != null && waitForAdapters < 0) {
-            throw usage("--wait-for-adapters must not be negative: " + waitForAdapters);
+        if (waitForAdapters != null) {
+            adaptersWanted();
         }
         if (waitTimeout != null && (waitTimeout <= 0 || waitTimeout > RunDefaults.MAX_WAIT_SECONDS)) {
             throw usage("--wait-timeout must be a positive number of seconds, at most " + RunDefaults.MAX_WAIT_SECONDS
@@ -313,7 +339,7 @@ final class RunCommand implements Callable<Integer> {
 
     private int runOnBus(TestInterface testInterface, TestOptions options, Judge judge, PrintWriter out,
                          PrintWriter err) throws IOException {
-        String clusterName = cluster != null ? cluster : DtronOptions.DEFAULT_CLUSTER;
+        String clusterName = clusterName();
         if (clusterName.isBlank()) {
             throw usage("--cluster: the cluster name is blank");
         }
@@ -355,28 +381,17 @@ final class RunCommand implements Callable<Integer> {
                 }
                 out.println("dtron run: adapter " + adapterClasses.get(i) + " joined as " + member);
             }
-            // a run without any adapter could only fail: without --adapter, wait for one in another process
-            int wanted = waitForAdapters != null ? waitForAdapters : adapterClasses.isEmpty() ? 1 : 0;
-            if (wanted > 0) {
-                long seconds = waitTimeout == null ? 30 : waitTimeout;
-                out.println("dtron run: waiting up to " + seconds + " s for " + wanted + " adapter"
-                        + (wanted == 1 ? "" : "s") + " to join bus '" + clusterName + "'");
-                out.flush();
-                try {
-                    if (!session.awaitAdapters(wanted, Duration.ofSeconds(seconds))) {
-                        err.println("dtron run: only " + (session.bridge().members().size() - 1) + " of " + wanted
-                                + " adapters joined bus '" + clusterName + "' at " + address.getHostAddress()
-                                + " within " + seconds + " s; start them with the same cluster name and address,"
-                                + " or wait longer with --wait-timeout");
-                        return 1;
-                    }
-                } catch (InterruptedException e) {
-                    Thread.currentThread().interrupt();
-                    err.println("dtron run: interrupted while waiting for the adapters");
+            long seconds = waitTimeout == null ? 30 : waitTimeout;
+            int wanted = adaptersWanted();
+            try {
+                if (wanted < 0 ? !awaitChannels(session, seconds, out, err) : !awaitMembers(session, wanted, seconds,
+                        out, err)) {
                     return 1;
                 }
-                out.println("dtron run: members " + session.bridge().members());
-                out.flush();
+            } catch (InterruptedException e) {
+                Thread.currentThread().interrupt();
+                err.println("dtron run: interrupted while waiting for the adapters");
+                return 1;
             }
             try {
                 Set<String> others = session.otherTesters();
@@ -398,6 +413,77 @@ final class RunCommand implements Callable<Integer> {
             out.flush();
             return result.verdict().exitCode();
         }
+    }
+
+    /**
+     * Waits until every channel of the model is served: prints what is missing now and then, and on a timeout what
+     * each member serves.
+     */
+    private boolean awaitChannels(BusSession session, long seconds, PrintWriter out, PrintWriter err)
+            throws InterruptedException {
+        BusBridge bridge = session.bridge();
+        long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(seconds);
+        List<String> missing = bridge.unservedChannels();
+        if (!missing.isEmpty()) {
+            out.println("dtron run: waiting up to " + seconds + " s until an adapter on bus '" + clusterName()
+                    + "' serves every channel of the model; missing: " + String.join(", ", missing));
+            out.flush();
+        }
+        while (!missing.isEmpty()) {
+            long left = deadline - System.nanoTime();
+            if (left <= 0) {
+                err.println("dtron run: within " + seconds + " s no adapter on bus '" + clusterName() + "' at "
+                        + bindAddress().getHostAddress() + " served " + String.join(", ", missing)
+                        + servedSummary(bridge) + ". Start the adapters with the same cluster name and address"
+                        + " (adapters declare the channels they send with Dtron.declareOutputs), wait longer with"
+                        + " --wait-timeout, or, for adapters that do not say which channels they serve, wait for a"
+                        + " number of them with --wait-for-adapters N");
+                return false;
+            }
+            bridge.awaitChannelsServed(Duration.ofNanos(Math.min(left, TimeUnit.SECONDS.toNanos(5))));
+            List<String> now = bridge.unservedChannels();
+            if (!now.isEmpty() && !now.equals(missing)) {
+                out.println("dtron run: still missing: " + String.join(", ", now));
+                out.flush();
+            }
+            missing = now;
+        }
+        out.println("dtron run: every channel is served" + servedSummary(bridge));
+        out.flush();
+        return true;
+    }
+
+    /** "; members: A receives [..] sends [..], ..." for what the adapters on the bus said they serve. */
+    private static String servedSummary(BusBridge bridge) {
+        Map<String, ServedChannels> served = bridge.servedChannels();
+        if (served.isEmpty()) {
+            return "; no adapter on the bus said which channels it serves (members: " + bridge.members() + ")";
+        }
+        List<String> parts = new ArrayList<>();
+        served.forEach((member, channels) -> parts.add(member + " receives " + channels.receives() + " and sends "
+                + channels.sends()));
+        return "; " + String.join(", ", parts);
+    }
+
+    /** Waits until {@code wanted} adapter members are on the bus (--wait-for-adapters N). */
+    private boolean awaitMembers(BusSession session, int wanted, long seconds, PrintWriter out, PrintWriter err)
+            throws InterruptedException {
+        if (wanted == 0) {
+            return true;
+        }
+        out.println("dtron run: waiting up to " + seconds + " s for " + wanted + " adapter" + (wanted == 1 ? "" : "s")
+                + " to join bus '" + clusterName() + "'");
+        out.flush();
+        if (!session.awaitAdapters(wanted, Duration.ofSeconds(seconds))) {
+            err.println("dtron run: only " + (session.bridge().members().size() - 1) + " of " + wanted
+                    + " adapters joined bus '" + clusterName() + "' at " + bindAddress().getHostAddress()
+                    + " within " + seconds + " s; start them with the same cluster name and address, or wait"
+                    + " longer with --wait-timeout");
+            return false;
+        }
+        out.println("dtron run: members " + session.bridge().members());
+        out.flush();
+        return true;
     }
 
     /** Who judges a run: DTRON's engine, or an installed TRON. */

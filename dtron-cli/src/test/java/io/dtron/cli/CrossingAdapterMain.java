@@ -27,6 +27,7 @@ public final class CrossingAdapterMain {
         boolean crossing = args[1].equals("crossing");
         try (Dtron dtron = Dtron.connect(DtronOptions.builder().clusterName(args[0]).memberName("crossing-" + args[1])
                 .build())) {
+            dtron.declareOutputs(X);
             dtron.addDtronListener(new DtronListener(Y) {
                 @Override
                 public void messageReceived(IDtronChannelValued message) {

@@ -107,7 +107,7 @@ class FreshProjectIT {
         long start = System.nanoTime();
         String dtronLatency;
         try (ChildProcess dtron = ChildProcess.java(dir, dir.resolve("dtron.log"), List.of("-jar", JAR.toString(),
-                        TICKER.toString(), "--cluster", cluster, "--wait-for-adapters", "1", "--timeunit", TIMEUNIT,
+                        TICKER.toString(), "--cluster", cluster, "--timeunit", TIMEUNIT,
                         "--timeout", TIMEOUT, "--delay-policy", "eager", "--seed", "1"));
                 ChildProcess adapter = ChildProcess.java(folder, dir.resolve("adapter.log"),
                         List.of("-cp", classpath, "TickerAdapter"))) {

@@ -6,6 +6,9 @@ import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import io.dtron.api.Dtron;
+import io.dtron.api.DtronListener;
+import io.dtron.api.DtronOptions;
+import io.dtron.api.IDtronChannelValued;
 import io.dtron.api.IDtronChannel;
 import io.dtron.engine.AdapterContext;
 import io.dtron.engine.Event;
@@ -204,7 +207,7 @@ class RunCommandTest {
         assertEquals(1, r.exit(), r.out() + r.err());
         assertTrue(r.err().startsWith("dtron run: "), r.err());
         assertTrue(r.err().endsWith("see 'dtron run --help'" + System.lineSeparator()), r.err());
-        assertFalse(r.err().contains("Usage:") || r.err().contains("--wait-for-adapters=N"), r.err());
+        assertFalse(r.err().contains("Usage:") || r.err().contains("--wait-for-adapters=channels|N"), r.err());
         assertTrue(r.err().lines().count() <= 3, "the reason, maybe a suggestion, and the help: " + r.err());
     }
 
@@ -213,9 +216,9 @@ class RunCommandTest {
         CommandRun unknown = CommandRun.of(model.toString(), "--bogus");
         assertOneLineUsageError(unknown);
         assertTrue(unknown.err().startsWith("dtron run: Unknown option: '--bogus'"), unknown.err());
-        CommandRun notANumber = CommandRun.of(model.toString(), "--wait-for-adapters", "two");
+        CommandRun notANumber = CommandRun.of(model.toString(), "--wait-timeout", "two");
         assertOneLineUsageError(notANumber);
-        assertTrue(notANumber.err().contains("Invalid value for option '--wait-for-adapters': 'two'"),
+        assertTrue(notANumber.err().contains("Invalid value for option '--wait-timeout': 'two'"),
                 notANumber.err());
         CommandRun missing = CommandRun.of("run");
         assertOneLineUsageError(missing);
@@ -289,11 +292,38 @@ class RunCommandTest {
     }
 
     @Test
-    void withoutAdaptersARunWaitsForOneAndSaysSoWhenNoneCame() {
+    void withoutAdaptersARunWaitsUntilEveryChannelIsServedAndSaysWhichAreMissing() {
         CommandRun alone = CommandRun.of(model.toString(), "--cluster", cluster(), "--wait-timeout", "1");
         assertEquals(1, alone.exit(), alone.out() + alone.err());
-        assertTrue(alone.out().contains("waiting up to 1 s for 1 adapter to join bus"), alone.out());
-        assertTrue(alone.err().contains("only 0 of 1 adapters joined bus"), alone.err());
+        assertTrue(alone.out().contains("serves every channel of the model; missing: input reset, output tick"),
+                alone.out());
+        assertTrue(alone.err().contains("served input reset, output tick; no adapter on the bus said which channels"
+                + " it serves"), alone.err());
+        assertTrue(alone.err().contains("--wait-for-adapters N"), alone.err());
+        assertFalse(alone.out().contains("PASSED") || alone.out().contains("FAILED"), "no run: " + alone.out());
+    }
+
+    @Test
+    void anAdapterServingPartOfTheModelIsNamedWithWhatItServes() {
+        String bus = cluster();
+        try (Dtron half = Dtron.connect(DtronOptions.builder().clusterName(bus).memberName("half-adapter").build())) {
+            half.addDtronListener(new DtronListener(IDtronChannel.of("reset")) {
+                @Override
+                public void messageReceived(IDtronChannelValued message) {
+                }
+            });
+            CommandRun r = CommandRun.of(model.toString(), "--cluster", bus, "--wait-timeout", "2");
+            assertEquals(1, r.exit(), r.out() + r.err());
+            assertTrue(r.err().contains("served output tick; half-adapter receives [reset] and sends []"), r.err());
+        }
+    }
+
+    @Test
+    void aBadWaitForAdaptersValueIsAUsageError() {
+        CommandRun r = CommandRun.of(model.toString(), "--wait-for-adapters", "two");
+        assertOneLineUsageError(r);
+        assertTrue(r.err().contains("--wait-for-adapters takes 'channels' or a number of adapters (0 or more): two"),
+                r.err());
     }
 
     @Test

@@ -8,6 +8,7 @@ import io.dtron.api.DtronOptions;
 import io.dtron.api.DtronStats;
 import io.dtron.api.IDtronChannel;
 import io.dtron.api.IDtronChannelValued;
+import io.dtron.api.ServedChannels;
 import io.dtron.bridge.internal.LatencyRecorder;
 import io.dtron.engine.Adapter;
 import io.dtron.engine.AdapterContext;
@@ -195,6 +196,51 @@ public final class BusBridge implements Adapter, AutoCloseable {
             dtron.awaitMembers(dtron.getMembers().size() + 1, Duration.ofNanos(Math.min(left, 100_000_000L)));
         }
         return true;
+    }
+
+    /**
+     * Returns the channels of the model that no adapter on the bus serves yet, as the handshake tells (see {@link
+     * Dtron#getMembersServedChannels()}): "input NAME" for an input no member listens to, "output NAME" for an
+     * output no member declared or sent; empty when every channel is served. Testers of other runs do not count.
+     */
+    public List<String> unservedChannels() {
+        Set<String> receivers = new java.util.HashSet<>();
+        Set<String> senders = new java.util.HashSet<>();
+        Set<String> testers = dtron.getOtherTesters();
+        dtron.getMembersServedChannels().forEach((member, served) -> {
+            if (!testers.contains(member)) {
+                receivers.addAll(served.receives());
+                senders.addAll(served.sends());
+            }
+        });
+        List<String> missing = new ArrayList<>();
+        inputs.keySet().stream().filter(c -> !receivers.contains(c)).sorted().forEach(c -> missing.add("input " + c));
+        outputs.stream().filter(c -> !senders.contains(c)).sorted().forEach(c -> missing.add("output " + c));
+        return missing;
+    }
+
+    /**
+     * Waits until every channel of the model is served by an adapter on the bus (see {@link #unservedChannels()}).
+     *
+     * @return whether it was, before the timeout
+     * @throws InterruptedException if the thread was interrupted while waiting
+     */
+    public boolean awaitChannelsServed(Duration timeout) throws InterruptedException {
+        long deadline = System.nanoTime() + timeout.toNanos();
+        while (!unservedChannels().isEmpty()) {
+            if (System.nanoTime() >= deadline) {
+                return false;
+            }
+            Thread.sleep(20);
+        }
+        return true;
+    }
+
+    /** Returns what each adapter member on the bus said it serves, by member id (testers left out). */
+    public Map<String, ServedChannels> servedChannels() {
+        Map<String, ServedChannels> served = new TreeMap<>(dtron.getMembersServedChannels());
+        served.keySet().removeAll(dtron.getOtherTesters());
+        return Collections.unmodifiableMap(served);
     }
 
     @Override

@@ -230,6 +230,7 @@ public abstract class AbstractSeleniumAdapter {
                 deliver(message);
             }
         };
+        adapterRuntime.dtron().declareOutputs(RESULT);
         adapterRuntime.dtron().addDtronListener(l);
         listener = l;
     }

@@ -5,6 +5,7 @@ import io.dtron.api.InvalidMessageException;
 import io.dtron.api.InvalidMessageException.Reason;
 import io.dtron.api.internal.proto.Sync;
 import io.dtron.api.internal.proto.Variable;
+import java.util.Collection;
 import java.util.LinkedHashMap;
 import java.util.Map;
 
@@ -24,6 +25,10 @@ public final class SyncCodec {
      * out when it equals the publish time.
      */
     public static byte[] encode(String channelName, Map<String, Integer> variables, Stamp stamp) {
+        return builder(channelName, variables, stamp).build().toByteArray();
+    }
+
+    private static Sync.Builder builder(String channelName, Map<String, Integer> variables, Stamp stamp) {
         Sync.Builder sync = Sync.newBuilder()
                 .setName(channelName)
                 .setSender(stamp.sender())
@@ -38,7 +43,17 @@ public final class SyncCodec {
             sync.setEventTimeNs(stamp.eventTimeNanos());
         }
         variables.forEach((name, value) -> sync.addVariables(Variable.newBuilder().setName(name).setValue(value)));
-        return sync.build().toByteArray();
+        return sync;
+    }
+
+    /**
+     * Encodes a {@code dtron_serve} message of the channel-serving handshake: no variables, the channels the sender
+     * receives and sends.
+     */
+    public static byte[] encodeServed(String channelName, Stamp stamp, Collection<String> receives,
+            Collection<String> sends) {
+        return builder(channelName, Map.of(), stamp).addAllReceives(receives).addAllSends(sends).build()
+                .toByteArray();
     }
 
     /** Returns the stamp a parsed message carries, with {@code transportSender} when it names no sender. */

@@ -1,0 +1,121 @@
+package io.dtron.api.internal;
+
+import io.dtron.api.ServedChannels;
+import java.util.Collection;
+import java.util.Collections;
+import java.util.List;
+import java.util.Map;
+import java.util.Set;
+import java.util.TreeMap;
+import java.util.TreeSet;
+import java.util.concurrent.ConcurrentHashMap;
+import java.util.concurrent.Executor;
+import java.util.concurrent.atomic.AtomicBoolean;
+import java.util.function.Consumer;
+
+/**
+ * Not API. One member's side of the channel-serving handshake: the channels it serves (receives, by listeners, and
+ * sends), announced on {@link #SERVE} whenever they change and whenever a tester's hello arrives; and the last
+ * announcement of every other member on the bus. A tester announces nothing: it serves no channel, it tests them.
+ * Thread-safe.
+ */
+public final class ChannelHandshake {
+    /** The channel of the announcements. */
+    public static final String SERVE = "dtron_serve";
+
+    private final String me;
+    private final boolean tester;
+    private final Executor executor;
+    private final Consumer<ServedChannels> publisher;
+    private final Runnable othersChanged;
+    private final Set<String> receives = new TreeSet<>();
+    private final Set<String> sends = new TreeSet<>();
+    private final Map<String, ServedChannels> others = new ConcurrentHashMap<>();
+    private final AtomicBoolean queued = new AtomicBoolean();
+
+    /**
+     * Creates a member's side.
+     *
+     * @param me            this member's id
+     * @param tester        whether this member is a tester, which announces nothing
+     * @param executor      where announcements are published, one at a time
+     * @param publisher     publishes this member's channels on {@link #SERVE}; must not throw
+     * @param othersChanged called (without locks held) when another member's announcement arrived or it left
+     */
+    public ChannelHandshake(String me, boolean tester, Executor executor, Consumer<ServedChannels> publisher,
+            Runnable othersChanged) {
+        this.me = me;
+        this.tester = tester;
+        this.executor = executor;
+        this.publisher = publisher;
+        this.othersChanged = othersChanged;
+    }
+
+    /** This member listens to a channel ({@code on}) or stopped listening to it; announced when that changes. */
+    public void receiving(String channel, boolean on) {
+        boolean changed;
+        synchronized (this) {
+            changed = on ? receives.add(channel) : receives.remove(channel);
+        }
+        if (changed) {
+            announce();
+        }
+    }
+
+    /** This member sends on these channels; announced when that adds one. */
+    public void sending(Collection<String> channels) {
+        boolean changed;
+        synchronized (this) {
+            changed = sends.addAll(channels);
+        }
+        if (changed) {
+            announce();
+        }
+    }
+
+    /** Returns the channels this member serves. */
+    public synchronized ServedChannels own() {
+        return new ServedChannels(me, receives, sends);
+    }
+
+    /** A tester greeted the bus: this member tells it what it serves. */
+    public void helloReceived(String from) {
+        if (!from.equals(me)) {
+            announce();
+        }
+    }
+
+    /** Another member said what it serves. */
+    public void servedReceived(ServedChannels served) {
+        if (served.member().equals(me)) {
+            return;
+        }
+        ServedChannels before = others.put(served.member(), served);
+        if (!served.equals(before)) {
+            othersChanged.run();
+        }
+    }
+
+    /** Forgets the members that left. */
+    public void viewChanged(List<String> members) {
+        if (others.keySet().retainAll(members)) {
+            othersChanged.run();
+        }
+    }
+
+    /** Returns what each other member on the bus said it serves, by member id (those that said nothing left out). */
+    public Map<String, ServedChannels> others() {
+        return Collections.unmodifiableMap(new TreeMap<>(others));
+    }
+
+    /** Queues one announcement of this member's current channels, unless one is queued already. */
+    private void announce() {
+        if (tester || !queued.compareAndSet(false, true)) {
+            return;
+        }
+        executor.execute(() -> {
+            queued.set(false);
+            publisher.accept(own());
+        });
+    }
+}

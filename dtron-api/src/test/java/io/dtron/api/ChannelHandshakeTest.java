@@ -1,0 +1,95 @@
+package io.dtron.api;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertFalse;
+import static org.junit.jupiter.api.Assertions.assertThrows;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+import java.time.Duration;
+import java.util.Map;
+import java.util.Optional;
+import java.util.Set;
+import java.util.concurrent.TimeUnit;
+import java.util.function.Predicate;
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.Timeout;
+
+/**
+ * The channel-serving handshake: a member's listeners and declared outputs reach a tester, whether the member
+ * joined before or after it, and changes and departures are seen.
+ */
+@Timeout(value = 60, unit = TimeUnit.SECONDS)
+class ChannelHandshakeTest {
+    private static final Duration WAIT = Duration.ofSeconds(10);
+    private static final IDtronChannel RESET = IDtronChannel.of("reset");
+    private static final IDtronChannel TICK = IDtronChannel.of("tick", "seq");
+
+    private static DtronListener ignoring(IDtronChannel channel) {
+        return new DtronListener(channel) {
+            @Override
+            public void messageReceived(IDtronChannelValued message) {
+            }
+        };
+    }
+
+    /** Waits until the tester's view of the members' channels fits. */
+    private static Map<String, ServedChannels> awaitServed(Dtron tester, Predicate<Map<String, ServedChannels>> fits)
+            throws InterruptedException {
+        long deadline = System.nanoTime() + WAIT.toNanos();
+        Map<String, ServedChannels> served = tester.getMembersServedChannels();
+        while (!fits.test(served)) {
+            assertTrue(System.nanoTime() < deadline, "the tester sees " + served);
+            Thread.sleep(10);
+            served = tester.getMembersServedChannels();
+        }
+        return served;
+    }
+
+    @Test
+    void aMemberThatJoinedBeforeTheTesterTellsItWhenGreeted() throws Exception {
+        String cluster = TestClusters.uniqueName("serve");
+        try (Dtron adapter = Dtron.connect(TestClusters.inJvm(cluster).memberName("adapter").build())) {
+            adapter.addDtronListener(ignoring(RESET));
+            adapter.declareOutputs(TICK);
+            assertEquals(new ServedChannels("adapter", Set.of("reset"), Set.of("tick")), adapter.getServedChannels());
+            try (Dtron tester = Dtron.connect(TestClusters.inJvm(cluster).memberName("tester").tester(true).build())) {
+                Map<String, ServedChannels> served = awaitServed(tester, m -> m.containsKey("adapter"));
+                assertEquals(Map.of("adapter", new ServedChannels("adapter", Set.of("reset"), Set.of("tick"))),
+                        served);
+                assertEquals(Map.of(), adapter.getMembersServedChannels(), "a tester says nothing");
+            }
+        }
+    }
+
+    @Test
+    void changesAndDeparturesReachTheTester() throws Exception {
+        String cluster = TestClusters.uniqueName("serve");
+        try (Dtron tester = Dtron.connect(TestClusters.inJvm(cluster).memberName("tester").tester(true).build())) {
+            try (Dtron adapter = Dtron.connect(TestClusters.inJvm(cluster).memberName("adapter").build())) {
+                DtronListener reset = ignoring(RESET);
+                adapter.addDtronListener(reset);
+                awaitServed(tester, m -> Optional.ofNullable(m.get("adapter"))
+                        .map(s -> s.receives().equals(Set.of("reset"))).orElse(false));
+                // sending on a channel serves it too
+                tester.addDtronListener(ignoring(TICK));
+                adapter.send(TICK.constructValued(Map.of("seq", 1)));
+                awaitServed(tester, m -> m.get("adapter").sends().equals(Set.of("tick")));
+                adapter.removeDtronListener(reset);
+                ServedChannels last = awaitServed(tester, m -> m.get("adapter").receives().isEmpty()).get("adapter");
+                assertEquals(Set.of("tick"), last.sends());
+            }
+            awaitServed(tester, Map::isEmpty);
+        }
+    }
+
+    @Test
+    void dtronsOwnChannelsAreNotServed() {
+        String cluster = TestClusters.uniqueName("serve");
+        try (Dtron adapter = Dtron.connect(TestClusters.inJvm(cluster).memberName("adapter").build())) {
+            adapter.addDtronListener(ignoring(Dtron.RUN_START));
+            assertFalse(adapter.getServedChannels().receives().contains("dtron_start"));
+            assertThrows(IllegalArgumentException.class, () -> adapter.declareOutputs(Dtron.RUN_STOP));
+            assertTrue(Dtron.isReservedChannel("dtron_serve"));
+        }
+    }
+}
