@@ -21,6 +21,21 @@ public interface AdapterContext {
     void report(Event output, long eventMicros);
 
     /**
+     * Reports an output, as {@link #report(Event, long)} does, whose time is known only within {@code
+     * uncertaintyMicros} of {@code eventMicros}: the clocks of the adapter's host and the tester's agree only that
+     * well. The tester accepts the output if the model allows it at some time in that interval (as TRON does for
+     * observations). This implementation ignores the uncertainty.
+     *
+     * @throws IllegalArgumentException if the uncertainty is negative
+     */
+    default void report(Event output, long eventMicros, long uncertaintyMicros) {
+        if (uncertaintyMicros < 0) {
+            throw new IllegalArgumentException("negative uncertainty: " + uncertaintyMicros);
+        }
+        report(output, eventMicros);
+    }
+
+    /**
      * Reports that input number {@code ordinal} (1 for the first input the engine passed to {@link Adapter#perform},
      * 2 for the next, ...) was applied to the system under test at {@code eventMicros} on the run's clock, later than
      * the engine performed it. Thread-safe. The tester then places the input at that time (an input is never placed
@@ -28,6 +43,28 @@ public interface AdapterContext {
      * input was executed too late), never FAILED.
      */
     void inputApplied(long ordinal, long eventMicros);
+
+    /**
+     * Reports when an input was applied, as {@link #inputApplied(long, long)} does, known only within {@code
+     * uncertaintyMicros} of {@code eventMicros}; the tester places the input at the time in that interval that the
+     * environment allows, if any. This implementation ignores the uncertainty.
+     *
+     * @throws IllegalArgumentException if the uncertainty is negative or the ordinal not positive
+     */
+    default void inputApplied(long ordinal, long eventMicros, long uncertaintyMicros) {
+        if (uncertaintyMicros < 0) {
+            throw new IllegalArgumentException("negative uncertainty: " + uncertaintyMicros);
+        }
+        inputApplied(ordinal, eventMicros);
+    }
+
+    /**
+     * Widens the run's reorder window to at least {@code micros} from now on, when messages take longer than it
+     * allowed for (thread-safe); never narrows it. The tester then holds its judgement that much longer. This
+     * implementation does nothing: the window stays as the run's options set it.
+     */
+    default void widenReorderWindow(long micros) {
+    }
 
     /**
      * Ends the run INCONCLUSIVE with {@code reason} (thread-safe): the adapter lost the system under test (a

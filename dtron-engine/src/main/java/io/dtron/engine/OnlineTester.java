@@ -18,6 +18,7 @@ import java.util.Map;
 import java.util.Objects;
 import java.util.Random;
 import java.util.concurrent.CopyOnWriteArrayList;
+import java.util.concurrent.atomic.AtomicLong;
 
 /**
  * The online tester: runs a closed Uppaal model against a system under test, as Uppaal TRON does. The
@@ -75,10 +76,11 @@ public final class OnlineTester {
             throw new UnsupportedModelException(e.getMessage());
         }
         RunClock clock = options.virtualTime() ? new VirtualClock() : new RealClock();
-        Run run = new Run(semantics, partition, clock, new Random(options.seed()), ticksPerUnit);
+        AtomicLong window = new AtomicLong(options.reorderWindowMicros());
+        Run run = new Run(semantics, partition, clock, new Random(options.seed()), ticksPerUnit, window);
         run.warmUp();
         clock.begin();
-        adapter.start(new Context(clock));
+        adapter.start(new Context(clock, window));
         TestResult result;
         try {
             result = run.loop();
@@ -96,9 +98,11 @@ public final class OnlineTester {
     /** The adapter's view of the run. */
     private final class Context implements AdapterContext {
         private final RunClock clock;
+        private final AtomicLong window;
 
-        Context(RunClock clock) {
+        Context(RunClock clock, AtomicLong window) {
             this.clock = clock;
+            this.window = window;
         }
 
         @Override
@@ -108,15 +112,38 @@ public final class OnlineTester {
 
         @Override
         public void report(Event output, long eventMicros) {
-            clock.reportAt(Objects.requireNonNull(output, "output"), eventMicros);
+            report(output, eventMicros, 0);
+        }
+
+        @Override
+        public void report(Event output, long eventMicros, long uncertaintyMicros) {
+            if (uncertaintyMicros < 0) {
+                throw new IllegalArgumentException("negative uncertainty: " + uncertaintyMicros);
+            }
+            clock.reportAt(Objects.requireNonNull(output, "output"), eventMicros, uncertaintyMicros);
         }
 
         @Override
         public void inputApplied(long ordinal, long eventMicros) {
+            inputApplied(ordinal, eventMicros, 0);
+        }
+
+        @Override
+        public void inputApplied(long ordinal, long eventMicros, long uncertaintyMicros) {
             if (ordinal <= 0) {
                 throw new IllegalArgumentException("inputs are numbered from 1: " + ordinal);
             }
-            clock.inputApplied(ordinal, eventMicros);
+            if (uncertaintyMicros < 0) {
+                throw new IllegalArgumentException("negative uncertainty: " + uncertaintyMicros);
+            }
+            clock.inputApplied(ordinal, eventMicros, uncertaintyMicros);
+        }
+
+        @Override
+        public void widenReorderWindow(long micros) {
+            if (options.reorderWindowMicros() > 0) {
+                window.accumulateAndGet(Math.min(micros, TestOptions.MAX_DURATION_MICROS), Math::max);
+            }
         }
 
         @Override
@@ -150,6 +177,8 @@ public final class OnlineTester {
         final long ordinal;
         final long sentMicros;
         long micros;
+        /** The event happened within this many microseconds of {@link #micros}: the clocks' error bound. */
+        long uncertainty;
         StateSet after;
         long afterMicros;
 
@@ -175,7 +204,8 @@ public final class OnlineTester {
         private final long unit;
         private final int ticksPerUnit;
         private final long timeoutMicros;
-        private final long window;
+        /** The reorder window in microseconds; widened during the run by the adapter. */
+        private final AtomicLong windowMicros;
         /** How far, in ticks, an input is aimed inside the end of its window: a real clock wakes up late. */
         private final long inputMargin;
         /** The state set after every event committed to, at the time of the last of them. */
@@ -192,7 +222,8 @@ public final class OnlineTester {
         private int inputs;
         private int outputs;
 
-        Run(Semantics semantics, Partition partition, RunClock clock, Random random, int ticksPerUnit) {
+        Run(Semantics semantics, Partition partition, RunClock clock, Random random, int ticksPerUnit,
+            AtomicLong windowMicros) {
             this.semantics = semantics;
             this.partition = partition;
             this.clock = clock;
@@ -200,10 +231,14 @@ public final class OnlineTester {
             this.unit = options.timeUnitMicros();
             this.ticksPerUnit = ticksPerUnit;
             this.timeoutMicros = Math.multiplyExact(options.timeout(), unit);
-            this.window = options.reorderWindowMicros();
+            this.windowMicros = windowMicros;
             this.inputMargin = options.virtualTime() ? 0 : ticksCeil(INPUT_MARGIN_MICROS);
             this.set = StateSet.initial(semantics, partition);
             this.committed = set;
+        }
+
+        private long window() {
+            return windowMicros.get();
         }
 
         /** Plans the first step once before time starts, so that a cold start does not eat real time. */
@@ -228,9 +263,9 @@ public final class OnlineTester {
                     }
                     continue;
                 }
-                commit(now - window);
+                commit(now - window());
                 if (now >= timeoutMicros) {
-                    RunClock.TimedEvent last = now >= timeoutMicros + window ? clock.drain() : null;
+                    RunClock.TimedEvent last = now >= timeoutMicros + window() ? clock.drain() : null;
                     if (last != null) {
                         // reported (or due) before the end: judged before the verdict
                         TestResult verdict = receive(last);
@@ -239,12 +274,12 @@ public final class OnlineTester {
                         }
                         continue;
                     }
-                    if (now >= timeoutMicros + window) {
+                    if (now >= timeoutMicros + window()) {
                         return result(Verdict.PASSED, "the timeout of " + options.timeout() + " time units was"
                                 + " reached after " + inputs + " inputs and " + outputs + " outputs, all as the model"
                                 + " allows");
                     }
-                    TestResult verdict = receive(clock.awaitUntil(timeoutMicros + window));
+                    TestResult verdict = receive(clock.awaitUntil(timeoutMicros + window()));
                     if (verdict != null) {
                         return verdict;
                     }
@@ -259,7 +294,7 @@ public final class OnlineTester {
                 // reorder window to arrive
                 boolean deadline = !choice.isInput() && plan.hasDeadline() && choice.ticks() > plan.deadline()
                         && at < timeoutMicros;
-                long target = choice.isInput() ? at : deadline ? at + window : Math.min(timeoutMicros, at);
+                long target = choice.isInput() ? at : deadline ? at + window() : Math.min(timeoutMicros, at);
                 announceWait(now, target, choice, plan);
                 RunClock.TimedEvent event = clock.awaitUntil(target);
                 if (event != null) {
@@ -274,6 +309,9 @@ public final class OnlineTester {
                         return verdict;
                     }
                 } else if (deadline) {
+                    if (clock.nowMicros() < at + window()) {
+                        continue; // the window was widened while the tester waited
+                    }
                     String deadlineAt = time(lastMicros + micros(plan.deadline()));
                     java.util.Optional<String> unreachable = adapter.unreachable();
                     RunClock.TimedEvent meanwhile = clock.drain();
@@ -290,8 +328,8 @@ public final class OnlineTester {
                                 + " under test may not have been able to act: " + unreachable.get());
                     }
                     return result(Verdict.FAILED, "no output came by " + deadlineAt + ": the model required the"
-                            + " system under test to act by then" + (window > 0
-                            ? " (the tester waited " + Plan.units(window, unit) + " time units more for messages"
+                            + " system under test to act by then" + (window() > 0
+                            ? " (the tester waited " + Plan.units(window(), unit) + " time units more for messages"
                             + " in transit)" : "") + ". " + plan.explainOutputs(this::time, lastMicros));
                 }
             }
@@ -319,7 +357,7 @@ public final class OnlineTester {
                     committedInputs.put(p.ordinal, p);
                 }
             }
-            committedInputs.values().removeIf(p -> p.sentMicros < horizon - window);
+            committedInputs.values().removeIf(p -> p.sentMicros < horizon - window());
         }
 
         /** Takes what an adapter reported; returns a verdict that ends the run, or null. */
@@ -331,22 +369,22 @@ public final class OnlineTester {
                 return result(Verdict.INCONCLUSIVE, timed.abort() + " (at " + time(timed.micros()) + ")");
             }
             if (timed.appliedInput() > 0) {
-                return acknowledged(timed.appliedInput(), timed.micros());
+                return acknowledged(timed.appliedInput(), timed.micros(), timed.uncertainty());
             }
             Event event = timed.event();
             long at = timed.micros();
             long now = clock.nowMicros();
             if (held == null) {
-                commit(now - window);
+                commit(now - window());
             }
-            if (window == 0) {
+            if (window() == 0) {
                 // a scheduled task that ran late reports at its due time, which may be before the last event seen:
                 // the tester has committed to that event, so the output comes after it
                 at = Math.max(at, lastMicros);
             } else if (at < committedMicros) {
                 return result(Verdict.INCONCLUSIVE, "output " + event + " happened at " + time(at) + " but reached"
                         + " the tester at " + time(now) + ", " + Plan.units(now - at, unit) + " time units later:"
-                        + " more than the reorder window of " + Plan.units(window, unit) + " time units, after the"
+                        + " more than the reorder window of " + Plan.units(window(), unit) + " time units, after the"
                         + " tester had committed to events up to " + time(committedMicros) + "; its place among them"
                         + " is unknown");
             }
@@ -367,27 +405,30 @@ public final class OnlineTester {
                 l.outputObserved(event, at);
             }
             outputs++;
-            return place(new Pending(event, false, 0, at));
+            Pending output = new Pending(event, false, 0, at);
+            output.uncertainty = timed.uncertainty();
+            return place(output);
         }
 
         /** Input number {@code ordinal} was applied at {@code micros}: places it there. */
-        private TestResult acknowledged(long ordinal, long micros) {
+        private TestResult acknowledged(long ordinal, long micros, long uncertainty) {
             if (held == null) {
-                commit(clock.nowMicros() - window);
+                commit(clock.nowMicros() - window());
             }
             for (Pending p : pending) {
                 if (p.input && p.ordinal == ordinal) {
                     pending.remove(p);
                     // an input is not applied before it is sent: an earlier time is the clocks' error
                     p.micros = Math.max(micros, p.sentMicros);
+                    p.uncertainty = uncertainty;
                     return place(p);
                 }
             }
             Pending input = committedInputs.remove(ordinal);
-            if (input != null && micros - input.sentMicros > window) {
+            if (input != null && micros - input.sentMicros > window()) {
                 return result(Verdict.INCONCLUSIVE, "input " + input.event + ", sent at " + time(input.sentMicros)
                         + ", was applied at " + time(micros) + ", " + Plan.units(micros - input.sentMicros, unit)
-                        + " time units later: more than the reorder window of " + Plan.units(window, unit) + " time"
+                        + " time units later: more than the reorder window of " + Plan.units(window(), unit) + " time"
                         + " units, after the tester had committed to it");
             }
             return null;
@@ -414,12 +455,12 @@ public final class OnlineTester {
             held = null;
             for (int i = from; i < pending.size(); i++) {
                 Pending p = pending.get(i);
-                TestResult verdict = p.input ? reapply(p) : judge(p.event, p.micros);
+                TestResult verdict = p.input ? reapply(p) : judge(p.event, p.micros, p.uncertainty);
                 if (verdict != null) {
-                    if (window == 0) {
+                    if (window() == 0) {
                         return verdict;
                     }
-                    held = new Held(verdict, p.micros + window);
+                    held = new Held(verdict, p.micros + window());
                     return null;
                 }
                 p.after = set;
@@ -428,10 +469,13 @@ public final class OnlineTester {
             return null;
         }
 
-        /** Judges output {@code event} at {@code at} on the state set: a verdict, or null when it is allowed. */
-        private TestResult judge(Event event, long at) {
+        /**
+         * Judges output {@code event} at {@code at}, give or take {@code uncertainty}, on the state set: a verdict, or
+         * null when it is allowed.
+         */
+        private TestResult judge(Event event, long at, long uncertainty) {
             TestInterface.ObservableChannel channel = testInterface.output(event.channel()).orElseThrow();
-            StateSet atTime = set.afterWindow(ticksFloor(at - lastMicros), ticksCeil(at - lastMicros));
+            StateSet atTime = afterDelay(at, uncertainty);
             if (atTime.isEmpty()) {
                 Pending late = inputAppliedAfter(at);
                 if (late != null) {
@@ -471,6 +515,15 @@ public final class OnlineTester {
                     + plan.explainOutputs(this::time, lastMicros));
         }
 
+        /**
+         * The state set at {@code at}, give or take {@code uncertainty} microseconds (but not before the last event):
+         * every state the model can be in at some time of that interval.
+         */
+        private StateSet afterDelay(long at, long uncertainty) {
+            return set.afterWindow(ticksFloor(Math.max(0, at - uncertainty - lastMicros)),
+                    ticksCeil(at + uncertainty - lastMicros));
+        }
+
         /** A pending input sent at or before {@code at} but applied after it, or null. */
         private Pending inputAppliedAfter(long at) {
             for (Pending p : pending) {
@@ -484,7 +537,7 @@ public final class OnlineTester {
         /** Applies pending input {@code p} again, with its values, at its (possibly new) time. */
         private TestResult reapply(Pending p) {
             TestInterface.ObservableChannel channel = testInterface.input(p.event.channel()).orElseThrow();
-            StateSet atTime = set.afterWindow(ticksFloor(p.micros - lastMicros), ticksCeil(p.micros - lastMicros));
+            StateSet atTime = afterDelay(p.micros, p.uncertainty);
             List<io.dtron.engine.internal.sem.SymState> next = new ArrayList<>();
             for (StateSet.Successor s : atTime.successors(channel.channel())) {
                 if (valuesOf(channel, s.state()).equals(p.event.values())) {

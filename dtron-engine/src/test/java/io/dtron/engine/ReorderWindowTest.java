@@ -217,4 +217,72 @@ class ReorderWindowTest {
         assertEquals("no output came by t=5.000, and the system under test may not have been able to act: member m1"
                 + " did not answer", r.explanation());
     }
+
+    /** Reports x as happened at {@code happened} give or take {@code uncertainty} units, when it arrives. */
+    private static Adapter uncertain(double happened, double arrives, double uncertainty) {
+        return new Adapter() {
+            @Override
+            public void start(AdapterContext context) {
+                context.clock().schedule(micros(arrives), () -> context.report(Event.of("x"), micros(happened),
+                        micros(uncertainty)));
+            }
+
+            @Override
+            public void perform(Event input) {
+            }
+        };
+    }
+
+    @Test
+    void anOutputWithinItsClockErrorOfTheDeadlineIsAccepted() throws Exception {
+        // stamped at 5.2, after the deadline of 5, but the clocks agree only within 0.3 units: it may have been 4.9
+        TestResult within = run(DEADLINE, uncertain(5.2, 5.3, 0.3), 1);
+        assertEquals(Verdict.PASSED, within.verdict(), within.explanation());
+        // an error bound of 0.1 unit does not reach back to 5
+        TestResult beyond = run(DEADLINE, uncertain(5.2, 5.3, 0.1), 1);
+        assertEquals(Verdict.FAILED, beyond.verdict(), beyond.explanation());
+        assertTrue(beyond.explanation().contains("observed at t=5.200"), beyond.explanation());
+    }
+
+    @Test
+    void aWidenedWindowPlacesALaterCrossingMessage() throws Exception {
+        // as in aDelayBeyondTheWindowIsInconclusiveAndNamesTheDelay, but the adapter widened the window to 4 units
+        // at the start, as the bus bridge does when it sees such delays
+        Adapter delayed = new Delayed(9.5, 12.5, 0);
+        Adapter widening = new Adapter() {
+            @Override
+            public void start(AdapterContext context) {
+                context.widenReorderWindow(micros(4));
+                context.widenReorderWindow(micros(2)); // never narrows
+                delayed.start(context);
+            }
+
+            @Override
+            public void perform(Event input) {
+                delayed.perform(input);
+            }
+        };
+        TestResult r = run(crossing(10), widening, 1);
+        assertEquals(Verdict.PASSED, r.verdict(), r.explanation());
+        assertEquals(1, r.outputs(), r.toString());
+    }
+
+    @Test
+    void aDeadlineWaitsForAWindowWidenedWhileTheTesterWaited() throws Exception {
+        // x happened at 4.9 and arrives at 7.5; at 5.5 the adapter widens the window from 1 to 3 units
+        Adapter delayed = new Delayed(4.9, 7.5, 0);
+        Adapter widening = new Adapter() {
+            @Override
+            public void start(AdapterContext context) {
+                context.clock().schedule(micros(5.5), () -> context.widenReorderWindow(micros(3)));
+                delayed.start(context);
+            }
+
+            @Override
+            public void perform(Event input) {
+            }
+        };
+        TestResult r = run(DEADLINE, widening, 1);
+        assertEquals(Verdict.PASSED, r.verdict(), r.explanation());
+    }
 }

@@ -15,12 +15,13 @@ public abstract class RunClock implements TestClock {
     /**
      * What an adapter reported, with its time in microseconds since the start: an output (with {@code event}); the
      * adapter's report that the run cannot go on (with {@code abort}, the reason); or the acknowledgement that
-     * input number {@code appliedInput} (1 for the first the engine performed) was applied at that time.
+     * input number {@code appliedInput} (1 for the first the engine performed) was applied at that time. An event
+     * reported with an uncertainty happened within {@code uncertainty} microseconds of {@code micros}.
      */
-    public record TimedEvent(Event event, long micros, String abort, long appliedInput) {
+    public record TimedEvent(Event event, long micros, String abort, long appliedInput, long uncertainty) {
         /** An output. */
         public TimedEvent(Event event, long micros) {
-            this(event, micros, null, 0);
+            this(event, micros, null, 0, 0);
         }
     }
 
@@ -76,23 +77,26 @@ public abstract class RunClock implements TestClock {
      * Queues an output that happened at {@code micros}, as its adapter stamped it (thread-safe). It may be earlier
      * than outputs already queued: the tester places it by its time, within its reorder window.
      */
-    public final void reportAt(Event output, long micros) {
+    public final void reportAt(Event output, long micros, long uncertainty) {
         synchronized (outputs) {
-            outputs.add(new TimedEvent(output, micros));
+            outputs.add(new TimedEvent(output, micros, null, 0, uncertainty));
         }
     }
 
-    /** Queues the acknowledgement that input number {@code ordinal} was applied at {@code micros} (thread-safe). */
-    public final void inputApplied(long ordinal, long micros) {
+    /**
+     * Queues the acknowledgement that input number {@code ordinal} was applied at {@code micros}, give or take
+     * {@code uncertainty} (thread-safe).
+     */
+    public final void inputApplied(long ordinal, long micros, long uncertainty) {
         synchronized (outputs) {
-            outputs.add(new TimedEvent(null, micros, null, ordinal));
+            outputs.add(new TimedEvent(null, micros, null, ordinal, uncertainty));
         }
     }
 
     /** Queues the adapter's report that the run cannot go on (thread-safe). */
     public final void abort(String reason) {
         synchronized (outputs) {
-            outputs.add(new TimedEvent(null, logicalNow(), reason, 0));
+            outputs.add(new TimedEvent(null, logicalNow(), reason, 0, 0));
         }
     }
 
