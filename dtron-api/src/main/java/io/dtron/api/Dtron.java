@@ -99,6 +99,8 @@ public final class Dtron implements AutoCloseable {
     private final String clusterName;
     private final Optional<Map<String, DtronChannel>> declared;
     private final Map<String, Registration> registrations = new ConcurrentHashMap<>();
+    /** On a tester: the delays of the other members' messages, by member. */
+    private final Map<String, MemberDelay> delays = new ConcurrentHashMap<>();
     private final List<DtronMembershipListener> membershipListeners = new CopyOnWriteArrayList<>();
     private final Counters counters = new Counters();
     private final AtomicLong sequence = new AtomicLong();
@@ -330,6 +332,16 @@ public final class Dtron implements AutoCloseable {
      */
     public Map<String, ServedChannels> getMembersServedChannels() {
         return handshake.others();
+    }
+
+    /**
+     * Returns, on a tester, how long the messages of each other member took to arrive: publish time plus the
+     * sender's clock offset estimate, to receive time, over every message that carried an estimate (members ping
+     * the tester once a second, and {@link #probe} asks them all). By member id in id order; members that left are
+     * kept. Empty on a member that is not the tester.
+     */
+    public Map<String, MemberDelay> getDelaysFromMembers() {
+        return java.util.Collections.unmodifiableMap(new java.util.TreeMap<>(delays));
     }
 
     /**
@@ -765,6 +777,8 @@ public final class Dtron implements AutoCloseable {
             reject(message, e);
             return;
         }
+        recordDelay(value.getSender(), value.getPublishTimeNanos(), value.getClockOffsetNanos(),
+                value.getClockErrorNanos(), receiveTime);
         if (group.equals(RUN_START.getChannelName())) {
             runStarted(value);
         } else if (group.equals(RUN_STOP.getChannelName())) {
@@ -791,6 +805,7 @@ public final class Dtron implements AutoCloseable {
             return;
         }
         Stamp stamp = SyncCodec.stamp(sync, message.sender());
+        recordDelay(stamp, receiveTime);
         switch (message.group()) {
             case ClockSync.HELLO -> {
                 if (!stamp.sender().equals(getMemberId())) {
@@ -805,6 +820,20 @@ public final class Dtron implements AutoCloseable {
                     stamp.effectiveEventTimeNanos(), receiveTime);
             default -> throw new IllegalStateException("not a control channel: " + message.group());
         }
+    }
+
+    private void recordDelay(Stamp stamp, long receiveTime) {
+        recordDelay(stamp.sender(), stamp.publishTimeNanos(), stamp.clockOffsetNanos(), stamp.clockErrorNanos(),
+                receiveTime);
+    }
+
+    /** On a tester, counts the delay of a message from a member that sent its clock offset estimate. */
+    private void recordDelay(String sender, long publishTime, long offset, long error, long receiveTime) {
+        if (error <= 0 || publishTime == 0 || sender.equals(getMemberId()) || !clockSync.isTester()) {
+            return;
+        }
+        long delay = receiveTime - (publishTime + offset);
+        delays.merge(sender, MemberDelay.first(sender, delay, error), (old, one) -> old.plus(delay, error));
     }
 
     /** Called on the transport's thread, in the bus's order. */

@@ -7,6 +7,7 @@ import io.dtron.api.ServedChannels;
 import io.dtron.bridge.BusBridge;
 import io.dtron.engine.Adapter;
 import io.dtron.engine.DelayPolicy;
+import io.dtron.engine.ObservableWindow;
 import io.dtron.engine.OnlineTester;
 import io.dtron.engine.TestOptions;
 import io.dtron.engine.TestResult;
@@ -66,6 +67,10 @@ final class RunCommand implements Callable<Integer> {
 
     @Parameters(index = "0", paramLabel = "MODEL", description = "The model (.xml, .xta, or an Uppaal 3 .ta).")
     private Path model;
+
+    /** How many times the tester asks the adapters to answer before a run, to measure the bus's delays. */
+    private static final int DELAY_PROBES = 10;
+    private static final Duration DELAY_PROBE_SPACING = Duration.ofMillis(20);
 
     @Option(names = "--sut", paramLabel = "CLASS[:VARIANT]",
             description = "An in-process system under test: a class implementing io.dtron.engine.Adapter,"
@@ -142,8 +147,9 @@ final class RunCommand implements Callable<Integer> {
 
     @Option(names = "--delta", paramLabel = "US|auto", defaultValue = "auto",
             description = "On the bus: the reorder window, how long the tester holds its judgement for messages still"
-                    + " in transit; every message is placed by the time its sender stamped on it (auto: "
-                    + RunDefaults.REORDER_WINDOW_MICROS + " us).")
+                    + " in transit; every message is placed by the time its sender stamped on it (auto: from the"
+                    + " delays measured before the run, at least " + BusTiming.AUTO_FLOOR_MICROS + " us, widened"
+                    + " during the run when a message takes more than half of it).")
     private String delta;
 
     @Option(names = "--trace", paramLabel = "FILE", description = "Write every event as one JSON line to FILE.")
@@ -203,7 +209,7 @@ final class RunCommand implements Callable<Integer> {
             return 1;
         }
         try {
-            return busMode ? runOnBus(testInterface, options, judge, out, err)
+            return busMode ? runOnBus(network, testInterface, options, judge, out, err)
                     : runInProcess(testInterface, options, judge, out);
         } catch (UnsupportedModelException e) {
             err.println("dtron run: " + model + ": " + e.getMessage());
@@ -337,7 +343,8 @@ final class RunCommand implements Callable<Integer> {
         return judge.test(testInterface, adapter, options, out).verdict().exitCode();
     }
 
-    private int runOnBus(TestInterface testInterface, TestOptions options, Judge judge, PrintWriter out,
+    private int runOnBus(Network network, TestInterface testInterface, TestOptions options, Judge judge,
+                         PrintWriter out,
                          PrintWriter err) throws IOException {
         String clusterName = clusterName();
         if (clusterName.isBlank()) {
@@ -407,9 +414,24 @@ final class RunCommand implements Callable<Integer> {
                 err.println("dtron run: interrupted while joining the bus");
                 return 1;
             }
-            TestResult result = judge.test(testInterface, session.bridge(), options.withReorderWindow(reorderWindow()),
-                    out);
+            boolean auto = delta.equalsIgnoreCase("auto");
+            long window;
+            try {
+                BusBridge.Delays delays = session.bridge().measureDelays(DELAY_PROBES, DELAY_PROBE_SPACING);
+                window = auto ? BusTiming.autoWindow(delays) : reorderWindow();
+                out.println(BusTiming.delaysLine(delays, window, auto));
+                BusTiming.windowWarning(ObservableWindow.narrowest(network, testInterface), delays,
+                        options.timeUnitMicros()).ifPresent(out::println);
+                out.flush();
+            } catch (InterruptedException e) {
+                Thread.currentThread().interrupt();
+                err.println("dtron run: interrupted while measuring the bus's delays");
+                return 1;
+            }
+            session.bridge().reorderWindow(window, auto);
+            TestResult result = judge.test(testInterface, session.bridge(), options.withReorderWindow(window), out);
             session.printSummary(out);
+            BusTiming.summary(session.bridge(), auto).forEach(out::println);
             out.flush();
             return result.verdict().exitCode();
         }

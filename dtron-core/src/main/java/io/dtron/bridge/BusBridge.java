@@ -78,7 +78,14 @@ public final class BusBridge implements Adapter, AutoCloseable {
     private final Map<String, ClockOffset> offsets = new ConcurrentHashMap<>();
     /** The number of each input of the run (1 for the first) by the sequence number of its message. */
     private final Map<Long, Long> inputNumbers = new HashMap<>();
+    /** The channel of each input of the run, by its number. */
+    private final Map<Long, String> inputChannels = new ConcurrentHashMap<>();
     private long performed;
+    /** The largest delay of this run's messages, event to receipt on the tester's clock, by "output NAME" etc. */
+    private final Map<String, Long> runDelays = new ConcurrentHashMap<>();
+    private final List<String> widenings = Collections.synchronizedList(new ArrayList<>());
+    private volatile long windowMicros;
+    private volatile boolean autoWindow;
     private volatile AdapterContext context;
     private volatile boolean running;
     private volatile String runId = "";
@@ -243,13 +250,93 @@ public final class BusBridge implements Adapter, AutoCloseable {
         return Collections.unmodifiableMap(served);
     }
 
+    /**
+     * The delays measured on the bus before a run: the longest time a message of an adapter member took to reach the
+     * tester (publish to receipt, corrected by the member's clock offset), and the largest error bound of the
+     * offsets involved.
+     *
+     * @param maxDelayNanos the longest delay seen, in nanoseconds
+     * @param maxErrorNanos the largest clock offset error bound, in nanoseconds
+     * @param messages      how many messages were measured
+     * @param members       how many adapter members sent them
+     */
+    public record Delays(long maxDelayNanos, long maxErrorNanos, long messages, int members) {
+    }
+
+    /**
+     * Measures the delays of the adapters' messages before a run: asks every adapter member {@code rounds} times,
+     * {@code spacing} apart, to answer (see {@link Dtron#probe}), and sums up every message of theirs measured so far
+     * (their pings since they joined included), so that the first, slow messages of a fresh process count too.
+     *
+     * @throws InterruptedException if the thread was interrupted while waiting
+     */
+    public Delays measureDelays(int rounds, Duration spacing) throws InterruptedException {
+        Set<String> adapters = new java.util.HashSet<>(dtron.getMembers());
+        adapters.remove(dtron.getMemberId());
+        adapters.removeAll(dtron.getOtherTesters());
+        for (int i = 0; i < rounds && !adapters.isEmpty(); i++) {
+            dtron.probe(adapters, PROBE_TIMEOUT);
+            Thread.sleep(spacing.toMillis());
+        }
+        long max = 0;
+        long error = 0;
+        long messages = 0;
+        int members = 0;
+        for (Map.Entry<String, io.dtron.api.MemberDelay> e : dtron.getDelaysFromMembers().entrySet()) {
+            if (adapters.contains(e.getKey())) {
+                max = Math.max(max, e.getValue().maxNanos());
+                error = Math.max(error, e.getValue().maxErrorNanos());
+                messages += e.getValue().count();
+                members++;
+            }
+        }
+        return new Delays(max, error, messages, members);
+    }
+
+    /**
+     * Sets the reorder window the next run starts with, in microseconds, and whether the bridge widens it when a
+     * message of the run takes more than half of it (to twice that message's delay, rounded up to a millisecond):
+     * {@code --delta auto}. A fixed window ({@code auto} false) stays as the user set it.
+     */
+    public void reorderWindow(long micros, boolean auto) {
+        windowMicros = micros;
+        autoWindow = auto;
+    }
+
+    /** Returns the reorder window now: as set, or as widened during the run. */
+    public long reorderWindowMicros() {
+        return windowMicros;
+    }
+
+    /**
+     * Returns how the window was widened during the last run, one line each ("to 12.0 ms at t=3.2 s: output tick
+     * took 5.9 ms"); empty if it was not.
+     */
+    public List<String> widenings() {
+        synchronized (widenings) {
+            return List.copyOf(widenings);
+        }
+    }
+
+    /**
+     * Returns the largest delay of each kind of message in the last run, from the event (an output produced, an
+     * input applied) to its receipt by the tester, on the tester's clock, in microseconds: keys "output NAME" and
+     * "input NAME" (its acknowledgement), in name order.
+     */
+    public Map<String, Long> runDelays() {
+        return Collections.unmodifiableMap(new TreeMap<>(runDelays));
+    }
+
     @Override
     public void start(AdapterContext runContext) {
         context = Objects.requireNonNull(runContext, "runContext");
+        runDelays.clear();
+        widenings.clear();
         watched.addAll(dtron.getMembers());
         watched.remove(dtron.getMemberId());
         synchronized (inputNumbers) {
             inputNumbers.clear();
+            inputChannels.clear();
             performed = 0;
         }
         runId = Long.toHexString(ThreadLocalRandom.current().nextLong() >>> 16);
@@ -294,6 +381,7 @@ public final class BusBridge implements Adapter, AutoCloseable {
             performed++;
             if (sent != null) {
                 inputNumbers.put(sent.getSequence(), performed);
+                inputChannels.put(performed, input.channel());
             }
         }
     }
@@ -444,7 +532,9 @@ public final class BusBridge implements Adapter, AutoCloseable {
         }
         recordOffset(ack);
         if (number != null) {
-            context.inputApplied(number, runMicros(ack));
+            long applied = runMicros(ack);
+            delayed(ack, "input " + inputChannels.getOrDefault(number, "?"), applied);
+            context.inputApplied(number, applied, errorMicros(ack));
         }
     }
 
@@ -479,7 +569,34 @@ public final class BusBridge implements Adapter, AutoCloseable {
         }
         // stamped before time 0 (it was ordered before the start on the bus): it counts from the start
         recordOffset(message);
-        context.report(new Event(channel, message.getVariables()), Math.max(0, runMicros(message)));
+        long happened = Math.max(0, runMicros(message));
+        delayed(message, "output " + channel, happened);
+        context.report(new Event(channel, message.getVariables()), happened, errorMicros(message));
+    }
+
+    /** A message's clock error bound in whole microseconds, rounded up: the uncertainty of its event time. */
+    private static long errorMicros(IDtronChannelValued message) {
+        return -Math.floorDiv(-message.getClockErrorNanos(), 1000);
+    }
+
+    /**
+     * Records how long after its event a message arrived, and widens the reorder window when it took more than half
+     * of it and the window is automatic.
+     */
+    private void delayed(IDtronChannelValued message, String what, long eventRunMicros) {
+        long received = Math.floorDiv(message.getReceiveTimeNanos() - zeroEpochNanos, 1000);
+        long delay = Math.max(0, received - eventRunMicros);
+        runDelays.merge(what, delay, Math::max);
+        long window = windowMicros;
+        if (autoWindow && window > 0 && delay > window / 2) {
+            long widened = -Math.floorDiv(-2 * delay, 1000) * 1000;
+            windowMicros = widened;
+            context.widenReorderWindow(widened);
+            String line = String.format(java.util.Locale.ROOT, "to %.1f ms at run time %.3f s: %s from %s took %.1f ms",
+                    widened / 1e3, received / 1e6, what, message.getSender(), delay / 1e3);
+            widenings.add(line);
+            LOG.info("Reorder window widened {}", line);
+        }
     }
 
     /**

@@ -68,6 +68,8 @@ class BusBridgeTest {
         final BlockingQueue<Long> outputTimes = new LinkedBlockingQueue<>();
         final BlockingQueue<long[]> applied = new LinkedBlockingQueue<>();
         final BlockingQueue<String> inconclusive = new LinkedBlockingQueue<>();
+        final BlockingQueue<Long> uncertainties = new LinkedBlockingQueue<>();
+        final BlockingQueue<Long> widened = new LinkedBlockingQueue<>();
         final long zero = System.nanoTime();
 
         @Override
@@ -82,8 +84,25 @@ class BusBridgeTest {
         }
 
         @Override
+        public void report(Event output, long eventMicros, long uncertaintyMicros) {
+            uncertainties.add(uncertaintyMicros);
+            report(output, eventMicros);
+        }
+
+        @Override
         public void inputApplied(long ordinal, long eventMicros) {
             applied.add(new long[] {ordinal, eventMicros});
+        }
+
+        @Override
+        public void inputApplied(long ordinal, long eventMicros, long uncertaintyMicros) {
+            uncertainties.add(uncertaintyMicros);
+            inputApplied(ordinal, eventMicros);
+        }
+
+        @Override
+        public void widenReorderWindow(long micros) {
+            widened.add(micros);
         }
 
         @Override
@@ -180,6 +199,71 @@ class BusBridgeTest {
         long error = adapter.getClockOffset().map(o -> o.errorNanos() / 1000).orElse(0L) + 1000;
         assertTrue(Math.abs(at - 7000) <= error, "reported at " + at + " us, stamped at 7000 us (error " + error
                 + " us); time 0 was " + before + " us before the send on the run's clock");
+    }
+
+    /** Waits until the adapter has an estimate of its clock offset to the tester. */
+    private void awaitOffset() throws InterruptedException {
+        long deadline = System.nanoTime() + WAIT.toNanos();
+        while (!adapter.hasClockOffset()) {
+            assertTrue(System.nanoTime() < deadline, "the adapter has no clock offset");
+            Thread.sleep(10);
+        }
+    }
+
+    @Test
+    void anEventsTimeIsUncertainByItsSendersClockError() throws Exception {
+        awaitOffset();
+        bridge.start(context);
+        IDtronChannelValued sent = adapter.send(DONE.constructValued(Map.of("amount", 1)));
+        assertNotNull(context.outputs.poll(10, TimeUnit.SECONDS));
+        long uncertainty = context.uncertainties.take();
+        assertTrue(sent.getClockErrorNanos() > 0, "an estimate has an error bound");
+        assertEquals((sent.getClockErrorNanos() + 999) / 1000, uncertainty, "the error bound in whole us, rounded up");
+    }
+
+    @Test
+    void anAutomaticWindowIsWidenedByAMessageThatTookMoreThanHalfOfIt() throws Exception {
+        awaitOffset();
+        bridge.reorderWindow(40_000, true);
+        Inbox start = new Inbox(Dtron.RUN_START);
+        adapter.addDtronListener(start);
+        bridge.start(context);
+        start.take();
+        // produced 30 ms before it is sent: more than half of 40 ms
+        adapter.send(X.constructValued(Map.of()), adapter.currentTimeNanos() - 30_000_000);
+        long widened = context.widened.poll(10, TimeUnit.SECONDS);
+        assertTrue(widened >= 60_000 && widened % 1000 == 0, "twice the delay, in whole ms: " + widened);
+        assertEquals(widened, bridge.reorderWindowMicros());
+        assertEquals(1, bridge.widenings().size(), bridge.widenings().toString());
+        assertTrue(bridge.widenings().get(0).contains("output x from adapter took 3"), bridge.widenings().toString());
+        assertTrue(bridge.runDelays().get("output x") >= 30_000, bridge.runDelays().toString());
+        // a delay within half of the wider window changes nothing
+        adapter.send(X.constructValued(Map.of()), adapter.currentTimeNanos() - 5_000_000);
+        assertNotNull(context.outputs.poll(10, TimeUnit.SECONDS));
+        assertNotNull(context.outputs.poll(10, TimeUnit.SECONDS));
+        assertEquals(1, bridge.widenings().size(), bridge.widenings().toString());
+    }
+
+    @Test
+    void aFixedWindowIsNotWidened() throws Exception {
+        awaitOffset();
+        bridge.reorderWindow(40_000, false);
+        bridge.start(context);
+        adapter.send(X.constructValued(Map.of()), adapter.currentTimeNanos() - 30_000_000);
+        assertNotNull(context.outputs.poll(10, TimeUnit.SECONDS));
+        assertTrue(context.widened.isEmpty(), context.widened.toString());
+        assertEquals(40_000, bridge.reorderWindowMicros());
+        assertTrue(bridge.runDelays().get("output x") >= 30_000, bridge.runDelays().toString());
+    }
+
+    @Test
+    void delaysAreMeasuredBeforeARun() throws Exception {
+        awaitOffset();
+        BusBridge.Delays delays = bridge.measureDelays(3, Duration.ofMillis(10));
+        assertEquals(1, delays.members(), delays.toString());
+        assertTrue(delays.messages() >= 3, "at least the answers to the probes: " + delays);
+        assertTrue(delays.maxDelayNanos() < TimeUnit.SECONDS.toNanos(1), delays.toString());
+        assertTrue(delays.maxErrorNanos() > 0, delays.toString());
     }
 
     @Test

@@ -1,0 +1,122 @@
+package io.dtron.cli;
+
+import io.dtron.bridge.BusBridge;
+import io.dtron.engine.ObservableWindow;
+import java.util.ArrayList;
+import java.util.List;
+import java.util.Locale;
+import java.util.Map;
+import java.util.Optional;
+
+/**
+ * The timing of a bus run as {@code dtron run} reports it: the delays measured before time 0, the reorder window
+ * ({@code --delta}) they give, whether they eat into the model's narrowest observable window, and at the end what
+ * the run saw.
+ */
+final class BusTiming {
+    /**
+     * The smallest automatic reorder window: a loaded host or a fresh JVM holds a message up for tens of
+     * milliseconds now and then, whatever the bus's delays were before the run.
+     */
+    static final long AUTO_FLOOR_MICROS = RunDefaults.REORDER_WINDOW_MICROS;
+    /** How many times the longest delay measured before the run the automatic window allows for. */
+    private static final int DELAY_FACTOR = 3;
+    /** Delays that take more than this share of the narrowest window are worth a warning. */
+    private static final double WARN_SHARE = 0.2;
+    /** The share of the narrowest window that a suggested time unit leaves to the delays. */
+    private static final double FIT_SHARE = 0.1;
+
+    private BusTiming() {
+    }
+
+    /**
+     * The automatic reorder window: three times the longest delay measured plus twice the clocks' error bound,
+     * rounded up to a millisecond, and at least {@link #AUTO_FLOOR_MICROS}.
+     */
+    static long autoWindow(BusBridge.Delays delays) {
+        long nanos = DELAY_FACTOR * delays.maxDelayNanos() + 2 * delays.maxErrorNanos();
+        long micros = -Math.floorDiv(-nanos, 1_000_000L) * 1000;
+        return Math.max(AUTO_FLOOR_MICROS, micros);
+    }
+
+    /** The line printed before time 0: the delays measured and the reorder window. */
+    static String delaysLine(BusBridge.Delays delays, long windowMicros, boolean auto) {
+        String measured = delays.messages() == 0
+                ? "no message of an adapter could be measured (adapters send their clock offset once they know the"
+                        + " tester)"
+                : String.format(Locale.ROOT, "up to %s over %d messages of %d adapter%s (clock error up to %s)",
+                        millis(delays.maxDelayNanos() / 1000), delays.messages(), delays.members(),
+                        delays.members() == 1 ? "" : "s", millis(delays.maxErrorNanos() / 1000));
+        String window = auto
+                ? "auto: " + DELAY_FACTOR + " x the longest delay + 2 x the clock error, at least "
+                        + millis(AUTO_FLOOR_MICROS) + "; widened during the run when a message takes more than half of"
+                        + " it"
+                : "--delta";
+        return "dtron run: delays on the bus before the run: " + measured + "; reorder window (Delta) "
+                + millis(windowMicros) + " (" + window + ")";
+    }
+
+    /**
+     * A warning when the delays measured take more than a fifth of the model's narrowest observable window at this
+     * time unit, with the time unit that would leave them a tenth of it.
+     */
+    static Optional<String> windowWarning(Optional<ObservableWindow> narrowest, BusBridge.Delays delays,
+            long unitMicros) {
+        if (narrowest.isEmpty() || delays.messages() == 0) {
+            return Optional.empty();
+        }
+        ObservableWindow window = narrowest.get();
+        double delayMicros = (delays.maxDelayNanos() + delays.maxErrorNanos()) / 1000.0;
+        double widthMicros = (double) window.width() * unitMicros;
+        if (window.width() == 0) {
+            return Optional.of("dtron run: warning: the observable action " + window + " must happen at an exact"
+                    + " time, but the bus's delays measured up to " + millis(Math.round(delayMicros)) + ": its"
+                    + " verdicts depend on the timing of the bus and the hosts, at any time unit");
+        }
+        if (delayMicros <= WARN_SHARE * widthMicros) {
+            return Optional.empty();
+        }
+        long fitting = niceCeil(delayMicros / (FIT_SHARE * window.width()));
+        return Optional.of(String.format(Locale.ROOT, "dtron run: warning: the narrowest time window of an observable"
+                + " action, %s, is %d time units = %s at %d us per unit; the bus's delays measured before the run (up"
+                + " to %s with the clock error) take %.0f%% of it, so the timing of the bus and the hosts may decide"
+                + " verdicts; a time unit of %d us or more keeps them under %.0f%%", window, window.width(),
+                millis(Math.round(widthMicros)), unitMicros, millis(Math.round(delayMicros)),
+                100 * delayMicros / widthMicros, fitting, 100 * FIT_SHARE));
+    }
+
+    /** The lines printed after the verdict: the window in the end, its widenings, and the largest delays. */
+    static List<String> summary(BusBridge bridge, boolean auto) {
+        List<String> lines = new ArrayList<>();
+        List<String> widenings = bridge.widenings();
+        lines.add("reorder window (Delta): " + millis(bridge.reorderWindowMicros()) + (auto ? " (auto)" : " (--delta)")
+                + (widenings.isEmpty() ? (auto ? ", not widened" : "") : ", widened " + String.join("; ", widenings)));
+        Map<String, Long> delays = bridge.runDelays();
+        if (!delays.isEmpty()) {
+            List<String> parts = new ArrayList<>();
+            delays.forEach((what, micros) -> parts.add(what + " " + millis(micros)));
+            lines.add("largest delays in the run, event to tester: " + String.join(", ", parts));
+        }
+        return lines;
+    }
+
+    /** 0.420 ms, 12.0 ms, 50 ms. */
+    static String millis(long micros) {
+        double ms = micros / 1000.0;
+        return ms >= 10 ? String.format(Locale.ROOT, "%.1f ms", ms).replace(".0 ms", " ms")
+                : String.format(Locale.ROOT, "%.3f ms", ms);
+    }
+
+    /** The smallest of 1, 2 and 5 times a power of ten at or above {@code value}. */
+    static long niceCeil(double value) {
+        long power = 1;
+        while (true) {
+            for (long step : new long[] {1, 2, 5}) {
+                if (step * power >= value) {
+                    return step * power;
+                }
+            }
+            power *= 10;
+        }
+    }
+}

@@ -1,0 +1,75 @@
+package io.dtron.cli;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+import io.dtron.bridge.BusBridge;
+import io.dtron.engine.ObservableWindow;
+import io.dtron.model.ModelLoader;
+import io.dtron.model.Network;
+import io.dtron.model.TestInterface;
+import java.nio.file.Path;
+import java.util.Optional;
+import org.junit.jupiter.api.Test;
+
+/** What a bus run says about its timing before time 0: the automatic window and the narrow-window warning. */
+class BusTimingTest {
+    private static final Path TICKER = Path.of("../models/src/main/resources/io/dtron/models/ticker.xml");
+
+    private static Optional<ObservableWindow> tickerWindow() throws Exception {
+        Network network = ModelLoader.load(TICKER);
+        return ObservableWindow.narrowest(network, TestInterface.fromNames(network));
+    }
+
+    @Test
+    void theAutomaticWindowCoversThreeTimesTheLongestDelayAndTwiceTheErrorWithAFloor() {
+        assertEquals(BusTiming.AUTO_FLOOR_MICROS, BusTiming.autoWindow(new BusBridge.Delays(400_000, 50_000, 20, 1)));
+        // 3 x 30 ms + 2 x 1.5 ms = 93 ms
+        assertEquals(93_000, BusTiming.autoWindow(new BusBridge.Delays(30_000_000, 1_500_000, 20, 1)));
+        // rounded up to a whole millisecond
+        assertEquals(91_000, BusTiming.autoWindow(new BusBridge.Delays(30_000_000, 100_000, 20, 1)));
+    }
+
+    @Test
+    void theTickersNarrowestWindowIsItsTickPeriod() throws Exception {
+        ObservableWindow window = tickerWindow().orElseThrow();
+        assertEquals("o_tick", window.channel());
+        assertEquals(4, window.width(), window.toString());
+    }
+
+    @Test
+    void delaysThatEatAFifthOfTheNarrowestWindowAreReportedWithATimeUnitThatFits() throws Exception {
+        // 1 ms of delay against a window of 4 units: at 1000 us per unit it takes 25%
+        BusBridge.Delays delays = new BusBridge.Delays(900_000, 100_000, 20, 1);
+        String warning = BusTiming.windowWarning(tickerWindow(), delays, 1000).orElseThrow();
+        assertTrue(warning.contains("the narrowest time window of an observable action, o_tick in Ticker (8 <= x <="
+                + " 12, "), warning);
+        assertTrue(warning.contains("is 4 time units = 4.000 ms at 1000 us per unit"), warning);
+        assertTrue(warning.contains("take 25% of it"), warning);
+        // 1 ms must be a tenth of 4 units: 2500 us, rounded up to 5000
+        assertTrue(warning.endsWith("a time unit of 5000 us or more keeps them under 10%"), warning);
+        // at 10 ms per unit the same delays take 2.5%: nothing to say
+        assertEquals(Optional.empty(), BusTiming.windowWarning(tickerWindow(), delays, 10_000));
+    }
+
+    @Test
+    void niceNumbersAreOneTwoOrFiveTimesAPowerOfTen() {
+        assertEquals(1, BusTiming.niceCeil(0.3));
+        assertEquals(2, BusTiming.niceCeil(1.5));
+        assertEquals(5000, BusTiming.niceCeil(2500));
+        assertEquals(10_000, BusTiming.niceCeil(5001));
+    }
+
+    @Test
+    void aRunOnTheBusSaysWhatItMeasuredAndWhatTheRunSaw() {
+        CommandRun r = CommandRun.of(TICKER.toString(), "--cluster", "timing-" + System.nanoTime(), "--adapter",
+                io.dtron.testadapter.BusTicker.class.getName(), "--timeunit", "100", "--timeout", "300",
+                "--delay-policy", "eager");
+        assertTrue(r.out().contains("dtron run: delays on the bus before the run: up to "), r.out());
+        assertTrue(r.out().contains("reorder window (Delta) 50 ms (auto: "), r.out());
+        assertTrue(r.out().contains("dtron run: warning: the narrowest time window of an observable action, o_tick in"
+                + " Ticker (8 <= x <= 12, "), r.out());
+        assertTrue(r.out().contains("is 4 time units = 0.400 ms at 100 us per unit"), r.out());
+        assertTrue(r.out().contains("reorder window (Delta): "), r.out());
+    }
+}
