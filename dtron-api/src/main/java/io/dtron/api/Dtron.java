@@ -77,11 +77,20 @@ public final class Dtron implements AutoCloseable {
      */
     public static final IDtronChannel ACK = IDtronChannel.of("dtron_ack");
 
+    /**
+     * The channel on which each tester of a run of several testers tells the others its verdict, as variable {@code
+     * verdict}: 0 PASSED, 2 FAILED, 3 INCONCLUSIVE (the exit codes of {@code dtron run}). A tester still running
+     * ends its own run INCONCLUSIVE when another one ended FAILED or INCONCLUSIVE. A model channel may not have this
+     * name.
+     */
+    public static final IDtronChannel RUN_VERDICT = IDtronChannel.of("dtron_verdict", "verdict");
+
     /** DTRON's channels, by name: the public ones and those of the clock-offset protocol. */
     private static final Map<String, DtronChannel> RESERVED = Map.of(
             RUN_START.getChannelName(), DtronChannel.copyOf(RUN_START),
             RUN_STOP.getChannelName(), DtronChannel.copyOf(RUN_STOP),
             ACK.getChannelName(), DtronChannel.copyOf(ACK),
+            RUN_VERDICT.getChannelName(), DtronChannel.copyOf(RUN_VERDICT),
             ClockSync.HELLO, new DtronChannel(ClockSync.HELLO, List.of()),
             ClockSync.PING, new DtronChannel(ClockSync.PING, List.of()),
             ClockSync.PONG, new DtronChannel(ClockSync.PONG, List.of()),
@@ -146,7 +155,7 @@ public final class Dtron implements AutoCloseable {
         this.clockShiftNanos = options.getClockShiftForTesting().toNanos();
         this.clockSync = new ClockSync(transport.localMember(), options.isTester(), this::currentTimeNanos,
                 sequence::incrementAndGet, this::publishControl, this::offsetChanged);
-        this.handshake = new ChannelHandshake(transport.localMember(), options.isTester(), dispatcher::execute,
+        this.handshake = new ChannelHandshake(transport.localMember(), dispatcher::execute,
                 this::publishServed, this::wakeWaiters);
         this.runClock = new RunClock(transport.localMember(), this::currentTimeNanos, this::runClockOffset);
         this.lastView = transport.view();
@@ -178,7 +187,8 @@ public final class Dtron implements AutoCloseable {
     static void checkNotReserved(IDtronChannel channel) {
         String name = channel.getChannelName();
         DtronChannel reserved = RESERVED.get(name);
-        boolean runChannel = name.equals(RUN_START.getChannelName()) || name.equals(RUN_STOP.getChannelName());
+        boolean runChannel = name.equals(RUN_START.getChannelName()) || name.equals(RUN_STOP.getChannelName())
+                || name.equals(RUN_VERDICT.getChannelName());
         if (reserved != null && (!runChannel || !reserved.isCompatible(channel))) {
             throw new IllegalArgumentException("channel '" + channel.getChannelName() + "' is reserved by DTRON"
                     + " (for the start and end of runs, acknowledgements and clock offsets); a model channel may not"
@@ -318,6 +328,14 @@ public final class Dtron implements AutoCloseable {
     }
 
     /**
+     * Says whether this member is a tester that takes part in the next run another tester starts on this bus
+     * ({@code dtron run --join}): the starting tester waits for the testers that said so. Told in the handshake.
+     */
+    public void setJoiningRun(boolean joining) {
+        handshake.joiningRun(joining);
+    }
+
+    /**
      * Returns the channels this member serves: those it has listeners for and those it declared or sent on. A
      * member that is not a tester tells the bus whenever they change, and each tester that greets the bus.
      */
@@ -335,10 +353,10 @@ public final class Dtron implements AutoCloseable {
     }
 
     /**
-     * Returns, on a tester, how long the messages of each other member took to arrive: publish time plus the
-     * sender's clock offset estimate, to receive time, over every message that carried an estimate (members ping
-     * the tester once a second, and {@link #probe} asks them all). By member id in id order; members that left are
-     * kept. Empty on a member that is not the tester.
+     * Returns how long the messages of each other member took to arrive, on the tester's clock: publish time plus
+     * the sender's clock offset estimate, to receive time plus this member's, over every message that carried an
+     * estimate or came from the tester (members ping the tester once a second, and {@link #probe} asks them all).
+     * By member id in id order; members that left are kept. Empty while this member has no clock offset estimate.
      */
     public Map<String, MemberDelay> getDelaysFromMembers() {
         return java.util.Collections.unmodifiableMap(new java.util.TreeMap<>(delays));
@@ -726,7 +744,7 @@ public final class Dtron implements AutoCloseable {
         long now = currentTimeNanos();
         try {
             transport.publish(ChannelHandshake.SERVE, SyncCodec.encodeServed(ChannelHandshake.SERVE,
-                    stamp(now, now, "", 0), served.receives(), served.sends()));
+                    stamp(now, now, "", 0), served.receives(), served.sends(), served.joinsRun()));
         } catch (IOException | RuntimeException e) {
             LOG.debug("{} cannot publish the channels it serves: {}", getMemberId(), e.toString());
         }
@@ -790,7 +808,8 @@ public final class Dtron implements AutoCloseable {
         if (registration != null) {
             // decided here, in the bus's order: an input of the current run's tester is acknowledged
             boolean acknowledge = !RESERVED.containsKey(group) && value.getSequence() > 0
-                    && value.getSender().equals(runTester) && !value.getSender().equals(getMemberId());
+                    && (value.getSender().equals(runTester) || isJoiningTester(value.getSender()))
+                    && !value.getSender().equals(getMemberId());
             dispatcher.execute(() -> deliver(value, acknowledge));
         }
     }
@@ -810,16 +829,22 @@ public final class Dtron implements AutoCloseable {
             case ClockSync.HELLO -> {
                 if (!stamp.sender().equals(getMemberId())) {
                     clockSync.testerAnnounced(stamp.sender(), false);
-                    handshake.helloReceived(stamp.sender());
                 }
+                handshake.helloReceived();
             }
             case ChannelHandshake.SERVE -> handshake.servedReceived(new ServedChannels(stamp.sender(),
-                    Set.copyOf(sync.getReceivesList()), Set.copyOf(sync.getSendsList())));
-            case ClockSync.PING -> clockSync.pingReceived(stamp.sender(), stamp.sequence(), receiveTime);
+                    Set.copyOf(sync.getReceivesList()), Set.copyOf(sync.getSendsList()), sync.getJoinsRun()));
+            case ClockSync.PING -> clockSync.pingReceived(stamp.sender(), stamp.sequence(), receiveTime,
+                    isJoiningTester(stamp.sender()));
             case ClockSync.PONG -> clockSync.pongReceived(stamp.sender(), stamp.ackedSender(), stamp.ackedSequence(),
                     stamp.effectiveEventTimeNanos(), receiveTime);
             default -> throw new IllegalStateException("not a control channel: " + message.group());
         }
+    }
+
+    /** Whether a member said it is a tester that takes part in a run another one starts. */
+    private boolean isJoiningTester(String member) {
+        return handshake.joinsRun(member);
     }
 
     private void recordDelay(Stamp stamp, long receiveTime) {
@@ -827,13 +852,21 @@ public final class Dtron implements AutoCloseable {
                 receiveTime);
     }
 
-    /** On a tester, counts the delay of a message from a member that sent its clock offset estimate. */
+    /**
+     * Counts the delay of a message on the tester's clock: from a member that sent its clock offset estimate, or from
+     * the tester itself, when this member is the tester or has an estimate of its own.
+     */
     private void recordDelay(String sender, long publishTime, long offset, long error, long receiveTime) {
-        if (error <= 0 || publishTime == 0 || sender.equals(getMemberId()) || !clockSync.isTester()) {
+        if (publishTime == 0 || sender.equals(getMemberId())) {
             return;
         }
-        long delay = receiveTime - (publishTime + offset);
-        delays.merge(sender, MemberDelay.first(sender, delay, error), (old, one) -> old.plus(delay, error));
+        Optional<ClockOffset> own = clockSync.estimate();
+        if (own.isEmpty() || error <= 0 && !own.get().tester().equals(sender)) {
+            return;
+        }
+        long delay = receiveTime + own.get().offsetNanos() - (publishTime + offset);
+        long bound = error + own.get().errorNanos();
+        delays.merge(sender, MemberDelay.first(sender, delay, bound), (old, one) -> old.plus(delay, bound));
     }
 
     /** Called on the transport's thread, in the bus's order. */

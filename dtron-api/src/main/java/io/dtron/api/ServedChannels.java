@@ -8,19 +8,26 @@ import java.util.TreeSet;
 
 /**
  * The channels one member of the bus serves, as it said in the handshake: those it receives (has a listener for,
- * so it applies a tester's inputs on them) and those it sends (a tester's outputs). Immutable; names are sorted.
+ * so it applies a tester's inputs on them) and those it sends (a tester's outputs). A tester that takes part in a
+ * run another tester starts says so too. Immutable; names are sorted.
  *
  * @param member   the member's id
  * @param receives the channels it listens to
  * @param sends    the channels it publishes
+ * @param joinsRun whether the member is a tester ready to join the next run another tester starts
  */
-public record ServedChannels(String member, Set<String> receives, Set<String> sends) {
+public record ServedChannels(String member, Set<String> receives, Set<String> sends, boolean joinsRun) {
 
     /** Copies the sets into sorted, unmodifiable ones. */
     public ServedChannels {
         Objects.requireNonNull(member, "member");
         receives = sortedCopy(receives);
         sends = sortedCopy(sends);
+    }
+
+    /** The channels of a member that is no joining tester. */
+    public ServedChannels(String member, Set<String> receives, Set<String> sends) {
+        this(member, receives, sends, false);
     }
 
     private static Set<String> sortedCopy(Collection<String> names) {

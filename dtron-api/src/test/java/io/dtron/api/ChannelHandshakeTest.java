@@ -56,7 +56,9 @@ class ChannelHandshakeTest {
                 Map<String, ServedChannels> served = awaitServed(tester, m -> m.containsKey("adapter"));
                 assertEquals(Map.of("adapter", new ServedChannels("adapter", Set.of("reset"), Set.of("tick"))),
                         served);
-                assertEquals(Map.of(), adapter.getMembersServedChannels(), "a tester says nothing");
+                // a tester takes part too: it serves what its listeners and its sends say (nothing here)
+                assertEquals(Map.of("tester", new ServedChannels("tester", Set.of(), Set.of())),
+                        awaitServed(adapter, m -> m.containsKey("tester")));
             }
         }
     }
@@ -79,6 +81,20 @@ class ChannelHandshakeTest {
                 assertEquals(Set.of("tick"), last.sends());
             }
             awaitServed(tester, Map::isEmpty);
+        }
+    }
+
+    @Test
+    void aTesterJoiningARunSaysSo() throws Exception {
+        String cluster = TestClusters.uniqueName("serve");
+        try (Dtron tester = Dtron.connect(TestClusters.inJvm(cluster).memberName("tester").tester(true).build());
+                Dtron joining = Dtron.connect(TestClusters.inJvm(cluster).memberName("joining").build())) {
+            joining.declareOutputs(TICK);
+            joining.setJoiningRun(true);
+            assertTrue(awaitServed(tester, m -> m.containsKey("joining") && m.get("joining").joinsRun())
+                    .get("joining").sends().contains("tick"));
+            joining.setJoiningRun(false);
+            awaitServed(tester, m -> !m.get("joining").joinsRun());
         }
     }
 

@@ -24,6 +24,7 @@ import java.io.File;
 import java.io.IOException;
 import java.io.PrintWriter;
 import java.net.InetAddress;
+import java.net.InetSocketAddress;
 import java.net.ServerSocket;
 import java.net.UnknownHostException;
 import java.nio.file.InvalidPathException;
@@ -71,6 +72,8 @@ final class RunCommand implements Callable<Integer> {
     /** How many times the tester asks the adapters to answer before a run, to measure the bus's delays. */
     private static final int DELAY_PROBES = 10;
     private static final Duration DELAY_PROBE_SPACING = Duration.ofMillis(20);
+    /** How far ahead a run of several testers is started, so that every tester starts its engine at time 0. */
+    private static final Duration RUN_LEAD = Duration.ofMillis(500);
 
     @Option(names = "--sut", paramLabel = "CLASS[:VARIANT]",
             description = "An in-process system under test: a class implementing io.dtron.engine.Adapter,"
@@ -91,6 +94,31 @@ final class RunCommand implements Callable<Integer> {
             description = "Bus mode: the network interface to bind to and to find members at; with --tron-adapter"
                     + " PORT: the address to listen on (default: loopback).")
     private String bind;
+
+    @Option(names = "--members", split = ",", paramLabel = "HOST[:PORT]",
+            description = "Bus mode: where to look for the other members on other hosts, comma separated (default: at"
+                    + " the bind address); each is probed over the port range from PORT (default: --port).")
+    private List<String> members = List.of();
+
+    @Option(names = "--port", paramLabel = "N",
+            description = "Bus mode: the first port to bind to and to probe (default: " + DtronOptions.DEFAULT_PORT
+                    + ").")
+    private Integer port;
+
+    @Option(names = "--port-range", paramLabel = "N",
+            description = "Bus mode: how many ports above --port to bind to and to probe (default: "
+                    + DtronOptions.DEFAULT_PORT_RANGE + ").")
+    private Integer portRange;
+
+    @Option(names = "--testers", paramLabel = "N",
+            description = "Bus mode: the run has N testers, each with its own model: this one starts the run when N - 1"
+                    + " others joined it with --join (default: 1).")
+    private Integer testers;
+
+    @Option(names = "--join",
+            description = "Bus mode: take part in the run another tester (with --testers) starts on this bus, judging"
+                    + " this model's channels on that tester's clock.")
+    private boolean join;
 
     @Option(names = "--wait-for-adapters", paramLabel = "channels|N",
             description = "Bus mode: start when every channel of the model is served by an adapter on the bus, as"
@@ -262,6 +290,48 @@ final class RunCommand implements Callable<Integer> {
         throw usage("--delta takes a number of microseconds (0 or more) or auto: " + delta);
     }
 
+    /** The bus options of this command's members (the tester's and its --adapter ones). */
+    private DtronOptions.Builder busOptions() {
+        DtronOptions.Builder options = DtronOptions.builder().clusterName(clusterName()).bindAddress(bindAddress());
+        if (port != null) {
+            options.port(port);
+        }
+        if (portRange != null) {
+            options.portRange(portRange);
+        }
+        if (!members.isEmpty()) {
+            options.initialMembers(initialMembers());
+        }
+        return options;
+    }
+
+    /** {@code --members}: each HOST or HOST:PORT, the port defaulting to --port. */
+    private List<InetSocketAddress> initialMembers() {
+        List<InetSocketAddress> addresses = new ArrayList<>();
+        for (String member : members) {
+            int colon = member.lastIndexOf(':');
+            boolean hasPort = colon > 0 && member.indexOf(':') == colon; // one colon: HOST:PORT (not IPv6)
+            String host = hasPort ? member.substring(0, colon) : member;
+            if (host.startsWith("[") && host.endsWith("]")) {
+                host = host.substring(1, host.length() - 1);
+            }
+            int memberPort = port != null ? port : DtronOptions.DEFAULT_PORT;
+            if (hasPort) {
+                String number = member.substring(colon + 1);
+                if (!number.matches("\\d{1,5}") || Integer.parseInt(number) < 1 || Integer.parseInt(number) > 65535) {
+                    throw usage("--members: '" + member + "' is not HOST or HOST:PORT with a port of 1 to 65535");
+                }
+                memberPort = Integer.parseInt(number);
+            }
+            try {
+                addresses.add(new InetSocketAddress(InetAddress.getByName(host), memberPort));
+            } catch (UnknownHostException e) {
+                throw usage("--members: unknown host '" + host + "'");
+            }
+        }
+        return addresses;
+    }
+
     /** The bus's cluster name: {@code --cluster}, or the default. */
     private String clusterName() {
         return cluster != null ? cluster : DtronOptions.DEFAULT_CLUSTER;
@@ -289,9 +359,23 @@ final class RunCommand implements Callable<Integer> {
             throw usage("--sut and --tron-adapter each name the system under test; give one");
         }
         if (!busMode && (cluster != null || waitForAdapters != null || waitTimeout != null
-                || !adapterClasses.isEmpty())) {
-            throw usage("--cluster, --wait-for-adapters, --wait-timeout and --adapter are for testing the"
-                    + " adapters on a bus, without --sut or --tron-adapter");
+                || !adapterClasses.isEmpty() || !members.isEmpty() || port != null || portRange != null
+                || testers != null || join)) {
+            throw usage("--cluster, --members, --port, --port-range, --testers, --join, --wait-for-adapters,"
+                    + " --wait-timeout and --adapter are for testing the adapters on a bus, without --sut or"
+                    + " --tron-adapter");
+        }
+        if (join && testers != null) {
+            throw usage("--testers is for the tester that starts a run; a tester that joins it (--join) leaves it out");
+        }
+        if (testers != null && testers < 1) {
+            throw usage("--testers must be 1 or more: " + testers);
+        }
+        if (port != null && (port < 1 || port > 65535) || portRange != null && (portRange < 0 || portRange > 65535)) {
+            throw usage("--port must be 1 to 65535 and --port-range 0 to 65535");
+        }
+        if (busMode) {
+            initialMembers();
         }
         boolean tronListens = tronAdapter != null
                 && TronAddress.parse(tronAdapter).map(a -> a.host() == null).orElse(false);
@@ -362,7 +446,7 @@ final class RunCommand implements Callable<Integer> {
         }
         BusSession session;
         try {
-            session = BusSession.open(testInterface, clusterName, address);
+            session = BusSession.open(testInterface, this::busOptions, join);
         } catch (IllegalArgumentException e) {
             err.println("dtron run: " + model + ": " + e.getMessage());
             return 1;
@@ -401,7 +485,7 @@ final class RunCommand implements Callable<Integer> {
                 return 1;
             }
             try {
-                Set<String> others = session.otherTesters();
+                Set<String> others = join ? Set.of() : session.otherTesters();
                 if (!others.isEmpty()) {
                     err.println("dtron run: bus '" + clusterName + "' at " + address.getHostAddress() + " has a run"
                             + " in progress: tester " + String.join(", ", others) + " is on it, and its adapters"
@@ -416,22 +500,51 @@ final class RunCommand implements Callable<Integer> {
             }
             boolean auto = delta.equalsIgnoreCase("auto");
             long window;
+            BusBridge bridge = session.bridge();
             try {
-                BusBridge.Delays delays = session.bridge().measureDelays(DELAY_PROBES, DELAY_PROBE_SPACING);
+                if (join) {
+                    if (!bridge.readyToJoin(Duration.ofSeconds(seconds))) {
+                        err.println("dtron run: no tester that could start a run greeted bus '" + clusterName
+                                + "' within " + seconds + " s (this tester needs its clock's offset to that tester's);"
+                                + " start it with --testers N, or wait longer with --wait-timeout");
+                        return 1;
+                    }
+                    out.println("dtron run: ready; waiting up to " + seconds + " s for the tester that starts the run"
+                            + " on bus '" + clusterName + "'");
+                    out.flush();
+                } else if (testers != null && testers > 1 && !awaitTesters(bridge, testers - 1, seconds, out, err)) {
+                    return 1;
+                }
+                // a joining tester measures what passes by: the others' pings and answers
+                BusBridge.Delays delays = bridge.measureDelays(join ? 0 : DELAY_PROBES, DELAY_PROBE_SPACING);
                 window = auto ? BusTiming.autoWindow(delays) : reorderWindow();
                 out.println(BusTiming.delaysLine(delays, window, auto));
                 BusTiming.windowWarning(ObservableWindow.narrowest(network, testInterface), delays,
                         options.timeUnitMicros()).ifPresent(out::println);
                 out.flush();
+                // a run of several testers: every engine counts from the time 0 its start names
+                if (join) {
+                    if (bridge.awaitRun(Duration.ofSeconds(seconds)) < 0) {
+                        err.println("dtron run: no tester started a run on bus '" + clusterName + "' within " + seconds
+                                + " s; start it with --testers N (N counting every tester of the run), or wait"
+                                + " longer with --wait-timeout");
+                        return 1;
+                    }
+                } else if (testers != null && testers > 1) {
+                    bridge.announceRun(RUN_LEAD, options.timeUnitMicros());
+                }
             } catch (InterruptedException e) {
                 Thread.currentThread().interrupt();
-                err.println("dtron run: interrupted while measuring the bus's delays");
+                err.println("dtron run: interrupted while preparing the run");
                 return 1;
             }
-            session.bridge().reorderWindow(window, auto);
-            TestResult result = judge.test(testInterface, session.bridge(), options.withReorderWindow(window), out);
+            bridge.reorderWindow(window, auto);
+            TestResult result = judge.test(testInterface, bridge, options.withReorderWindow(window), out);
+            bridge.finish(result.verdict().exitCode());
             session.printSummary(out);
-            BusTiming.summary(session.bridge(), auto).forEach(out::println);
+            BusTiming.summary(bridge, auto).forEach(out::println);
+            bridge.peerVerdicts().forEach((member, code) -> out.println("tester " + member + " of this run: "
+                    + (code == 0 ? "PASSED" : code == 2 ? "FAILED" : "INCONCLUSIVE")));
             out.flush();
             return result.verdict().exitCode();
         }
@@ -485,6 +598,24 @@ final class RunCommand implements Callable<Integer> {
         served.forEach((member, channels) -> parts.add(member + " receives " + channels.receives() + " and sends "
                 + channels.sends()));
         return "; " + String.join(", ", parts);
+    }
+
+    /** Waits until the other testers of a run of several said they join it (--testers N). */
+    private boolean awaitTesters(BusBridge bridge, int others, long seconds, PrintWriter out, PrintWriter err)
+            throws InterruptedException {
+        out.println("dtron run: waiting up to " + seconds + " s for " + others + " other tester" + (others == 1 ? ""
+                : "s") + " to join the run with --join");
+        out.flush();
+        if (!bridge.awaitJoiningTesters(others, Duration.ofSeconds(seconds))) {
+            err.println("dtron run: only " + bridge.joiningTesters().size() + " of " + others + " other testers joined"
+                    + " the run on bus '" + clusterName() + "' within " + seconds + " s; start them with --join and"
+                    + " the same cluster name (and --members where they are on other hosts)");
+            return false;
+        }
+        out.println("dtron run: the run's testers: " + bridge.memberId() + " (this one), " + String.join(", ",
+                bridge.joiningTesters()));
+        out.flush();
+        return true;
     }
 
     /** Waits until {@code wanted} adapter members are on the bus (--wait-for-adapters N). */

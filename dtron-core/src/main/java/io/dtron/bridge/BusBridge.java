@@ -63,8 +63,12 @@ public final class BusBridge implements Adapter, AutoCloseable {
     static final Duration STOP_ECHO_TIMEOUT = Duration.ofSeconds(2);
     /** How long an adapter member gets to answer the tester's probe before a missed deadline (see unreachable). */
     static final Duration PROBE_TIMEOUT = Duration.ofSeconds(1);
+    /** How long the tester that started a run of several testers waits for the others' verdicts before it ends it. */
+    static final Duration VERDICTS_TIMEOUT = Duration.ofSeconds(30);
 
     private final Dtron dtron;
+    /** Whether this bridge takes part in a run another tester starts ({@link #join}). */
+    private final boolean joining;
     private final Map<String, IDtronChannel> inputs;
     private final Set<String> outputs;
     private final LatencyRecorder outputLatency = new LatencyRecorder();
@@ -84,6 +88,17 @@ public final class BusBridge implements Adapter, AutoCloseable {
     /** The largest delay of this run's messages, event to receipt on the tester's clock, by "output NAME" etc. */
     private final Map<String, Long> runDelays = new ConcurrentHashMap<>();
     private final List<String> widenings = Collections.synchronizedList(new ArrayList<>());
+    /** The testers of a run of several that told their verdicts, with the verdicts' exit codes. */
+    private final Map<String, Integer> peerVerdicts = new ConcurrentHashMap<>();
+    /** The testers that joined this bridge's run (it started it), as the run started. */
+    private volatile Set<String> joiners = Set.of();
+    /** On a joining bridge: the run start it waits for or joined. */
+    private final java.util.concurrent.BlockingQueue<IDtronChannelValued> starts =
+            new java.util.concurrent.LinkedBlockingQueue<>();
+    /** Whether the run start was published before {@link #start} (a run of several testers). */
+    private volatile boolean announced;
+    /** The run's time 0 as a {@link System#nanoTime()} reading, when announced. */
+    private volatile long zeroNanoTime;
     private volatile long windowMicros;
     private volatile boolean autoWindow;
     private volatile AdapterContext context;
@@ -92,8 +107,10 @@ public final class BusBridge implements Adapter, AutoCloseable {
     /** The tester's wall-clock time of the run's time 0, in nanoseconds since the epoch. */
     private volatile long zeroEpochNanos;
 
-    private BusBridge(Dtron dtron, Map<String, IDtronChannel> channels, TestInterface testInterface) {
+    private BusBridge(Dtron dtron, Map<String, IDtronChannel> channels, TestInterface testInterface,
+            boolean joining) {
         this.dtron = dtron;
+        this.joining = joining;
         Map<String, IDtronChannel> inputChannels = new LinkedHashMap<>();
         testInterface.inputs().forEach(c -> inputChannels.put(c.name(), channels.get(c.name())));
         this.inputs = Map.copyOf(inputChannels);
@@ -104,8 +121,29 @@ public final class BusBridge implements Adapter, AutoCloseable {
                 public void messageReceived(IDtronChannelValued message) {
                     received(message);
                 }
+
+                @Override
+                protected boolean autoAcknowledge() {
+                    return false; // a tester observes; the adapters apply inputs
+                }
             });
         }
+        // the tester publishes its inputs: in a run of several testers, they are other testers' outputs
+        dtron.declareOutputs(inputs.values());
+        dtron.addDtronListener(new DtronListener(Dtron.RUN_VERDICT) {
+            @Override
+            public void messageReceived(IDtronChannelValued message) {
+                peerVerdict(message);
+            }
+        });
+        dtron.addDtronListener(new DtronListener(Dtron.RUN_START) {
+            @Override
+            public void messageReceived(IDtronChannelValued message) {
+                if (joining && !message.getSender().equals(dtron.getMemberId())) {
+                    starts.add(message);
+                }
+            }
+        });
         dtron.addDtronListener(new DtronListener(Dtron.ACK) {
             @Override
             public void messageReceived(IDtronChannelValued message) {
@@ -117,6 +155,8 @@ public final class BusBridge implements Adapter, AutoCloseable {
             public void messageReceived(IDtronChannelValued message) {
                 if (message.getSender().equals(dtron.getMemberId())) {
                     ownStop.countDown();
+                } else if (joining && running && !ofOtherRun(message)) {
+                    context.inconclusive("tester " + message.getSender() + ", which started the run, ended it");
                 }
             }
         });
@@ -136,15 +176,197 @@ public final class BusBridge implements Adapter, AutoCloseable {
      */
     public static BusBridge connect(TestInterface testInterface, DtronOptions.Builder options) {
         Map<String, IDtronChannel> channels = channels(testInterface);
+        return connect(testInterface, options, false);
+    }
+
+    /**
+     * Joins the bus as one tester of a run that another tester starts ({@code dtron run --join}): it judges its own
+     * model's channels, on the starting tester's clock, from that tester's run start on. Call {@link #readyToJoin()}
+     * when its channels are served, then {@link #awaitRun}.
+     *
+     * @throws IllegalArgumentException as {@link #connect} does
+     * @throws DtronException           if the bus cannot be joined
+     */
+    public static BusBridge join(TestInterface testInterface, DtronOptions.Builder options) {
+        return connect(testInterface, options, true);
+    }
+
+    private static BusBridge connect(TestInterface testInterface, DtronOptions.Builder options, boolean joining) {
+        Map<String, IDtronChannel> channels = channels(testInterface);
         List<IDtronChannel> declared = new ArrayList<>(channels.values());
         declared.add(Dtron.RUN_START);
         declared.add(Dtron.RUN_STOP);
-        Dtron dtron = Dtron.connect(options.channels(declared).tester(true).build());
+        declared.add(Dtron.RUN_VERDICT);
+        Dtron dtron = Dtron.connect(options.channels(declared).tester(!joining).build());
         try {
-            return new BusBridge(dtron, channels, testInterface);
+            return new BusBridge(dtron, channels, testInterface, joining);
         } catch (RuntimeException e) {
             dtron.close();
             throw e;
+        }
+    }
+
+    /** Returns whether this bridge joins a run another tester starts. */
+    public boolean isJoining() {
+        return joining;
+    }
+
+    /**
+     * A joining bridge tells the bus it is ready, once it knows its clock's offset to the tester that starts the
+     * run (the run's clock): that tester waits for it.
+     *
+     * @return whether it was ready before the timeout (it knew a tester and its clock offset)
+     * @throws InterruptedException if the thread was interrupted while waiting
+     */
+    public boolean readyToJoin(Duration timeout) throws InterruptedException {
+        long deadline = System.nanoTime() + timeout.toNanos();
+        while (!dtron.hasClockOffset()) {
+            if (System.nanoTime() >= deadline) {
+                return false;
+            }
+            Thread.sleep(10);
+        }
+        dtron.setJoiningRun(true);
+        return true;
+    }
+
+    /** Returns the members that said they are testers ready to join the next run this bridge starts. */
+    public List<String> joiningTesters() {
+        List<String> ready = new ArrayList<>();
+        dtron.getMembersServedChannels().forEach((member, served) -> {
+            if (served.joinsRun() && dtron.getMembers().contains(member)) {
+                ready.add(member);
+            }
+        });
+        return ready;
+    }
+
+    /**
+     * Waits until at least {@code count} testers said they are ready to join this bridge's next run.
+     *
+     * @return whether they did, before the timeout
+     * @throws InterruptedException if the thread was interrupted while waiting
+     */
+    public boolean awaitJoiningTesters(int count, Duration timeout) throws InterruptedException {
+        long deadline = System.nanoTime() + timeout.toNanos();
+        while (joiningTesters().size() < count) {
+            if (System.nanoTime() >= deadline) {
+                return false;
+            }
+            Thread.sleep(20);
+        }
+        return true;
+    }
+
+    /**
+     * Starts a run of several testers: publishes the run start with time 0 {@code lead} from now, so that every
+     * tester of the run (this one and those that {@linkplain #joiningTesters() joined}) can start its engine at
+     * that time. The next {@link #start} does not publish it again.
+     *
+     * @param timeUnitMicros the run's time unit, which the start carries
+     * @return time 0 of the run on this member's wall clock, in nanoseconds since the epoch
+     * @throws DtronException if the bus did not take the message
+     */
+    public long announceRun(Duration lead, long timeUnitMicros) {
+        joiners = Set.copyOf(joiningTesters());
+        peerVerdicts.clear();
+        runId = Long.toHexString(ThreadLocalRandom.current().nextLong() >>> 16);
+        dtron.setRunId(runId);
+        long zero = dtron.currentTimeNanos() + lead.toNanos();
+        dtron.send(Dtron.RUN_START.constructValued(Map.of("timeunit", (int) Math.min(Integer.MAX_VALUE,
+                timeUnitMicros))), zero);
+        zeroNanoTime = nanoTimeOf(zero);
+        announced = true;
+        return zero;
+    }
+
+    /**
+     * On a joining bridge: waits for the run start of the tester that starts the run.
+     *
+     * @return time 0 of the run on this member's wall clock, in nanoseconds since the epoch; -1 if no run started
+     *         before the timeout
+     * @throws InterruptedException if the thread was interrupted while waiting
+     */
+    public long awaitRun(Duration timeout) throws InterruptedException {
+        IDtronChannelValued start = starts.poll(timeout.toNanos(), TimeUnit.NANOSECONDS);
+        if (start == null) {
+            return -1;
+        }
+        runId = start.getRunId();
+        peerVerdicts.clear();
+        long zero = start.getEventTimeNanos() + start.getClockOffsetNanos() - dtron.getClockOffsetNanos();
+        zeroNanoTime = nanoTimeOf(zero);
+        announced = true;
+        return zero;
+    }
+
+    /**
+     * After the verdict of a run of several testers: tells the other testers this one's verdict; the tester that
+     * started the run then waits (at most {@link #VERDICTS_TIMEOUT}) until every tester that joined told its
+     * verdict or left, and ends the run with {@link Dtron#RUN_STOP}. Does nothing on a run of one tester, which
+     * {@link #stop()} ended.
+     */
+    public void finish(int verdictExitCode) {
+        if (!severalTesters()) {
+            return;
+        }
+        try {
+            dtron.send(Dtron.RUN_VERDICT.constructValued(Map.of("verdict", verdictExitCode)));
+        } catch (DtronException | IllegalStateException e) {
+            LOG.warn("Cannot tell the other testers the verdict: {}", e.getMessage());
+        }
+        if (joining) {
+            return;
+        }
+        long deadline = System.nanoTime() + VERDICTS_TIMEOUT.toNanos();
+        while (!joiners.stream().allMatch(m -> peerVerdicts.containsKey(m) || !dtron.getMembers().contains(m))
+                && System.nanoTime() < deadline) {
+            try {
+                Thread.sleep(10);
+            } catch (InterruptedException e) {
+                Thread.currentThread().interrupt();
+                break;
+            }
+        }
+        publishStop();
+    }
+
+    /**
+     * In a run of several testers: time 0 as {@link #announceRun} or {@link #awaitRun} set it, so that the engine
+     * of every tester counts from the same instant; empty otherwise.
+     */
+    @Override
+    public java.util.OptionalLong timeZero() {
+        long zero = zeroNanoTime;
+        return announced ? java.util.OptionalLong.of(zero) : java.util.OptionalLong.empty();
+    }
+
+    /** Converts a time on this member's wall clock to a {@link System#nanoTime()} reading. */
+    private long nanoTimeOf(long epochNanos) {
+        return System.nanoTime() + (epochNanos - dtron.currentTimeNanos());
+    }
+
+    /** Returns the verdicts the other testers of the run told, as exit codes by member. */
+    public Map<String, Integer> peerVerdicts() {
+        return Collections.unmodifiableMap(new TreeMap<>(peerVerdicts));
+    }
+
+    /** Whether this bridge's run has other testers: it joined one, or others joined it. */
+    private boolean severalTesters() {
+        return joining || !joiners.isEmpty();
+    }
+
+    /** Another tester of the run told its verdict: one other than PASSED ends this run too. */
+    private void peerVerdict(IDtronChannelValued message) {
+        if (message.getSender().equals(dtron.getMemberId()) || ofOtherRun(message)) {
+            return;
+        }
+        int verdict = message.getVariables().get("verdict");
+        peerVerdicts.put(message.getSender(), verdict);
+        watched.remove(message.getSender()); // it may leave now
+        if (running && verdict != 0) {
+            context.inconclusive("tester " + message.getSender() + " of this run ended it " + (verdict == 2
+                    ? "FAILED" : "INCONCLUSIVE") + " (its own verdict says why)");
         }
     }
 
@@ -213,7 +435,7 @@ public final class BusBridge implements Adapter, AutoCloseable {
     public List<String> unservedChannels() {
         Set<String> receivers = new java.util.HashSet<>();
         Set<String> senders = new java.util.HashSet<>();
-        Set<String> testers = dtron.getOtherTesters();
+        Set<String> testers = testersOfOtherRuns();
         dtron.getMembersServedChannels().forEach((member, served) -> {
             if (!testers.contains(member)) {
                 receivers.addAll(served.receives());
@@ -246,8 +468,20 @@ public final class BusBridge implements Adapter, AutoCloseable {
     /** Returns what each adapter member on the bus said it serves, by member id (testers left out). */
     public Map<String, ServedChannels> servedChannels() {
         Map<String, ServedChannels> served = new TreeMap<>(dtron.getMembersServedChannels());
-        served.keySet().removeAll(dtron.getOtherTesters());
+        served.keySet().removeAll(testersOfOtherRuns());
         return Collections.unmodifiableMap(served);
+    }
+
+    /**
+     * The testers on the bus whose runs are not this bridge's: every other tester that greeted the bus, but, for a
+     * joining bridge, the one whose run it joins.
+     */
+    private Set<String> testersOfOtherRuns() {
+        Set<String> testers = new java.util.HashSet<>(dtron.getOtherTesters());
+        if (joining) {
+            dtron.getTester().ifPresent(testers::remove);
+        }
+        return testers;
     }
 
     /**
@@ -273,7 +507,7 @@ public final class BusBridge implements Adapter, AutoCloseable {
     public Delays measureDelays(int rounds, Duration spacing) throws InterruptedException {
         Set<String> adapters = new java.util.HashSet<>(dtron.getMembers());
         adapters.remove(dtron.getMemberId());
-        adapters.removeAll(dtron.getOtherTesters());
+        adapters.removeAll(testersOfOtherRuns());
         for (int i = 0; i < rounds && !adapters.isEmpty(); i++) {
             dtron.probe(adapters, PROBE_TIMEOUT);
             Thread.sleep(spacing.toMillis());
@@ -339,14 +573,21 @@ public final class BusBridge implements Adapter, AutoCloseable {
             inputChannels.clear();
             performed = 0;
         }
+        // the run's clock is the starting tester's: a joining tester's own time 0 is its engine's, on that clock
+        long nowNanos = dtron.currentTimeNanos() + (joining ? dtron.getClockOffsetNanos() : 0);
+        long runMicros = runContext.clock().nowMicros();
+        zeroEpochNanos = nowNanos - runMicros * 1000;
+        if (announced) {
+            announced = false;
+            running = true;
+            return; // a run of several testers: its start was published before the engines started
+        }
+        joiners = Set.of();
         runId = Long.toHexString(ThreadLocalRandom.current().nextLong() >>> 16);
         dtron.setRunId(runId);
         // a time unit beyond int range (35 minutes) does not occur in practice; the message carries an int
         int unit = (int) Math.min(Integer.MAX_VALUE, runContext.timeUnitMicros());
-        long nowNanos = dtron.currentTimeNanos();
-        long runMicros = runContext.clock().nowMicros();
         // the adapters' time 0 is the start's event time: the engine's time 0, however late the start is published
-        zeroEpochNanos = nowNanos - runMicros * 1000;
         running = true;
         try {
             dtron.send(Dtron.RUN_START.constructValued(Map.of("timeunit", unit)), zeroEpochNanos);
@@ -388,11 +629,19 @@ public final class BusBridge implements Adapter, AutoCloseable {
 
     /**
      * Publishes {@link Dtron#RUN_STOP} and waits (at most two seconds) until it comes back, so that
-     * the latency summaries and {@link #stats()} count every message the bus ordered before the end of the run.
+     * the latency summaries and {@link #stats()} count every message the bus ordered before the end of the run. In a
+     * run of several testers the run goes on until {@link #finish}.
      */
     @Override
     public void stop() {
         running = false;
+        if (!severalTesters()) {
+            publishStop();
+        }
+    }
+
+    /** Publishes the end of the run and waits for it to come back. */
+    private void publishStop() {
         CountDownLatch echo = new CountDownLatch(1);
         ownStop = echo;
         try {

@@ -26,6 +26,16 @@ public interface Adapter {
         return Optional.empty();
     }
 
+    /**
+     * Returns when the run's time 0 is, as a {@link System#nanoTime()} reading, when the adapter agreed on it with
+     * others before the run (several testers of one run start their engines at one time 0); in real time the
+     * engine then counts from that instant, waiting for it if it lies ahead. Empty by default: time 0 is when the
+     * engine starts. Asked once, after the engine prepared its first step.
+     */
+    default java.util.OptionalLong timeZero() {
+        return java.util.OptionalLong.empty();
+    }
+
     /** Called once at the end of the run (the verdict is known). */
     default void stop() {
     }

@@ -79,7 +79,7 @@ public final class OnlineTester {
         AtomicLong window = new AtomicLong(options.reorderWindowMicros());
         Run run = new Run(semantics, partition, clock, new Random(options.seed()), ticksPerUnit, window);
         run.warmUp();
-        clock.begin();
+        clock.begin(adapter.timeZero());
         adapter.start(new Context(clock, window));
         TestResult result;
         try {
@@ -322,6 +322,12 @@ public final class OnlineTester {
                             return verdict;
                         }
                         continue;
+                    }
+                    if (plan.inputPossibleAt(plan.deadline())) {
+                        return result(Verdict.INCONCLUSIVE, "no input was applied by " + deadlineAt + ", when the"
+                                + " environment's window closed: the tester learned of the events before it too late,"
+                                + " or was held up (input executed too late). " + plan.explainInputs(this::time,
+                                lastMicros));
                     }
                     if (unreachable.isPresent()) {
                         return result(Verdict.INCONCLUSIVE, "no output came by " + deadlineAt + ", and the system"

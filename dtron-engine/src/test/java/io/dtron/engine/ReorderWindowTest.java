@@ -285,4 +285,36 @@ class ReorderWindowTest {
         TestResult r = run(DEADLINE, widening, 1);
         assertEquals(Verdict.PASSED, r.verdict(), r.explanation());
     }
+
+    /** The environment must answer output x with input y 2 to 3 units after it. */
+    private static final String ANSWER = """
+            chan o_x, i_y;
+            process Sut() {
+                state Waiting, Asked;
+                init Waiting;
+                trans Waiting -> Asked { sync o_x!; },
+                      Asked -> Waiting { sync i_y?; };
+            }
+            process Env() {
+                clock e;
+                state Idle, Answering { e <= 3 };
+                init Idle;
+                trans Idle -> Answering { sync o_x?; assign e = 0; },
+                      Answering -> Idle { guard e >= 2; sync i_y!; };
+            }
+            system Sut, Env;
+            """;
+
+    @Test
+    void anInputWindowThatClosedBeforeItsCauseArrivedIsInconclusiveNotFailed() throws Exception {
+        // x happened at 5 but reached the tester at 9: the window for y, 7 to 8, had closed
+        TestResult late = run(ANSWER, new Delayed(5, 9, 0), 5);
+        assertEquals(Verdict.INCONCLUSIVE, late.verdict(), late.explanation());
+        assertTrue(late.explanation().startsWith("no input was applied by t=8.000, when the environment's window"
+                + " closed"), late.explanation());
+        // arriving at 6, the tester answers in time
+        TestResult inTime = run(ANSWER, new Delayed(5, 6, 0), 5);
+        assertEquals(Verdict.PASSED, inTime.verdict(), inTime.explanation());
+        assertEquals(1, inTime.inputs(), inTime.toString());
+    }
 }

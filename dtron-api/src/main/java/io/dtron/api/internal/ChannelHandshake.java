@@ -24,7 +24,6 @@ public final class ChannelHandshake {
     public static final String SERVE = "dtron_serve";
 
     private final String me;
-    private final boolean tester;
     private final Executor executor;
     private final Consumer<ServedChannels> publisher;
     private final Runnable othersChanged;
@@ -32,20 +31,19 @@ public final class ChannelHandshake {
     private final Set<String> sends = new TreeSet<>();
     private final Map<String, ServedChannels> others = new ConcurrentHashMap<>();
     private final AtomicBoolean queued = new AtomicBoolean();
+    private boolean joinsRun;
 
     /**
      * Creates a member's side.
      *
      * @param me            this member's id
-     * @param tester        whether this member is a tester, which announces nothing
      * @param executor      where announcements are published, one at a time
      * @param publisher     publishes this member's channels on {@link #SERVE}; must not throw
      * @param othersChanged called (without locks held) when another member's announcement arrived or it left
      */
-    public ChannelHandshake(String me, boolean tester, Executor executor, Consumer<ServedChannels> publisher,
+    public ChannelHandshake(String me, Executor executor, Consumer<ServedChannels> publisher,
             Runnable othersChanged) {
         this.me = me;
-        this.tester = tester;
         this.executor = executor;
         this.publisher = publisher;
         this.othersChanged = othersChanged;
@@ -73,16 +71,26 @@ public final class ChannelHandshake {
         }
     }
 
-    /** Returns the channels this member serves. */
-    public synchronized ServedChannels own() {
-        return new ServedChannels(me, receives, sends);
-    }
-
-    /** A tester greeted the bus: this member tells it what it serves. */
-    public void helloReceived(String from) {
-        if (!from.equals(me)) {
+    /** This member is a tester that joins the next run another tester starts ({@code on}), or no longer is. */
+    public void joiningRun(boolean on) {
+        boolean changed;
+        synchronized (this) {
+            changed = joinsRun != on;
+            joinsRun = on;
+        }
+        if (changed) {
             announce();
         }
+    }
+
+    /** Returns the channels this member serves. */
+    public synchronized ServedChannels own() {
+        return new ServedChannels(me, receives, sends, joinsRun);
+    }
+
+    /** A tester greeted the bus (this member too, if it is one): this member tells it what it serves. */
+    public void helloReceived() {
+        announce();
     }
 
     /** Another member said what it serves. */
@@ -108,9 +116,15 @@ public final class ChannelHandshake {
         return Collections.unmodifiableMap(new TreeMap<>(others));
     }
 
+    /** Returns whether another member said it is a tester joining the next run another one starts. */
+    public boolean joinsRun(String member) {
+        ServedChannels served = others.get(member);
+        return served != null && served.joinsRun();
+    }
+
     /** Queues one announcement of this member's current channels, unless one is queued already. */
     private void announce() {
-        if (tester || !queued.compareAndSet(false, true)) {
+        if (!queued.compareAndSet(false, true)) {
             return;
         }
         executor.execute(() -> {

@@ -216,14 +216,15 @@ public final class ClockSync implements AutoCloseable {
 
     /**
      * Called when a ping arrived: the tester answers it with its clock at {@code receiveTimeNanos}, and a member
-     * answers its tester's ping (a {@link #probe}) the same way.
+     * answers the ping (a {@link #probe}) of its tester, or of another tester of the run ({@code fromPeerTester}),
+     * the same way.
      */
-    public void pingReceived(String from, long sequence, long receiveTimeNanos) {
+    public void pingReceived(String from, long sequence, long receiveTimeNanos, boolean fromPeerTester) {
         if (from.equals(me)) {
             return;
         }
         synchronized (this) {
-            if (!selfTester && !from.equals(tester)) {
+            if (!selfTester && !from.equals(tester) && !fromPeerTester) {
                 return;
             }
         }

@@ -51,9 +51,9 @@ public final class SyncCodec {
      * receives and sends.
      */
     public static byte[] encodeServed(String channelName, Stamp stamp, Collection<String> receives,
-            Collection<String> sends) {
-        return builder(channelName, Map.of(), stamp).addAllReceives(receives).addAllSends(sends).build()
-                .toByteArray();
+            Collection<String> sends, boolean joinsRun) {
+        return builder(channelName, Map.of(), stamp).addAllReceives(receives).addAllSends(sends).setJoinsRun(joinsRun)
+                .build().toByteArray();
     }
 
     /** Returns the stamp a parsed message carries, with {@code transportSender} when it names no sender. */

@@ -5,8 +5,22 @@ public final class RealClock extends RunClock {
     private volatile long start = System.nanoTime();
 
     @Override
-    public void begin() {
-        start = System.nanoTime();
+    public void begin(java.util.OptionalLong zeroNanoTime) {
+        if (zeroNanoTime.isEmpty()) {
+            start = System.nanoTime();
+            return;
+        }
+        long zero = zeroNanoTime.getAsLong();
+        long ahead;
+        while ((ahead = zero - System.nanoTime()) > 0) {
+            try {
+                java.util.concurrent.TimeUnit.NANOSECONDS.sleep(ahead);
+            } catch (InterruptedException e) {
+                Thread.currentThread().interrupt();
+                break;
+            }
+        }
+        start = zero;
     }
 
     @Override

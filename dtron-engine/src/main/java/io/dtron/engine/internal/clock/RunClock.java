@@ -165,8 +165,12 @@ public abstract class RunClock implements TestClock {
         return awaitUntil(nowMicros());
     }
 
-    /** Sets time 0 to now; called once, right before the adapter starts. */
-    public void begin() {
+    /**
+     * Sets time 0; called once, right before the adapter starts. In real time, time 0 is {@code zeroNanoTime} (a
+     * {@link System#nanoTime()} reading) if given, waiting for it if it lies ahead, else now; virtual time starts at
+     * 0 anyway.
+     */
+    public void begin(java.util.OptionalLong zeroNanoTime) {
     }
 
     /** Whether an output is waiting. */

@@ -111,6 +111,24 @@ public final class Plan {
         return deadline < horizon;
     }
 
+    /**
+     * Whether the environment may apply an input at {@code ticks}: then a deadline there can be met by the tester,
+     * and a tester that missed it (it learned of the events before too late, or was held up) is at fault, not the
+     * system under test.
+     */
+    public boolean inputPossibleAt(long ticks) {
+        for (Map.Entry<Integer, List<Window>> e : windows.entrySet()) {
+            if (inputs.containsKey(e.getKey())) {
+                for (Window w : e.getValue()) {
+                    if (w.lo() <= ticks && ticks <= w.hi()) {
+                        return true;
+                    }
+                }
+            }
+        }
+        return false;
+    }
+
     /** The elapsed ticks by which something must happen (the horizon when nothing must). */
     public long deadline() {
         return deadline;

@@ -24,7 +24,7 @@ class RealClockTest {
     @Timeout(value = 60, unit = TimeUnit.SECONDS)
     void noOutputComesInWithATimeBeforeAQuietTimeTheTesterActedAt(boolean deadline) throws Exception {
         RealClock clock = new RealClock();
-        clock.begin();
+        clock.begin(java.util.OptionalLong.empty());
         int reporters = 3;
         int each = 100_000;
         List<Thread> threads = new ArrayList<>();

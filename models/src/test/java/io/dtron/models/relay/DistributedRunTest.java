@@ -1,0 +1,93 @@
+package io.dtron.models.relay;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+import io.dtron.api.ChildJvm;
+import io.dtron.cli.DtronCommand;
+import java.nio.file.Path;
+import java.time.Duration;
+import java.util.UUID;
+import java.util.concurrent.TimeUnit;
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.Timeout;
+import org.junit.jupiter.api.io.TempDir;
+
+/**
+ * Runs of several testers, each a JVM of its own with its own model, on one bus across loopback addresses: the
+ * relay's two ports judged by two testers (127.0.0.1 and 127.0.0.2) with its adapters on a third address
+ * (127.0.0.3), and the conversation of two models that test each other.
+ */
+@Timeout(value = 240, unit = TimeUnit.SECONDS)
+class DistributedRunTest {
+    private static final Path MODELS = Path.of("src/main/resources/io/dtron/models");
+    private static final String MEMBERS = "127.0.0.1,127.0.0.2,127.0.0.3";
+    private static final Duration WAIT = Duration.ofSeconds(120);
+
+    private static String cluster() {
+        return "distributed-" + UUID.randomUUID().toString().substring(0, 8);
+    }
+
+    private static ChildJvm tester(Path dir, String name, String model, String cluster, String address,
+            String... more) throws Exception {
+        String[] args = new String[] {"run", MODELS.resolve(model).toString(), "--cluster", cluster, "--bind",
+                address, "--members", MEMBERS, "--timeunit", "10000", "--timeout", "200", "--delay-policy", "eager",
+                "--seed", "7"};
+        String[] all = new String[args.length + more.length];
+        System.arraycopy(args, 0, all, 0, args.length);
+        System.arraycopy(more, 0, all, args.length, more.length);
+        return ChildJvm.start(DtronCommand.class, dir.resolve(name + ".log"), all);
+    }
+
+    @Test
+    void bothPortsOfACorrectRelayPass(@TempDir Path dir) throws Exception {
+        String cluster = cluster();
+        try (ChildJvm port1 = tester(dir, "port1", "relay/port1.xta", cluster, "127.0.0.1", "--testers", "2");
+                ChildJvm port2 = tester(dir, "port2", "relay/port2.xta", cluster, "127.0.0.2", "--join");
+                ChildJvm relay = ChildJvm.start(RelayAdapters.class, dir.resolve("relay.log"), cluster, "127.0.0.3",
+                        MEMBERS, "correct")) {
+            int first = port1.waitFor(WAIT);
+            int second = port2.waitFor(WAIT);
+            assertEquals(0, first, port1.output() + port2.output() + relay.output());
+            assertEquals(0, second, port2.output() + port1.output() + relay.output());
+            assertTrue(port1.output().contains("PASSED: the timeout of 200 time units was reached"), port1.output());
+            assertTrue(port2.output().contains("PASSED: the timeout of 200 time units was reached"), port2.output());
+            assertTrue(port1.output().contains("dtron run: the run's testers: "), port1.output());
+            assertTrue(port1.output().matches("(?s).*tester \\S+ of this run: PASSED.*"), port1.output());
+        }
+    }
+
+    @Test
+    void aLateResponseFailsAtPortTwoAndEndsPortOneWithTheReason(@TempDir Path dir) throws Exception {
+        String cluster = cluster();
+        try (ChildJvm port1 = tester(dir, "port1", "relay/port1.xta", cluster, "127.0.0.1", "--testers", "2");
+                ChildJvm port2 = tester(dir, "port2", "relay/port2.xta", cluster, "127.0.0.2", "--join");
+                ChildJvm relay = ChildJvm.start(RelayAdapters.class, dir.resolve("relay.log"), cluster, "127.0.0.3",
+                        MEMBERS, "late")) {
+            int second = port2.waitFor(WAIT);
+            int first = port1.waitFor(WAIT);
+            assertEquals(2, second, port2.output() + port1.output() + relay.output());
+            assertTrue(port2.output().contains("FAILED: output resp() observed at")
+                    || port2.output().contains("FAILED: no output came by"), port2.output());
+            assertTrue(port2.output().contains("resp between"), "the response was due: " + port2.output());
+            assertEquals(3, first, port1.output() + port2.output());
+            assertTrue(port1.output().matches("(?s).*INCONCLUSIVE: tester \\S+ of this run ended it FAILED.*"),
+                    port1.output());
+        }
+    }
+
+    @Test
+    void twoModelsInAConversationBothPass(@TempDir Path dir) throws Exception {
+        String cluster = cluster();
+        try (ChildJvm mover = tester(dir, "mover", "conversation/mover.xta", cluster, "127.0.0.1", "--testers", "2");
+                ChildJvm responder = tester(dir, "responder", "conversation/responder.xta", cluster, "127.0.0.2",
+                        "--join")) {
+            int first = mover.waitFor(WAIT);
+            int second = responder.waitFor(WAIT);
+            assertEquals(0, first, mover.output() + responder.output());
+            assertEquals(0, second, responder.output() + mover.output());
+            assertTrue(mover.output().contains("PASSED"), mover.output());
+            assertTrue(responder.output().contains("PASSED"), responder.output());
+        }
+    }
+}
