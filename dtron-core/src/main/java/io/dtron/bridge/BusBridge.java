@@ -88,6 +88,8 @@ public final class BusBridge implements Adapter, AutoCloseable {
     /** The largest delay of this run's messages, event to receipt on the tester's clock, by "output NAME" etc. */
     private final Map<String, Long> runDelays = new ConcurrentHashMap<>();
     private final List<String> widenings = Collections.synchronizedList(new ArrayList<>());
+    /** Inputs of other testers of the run, observed as outputs, until their acknowledgements say when they happened. */
+    private final Map<String, IDtronChannelValued> heldPeerInputs = new ConcurrentHashMap<>();
     /** The testers of a run of several that told their verdicts, with the verdicts' exit codes. */
     private final Map<String, Integer> peerVerdicts = new ConcurrentHashMap<>();
     /** The testers that joined this bridge's run (it started it), as the run started. */
@@ -565,6 +567,7 @@ public final class BusBridge implements Adapter, AutoCloseable {
     public void start(AdapterContext runContext) {
         context = Objects.requireNonNull(runContext, "runContext");
         runDelays.clear();
+        heldPeerInputs.clear();
         widenings.clear();
         watched.addAll(dtron.getMembers());
         watched.remove(dtron.getMemberId());
@@ -771,7 +774,15 @@ public final class BusBridge implements Adapter, AutoCloseable {
 
     /** An adapter applied one of this run's inputs: the engine places the input at that time. */
     private void acknowledged(IDtronChannelValued ack) {
-        if (!running || !ack.getAckedSender().equals(dtron.getMemberId()) || ofOtherRun(ack)) {
+        if (!running || ofOtherRun(ack)) {
+            return;
+        }
+        if (!ack.getAckedSender().equals(dtron.getMemberId())) {
+            IDtronChannelValued held = heldPeerInputs.remove(ack.getAckedSender() + "/" + ack.getAckedSequence());
+            if (held != null) {
+                recordOffset(ack);
+                reportOutput(held, ack); // another tester's input, observed where its adapter applied it
+            }
             return;
         }
         // the first acknowledgement of an input counts: one member applies it
@@ -816,11 +827,42 @@ public final class BusBridge implements Adapter, AutoCloseable {
             }
             return;
         }
-        // stamped before time 0 (it was ordered before the start on the bus): it counts from the start
         recordOffset(message);
-        long happened = Math.max(0, runMicros(message));
-        delayed(message, "output " + channel, happened);
-        context.report(new Event(channel, message.getVariables()), happened, errorMicros(message));
+        if (isPeerTester(message.getSender()) && appliedByAdapter(message.getChannelName())) {
+            // another tester's input, which an adapter applies: it happened where the adapter applied it, which its
+            // acknowledgement says; held for half the reorder window, then taken as happened when published
+            String key = message.getSender() + "/" + message.getSequence();
+            heldPeerInputs.put(key, message);
+            context.clock().schedule(windowMicros / 2, () -> {
+                IDtronChannelValued unacknowledged = heldPeerInputs.remove(key);
+                if (unacknowledged != null && running) {
+                    reportOutput(unacknowledged, unacknowledged);
+                }
+            });
+            return;
+        }
+        reportOutput(message, message);
+    }
+
+    /** Reports an output to the engine at the event time {@code timing} carries (itself, or its acknowledgement). */
+    private void reportOutput(IDtronChannelValued message, IDtronChannelValued timing) {
+        // stamped before time 0 (it was ordered before the start on the bus): it counts from the start
+        long happened = Math.max(0, runMicros(timing));
+        delayed(timing, "output " + message.getChannelName(), happened);
+        context.report(new Event(message.getChannelName(), message.getVariables()), happened, errorMicros(timing));
+    }
+
+    /** Whether an adapter (a member that is no tester of this run) listens to a channel, so applies its messages. */
+    private boolean appliedByAdapter(String channel) {
+        return dtron.getMembersServedChannels().values().stream().anyMatch(served -> served.receives()
+                .contains(channel) && !isPeerTester(served.member()));
+    }
+
+    /** Whether a member is another tester of this bridge's run. */
+    private boolean isPeerTester(String member) {
+        return joiners.contains(member) || joining && member.equals(dtron.getTester().orElse(null))
+                || Optional.ofNullable(dtron.getMembersServedChannels().get(member)).map(ServedChannels::joinsRun)
+                        .orElse(false);
     }
 
     /** A message's clock error bound in whole microseconds, rounded up: the uncertainty of its event time. */

@@ -31,7 +31,7 @@ class DistributedRunTest {
     private static ChildJvm tester(Path dir, String name, String model, String cluster, String address,
             String... more) throws Exception {
         String[] args = new String[] {"run", MODELS.resolve(model).toString(), "--cluster", cluster, "--bind",
-                address, "--members", MEMBERS, "--timeunit", "10000", "--timeout", "200", "--delay-policy", "eager",
+                address, "--members", MEMBERS, "--timeunit", "20000", "--timeout", "150", "--delay-policy", "eager",
                 "--seed", "7"};
         String[] all = new String[args.length + more.length];
         System.arraycopy(args, 0, all, 0, args.length);
@@ -50,8 +50,8 @@ class DistributedRunTest {
             int second = port2.waitFor(WAIT);
             assertEquals(0, first, port1.output() + port2.output() + relay.output());
             assertEquals(0, second, port2.output() + port1.output() + relay.output());
-            assertTrue(port1.output().contains("PASSED: the timeout of 200 time units was reached"), port1.output());
-            assertTrue(port2.output().contains("PASSED: the timeout of 200 time units was reached"), port2.output());
+            assertTrue(port1.output().contains("PASSED: the timeout of 150 time units was reached"), port1.output());
+            assertTrue(port2.output().contains("PASSED: the timeout of 150 time units was reached"), port2.output());
             assertTrue(port1.output().contains("dtron run: the run's testers: "), port1.output());
             assertTrue(port1.output().matches("(?s).*tester \\S+ of this run: PASSED.*"), port1.output());
         }
