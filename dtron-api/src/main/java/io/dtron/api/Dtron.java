@@ -111,6 +111,7 @@ public final class Dtron implements AutoCloseable {
     /** On a tester: the delays of the other members' messages, by member. */
     private final Map<String, MemberDelay> delays = new ConcurrentHashMap<>();
     private final List<DtronMembershipListener> membershipListeners = new CopyOnWriteArrayList<>();
+    private final List<java.util.function.Consumer<BusRecord>> recordListeners = new CopyOnWriteArrayList<>();
     private final Counters counters = new Counters();
     private final AtomicLong sequence = new AtomicLong();
     private final SerialExecutor dispatcher;
@@ -360,6 +361,21 @@ public final class Dtron implements AutoCloseable {
      */
     public Map<String, MemberDelay> getDelaysFromMembers() {
         return java.util.Collections.unmodifiableMap(new java.util.TreeMap<>(delays));
+    }
+
+    /**
+     * Adds a listener that receives a {@link BusRecord} of every later message this member receives, in the bus's
+     * order, DTRON's own messages included, for traces. A member with {@linkplain DtronOptions.Builder#channels
+     * declared channels} (a tester) receives every message on the bus; others receive the channels they listen to
+     * and DTRON's. The listener is called on the transport's thread: it must return quickly and not throw.
+     */
+    public void addRecordListener(java.util.function.Consumer<BusRecord> listener) {
+        recordListeners.add(Objects.requireNonNull(listener, "listener"));
+    }
+
+    /** Removes a record listener; removing an unknown one does nothing. */
+    public void removeRecordListener(java.util.function.Consumer<BusRecord> listener) {
+        recordListeners.remove(listener);
     }
 
     /**
@@ -797,6 +813,11 @@ public final class Dtron implements AutoCloseable {
         }
         recordDelay(value.getSender(), value.getPublishTimeNanos(), value.getClockOffsetNanos(),
                 value.getClockErrorNanos(), receiveTime);
+        if (!recordListeners.isEmpty()) {
+            record(group, new Stamp(value.getSender(), value.getSequence(), value.getPublishTimeNanos(),
+                    value.getEventTimeNanos(), value.getRunId(), value.getAckedSender(), value.getAckedSequence(),
+                    value.getClockOffsetNanos(), value.getClockErrorNanos()), receiveTime, value.getVariables());
+        }
         if (group.equals(RUN_START.getChannelName())) {
             runStarted(value);
         } else if (group.equals(RUN_STOP.getChannelName())) {
@@ -825,6 +846,7 @@ public final class Dtron implements AutoCloseable {
         }
         Stamp stamp = SyncCodec.stamp(sync, message.sender());
         recordDelay(stamp, receiveTime);
+        record(message.group(), stamp, receiveTime, Map.of());
         switch (message.group()) {
             case ClockSync.HELLO -> {
                 if (!stamp.sender().equals(getMemberId())) {
@@ -839,6 +861,23 @@ public final class Dtron implements AutoCloseable {
             case ClockSync.PONG -> clockSync.pongReceived(stamp.sender(), stamp.ackedSender(), stamp.ackedSequence(),
                     stamp.effectiveEventTimeNanos(), receiveTime);
             default -> throw new IllegalStateException("not a control channel: " + message.group());
+        }
+    }
+
+    /** Hands a received message to the record listeners. */
+    private void record(String channel, Stamp stamp, long receiveTime, Map<String, Integer> variables) {
+        if (recordListeners.isEmpty()) {
+            return;
+        }
+        BusRecord record = new BusRecord(channel, stamp.sender(), stamp.sequence(), stamp.publishTimeNanos(),
+                stamp.effectiveEventTimeNanos(), receiveTime, stamp.runId(), stamp.ackedSender(),
+                stamp.ackedSequence(), stamp.clockOffsetNanos(), stamp.clockErrorNanos(), variables);
+        for (java.util.function.Consumer<BusRecord> listener : recordListeners) {
+            try {
+                listener.accept(record);
+            } catch (RuntimeException e) {
+                LOG.warn("Record listener {} failed on a message of {}: {}", listener, stamp.sender(), e.toString());
+            }
         }
     }
 

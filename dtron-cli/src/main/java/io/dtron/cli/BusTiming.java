@@ -1,11 +1,12 @@
 package io.dtron.cli;
 
 import io.dtron.bridge.BusBridge;
+import io.dtron.bridge.ChannelDelay;
 import io.dtron.engine.ObservableWindow;
+import java.nio.file.Path;
 import java.util.ArrayList;
 import java.util.List;
 import java.util.Locale;
-import java.util.Map;
 import java.util.Optional;
 
 /**
@@ -91,13 +92,33 @@ final class BusTiming {
         List<String> widenings = bridge.widenings();
         lines.add("reorder window (Delta): " + millis(bridge.reorderWindowMicros()) + (auto ? " (auto)" : " (--delta)")
                 + (widenings.isEmpty() ? (auto ? ", not widened" : "") : ", widened " + String.join("; ", widenings)));
-        Map<String, Long> delays = bridge.runDelays();
+        List<ChannelDelay> delays = bridge.runDelays();
         if (!delays.isEmpty()) {
             List<String> parts = new ArrayList<>();
-            delays.forEach((what, micros) -> parts.add(what + " " + millis(micros)));
-            lines.add("largest delays in the run, event to tester: " + String.join(", ", parts));
+            delays.forEach(d -> parts.add(d.direction() + " " + d.channel() + " " + millis(d.lowMicros()) + " to "
+                    + millis(d.highMicros()) + " (" + d.count() + ")"));
+            lines.add("delays in the run (inputs published to applied, outputs produced to received): "
+                    + String.join(", ", parts));
         }
         return lines;
+    }
+
+    /**
+     * Writes the run's delays per channel and direction as JSON, for {@code dtron delta --delta-from}: the model, the
+     * time unit, the run id and one entry per channel and direction measured.
+     */
+    static String deltaReport(Path model, long unitMicros, String runId, List<ChannelDelay> delays) {
+        StringBuilder json = new StringBuilder("{\n  \"model\": ").append(JsonTrace.quote(model.toString()))
+                .append(",\n  \"timeUnitMicros\": ").append(unitMicros).append(",\n  \"runId\": ")
+                .append(JsonTrace.quote(runId)).append(",\n  \"channels\": [");
+        for (int i = 0; i < delays.size(); i++) {
+            ChannelDelay d = delays.get(i);
+            json.append(i == 0 ? "\n" : ",\n").append("    {\"channel\": ").append(JsonTrace.quote(d.channel()))
+                    .append(", \"direction\": \"").append(d.direction()).append("\", \"count\": ").append(d.count())
+                    .append(", \"lowMicros\": ").append(d.lowMicros()).append(", \"highMicros\": ")
+                    .append(d.highMicros()).append('}');
+        }
+        return json.append(delays.isEmpty() ? "]\n}\n" : "\n  ]\n}\n").toString();
     }
 
     /** 0.420 ms, 12.0 ms, 50 ms. */

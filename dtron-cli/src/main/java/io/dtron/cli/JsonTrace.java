@@ -1,5 +1,8 @@
 package io.dtron.cli;
 
+import io.dtron.api.BusRecord;
+import io.dtron.bridge.BusBridge;
+import io.dtron.engine.Adapter;
 import io.dtron.engine.Event;
 import io.dtron.engine.OnlineTester;
 import io.dtron.engine.TestListener;
@@ -12,10 +15,13 @@ import java.nio.charset.StandardCharsets;
 import java.nio.file.Files;
 import java.nio.file.Path;
 import java.util.Map;
+import java.util.function.Consumer;
 
 /**
  * Writes a run as JSON lines: a {@code start} line with the seed and settings, one line per input and output
- * with its time, and a {@code verdict} line. In virtual time the same seed gives the same file, byte for byte.
+ * with its time, and a {@code verdict} line. In virtual time the same seed gives the same file, byte for byte. On
+ * the bus, a {@code bus} line for every message on the bus while the run lasts, in the bus's order, with its sender's
+ * stamps and its receive time: the global trace, the same order at every member.
  */
 final class JsonTrace implements TestListener {
     private final Writer out;
@@ -32,6 +38,17 @@ final class JsonTrace implements TestListener {
      * @throws IOException if the trace file cannot be written
      */
     static TestResult run(OnlineTester tester, Path file, Path model, TestOptions options) throws IOException {
+        return run(tester, file, model, options, null);
+    }
+
+    /**
+     * Runs the tester, writing the run to {@code file} when one is given, with every message on the bus when the
+     * adapter is the bus bridge.
+     *
+     * @throws IOException if the trace file cannot be written
+     */
+    static TestResult run(OnlineTester tester, Path file, Path model, TestOptions options, Adapter adapter)
+            throws IOException {
         if (file == null) {
             return tester.run();
         }
@@ -39,8 +56,27 @@ final class JsonTrace implements TestListener {
             JsonTrace json = new JsonTrace(writer, options.timeUnitMicros());
             json.start(options.seed(), model.toString(), options.timeout(), options.virtualTime());
             tester.addListener(json);
-            return tester.run();
+            if (!(adapter instanceof BusBridge bridge)) {
+                return tester.run();
+            }
+            Consumer<BusRecord> bus = json::bus;
+            bridge.addRecordListener(bus);
+            try {
+                return tester.run();
+            } finally {
+                bridge.removeRecordListener(bus);
+            }
         }
+    }
+
+    /** A message on the bus. */
+    void bus(BusRecord r) {
+        line("{\"kind\":\"bus\",\"channel\":" + quote(r.channel()) + ",\"sender\":" + quote(r.sender())
+                + ",\"sequence\":" + r.sequence() + ",\"run\":" + quote(r.runId()) + ",\"publish_ns\":"
+                + r.publishTimeNanos() + ",\"event_ns\":" + r.eventTimeNanos() + ",\"receive_ns\":"
+                + r.receiveTimeNanos() + ",\"offset_ns\":" + r.clockOffsetNanos() + ",\"error_ns\":"
+                + r.clockErrorNanos() + (r.ackedSender().isEmpty() ? "" : ",\"acked_sender\":" + quote(r.ackedSender())
+                + ",\"acked_sequence\":" + r.ackedSequence()) + ",\"values\":" + values(r.variables()) + "}");
     }
 
     void start(long seed, String model, long timeout, boolean virtualTime) {
@@ -66,15 +102,20 @@ final class JsonTrace implements TestListener {
     }
 
     private void event(String kind, Event e, long micros) {
-        StringBuilder values = new StringBuilder("{");
-        for (Map.Entry<String, Integer> v : e.values().entrySet()) {
-            values.append(values.length() == 1 ? "" : ",").append(quote(v.getKey())).append(':').append(v.getValue());
-        }
         line("{\"kind\":\"" + kind + "\",\"t_us\":" + micros + ",\"channel\":" + quote(e.channel()) + ",\"values\":"
-                + values.append('}') + "}");
+                + values(e.values()) + "}");
     }
 
-    private void line(String json) {
+    private static String values(Map<String, Integer> variables) {
+        StringBuilder values = new StringBuilder("{");
+        for (Map.Entry<String, Integer> v : variables.entrySet()) {
+            values.append(values.length() == 1 ? "" : ",").append(quote(v.getKey())).append(':').append(v.getValue());
+        }
+        return values.append('}').toString();
+    }
+
+    /** Writes one line; the engine's thread and the bus's write lines. */
+    private synchronized void line(String json) {
         try {
             out.write(json);
             out.write('\n');

@@ -27,6 +27,7 @@ import java.net.InetAddress;
 import java.net.InetSocketAddress;
 import java.net.ServerSocket;
 import java.net.UnknownHostException;
+import java.nio.file.Files;
 import java.nio.file.InvalidPathException;
 import java.nio.file.Path;
 import java.time.Duration;
@@ -180,8 +181,14 @@ final class RunCommand implements Callable<Integer> {
                     + " during the run when a message takes more than half of it).")
     private String delta;
 
-    @Option(names = "--trace", paramLabel = "FILE", description = "Write every event as one JSON line to FILE.")
+    @Option(names = "--trace", paramLabel = "FILE", description = "Write every event as one JSON line to FILE; on the"
+            + " bus also every message on the bus while the run lasts, in the bus's order.")
     private Path trace;
+
+    @Option(names = "--delta-report", paramLabel = "FILE",
+            description = "Bus mode: write the delays of the run per channel and direction (inputs published to"
+                    + " applied, outputs produced to received) as JSON to FILE, for dtron delta --delta-from.")
+    private Path deltaReport;
 
     @Override
     public Integer call() {
@@ -360,10 +367,10 @@ final class RunCommand implements Callable<Integer> {
         }
         if (!busMode && (cluster != null || waitForAdapters != null || waitTimeout != null
                 || !adapterClasses.isEmpty() || !members.isEmpty() || port != null || portRange != null
-                || testers != null || join)) {
+                || testers != null || join || deltaReport != null)) {
             throw usage("--cluster, --members, --port, --port-range, --testers, --join, --wait-for-adapters,"
-                    + " --wait-timeout and --adapter are for testing the adapters on a bus, without --sut or"
-                    + " --tron-adapter");
+                    + " --wait-timeout, --delta-report and --adapter are for testing the adapters on a bus, without"
+                    + " --sut or --tron-adapter");
         }
         if (join && testers != null) {
             throw usage("--testers is for the tester that starts a run; a tester that joins it (--join) leaves it out");
@@ -541,6 +548,10 @@ final class RunCommand implements Callable<Integer> {
             bridge.reorderWindow(window, auto);
             TestResult result = judge.test(testInterface, bridge, options.withReorderWindow(window), out);
             bridge.finish(result.verdict().exitCode());
+            if (deltaReport != null) {
+                Files.writeString(deltaReport, BusTiming.deltaReport(model, options.timeUnitMicros(), bridge.runId(),
+                        bridge.runDelays()));
+            }
             session.printSummary(out);
             BusTiming.summary(bridge, auto).forEach(out::println);
             bridge.peerVerdicts().forEach((member, code) -> out.println("tester " + member + " of this run: "
@@ -699,7 +710,7 @@ final class RunCommand implements Callable<Integer> {
         TestResult result;
         try (Progress progress = new Progress(out, options)) {
             tester.addListener(progress);
-            result = JsonTrace.run(tester, trace, model, options);
+            result = JsonTrace.run(tester, trace, model, options, adapter);
         }
         printVerdict(result, out);
         return result;

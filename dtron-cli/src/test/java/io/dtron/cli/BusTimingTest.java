@@ -4,13 +4,17 @@ import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import io.dtron.bridge.BusBridge;
+import io.dtron.bridge.ChannelDelay;
 import io.dtron.engine.ObservableWindow;
 import io.dtron.model.ModelLoader;
 import io.dtron.model.Network;
 import io.dtron.model.TestInterface;
+import java.nio.file.Files;
 import java.nio.file.Path;
+import java.util.List;
 import java.util.Optional;
 import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.io.TempDir;
 
 /** What a bus run says about its timing before time 0: the automatic window and the narrow-window warning. */
 class BusTimingTest {
@@ -44,7 +48,7 @@ class BusTimingTest {
         String warning = BusTiming.windowWarning(tickerWindow(), delays, 1000).orElseThrow();
         assertTrue(warning.contains("the narrowest time window of an observable action, o_tick in Ticker (8 <= x <="
                 + " 12, "), warning);
-        assertTrue(warning.contains("is 4 time units = 4.000 ms at 1000 us per unit"), warning);
+        assertTrue(warning.contains("is 4 time units = 0.400 ms at 100 us per unit"), warning);
         assertTrue(warning.contains("take 25% of it"), warning);
         // 1 ms must be a tenth of 4 units: 2500 us, rounded up to 5000
         assertTrue(warning.endsWith("a time unit of 5000 us or more keeps them under 10%"), warning);
@@ -61,15 +65,36 @@ class BusTimingTest {
     }
 
     @Test
-    void aRunOnTheBusSaysWhatItMeasuredAndWhatTheRunSaw() {
+    void theDeltaReportIsJsonWithOneEntryPerChannelAndDirection() {
+        String json = BusTiming.deltaReport(Path.of("m.xml"), 10_000, "ab12", List.of(
+                new ChannelDelay("reset", "input", 11, 180, 2400), new ChannelDelay("tick", "output", 24, 90, 1750)));
+        assertEquals("""
+                {
+                  "model": "m.xml",
+                  "timeUnitMicros": 10000,
+                  "runId": "ab12",
+                  "channels": [
+                    {"channel": "reset", "direction": "input", "count": 11, "lowMicros": 180, "highMicros": 2400},
+                    {"channel": "tick", "direction": "output", "count": 24, "lowMicros": 90, "highMicros": 1750}
+                  ]
+                }
+                """, json);
+    }
+
+    @Test
+    void aRunOnTheBusSaysWhatItMeasuredAndWhatTheRunSaw(@TempDir Path dir) throws Exception {
+        Path report = dir.resolve("delta.json");
         CommandRun r = CommandRun.of(TICKER.toString(), "--cluster", "timing-" + System.nanoTime(), "--adapter",
-                io.dtron.testadapter.BusTicker.class.getName(), "--timeunit", "100", "--timeout", "300",
-                "--delay-policy", "eager");
+                io.dtron.testadapter.RunClockTicker.class.getName(), "--timeunit", "100", "--timeout", "300",
+                "--delay-policy", "eager", "--delta-report", report.toString());
         assertTrue(r.out().contains("dtron run: delays on the bus before the run: up to "), r.out());
         assertTrue(r.out().contains("reorder window (Delta) 50 ms (auto: "), r.out());
         assertTrue(r.out().contains("dtron run: warning: the narrowest time window of an observable action, o_tick in"
                 + " Ticker (8 <= x <= 12, "), r.out());
         assertTrue(r.out().contains("is 4 time units = 0.400 ms at 100 us per unit"), r.out());
         assertTrue(r.out().contains("reorder window (Delta): "), r.out());
+        String json = Files.readString(report);
+        assertTrue(json.contains("\"timeUnitMicros\": 100,"), json);
+        assertTrue(json.contains("\"channels\": ["), json);
     }
 }

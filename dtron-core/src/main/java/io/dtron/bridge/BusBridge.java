@@ -85,8 +85,10 @@ public final class BusBridge implements Adapter, AutoCloseable {
     /** The channel of each input of the run, by its number. */
     private final Map<Long, String> inputChannels = new ConcurrentHashMap<>();
     private long performed;
-    /** The largest delay of this run's messages, event to receipt on the tester's clock, by "output NAME" etc. */
-    private final Map<String, Long> runDelays = new ConcurrentHashMap<>();
+    /** The delays of this run's messages by "input NAME" and "output NAME" (see {@link ChannelDelay}). */
+    private final Map<String, ChannelDelay> runDelays = new ConcurrentHashMap<>();
+    /** When each input of the run was published, on the run's clock in microseconds, by its number. */
+    private final Map<Long, Long> inputSentMicros = new ConcurrentHashMap<>();
     private final List<String> widenings = Collections.synchronizedList(new ArrayList<>());
     /** Inputs of other testers of the run, observed as outputs, until their acknowledgements say when they happened. */
     private final Map<String, IDtronChannelValued> heldPeerInputs = new ConcurrentHashMap<>();
@@ -348,6 +350,19 @@ public final class BusBridge implements Adapter, AutoCloseable {
         return System.nanoTime() + (epochNanos - dtron.currentTimeNanos());
     }
 
+    /**
+     * Hands every later message on the bus to {@code listener}, in the bus's order, for a trace of the whole bus
+     * (see {@link Dtron#addRecordListener}); {@link #removeRecordListener} stops it.
+     */
+    public void addRecordListener(java.util.function.Consumer<io.dtron.api.BusRecord> listener) {
+        dtron.addRecordListener(listener);
+    }
+
+    /** Stops handing messages to a listener of {@link #addRecordListener}. */
+    public void removeRecordListener(java.util.function.Consumer<io.dtron.api.BusRecord> listener) {
+        dtron.removeRecordListener(listener);
+    }
+
     /** Returns the verdicts the other testers of the run told, as exit codes by member. */
     public Map<String, Integer> peerVerdicts() {
         return Collections.unmodifiableMap(new TreeMap<>(peerVerdicts));
@@ -555,18 +570,18 @@ public final class BusBridge implements Adapter, AutoCloseable {
     }
 
     /**
-     * Returns the largest delay of each kind of message in the last run, from the event (an output produced, an
-     * input applied) to its receipt by the tester, on the tester's clock, in microseconds: keys "output NAME" and
-     * "input NAME" (its acknowledgement), in name order.
+     * Returns the delays of each channel's messages in the last run, inputs (published to applied, from the inputs
+     * an adapter acknowledged) and outputs (produced to received), by direction and name.
      */
-    public Map<String, Long> runDelays() {
-        return Collections.unmodifiableMap(new TreeMap<>(runDelays));
+    public List<ChannelDelay> runDelays() {
+        return new TreeMap<>(runDelays).values().stream().toList();
     }
 
     @Override
     public void start(AdapterContext runContext) {
         context = Objects.requireNonNull(runContext, "runContext");
         runDelays.clear();
+        inputSentMicros.clear();
         heldPeerInputs.clear();
         widenings.clear();
         watched.addAll(dtron.getMembers());
@@ -626,6 +641,7 @@ public final class BusBridge implements Adapter, AutoCloseable {
             if (sent != null) {
                 inputNumbers.put(sent.getSequence(), performed);
                 inputChannels.put(performed, input.channel());
+                inputSentMicros.put(performed, Math.floorDiv(sent.getPublishTimeNanos() - zeroEpochNanos, 1000));
             }
         }
     }
@@ -793,7 +809,12 @@ public final class BusBridge implements Adapter, AutoCloseable {
         recordOffset(ack);
         if (number != null) {
             long applied = runMicros(ack);
-            delayed(ack, "input " + inputChannels.getOrDefault(number, "?"), applied);
+            String channel = inputChannels.getOrDefault(number, "?");
+            arrived(ack, "acknowledgement of " + channel, applied);
+            Long sent = inputSentMicros.remove(number);
+            if (sent != null) {
+                measured("input", channel, applied - sent);
+            }
             context.inputApplied(number, applied, errorMicros(ack));
         }
     }
@@ -848,7 +869,8 @@ public final class BusBridge implements Adapter, AutoCloseable {
     private void reportOutput(IDtronChannelValued message, IDtronChannelValued timing) {
         // stamped before time 0 (it was ordered before the start on the bus): it counts from the start
         long happened = Math.max(0, runMicros(timing));
-        delayed(timing, "output " + message.getChannelName(), happened);
+        long delay = arrived(timing, "output " + message.getChannelName(), happened);
+        measured("output", message.getChannelName(), delay);
         context.report(new Event(message.getChannelName(), message.getVariables()), happened, errorMicros(timing));
     }
 
@@ -870,24 +892,30 @@ public final class BusBridge implements Adapter, AutoCloseable {
         return -Math.floorDiv(-message.getClockErrorNanos(), 1000);
     }
 
+    /** Adds a delay to a channel's interval in one direction. */
+    private void measured(String direction, String channel, long delayMicros) {
+        runDelays.merge(direction + " " + channel, new ChannelDelay(channel, direction, 1, Math.max(0, delayMicros),
+                Math.max(0, delayMicros)), (old, one) -> old.plus(delayMicros));
+    }
+
     /**
-     * Records how long after its event a message arrived, and widens the reorder window when it took more than half
-     * of it and the window is automatic.
+     * Returns how long after its event a message arrived, in microseconds, and widens the reorder window when it
+     * took more than half of it and the window is automatic.
      */
-    private void delayed(IDtronChannelValued message, String what, long eventRunMicros) {
+    private long arrived(IDtronChannelValued message, String what, long eventRunMicros) {
         long received = Math.floorDiv(message.getReceiveTimeNanos() - zeroEpochNanos, 1000);
         long delay = Math.max(0, received - eventRunMicros);
-        runDelays.merge(what, delay, Math::max);
         long window = windowMicros;
         if (autoWindow && window > 0 && delay > window / 2) {
             long widened = -Math.floorDiv(-2 * delay, 1000) * 1000;
             windowMicros = widened;
-            context.widenReorderWindow(widened);
             String line = String.format(java.util.Locale.ROOT, "to %.1f ms at run time %.3f s: %s from %s took %.1f ms",
                     widened / 1e3, received / 1e6, what, message.getSender(), delay / 1e3);
             widenings.add(line);
             LOG.info("Reorder window widened {}", line);
+            context.widenReorderWindow(widened);
         }
+        return delay;
     }
 
     /**

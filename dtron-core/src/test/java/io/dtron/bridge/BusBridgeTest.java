@@ -232,11 +232,12 @@ class BusBridgeTest {
         // produced 30 ms before it is sent: more than half of 40 ms
         adapter.send(X.constructValued(Map.of()), adapter.currentTimeNanos() - 30_000_000);
         long widened = context.widened.poll(10, TimeUnit.SECONDS);
-        assertTrue(widened >= 60_000 && widened % 1000 == 0, "twice the delay, in whole ms: " + widened);
+        assertTrue(widened >= 50_000 && widened % 1000 == 0, "twice the delay, in whole ms: " + widened);
         assertEquals(widened, bridge.reorderWindowMicros());
         assertEquals(1, bridge.widenings().size(), bridge.widenings().toString());
-        assertTrue(bridge.widenings().get(0).contains("output x from adapter took 3"), bridge.widenings().toString());
-        assertTrue(bridge.runDelays().get("output x") >= 30_000, bridge.runDelays().toString());
+        assertTrue(bridge.widenings().get(0).contains("output x from adapter took "), bridge.widenings().toString());
+        assertTrue(bridge.runDelays().get(0).highMicros() >= 25_000, "30 ms, give or take the clocks' error: " + bridge.runDelays());
+        assertEquals("output", bridge.runDelays().get(0).direction());
         // a delay within half of the wider window changes nothing
         adapter.send(X.constructValued(Map.of()), adapter.currentTimeNanos() - 5_000_000);
         assertNotNull(context.outputs.poll(10, TimeUnit.SECONDS));
@@ -253,7 +254,8 @@ class BusBridgeTest {
         assertNotNull(context.outputs.poll(10, TimeUnit.SECONDS));
         assertTrue(context.widened.isEmpty(), context.widened.toString());
         assertEquals(40_000, bridge.reorderWindowMicros());
-        assertTrue(bridge.runDelays().get("output x") >= 30_000, bridge.runDelays().toString());
+        assertTrue(bridge.runDelays().get(0).highMicros() >= 25_000, "30 ms, give or take the clocks' error: " + bridge.runDelays());
+        assertEquals("output", bridge.runDelays().get(0).direction());
     }
 
     @Test
@@ -280,6 +282,12 @@ class BusBridgeTest {
         assertEquals(2, second[0]);
         assertTrue(first[1] >= 0 && first[1] <= second[1] + 1000, first[1] + " " + second[1]);
         assertTrue(second[1] <= context.clock().nowMicros() + 1000, "applied before now: " + second[1]);
+        // the inputs' delays, published to applied, make the channel's interval
+        ChannelDelay delay = bridge.runDelays().get(0);
+        assertEquals("move", delay.channel());
+        assertEquals("input", delay.direction());
+        assertEquals(2, delay.count());
+        assertTrue(delay.lowMicros() <= delay.highMicros() && delay.highMicros() < 10_000_000, delay.toString());
     }
 
     @Test

@@ -5,10 +5,16 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import io.dtron.api.ChildJvm;
 import io.dtron.cli.DtronCommand;
+import java.nio.file.Files;
 import java.nio.file.Path;
 import java.time.Duration;
+import java.util.ArrayList;
+import java.util.HashSet;
+import java.util.List;
 import java.util.UUID;
 import java.util.concurrent.TimeUnit;
+import java.util.regex.Matcher;
+import java.util.regex.Pattern;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.Timeout;
 import org.junit.jupiter.api.io.TempDir;
@@ -32,7 +38,7 @@ class DistributedRunTest {
             String... more) throws Exception {
         String[] args = new String[] {"run", MODELS.resolve(model).toString(), "--cluster", cluster, "--bind",
                 address, "--members", MEMBERS, "--timeunit", "20000", "--timeout", "150", "--delay-policy", "eager",
-                "--seed", "7"};
+                "--seed", "7", "--wait-timeout", "90"};
         String[] all = new String[args.length + more.length];
         System.arraycopy(args, 0, all, 0, args.length);
         System.arraycopy(more, 0, all, args.length, more.length);
@@ -77,11 +83,14 @@ class DistributedRunTest {
     }
 
     @Test
-    void twoModelsInAConversationBothPass(@TempDir Path dir) throws Exception {
+    void twoModelsInAConversationBothPassAndTraceTheSameBus(@TempDir Path dir) throws Exception {
         String cluster = cluster();
-        try (ChildJvm mover = tester(dir, "mover", "conversation/mover.xta", cluster, "127.0.0.1", "--testers", "2");
+        Path moverTrace = dir.resolve("mover.jsonl");
+        Path responderTrace = dir.resolve("responder.jsonl");
+        try (ChildJvm mover = tester(dir, "mover", "conversation/mover.xta", cluster, "127.0.0.1", "--testers", "2",
+                "--trace", moverTrace.toString());
                 ChildJvm responder = tester(dir, "responder", "conversation/responder.xta", cluster, "127.0.0.2",
-                        "--join")) {
+                        "--join", "--trace", responderTrace.toString())) {
             int first = mover.waitFor(WAIT);
             int second = responder.waitFor(WAIT);
             assertEquals(0, first, mover.output() + responder.output());
@@ -89,5 +98,32 @@ class DistributedRunTest {
             assertTrue(mover.output().contains("PASSED"), mover.output());
             assertTrue(responder.output().contains("PASSED"), responder.output());
         }
+        List<String> a = busMessages(moverTrace);
+        List<String> b = busMessages(responderTrace);
+        assertEquals(new HashSet<>(a).size(), a.size(), "every message once in the mover's trace");
+        assertEquals(new HashSet<>(b).size(), b.size(), "every message once in the responder's trace");
+        // the traces start when each engine started: from the first message both have, the order is the same
+        int fromA = a.indexOf(b.get(0));
+        int fromB = b.indexOf(a.get(0));
+        assertTrue(fromA >= 0 || fromB >= 0, "the traces share messages: " + a.subList(0, 5) + " " + b.subList(0, 5));
+        List<String> restA = a.subList(Math.max(0, fromA), a.size());
+        List<String> restB = b.subList(Math.max(0, fromB), b.size());
+        int overlap = Math.min(restA.size(), restB.size());
+        assertTrue(overlap >= 50, "moves, dones and the clocks' messages: " + overlap);
+        assertEquals(restA.subList(0, overlap), restB.subList(0, overlap));
+    }
+
+    /** The bus lines of a trace, as channel/sender/sequence, in the order written. */
+    private static List<String> busMessages(Path trace) throws java.io.IOException {
+        Pattern bus = Pattern.compile("\\{\"kind\":\"bus\",\"channel\":\"([^\"]+)\",\"sender\":\"([^\"]+)\","
+                + "\"sequence\":(\\d+),");
+        List<String> messages = new ArrayList<>();
+        for (String line : Files.readAllLines(trace)) {
+            Matcher m = bus.matcher(line);
+            if (m.lookingAt()) {
+                messages.add(m.group(1) + "/" + m.group(2) + "/" + m.group(3));
+            }
+        }
+        return messages;
     }
 }
