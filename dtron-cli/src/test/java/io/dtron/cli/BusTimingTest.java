@@ -48,7 +48,7 @@ class BusTimingTest {
         String warning = BusTiming.windowWarning(tickerWindow(), delays, 1000).orElseThrow();
         assertTrue(warning.contains("the narrowest time window of an observable action, o_tick in Ticker (8 <= x <="
                 + " 12, "), warning);
-        assertTrue(warning.contains("is 4 time units = 0.400 ms at 100 us per unit"), warning);
+        assertTrue(warning.contains("is 4 time units = 4.000 ms at 1000 us per unit"), warning);
         assertTrue(warning.contains("take 25% of it"), warning);
         // 1 ms must be a tenth of 4 units: 2500 us, rounded up to 5000
         assertTrue(warning.endsWith("a time unit of 5000 us or more keeps them under 10%"), warning);
