@@ -63,6 +63,8 @@ public final class BusBridge implements Adapter, AutoCloseable {
     static final Duration STOP_ECHO_TIMEOUT = Duration.ofSeconds(2);
     /** How long an adapter member gets to answer the tester's probe before a missed deadline (see unreachable). */
     static final Duration PROBE_TIMEOUT = Duration.ofSeconds(1);
+    /** How long {@link #measureDelays} waits for a member's first message with a clock offset estimate. */
+    static final Duration FIRST_ESTIMATE_TIMEOUT = Duration.ofSeconds(2);
     /** How long the tester that started a run of several testers waits for the others' verdicts before it ends it. */
     static final Duration VERDICTS_TIMEOUT = Duration.ofSeconds(30);
 
@@ -517,7 +519,9 @@ public final class BusBridge implements Adapter, AutoCloseable {
     /**
      * Measures the delays of the adapters' messages before a run: asks every adapter member {@code rounds} times,
      * {@code spacing} apart, to answer (see {@link Dtron#probe}), and sums up every message of theirs measured so far
-     * (their pings since they joined included), so that the first, slow messages of a fresh process count too.
+     * (their pings since they joined included), so that the first, slow messages of a fresh process count too. A
+     * member that joined just now is given {@link #FIRST_ESTIMATE_TIMEOUT} to send its first clock offset estimate,
+     * without which its delays cannot be measured.
      *
      * @throws InterruptedException if the thread was interrupted while waiting
      */
@@ -525,6 +529,11 @@ public final class BusBridge implements Adapter, AutoCloseable {
         Set<String> adapters = new java.util.HashSet<>(dtron.getMembers());
         adapters.remove(dtron.getMemberId());
         adapters.removeAll(testersOfOtherRuns());
+        // a member that joined just now sends its first clock offset estimate after a few round trips
+        long deadline = System.nanoTime() + FIRST_ESTIMATE_TIMEOUT.toNanos();
+        while (!dtron.getDelaysFromMembers().keySet().containsAll(adapters) && System.nanoTime() < deadline) {
+            Thread.sleep(10);
+        }
         for (int i = 0; i < rounds && !adapters.isEmpty(); i++) {
             dtron.probe(adapters, PROBE_TIMEOUT);
             Thread.sleep(spacing.toMillis());
