@@ -260,9 +260,14 @@ class RunCommandTest {
         assertTrue(r.out().contains("adapter " + BusTicker.class.getName() + " joined as "), r.out());
         assertTrue(r.out().contains("PASSED: the timeout of 100 time units was reached after 3 inputs and 8 outputs"),
                 r.out());
-        assertTrue(r.out().contains("latency t2 - t1 of outputs: count 8, min "), r.out());
+        // a tick that arrives while the run ends (it waits Delta past the timeout) is counted, not judged
+        java.util.regex.Matcher m = Pattern.compile("latency t2 - t1 of outputs: count (\\d+), min ").matcher(r.out());
+        assertTrue(m.find(), r.out());
+        int late = Integer.parseInt(m.group(1)) - 8;
+        assertTrue(late == 0 || late == 1, r.out());
         assertTrue(r.out().contains("latency t2 - t1 of inputs back from the bus: count 3, min "), r.out());
-        assertTrue(r.out().contains("bus: published 5, accepted 13, rejected 0, listener failures 0"), r.out());
+        assertTrue(r.out().contains("bus: published 5, accepted " + (13 + late) + ", rejected 0, listener failures 0"),
+                r.out());
     }
 
     @Test
