@@ -365,6 +365,19 @@ public final class BusBridge implements Adapter, AutoCloseable {
         dtron.removeRecordListener(listener);
     }
 
+    /**
+     * Whether the adapters acknowledge the inputs they apply: every input channel is received by a member that took
+     * part in the channel-serving handshake, as every member built on DTRON's API does (and acknowledges inputs
+     * when its listeners return). Adapters waited for by number ({@code --wait-for-adapters N}) may not.
+     */
+    @Override
+    public boolean acknowledgesInputs() {
+        Set<String> received = new java.util.HashSet<>();
+        dtron.getMembersServedChannels().values().stream().filter(s -> !isPeerTester(s.member()))
+                .forEach(s -> received.addAll(s.receives()));
+        return !inputs.isEmpty() && received.containsAll(inputs.keySet());
+    }
+
     /** Returns the verdicts the other testers of the run told, as exit codes by member. */
     public Map<String, Integer> peerVerdicts() {
         return Collections.unmodifiableMap(new TreeMap<>(peerVerdicts));

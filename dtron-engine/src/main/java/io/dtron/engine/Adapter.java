@@ -36,6 +36,14 @@ public interface Adapter {
         return java.util.OptionalLong.empty();
     }
 
+    /**
+     * Returns whether the adapter reports when it applied each input ({@link AdapterContext#inputApplied}): then a
+     * verdict that depends on where an input was applied waits a while for that report. False by default.
+     */
+    default boolean acknowledgesInputs() {
+        return false;
+    }
+
     /** Called once at the end of the run (the verdict is known). */
     default void stop() {
     }

@@ -38,6 +38,11 @@ public final class OnlineTester {
      * a loaded one.
      */
     private static final long INPUT_MARGIN_MICROS = 2000;
+    /**
+     * How many reorder windows past its time a held verdict waits for the acknowledgement of an input sent before
+     * the event it concerns, when the adapters acknowledge inputs: its place decides the verdict.
+     */
+    private static final int ACK_PATIENCE = 4;
 
     private final Network network;
     private final TestInterface testInterface;
@@ -179,6 +184,8 @@ public final class OnlineTester {
         long micros;
         /** The event happened within this many microseconds of {@link #micros}: the clocks' error bound. */
         long uncertainty;
+        /** For an input: whether its adapter acknowledged it. */
+        boolean acknowledged;
         StateSet after;
         long afterMicros;
 
@@ -192,7 +199,7 @@ public final class OnlineTester {
     }
 
     /** A verdict that holds for the order of events seen so far, final once no earlier event can arrive. */
-    private record Held(TestResult result, long finalMicros) {
+    private record Held(TestResult result, long finalMicros, long eventMicros) {
     }
 
     /** One run: its state and its loop. */
@@ -218,6 +225,8 @@ public final class OnlineTester {
         private StateSet set;
         private long lastMicros;
         private Held held;
+        /** How many acknowledgements of inputs came in this run. */
+        private long acknowledgements;
         private long performed;
         private int inputs;
         private int outputs;
@@ -254,10 +263,23 @@ public final class OnlineTester {
             while (true) {
                 long now = clock.nowMicros();
                 if (held != null) {
-                    if (now >= held.finalMicros()) {
-                        return result(held.result().verdict(), held.result().explanation());
+                    long until = held.finalMicros();
+                    if (now >= until) {
+                        Pending unacknowledged = awaitingAcknowledgement(held.eventMicros());
+                        if (unacknowledged == null) {
+                            return result(held.result().verdict(), held.result().explanation());
+                        }
+                        // the verdict depends on where that input was applied, which its acknowledgement will say
+                        until = held.finalMicros() + ACK_PATIENCE * window();
+                        if (now >= until) {
+                            return result(Verdict.INCONCLUSIVE, "input " + unacknowledged.event + " was sent at "
+                                    + time(unacknowledged.sentMicros) + ", but the acknowledgement of when it was"
+                                    + " applied had not come by " + time(now) + ", and the verdict depends on it: "
+                                    + held.result().verdict() + " if it was applied then (" + held.result()
+                                    .explanation() + ")");
+                        }
                     }
-                    TestResult verdict = receive(clock.awaitUntil(held.finalMicros()));
+                    TestResult verdict = receive(clock.awaitUntil(until));
                     if (verdict != null) {
                         return verdict;
                     }
@@ -353,6 +375,22 @@ public final class OnlineTester {
                 l.waiting(now, untilMicros, until);
             }
         }
+        /**
+         * A pending input sent at or before {@code at} whose acknowledgement has not come, when the adapter
+         * acknowledges inputs (it says so, or some acknowledgement came in this run); else null.
+         */
+        private Pending awaitingAcknowledgement(long at) {
+            if (acknowledgements == 0 && !adapter.acknowledgesInputs()) {
+                return null;
+            }
+            for (Pending p : pending) {
+                if (p.input && !p.acknowledged && p.sentMicros <= at) {
+                    return p;
+                }
+            }
+            return null;
+        }
+
         /** Commits to the pending events at or before {@code horizon}: nothing earlier can arrive any more. */
         private void commit(long horizon) {
             while (!pending.isEmpty() && pending.get(0).micros <= horizon) {
@@ -423,6 +461,8 @@ public final class OnlineTester {
             }
             for (Pending p : pending) {
                 if (p.input && p.ordinal == ordinal) {
+                    acknowledgements++;
+                    p.acknowledged = true;
                     pending.remove(p);
                     // an input is not applied before it is sent: an earlier time is the clocks' error
                     p.micros = Math.max(micros, p.sentMicros);
@@ -431,6 +471,9 @@ public final class OnlineTester {
                 }
             }
             Pending input = committedInputs.remove(ordinal);
+            if (input != null) {
+                acknowledgements++;
+            }
             if (input != null && micros - input.sentMicros > window()) {
                 return result(Verdict.INCONCLUSIVE, "input " + input.event + ", sent at " + time(input.sentMicros)
                         + ", was applied at " + time(micros) + ", " + Plan.units(micros - input.sentMicros, unit)
@@ -466,7 +509,7 @@ public final class OnlineTester {
                     if (window() == 0) {
                         return verdict;
                     }
-                    held = new Held(verdict, p.micros + window());
+                    held = new Held(verdict, p.micros + window(), p.micros);
                     return null;
                 }
                 p.after = set;

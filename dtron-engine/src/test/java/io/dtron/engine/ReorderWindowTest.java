@@ -62,7 +62,7 @@ class ReorderWindowTest {
      * A system whose adapter reports output x, that happened at {@code happened} units, when the run's clock reads
      * {@code arrives} units; and, if {@code appliedAt} is positive, acknowledges the first input as applied then.
      */
-    private static final class Delayed implements Adapter {
+    private static class Delayed implements Adapter {
         private final double happened;
         private final double arrives;
         private final double appliedAt;
@@ -316,5 +316,66 @@ class ReorderWindowTest {
         TestResult inTime = run(ANSWER, new Delayed(5, 6, 0), 5);
         assertEquals(Verdict.PASSED, inTime.verdict(), inTime.explanation());
         assertEquals(1, inTime.inputs(), inTime.toString());
+    }
+
+    /** {@link Delayed}, telling the engine that it acknowledges inputs. */
+    private static Adapter acknowledging(Delayed delayed) {
+        return new Adapter() {
+            @Override
+            public void start(AdapterContext context) {
+                delayed.start(context);
+            }
+
+            @Override
+            public void perform(Event input) {
+                delayed.perform(input);
+            }
+
+            @Override
+            public boolean acknowledgesInputs() {
+                return true;
+            }
+        };
+    }
+
+    @Test
+    void aVerdictThatDependsOnAnInputsUnacknowledgedPlaceWaitsForItsAcknowledgement() throws Exception {
+        // y sent at 10, x happened at 10.3; y's acknowledgement says 10.8 but arrives only at 14, after the window
+        // of 2 units past x: an adapter that acknowledges inputs is waited for, and x came before y
+        TestResult waited = run(crossing(20), acknowledging(new LateAck(10.3, 10.4, 10.8, 14)), 2);
+        assertEquals(Verdict.PASSED, waited.verdict(), waited.explanation());
+        // an adapter that does not say it acknowledges: judged with y where it was sent
+        TestResult unknown = run(crossing(20), new LateAck(10.3, 10.4, 10.8, 14), 2);
+        assertEquals(Verdict.FAILED, unknown.verdict(), unknown.explanation());
+        // an acknowledgement that never comes: INCONCLUSIVE, naming the input
+        TestResult never = run(crossing(20), acknowledging(new LateAck(10.3, 10.4, 10.8, 100)), 2);
+        assertEquals(Verdict.INCONCLUSIVE, never.verdict(), never.explanation());
+        assertTrue(never.explanation().startsWith("input y() was sent at t=10.000, but the acknowledgement of when it"
+                + " was applied had not come by "), never.explanation());
+    }
+
+    /** Like {@link Delayed}, but the acknowledgement (applied at {@code appliedAt}) arrives at {@code ackArrives}. */
+    private static final class LateAck extends Delayed {
+        private final double appliedAt;
+        private final double ackArrives;
+        private AdapterContext context;
+
+        LateAck(double happened, double arrives, double appliedAt, double ackArrives) {
+            super(happened, arrives, 0);
+            this.appliedAt = appliedAt;
+            this.ackArrives = ackArrives;
+        }
+
+        @Override
+        public void start(AdapterContext context) {
+            this.context = context;
+            super.start(context);
+        }
+
+        @Override
+        public void perform(Event input) {
+            long now = context.clock().nowMicros();
+            context.clock().schedule(micros(ackArrives) - now, () -> context.inputApplied(1, micros(appliedAt)));
+        }
     }
 }
