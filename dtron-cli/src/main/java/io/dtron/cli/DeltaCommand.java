@@ -21,6 +21,7 @@ import java.nio.file.Path;
 import java.nio.file.StandardCopyOption;
 import java.util.LinkedHashMap;
 import java.util.List;
+import java.util.Locale;
 import java.util.Map;
 import java.util.concurrent.Callable;
 import java.util.regex.Matcher;
@@ -117,6 +118,7 @@ final class DeltaCommand implements Callable<Integer> {
         DeltaReport measured = report == null ? null : readReport();
         byte[] bytes = readModel();
         String text = ModelSyntax.decode(bytes);
+        checkFormat(ModelSyntax.isXml(text));
         Network network;
         TestInterface testInterface;
         try {
@@ -170,6 +172,16 @@ final class DeltaCommand implements Callable<Integer> {
             }
         }
         return delays;
+    }
+
+    /** Refuses an output name whose extension says the other format: the model is written in its own. */
+    private void checkFormat(boolean xml) throws Refusal {
+        String name = output.getFileName() == null ? "" : output.getFileName().toString().toLowerCase(Locale.ROOT);
+        boolean text = name.endsWith(".xta") || name.endsWith(".ta");
+        if (xml ? text : name.endsWith(".xml")) {
+            throw new Refusal(output + ": the Delta-extended model is written in the model's own format, "
+                    + (xml ? "Uppaal XML; name it .xml" : "text; name it .xta"));
+        }
     }
 
     private DeltaReport readReport() throws Refusal {

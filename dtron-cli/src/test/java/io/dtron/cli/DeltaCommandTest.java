@@ -8,10 +8,12 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 import io.dtron.model.Expression;
 import io.dtron.model.ModelLoader;
 import io.dtron.model.Network;
+import java.io.File;
 import java.io.IOException;
 import java.net.URISyntaxException;
 import java.nio.file.Files;
 import java.nio.file.Path;
+import java.util.List;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
 
@@ -60,15 +62,15 @@ class DeltaCommandTest {
     @Test
     void writesTheTickersDeltaModelFromARunsReport(@TempDir Path dir) throws Exception {
         Path out = dir.resolve("ticker-delta.xml");
-        CommandRun r = CommandRun.of("delta", TICKER.toString(), "--delta-from", fixture("delta-report.json").toString(),
-                "-o", out.toString());
+        CommandRun r = CommandRun.of("delta", TICKER.toString(), "--delta-from",
+                fixture("delta-report.json").toString(), "-o", out.toString());
         assertEquals(0, r.exit(), r.err());
         assertEquals("", r.err());
         assertTrue(r.out().contains("time unit 10000 us"), "the report's time unit: " + r.out());
         assertTrue(r.out().contains("input  reset 180..2400 us (0..1 units)"), r.out());
         assertTrue(r.out().contains("widened 1 bound:"), r.out());
-        assertTrue(r.out().contains("Ticker: location Running, invariant (o_tick!, i_reset?): x <= P + T  ->  x <= (P + T)"
-                + " + 1"), r.out());
+        assertTrue(r.out().contains("Ticker: location Running, invariant (o_tick!, i_reset?): x <= P + T  ->  "
+                + "x <= (P + T) + 1"), r.out());
         assertTrue(r.out().contains("x >= P - T: the lower bound's widening of 270 us rounds down to 0 time units"),
                 r.out());
         String written = Files.readString(out);
@@ -88,13 +90,14 @@ class DeltaCommandTest {
         Path model = dir.resolve("two-ports.xml");
         Files.writeString(model, TWO_PORTS);
         Path out = dir.resolve("two-ports-delta.xml");
-        CommandRun r = CommandRun.of("delta", model.toString(), "--delta", "req=1500..2500", "--delta", "resp=700..1200",
-                "--timeunit", "1000", "-o", out.toString());
+        CommandRun r = CommandRun.of("delta", model.toString(), "--delta", "req=1500..2500", "--delta",
+                "resp=700..1200", "--timeunit", "1000", "-o", out.toString());
         assertEquals(0, r.exit(), r.err());
         // i_req edges: lower + floor(1500 + 700 us) = 2, upper + ceil(2500 + 1200 us) = 4; o_resp edges the same
         String expected = TWO_PORTS
                 .replace(">x &lt;= RESP_MAX<", ">x &lt;= RESP_MAX + 4<")
-                .replace(">x &gt;= RESP_MIN &amp;&amp; x - t &lt;= 100<", ">x &gt;= RESP_MIN + 2 &amp;&amp; x - t &lt;= 100<")
+                .replace(">x &gt;= RESP_MIN &amp;&amp; x - t &lt;= 100<",
+                        ">x &gt;= RESP_MIN + 2 &amp;&amp; x - t &lt;= 100<")
                 .replace(">u &gt; 3<", ">u &gt; 3 + 2<")
                 .replace(">u &lt; 20<", ">u &lt; 20 + 4<");
         String written = Files.readString(out);
@@ -171,6 +174,8 @@ class DeltaCommandTest {
                 + " \"input\", \"count\": 0, \"lowMicros\": 0, \"highMicros\": 0}]}");
         refused(unmeasured + " measured no channel (every count is 0): nothing to widen", "delta", m, "--delta-from",
                 unmeasured.toString(), "-o", o);
+        refused(dir.resolve("out.xta") + ": the Delta-extended model is written in the model's own format, Uppaal XML;"
+                + " name it .xml", "delta", m, "--delta", "req=1..2", "-o", dir.resolve("out.xta").toString());
         refused(dir.resolve("none.xml") + ": no such file", "delta", dir.resolve("none.xml").toString(), "--delta",
                 "req=1..2", "-o", o);
         assertFalse(Files.exists(out), "nothing written");
@@ -201,6 +206,34 @@ class DeltaCommandTest {
         assertTrue(r.err().contains("unknown name 'y'"), r.err());
         assertFalse(r.err().contains("Exception") || r.err().contains("\tat "), r.err());
         assertFalse(Files.exists(dir.resolve("o.xta")));
+    }
+
+    @Test
+    void theExampleOfTheUserGuideIsWhatTheCommandDoes(@TempDir Path dir) throws IOException {
+        DocPage page = DocPage.read("cli.md");
+        String session = page.blocksStartingWith("$ java -jar dtron.jar delta").get(0).code();
+        String[] lines = session.split("\n", -1);
+        String command = (lines[0] + lines[1]).replace("\\", " ").replace("$ java -jar dtron.jar", "").trim();
+        Files.copy(TICKER, dir.resolve("ticker.xml"));
+        String[] args = command.split("\\s+");
+        for (int i = 0; i < args.length; i++) {
+            if (args[i].endsWith(".xml")) {
+                args[i] = dir.resolve(args[i]).toString();
+            }
+        }
+        CommandRun r = CommandRun.of(args);
+        assertEquals(0, r.exit(), r.err());
+        String expected = String.join("\n", List.of(lines).subList(2, lines.length));
+        assertEquals(expected, r.out().replace(dir + File.separator, "").replace(System.lineSeparator(), "\n"));
+        String written = Files.readString(dir.resolve("ticker-delta.xml"));
+        String labels = page.blockAfter("Before and after, the labels in the XML").code();
+        String[] label = labels.split("\n");
+        assertTrue(Files.readString(TICKER).contains(label[0].trim()) && Files.readString(TICKER)
+                .contains(label[1].trim()), labels);
+        assertTrue(written.contains(label[3].trim()) && written.contains(label[4].trim()), labels);
+        String comment = page.blockAfter("and the global declarations start with the comment").code();
+        String shown = comment.substring(0, comment.indexOf("...")).replace("&lt;", "<").replace("&gt;", ">");
+        assertTrue(written.replace("&lt;", "<").replace("&gt;", ">").contains(shown), shown);
     }
 
     @Test

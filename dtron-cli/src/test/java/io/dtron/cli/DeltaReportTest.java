@@ -25,7 +25,8 @@ class DeltaReportTest {
     void skipsUnmeasuredChannelsAndToleratesMissingNamesAndNewKeys() {
         DeltaReport r = DeltaReport.parse("{\"timeUnitMicros\": 1000, \"p99\": 3, \"channels\": ["
                 + "{\"channel\": \"a\", \"direction\": \"input\", \"count\": 0, \"lowMicros\": 0, \"highMicros\": 0},"
-                + "{\"channel\": \"b\", \"direction\": \"output\", \"count\": 2, \"lowMicros\": 5, \"highMicros\": 9}]}");
+                + "{\"channel\": \"b\", \"direction\": \"output\", \"count\": 2, \"lowMicros\": 5,"
+                + " \"highMicros\": 9}]}");
         assertEquals(null, r.model());
         assertEquals(Map.of("b", new Delay(5, 9)), r.measured());
     }
@@ -33,7 +34,8 @@ class DeltaReportTest {
     @Test
     void refusesOtherShapes() {
         assertEquals("the report is not a JSON object", message("[]"));
-        assertEquals("the report: \"timeUnitMicros\" must be an integer, and is missing", message("{\"channels\": []}"));
+        assertEquals("the report: \"timeUnitMicros\" must be an integer, and is missing",
+                message("{\"channels\": []}"));
         assertEquals("timeUnitMicros must be positive, not 0", message("{\"timeUnitMicros\": 0, \"channels\": []}"));
         assertEquals("the report has no \"channels\" array", message("{\"timeUnitMicros\": 10}"));
         assertEquals("channel 'a': needs count >= 0 and, when measured, 0 <= lowMicros <= highMicros, not count 1,"
@@ -44,7 +46,8 @@ class DeltaReportTest {
                 + " 4}]}"));
         assertEquals("channels[1]: channel 'a' appears twice", message("{\"timeUnitMicros\": 10, \"channels\": ["
                 + "{\"channel\": \"a\", \"direction\": \"input\", \"count\": 0, \"lowMicros\": 0, \"highMicros\": 0},"
-                + "{\"channel\": \"a\", \"direction\": \"input\", \"count\": 0, \"lowMicros\": 0, \"highMicros\": 0}]}"));
+                + "{\"channel\": \"a\", \"direction\": \"input\", \"count\": 0, \"lowMicros\": 0,"
+                + " \"highMicros\": 0}]}"));
         assertEquals("the report: \"runId\" must be a string", message("{\"timeUnitMicros\": 10, \"runId\": 7,"
                 + " \"channels\": []}"));
     }

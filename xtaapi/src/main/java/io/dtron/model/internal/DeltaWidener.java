@@ -466,7 +466,8 @@ public final class DeltaWidener {
     }
 
     private static String unescape(String raw) {
-        return raw.replace("<![CDATA[", "").replace("]]>", "").replace("\r\n", "\n").replace('\r', '\n')
+        return raw.replaceAll("(?s)<!--.*?-->", "").replace("<![CDATA[", "").replace("]]>", "")
+                .replace("\r\n", "\n").replace('\r', '\n')
                 .replace("&lt;", "<").replace("&gt;", ">").replace("&quot;", "\"").replace("&apos;", "'")
                 .replace("&amp;", "&");
     }
@@ -511,7 +512,7 @@ public final class DeltaWidener {
                 + "// the edge's own channel gives the interval of its direction, the hull of the channels given\n"
                 + "// the other one (0 when none is given).\n");
         note.append("// Widened ").append(changes.size()).append(changes.size() == 1 ? " bound" : " bounds")
-                .append(changes.isEmpty() ? "." : ":").append('\n');
+                .append(changes.isEmpty() ? "." : " (at the lines of the model before this comment):").append('\n');
         int listed = 0;
         for (Change c : changes) {
             if (listed++ == MAX_LISTED) {

@@ -16,11 +16,14 @@ import io.dtron.model.TestInterface;
 import io.dtron.model.delta.DeltaExtension.Delay;
 import io.dtron.model.delta.DeltaExtension.Result;
 import java.nio.charset.StandardCharsets;
+import java.util.ArrayList;
 import java.util.List;
 import java.util.Map;
 import org.junit.jupiter.api.Test;
 
 class DeltaExtensionTest {
+    private static final int P_PLUS_T = 12;
+
     /**
      * A two-port system: the server takes i_req and i_stop at port 1 and answers o_resp at port 2 within a bound;
      * the client is the environment. Written as the Uppaal editor writes XML: {@code >} escaped too.
@@ -109,9 +112,9 @@ class DeltaExtensionTest {
         assertEquals(7, r.changes().size(), r.changes().toString());
         assertTrue(note.contains("input req 2500..5200 us (2..6 units)"), note);
         assertTrue(note.contains("output resp 1200..2900 us (1..3 units)"), note);
-        assertTrue(note.contains("Widened 7 bounds:"), note);
-        assertTrue(note.contains("Server: location Busy, invariant (o_resp!, i_stop?): y &lt;= P + T  -&gt;  y &lt;= (P + T) + 9"),
-                note);
+        assertTrue(note.contains("Widened 7 bounds (at the lines of the model before this comment):"), note);
+        assertTrue(note.contains("Server: location Busy, invariant (o_resp!, i_stop?): y &lt;= P + T  -&gt;  "
+                + "y &lt;= (P + T) + 9"), note);
         assertTrue(note.contains("y - z &lt;= 50: a clock difference is not widened"), note);
         assertTrue(note.contains("y &lt;= n: the bound is not a constant expression"), note);
         assertTrue(r.warnings().isEmpty(), r.warnings().toString());
@@ -134,8 +137,6 @@ class DeltaExtensionTest {
         assertEquals(0, invariantBound(after, "Client", "Ready"), "no invariant");
     }
 
-    private static final int P_PLUS_T = 12;
-
     /** The constant of the {@code k}-th clock comparison of edge {@code edge}'s guard, in the order written. */
     private static int bound(Network n, String process, int edge, int k) {
         Edge e = n.process(process).orElseThrow().edges().get(edge);
@@ -150,7 +151,7 @@ class DeltaExtensionTest {
     private static List<Integer> constants(Expression e) {
         if (e instanceof Expression.Binary b && (b.op() == Expression.Operator.AND
                 || b.op() == Expression.Operator.OR)) {
-            List<Integer> all = new java.util.ArrayList<>(constants(b.left()));
+            List<Integer> all = new ArrayList<>(constants(b.left()));
             all.addAll(constants(b.right()));
             return all;
         }
