@@ -229,7 +229,10 @@ final class DeltaCommand implements Callable<Integer> {
 
     private Map<String, Delay> fromReport(DeltaReport measured, TestInterface testInterface, PrintWriter err)
             throws Refusal {
-        if (measured.model() != null && !Path.of(measured.model()).getFileName().equals(model.getFileName())) {
+        String measuredName = measured.model() == null ? null
+                : measured.model().substring(Math.max(measured.model().lastIndexOf('/'),
+                measured.model().lastIndexOf('\\')) + 1);
+        if (measuredName != null && !measuredName.equals(String.valueOf(model.getFileName()))) {
             err.println("dtron delta: warning: " + report + " was measured with model " + measured.model() + ", not "
                     + model.getFileName());
         }

@@ -83,6 +83,13 @@ class DeltaCommandTest {
         assertEquals(13, constant(network.process("Ticker").orElseThrow().location("Running").invariant()));
         CommandRun check = CommandRun.of("check", out.toString());
         assertEquals(0, check.exit(), check.err());
+
+        Path renamed = Files.copy(TICKER, dir.resolve("clock.xml"));
+        CommandRun other = CommandRun.of("delta", renamed.toString(), "--delta-from",
+                fixture("delta-report.json").toString(), "-o", dir.resolve("clock-delta.xml").toString());
+        assertEquals(0, other.exit(), other.err());
+        assertTrue(other.err().contains("warning: " + fixture("delta-report.json") + " was measured with model"
+                + " ticker.xml, not clock.xml"), other.err());
     }
 
     @Test

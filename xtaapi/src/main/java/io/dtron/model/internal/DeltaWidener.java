@@ -375,7 +375,7 @@ public final class DeltaWidener {
             String escaped = "(" + clock + escape(" >= ", at) + plus(bound, low, value)
                     + escape(" && ", at) + clock + escape(" <= ", at) + plus(bound, high, value)
                     + ")";
-            edits.add(new Edit(f.fileOffset(cmp.start()), f.fileOffset(cmp.end()), escaped));
+            edits.add(new Edit(f.fileOffset(cmp.start()), endOffset(cmp), escaped));
             return plain;
         }
         long amount = b.kind == Kind.LOWER ? low : high;
@@ -385,7 +385,7 @@ public final class DeltaWidener {
         if (!atom) {
             edits.add(new Edit(f.fileOffset(bound.start()), f.fileOffset(bound.start()), "("));
         }
-        edits.add(new Edit(f.fileOffset(bound.end()), f.fileOffset(bound.end()), suffix));
+        edits.add(new Edit(endOffset(bound), endOffset(bound), suffix));
         String t = f.text();
         return t.substring(cmp.start(), bound.start()) + (atom ? "" : "(") + bound.text() + suffix
                 + t.substring(bound.end(), Math.max(bound.end(), cmp.end()));
@@ -452,7 +452,22 @@ public final class DeltaWidener {
 
     /** The file's own characters of {@code pos}. */
     private String raw(Pos pos) {
-        return text.substring(pos.fragment().fileOffset(pos.start()), pos.fragment().fileOffset(pos.end()));
+        return text.substring(pos.fragment().fileOffset(pos.start()), endOffset(pos));
+    }
+
+    /**
+     * The file offset just after the last character of {@code pos} (of its entity reference, or of its
+     * {@code \r\n}): not the offset of the character after it, which may lie beyond the end of a CDATA section.
+     */
+    private int endOffset(Pos pos) {
+        if (pos.end() <= pos.start()) {
+            return pos.fragment().fileOffset(pos.start());
+        }
+        int last = pos.fragment().fileOffset(pos.end() - 1);
+        if (xml && text.charAt(last) == '&') {
+            return text.indexOf(';', last) + 1;
+        }
+        return text.startsWith("\r\n", last) ? last + 2 : last + 1;
     }
 
     /** Checks that the file holds the text the network was loaded from at {@code pos}. */
@@ -536,7 +551,8 @@ public final class DeltaWidener {
             }
         }
         int at = noteOffset();
-        return new Edit(at, at, escape(note.toString(), at));
+        String lines = text.contains("\r\n") ? note.toString().replace("\n", "\r\n") : note.toString();
+        return new Edit(at, at, escape(lines, at));
     }
 
     private void delayLine(StringBuilder note, String direction, ObservableChannel c) {

@@ -2,6 +2,7 @@ package io.dtron.model.delta;
 
 import static org.junit.jupiter.api.Assertions.assertArrayEquals;
 import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertThrows;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
@@ -188,6 +189,18 @@ class DeltaExtensionTest {
         Process server = ModelLoader.load("out.xta", r.text()).process("Server").orElseThrow();
         assertEquals(List.of(5, 11), constants(server.edges().get(1).guard()));
         assertEquals(List.of(21), constants(server.location("Busy").invariant()));
+    }
+
+    @Test
+    void windowsLineEndsAndCdataLabelsAreKept() throws ModelException {
+        String crlf = TWO_PORTS.replace("\n", "\r\n").replace("<label kind=\"guard\" x=\"140\" y=\"0\">c == 7</label>",
+                "<label kind=\"guard\" x=\"140\" y=\"0\"><![CDATA[c == 7]]></label>");
+        Result r = extend("crlf.xml", crlf, DELAYS);
+        assertFalse(r.text().replace("\r\n", "").contains("\n"), "no lone line feed: " + r.text());
+        assertTrue(r.text().contains(">y &lt;= (P + T) + 9<"), r.text());
+        assertTrue(r.text().contains("<![CDATA[(c >= 7 + 1 && c <= 7 + 4)]]>"), "not escaped in CDATA: " + r.text());
+        assertEquals(List.of(8, 11), constants(ModelLoader.load("out.xml", r.text()).process("Client").orElseThrow()
+                .edges().get(2).guard()));
     }
 
     @Test
