@@ -59,6 +59,7 @@ public final class DeltaWidener {
     /** A clock comparison of an observable edge or invariant, with what every process using it asks of it. */
     private static final class Bound {
         final Expression.Binary comparison;
+        final String template;
         final String place;
         final Set<String> channels = new LinkedHashSet<>();
         final Set<String> processes = new LinkedHashSet<>();
@@ -69,8 +70,9 @@ public final class DeltaWidener {
         long lowMicros = Long.MAX_VALUE;
         long highMicros = Long.MIN_VALUE;
 
-        Bound(Expression.Binary comparison, String place) {
+        Bound(Expression.Binary comparison, String template, String place) {
             this.comparison = comparison;
+            this.template = template;
             this.place = place;
         }
     }
@@ -175,9 +177,9 @@ public final class DeltaWidener {
                     .fileOffset(b.comparison.pos().start()), Set.of()));
             others.removeAll(b.processes);
             if (!others.isEmpty()) {
-                warnings.add(place + ": '" + before + "' is widened for every process of template "
-                        + b.place.substring(0, b.place.indexOf(':')) + ", also for " + String.join(", ", others)
-                        + ", where this edge is not observable");
+                warnings.add(place + ": '" + before + "' is widened for every process of template " + b.template
+                        + ", also for " + String.join(", ", others) + ", where it belongs to no edge of an input or"
+                        + " output");
             }
         }
         edits.add(note(changes, left));
@@ -270,15 +272,15 @@ public final class DeltaWidener {
             return;
         }
         Bound bound = bounds.computeIfAbsent(b.pos().fragment().fileOffset(b.pos().start()),
-                k -> classify(b, invariant, place));
+                k -> classify(b, invariant, p.template(), place));
         bound.channels.add(amount.channels());
         bound.processes.add(p.name());
         bound.lowMicros = Math.min(bound.lowMicros, amount.lowMicros());
         bound.highMicros = Math.max(bound.highMicros, amount.highMicros());
     }
 
-    private Bound classify(Expression.Binary b, boolean invariant, String place) {
-        Bound bound = new Bound(b, place);
+    private Bound classify(Expression.Binary b, boolean invariant, String template, String place) {
+        Bound bound = new Bound(b, template, place);
         Type lt = b.left().type();
         Type rt = b.right().type();
         if (b.op() == Expression.Operator.IMPLY) {

@@ -231,7 +231,8 @@ class DeltaExtensionTest {
         Result r = extend("relay.xta", xta, Map.of("go", new Delay(2000, 3000)));
         assertTrue(r.text().contains("guard x >= 4 + 2;"), r.text());
         assertEquals(1, r.warnings().size(), r.warnings().toString());
-        assertTrue(r.warnings().get(0).contains("also for Inner, where this edge is not observable"),
+        assertTrue(r.warnings().get(0).contains("is widened for every process of template Relay, also for Inner, where it"
+                + " belongs to no edge of an input or output"),
                 r.warnings().get(0));
     }
 
