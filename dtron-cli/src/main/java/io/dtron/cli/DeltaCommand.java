@@ -123,13 +123,18 @@ final class DeltaCommand implements Callable<Integer> {
         TestInterface testInterface;
         try {
             network = ModelLoader.load(model.toString(), text);
+        } catch (ModelException e) {
+            CheckCommand.printErrors(model, e, err);
+            return 1;
+        } catch (OutOfMemoryError e) {
+            throw new Refusal(JvmLimits.modelTooLarge("delta", model));
+        }
+        try {
             testInterface = interfaceFile == null ? TestInterface.fromNames(network)
                     : TestInterface.fromFile(network, interfaceFile);
         } catch (ModelException e) {
             CheckCommand.printErrors(interfaceFile == null ? model : interfaceFile, e, err);
             return 1;
-        } catch (OutOfMemoryError e) {
-            throw new Refusal(JvmLimits.modelTooLarge("delta", model));
         }
         if (measured != null) {
             delays = fromReport(measured, testInterface, err);
