@@ -223,8 +223,13 @@ final class DeltaCommand implements Callable<Integer> {
         if (testInterface.output(channel).isPresent()) {
             return false;
         }
-        throw new Refusal(where + ": unknown channel '" + channel + "': the model's inputs are "
-                + names(testInterface.inputs()) + ", its outputs " + names(testInterface.outputs()));
+        String bare = channel.length() > 2 && (channel.startsWith("i_") || channel.startsWith("o_"))
+                ? channel.substring(2) : null;
+        boolean known = bare != null
+                && (testInterface.input(bare).isPresent() || testInterface.output(bare).isPresent());
+        throw new Refusal(where + ": unknown channel '" + channel + "'" + (known ? " (name it '" + bare + "', its name"
+                + " on the bus, without i_/o_)" : "") + ": the model's inputs are " + names(testInterface.inputs())
+                + ", its outputs " + names(testInterface.outputs()));
     }
 
     private static String names(List<ObservableChannel> channels) {

@@ -152,6 +152,8 @@ class DeltaCommandTest {
         String o = out.toString();
         refused("--delta move=1..2: unknown channel 'move': the model's inputs are req, its outputs resp",
                 "delta", m, "--delta", "move=1..2", "-o", o);
+        refused("--delta i_req=1..2: unknown channel 'i_req' (name it 'req', its name on the bus, without i_/o_): the"
+                + " model's inputs are req, its outputs resp", "delta", m, "--delta", "i_req=1..2", "-o", o);
         refused("--delta req=9..2: LOW is above HIGH", "delta", m, "--delta", "req=9..2", "-o", o);
         refused("--delta req=-1..2: expected CHANNEL=LOW..HIGH, LOW and HIGH whole numbers of microseconds, at least"
                 + " 0, e.g. move=200..1500", "delta", m, "--delta", "req=-1..2", "-o", o);
