@@ -115,7 +115,7 @@ class DeltaCommandTest {
         assertTrue(r.out().contains("x - t <= 100: a clock difference is not widened"), r.out());
         Network network = ModelLoader.load(out);
         assertEquals(12, constant(network.process("Port").orElseThrow().location("Serving").invariant()));
-        assertEquals(CommandRun.of("check", out.toString()).exit(), 0);
+        assertEquals(0, CommandRun.of("check", out.toString()).exit());
     }
 
     @Test
