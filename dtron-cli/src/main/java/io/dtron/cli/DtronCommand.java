@@ -19,14 +19,15 @@ import picocli.CommandLine.UnmatchedArgumentException;
  * The {@code dtron} command line: {@code dtron check MODEL...} loads and type-checks models, {@code dtron run
  * MODEL} tests a system under test against a model, in process ({@code --sut CLASS}), through a TRON adapter
  * ({@code --tron-adapter}) or on the bus; {@code dtron tron} takes Uppaal TRON's command line; {@code dtron
- * MODEL ...} is short for {@code dtron run MODEL ...}. Exit codes follow TRON's: 0 passed, 2 failed, 3
- * inconclusive; 1 for a usage or model error.
+ * MODEL ...} is short for {@code dtron run MODEL ...}; {@code dtron delta} writes the Delta-extended model. Exit
+ * codes follow TRON's: 0 passed, 2 failed, 3 inconclusive; 1 for a usage or model error.
  */
 @Command(name = "dtron", mixinStandardHelpOptions = true, versionProvider = DtronCommand.Version.class,
         exitCodeOnInvalidInput = 1, exitCodeOnExecutionException = 1,
         description = {"Online model-based testing and control of timed systems with Uppaal timed automata.",
                 "dtron MODEL [OPTIONS] is short for dtron run MODEL [OPTIONS]."},
-        subcommands = {CheckCommand.class, RunCommand.class, TronCommand.class, CommandLine.HelpCommand.class})
+        subcommands = {CheckCommand.class, RunCommand.class, TronCommand.class, DeltaCommand.class,
+                CommandLine.HelpCommand.class})
 public final class DtronCommand implements Callable<Integer> {
     private static final Logger LOG = LoggerFactory.getLogger(DtronCommand.class);
 
