@@ -102,11 +102,17 @@ public final class ChildJvm implements AutoCloseable {
         return Files.readString(log);
     }
 
-    /** Kills the JVM if it still runs. */
+    /** Kills the JVM if it still runs, and waits (a few seconds at most) until it is gone. */
     @Override
     public void close() {
         if (process.isAlive()) {
             process.destroyForcibly();
+        }
+        try {
+            // its ports are free once it is gone: a next test may bind them
+            process.waitFor(10, TimeUnit.SECONDS);
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
         }
     }
 }

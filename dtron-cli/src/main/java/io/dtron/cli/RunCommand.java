@@ -16,10 +16,12 @@ import io.dtron.model.ModelException;
 import io.dtron.model.ModelLoader;
 import io.dtron.model.Network;
 import io.dtron.model.TestInterface;
+import io.dtron.model.delta.DeltaExtension;
 import io.dtron.tron.TronBackend;
 import io.dtron.tron.TronSocketAdapter;
 import io.dtron.troninstaller.TronInstallation;
 import io.dtron.troninstaller.TronNotFoundException;
+import io.dtron.xta.ModelSyntax;
 import java.io.File;
 import java.io.IOException;
 import java.io.PrintWriter;
@@ -190,6 +192,11 @@ final class RunCommand implements Callable<Integer> {
                     + " applied, outputs produced to received) as JSON to FILE, for dtron delta --delta-from.")
     private Path deltaReport;
 
+    @Option(names = "--delta-from", paramLabel = "REPORT.json",
+            description = "Test against the Delta-extended model: the model's observable clock bounds widened by the"
+                    + " delays of a --delta-report, as dtron delta writes it.")
+    private Path deltaFrom;
+
     @Override
     public Integer call() {
         PrintWriter out = spec.commandLine().getOut();
@@ -228,6 +235,19 @@ final class RunCommand implements Callable<Integer> {
             return 1;
         }
         long unit = RunDefaults.timeUnit(timeUnit, testInterface.timeUnitMicros());
+        if (deltaFrom != null) {
+            try {
+                network = deltaExtended(network, testInterface, unit, out);
+                testInterface = interfaceFile == null ? TestInterface.fromNames(network)
+                        : TestInterface.fromFile(network, interfaceFile);
+            } catch (ModelException e) {
+                CheckCommand.printErrors(model, e, err);
+                return 1;
+            } catch (IOException | IllegalArgumentException e) {
+                err.println("dtron run: --delta-from " + deltaFrom + ": " + e.getMessage());
+                return 1;
+            }
+        }
         long units = RunDefaults.timeout(timeout, testInterface.timeout());
         long runSeed = RunDefaults.seed(seed);
         TestOptions options;
@@ -648,6 +668,30 @@ final class RunCommand implements Callable<Integer> {
         out.println("dtron run: members " + session.bridge().members());
         out.flush();
         return true;
+    }
+
+    /**
+     * The model with its observable clock bounds widened by the delays of {@code --delta-from} (see {@link
+     * DeltaCommand}), loaded from the widened text.
+     *
+     * @throws IOException              if the report or the model cannot be read
+     * @throws IllegalArgumentException if the report is not one, or names channels the model does not have
+     * @throws ModelException           if the widened model does not load
+     */
+    private Network deltaExtended(Network network, TestInterface testInterface, long unit, PrintWriter out)
+            throws IOException, ModelException {
+        DeltaReport report = DeltaReport.parse(Files.readString(deltaFrom));
+        Map<String, DeltaExtension.Delay> delays = report.measured();
+        if (delays.isEmpty()) {
+            throw new IllegalArgumentException("the report measured no channel (every count is 0)");
+        }
+        String text = ModelSyntax.decode(Files.readAllBytes(model));
+        DeltaExtension.Result widened = DeltaExtension.extend(network, text, testInterface, delays, unit,
+                "the delays of " + deltaFrom.getFileName());
+        out.println("dtron run: testing against the Delta-extended model: " + widened.changes().size() + " clock bound"
+                + (widened.changes().size() == 1 ? "" : "s") + " widened by the delays of " + deltaFrom
+                + " (dtron delta writes the same model to a file)");
+        return ModelLoader.load(model.toString(), widened.text());
     }
 
     /** Who judges a run: DTRON's engine, or an installed TRON. */

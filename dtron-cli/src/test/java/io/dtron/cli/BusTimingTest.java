@@ -57,6 +57,22 @@ class BusTimingTest {
     }
 
     @Test
+    void aRunAgainstTheDeltaExtendedModelWidensItsBoundsFirst() throws Exception {
+        Path report = Path.of(BusTimingTest.class.getResource("delta-report.json").toURI());
+        CommandRun r = CommandRun.of(TICKER.toString(), "--cluster", "widened-" + System.nanoTime(), "--adapter",
+                io.dtron.testadapter.RunClockTicker.class.getName(), "--timeunit", "10000", "--timeout", "60",
+                "--delay-policy", "eager", "--delta-from", report.toString());
+        // 2.4 ms + 1.75 ms at 10 ms per unit: the invariant x <= P + T grows by one unit; the lower bounds would grow
+        // by 0.27 ms, rounded down to nothing
+        assertTrue(r.out().contains("dtron run: testing against the Delta-extended model: 1 clock bound widened by"
+                + " the delays of "), r.out());
+        assertTrue(r.out().contains("statistics: "), "the run went on: " + r.out());
+        CommandRun missing = CommandRun.of(TICKER.toString(), "--delta-from", "no-such-report.json");
+        assertEquals(1, missing.exit(), missing.out() + missing.err());
+        assertTrue(missing.err().startsWith("dtron run: --delta-from no-such-report.json: "), missing.err());
+    }
+
+    @Test
     void niceNumbersAreOneTwoOrFiveTimesAPowerOfTen() {
         assertEquals(1, BusTiming.niceCeil(0.3));
         assertEquals(2, BusTiming.niceCeil(1.5));

@@ -107,6 +107,8 @@ public final class BusBridge implements Adapter, AutoCloseable {
     private volatile long zeroNanoTime;
     private volatile long windowMicros;
     private volatile boolean autoWindow;
+    /** Whether the adapters of the current run acknowledge inputs (see {@link #acknowledgesInputs()}). */
+    private volatile boolean acknowledging;
     private volatile AdapterContext context;
     private volatile boolean running;
     private volatile String runId = "";
@@ -372,6 +374,11 @@ public final class BusBridge implements Adapter, AutoCloseable {
      */
     @Override
     public boolean acknowledgesInputs() {
+        return acknowledging;
+    }
+
+    /** Whether every input channel is received by a member of the handshake that is no tester of this run. */
+    private boolean inputsReceivedByHandshakeMembers() {
         Set<String> received = new java.util.HashSet<>();
         dtron.getMembersServedChannels().values().stream().filter(s -> !isPeerTester(s.member()))
                 .forEach(s -> received.addAll(s.receives()));
@@ -603,6 +610,7 @@ public final class BusBridge implements Adapter, AutoCloseable {
     public void start(AdapterContext runContext) {
         context = Objects.requireNonNull(runContext, "runContext");
         runDelays.clear();
+        acknowledging = inputsReceivedByHandshakeMembers();
         inputSentMicros.clear();
         heldPeerInputs.clear();
         widenings.clear();

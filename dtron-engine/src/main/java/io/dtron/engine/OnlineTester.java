@@ -39,8 +39,8 @@ public final class OnlineTester {
      */
     private static final long INPUT_MARGIN_MICROS = 2000;
     /**
-     * How many reorder windows past its time a held verdict waits for the acknowledgement of an input sent before
-     * the event it concerns, when the adapters acknowledge inputs: its place decides the verdict.
+     * How many reorder windows past its time a held verdict, or the commitment to an input, waits for the
+     * acknowledgement of an input, when the adapters acknowledge inputs: its place decides the order of events.
      */
     private static final int ACK_PATIENCE = 4;
 
@@ -380,7 +380,7 @@ public final class OnlineTester {
          * acknowledges inputs (it says so, or some acknowledgement came in this run); else null.
          */
         private Pending awaitingAcknowledgement(long at) {
-            if (acknowledgements == 0 && !adapter.acknowledgesInputs()) {
+            if (!expectsAcknowledgements()) {
                 return null;
             }
             for (Pending p : pending) {
@@ -391,9 +391,23 @@ public final class OnlineTester {
             return null;
         }
 
-        /** Commits to the pending events at or before {@code horizon}: nothing earlier can arrive any more. */
+        /** Whether inputs are acknowledged: the adapter says so, or some acknowledgement came in this run. */
+        private boolean expectsAcknowledgements() {
+            return acknowledgements > 0 || adapter.acknowledgesInputs();
+        }
+
+        /**
+         * Commits to the pending events at or before {@code horizon}: nothing earlier can arrive any more. An input
+         * whose acknowledgement is still expected (for up to {@link #ACK_PATIENCE} reorder windows after it was
+         * sent) is not committed yet, nor what follows it.
+         */
         private void commit(long horizon) {
             while (!pending.isEmpty() && pending.get(0).micros <= horizon) {
+                Pending first = pending.get(0);
+                if (first.input && !first.acknowledged && expectsAcknowledgements()
+                        && horizon < first.sentMicros + ACK_PATIENCE * window()) {
+                    break; // where it was applied is still to come, and so is the order of what follows it
+                }
                 Pending p = pending.remove(0);
                 committed = p.after;
                 committedMicros = p.afterMicros;

@@ -378,4 +378,12 @@ class ReorderWindowTest {
             context.clock().schedule(micros(ackArrives) - now, () -> context.inputApplied(1, micros(appliedAt)));
         }
     }
+
+    @Test
+    void anInputIsNotCommittedWhileItsAcknowledgementIsExpected() throws Exception {
+        // applied 3 units after it was sent (window 2): an adapter that acknowledges inputs is waited for, and the
+        // input placed where it was applied, after x at 12.5
+        TestResult placed = run(crossing(20), acknowledging(new LateAck(12.5, 12.6, 13, 13.1)), 2);
+        assertEquals(Verdict.PASSED, placed.verdict(), placed.explanation());
+    }
 }
