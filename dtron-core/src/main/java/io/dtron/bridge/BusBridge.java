@@ -840,11 +840,11 @@ public final class BusBridge implements Adapter, AutoCloseable {
         if (number != null) {
             long applied = runMicros(ack);
             String channel = inputChannels.getOrDefault(number, "?");
-            arrived(ack, "acknowledgement of " + channel, applied);
             Long sent = inputSentMicros.remove(number);
             if (sent != null) {
                 measured("input", channel, applied - sent);
             }
+            arrived(ack, "acknowledgement of " + channel, applied);
             context.inputApplied(number, applied, errorMicros(ack));
         }
     }
@@ -899,8 +899,8 @@ public final class BusBridge implements Adapter, AutoCloseable {
     private void reportOutput(IDtronChannelValued message, IDtronChannelValued timing) {
         // stamped before time 0 (it was ordered before the start on the bus): it counts from the start
         long happened = Math.max(0, runMicros(timing));
-        long delay = arrived(timing, "output " + message.getChannelName(), happened);
-        measured("output", message.getChannelName(), delay);
+        measured("output", message.getChannelName(), arrivalDelay(timing, happened));
+        arrived(timing, "output " + message.getChannelName(), happened);
         context.report(new Event(message.getChannelName(), message.getVariables()), happened, errorMicros(timing));
     }
 
@@ -928,13 +928,17 @@ public final class BusBridge implements Adapter, AutoCloseable {
                 Math.max(0, delayMicros)), (old, one) -> old.plus(delayMicros));
     }
 
+    /** How long after its event, at {@code eventRunMicros} on the run's clock, a message arrived, in microseconds. */
+    private long arrivalDelay(IDtronChannelValued message, long eventRunMicros) {
+        return Math.max(0, Math.floorDiv(message.getReceiveTimeNanos() - zeroEpochNanos, 1000) - eventRunMicros);
+    }
+
     /**
-     * Returns how long after its event a message arrived, in microseconds, and widens the reorder window when it
-     * took more than half of it and the window is automatic.
+     * A message arrived: widens the reorder window when it took more than half of it and the window is automatic.
      */
-    private long arrived(IDtronChannelValued message, String what, long eventRunMicros) {
+    private void arrived(IDtronChannelValued message, String what, long eventRunMicros) {
         long received = Math.floorDiv(message.getReceiveTimeNanos() - zeroEpochNanos, 1000);
-        long delay = Math.max(0, received - eventRunMicros);
+        long delay = arrivalDelay(message, eventRunMicros);
         long window = windowMicros;
         if (autoWindow && window > 0 && delay > window / 2) {
             long widened = -Math.floorDiv(-2 * delay, 1000) * 1000;
@@ -945,7 +949,6 @@ public final class BusBridge implements Adapter, AutoCloseable {
             LOG.info("Reorder window widened {}", line);
             context.widenReorderWindow(widened);
         }
-        return delay;
     }
 
     /**
