@@ -76,7 +76,7 @@ class TronCommandTest {
 
     @Test
     void tronsSampleSetupFailsTheLateLampWithExitCode2() throws Exception {
-        CommandRun r = sample("late", "-Q");
+        CommandRun r = sample("late", "-q");
         assertEquals(2, r.exit(), r.out() + r.err());
         assertTrue(r.out().startsWith("TEST FAILED: "), r.out());
         assertEquals(1, r.out().lines().count(), r.out());
