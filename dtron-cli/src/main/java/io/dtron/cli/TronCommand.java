@@ -198,6 +198,11 @@ final class TronCommand implements Callable<Integer> {
     }
 
     private String checkUsage() {
+        // first: "-Q MODEL" (DTRON's old quiet flag) leaves the model's place to what follows
+        if (clockPort != null && parsePort(clockPort) < 0) {
+            return "-Q " + clockPort + ": -Q takes the port of TRON's virtual clock server (0 to 65535), as TRON's"
+                    + " does; for quiet output use -q";
+        }
         if (!adapterName.equals("SocketAdapter")) {
             return "-I " + adapterName + " is not supported: DTRON speaks TRON's socket adapter protocol only (-I"
                     + " SocketAdapter); for a system in the JVM use dtron run --sut";
@@ -224,10 +229,6 @@ final class TronCommand implements Callable<Integer> {
         }
         if (configTimeout <= 0 || configTimeout > Integer.MAX_VALUE / 1000) {
             return "--config-timeout must be a positive number of seconds, at most " + Integer.MAX_VALUE / 1000;
-        }
-        if (clockPort != null && parsePort(clockPort) < 0) {
-            return "-Q " + clockPort + ": -Q takes the port of TRON's virtual clock server (0 to 65535), as TRON's"
-                    + " does; for quiet output use -q";
         }
         return null;
     }

@@ -228,6 +228,74 @@ class TronCommandTest {
     }
 
     @Test
+    void anInterfaceTheEngineRefusesIsTheReplyToTheAdaptersStart() throws Exception {
+        try (ServerSocket server = new ServerSocket(0, 1, InetAddress.getLoopbackAddress())) {
+            CompletableFuture<String> adapter = CompletableFuture.supplyAsync(() -> {
+                try (var socket = server.accept(); RawClient c = RawClient.over(socket)) {
+                    // release left out: the model's processes no longer split into an environment and a system
+                    c.bytes(1).string("grasp");
+                    assertEquals(1, c.readInt());
+                    c.bytes(2).string("level");
+                    assertEquals(2, c.readInt());
+                    c.bytes(64);
+                    String reply = c.readString();
+                    assertTrue(c.closedByTester());
+                    return reply;
+                } catch (IOException e) {
+                    throw new IllegalStateException(e);
+                }
+            });
+            CommandRun r = tron(lightContr.toString(), "--", "127.0.0.1", Integer.toString(server.getLocalPort()));
+            String reply = adapter.get(10, TimeUnit.SECONDS);
+            assertEquals(1, r.exit(), r.out() + r.err());
+            assertTrue(reply.startsWith("DTRON refuses the start: "), reply);
+            String reason = reply.substring("DTRON refuses the start: ".length());
+            assertTrue(reason.length() > 20, reply);
+            assertTrue(r.err().contains(reason.endsWith("...") ? reason.substring(0, reason.length() - 3) : reason),
+                    r.err());
+        }
+    }
+
+    @Test
+    void aSilentPeerEndsTheConfigurationAfterConfigTimeoutAskingWhatListens() throws Exception {
+        try (ServerSocket server = new ServerSocket(0, 1, InetAddress.getLoopbackAddress())) {
+            CompletableFuture<Void> peer = CompletableFuture.runAsync(() -> {
+                try (var socket = server.accept()) {
+                    socket.getInputStream().read(); // silent until the tester gives up
+                } catch (IOException e) {
+                    throw new IllegalStateException(e);
+                }
+            });
+            long start = System.nanoTime();
+            CommandRun r = tron("--config-timeout", "1", lightContr.toString(), "--", "127.0.0.1",
+                    Integer.toString(server.getLocalPort()));
+            long took = (System.nanoTime() - start) / 1_000_000;
+            peer.get(10, TimeUnit.SECONDS);
+            assertEquals(1, r.exit(), r.out() + r.err());
+            assertTrue(r.err().contains("the adapter sent nothing for 1 s during configuration"), r.err());
+            assertTrue(r.err().contains("is something else listening on port " + server.getLocalPort() + "?"),
+                    r.err());
+            assertTrue(took < 8000, "took " + took + " ms");
+        }
+    }
+
+    @Test
+    void dashUpperQTakesTheClockPortAsTronsDoesAndDashQIsQuiet() throws Exception {
+        CommandRun modelAsPort = tron("-Q", lightContr.toString(), "--", "9999");
+        assertEquals(1, modelAsPort.exit());
+        assertTrue(modelAsPort.err().contains("-Q takes the port of TRON's virtual clock server (0 to 65535), as"
+                + " TRON's does; for quiet output use -q"), modelAsPort.err());
+        try (ServerSocket taken = new ServerSocket(0, 1, InetAddress.getLoopbackAddress())) {
+            CommandRun busy = tron("-qQ", Integer.toString(taken.getLocalPort()), lightContr.toString(), "--",
+                    "9999");
+            assertEquals(1, busy.exit());
+            assertTrue(busy.err().contains("-Q " + taken.getLocalPort() + ": cannot serve the virtual clock on"
+                    + " 127.0.0.1:" + taken.getLocalPort()), busy.err());
+            assertFalse(busy.err().contains("\tat "), busy.err());
+        }
+    }
+
+    @Test
     void usageErrorsSayWhatIsWrong() throws Exception {
         String model = lightContr.toString();
         CommandRun otherAdapter = tron("-I", "TraceAdapter", model, "--", "9999");

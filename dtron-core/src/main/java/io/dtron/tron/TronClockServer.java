@@ -237,7 +237,16 @@ public final class TronClockServer implements Closeable {
                     return;
                 }
                 LOG.trace("{} command {} at {} us", client, command, now());
-                int[] reply = execute(client, command, in);
+                int[] reply;
+                try {
+                    reply = execute(client, command, in);
+                } catch (ClockProtocol.Malformed e) {
+                    // counted before the connection closes, so that the thread sees the count when it sees the end
+                    rejected.incrementAndGet();
+                    LOG.warn("virtual clock: rejected a command of thread {}: {}; its connection is closed", client,
+                            e.getMessage());
+                    return;
+                }
                 if (reply != null) {
                     for (int value : reply) {
                         out.writeInt(value);
@@ -245,10 +254,6 @@ public final class TronClockServer implements Closeable {
                     out.flush();
                 }
             }
-        } catch (ClockProtocol.Malformed e) {
-            rejected.incrementAndGet();
-            LOG.warn("virtual clock: rejected a command of thread {}: {}; its connection is closed",
-                    client == null ? "?" : client, e.getMessage());
         } catch (SocketException | EOFException e) {
             if (!closed) {
                 LOG.debug("virtual thread {}: {}", client, e.getMessage());
