@@ -327,6 +327,9 @@ final class TronCommand implements Callable<Integer> {
         TestOptions options;
         try {
             options = new TestOptions(runSeed, unit, units, choice.policy(), choice.bound(), virtual);
+            if (!virtual) {
+                options = options.withInputMargin(inputMargin(network, ti, unit, printer, err));
+            }
         } catch (IllegalArgumentException e) {
             String reason = e.getMessage() + " (timeout from " + (future != null ? "-F" : ti.timeout() != null
                     ? "the adapter" : "the default") + ", time unit from " + (ti.timeUnitMicros() != null
@@ -362,6 +365,25 @@ final class TronCommand implements Callable<Integer> {
             }
         }
         return result.verdict().exitCode();
+    }
+
+    /**
+     * In real time: measures how late the tester's thread wakes up and returns the input margin that needs; says so
+     * (unless quiet), and warns when the model's narrowest input window is narrower than the margin.
+     */
+    private long inputMargin(Network network, TestInterface ti, long unit, Printer printer, PrintWriter err) {
+        EngineWarmUp.run(network, ti);
+        SchedulingDelay delay = SchedulingDelay.measure();
+        if (!quiet) {
+            printer.println(String.format(Locale.ROOT, "dtron tron: the tester's thread wakes up to %.3f ms late"
+                    + " here; inputs are aimed at least %.3f ms (%.3f time units) inside the end of their windows",
+                    delay.worstMicros() / 1000.0, delay.marginMicros() / 1000.0, delay.marginMicros() / (double) unit));
+        }
+        delay.narrowInputWindow(network, ti, unit).ifPresent(warning -> {
+            err.println("dtron tron: warning: " + warning);
+            err.flush();
+        });
+        return delay.marginMicros();
     }
 
     private TronSocketAdapter acceptOne(Network network, TronSocketAdapter.Settings settings, Printer printer)

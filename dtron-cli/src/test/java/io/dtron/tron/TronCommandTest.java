@@ -295,6 +295,62 @@ class TronCommandTest {
         }
     }
 
+    /** Keeps both cores busy until closed: the machine of a loaded CI run. */
+    static final class Load implements AutoCloseable {
+        private final java.util.concurrent.atomic.AtomicBoolean on = new java.util.concurrent.atomic.AtomicBoolean(true);
+        private final List<Thread> threads = new java.util.ArrayList<>();
+
+        Load(int threads) {
+            for (int i = 0; i < threads; i++) {
+                Thread t = new Thread(() -> {
+                    long x = 0;
+                    while (on.get()) {
+                        x += System.nanoTime() % 7;
+                    }
+                    if (x == 42) {
+                        System.out.print("");
+                    }
+                }, "load-" + i);
+                t.setDaemon(true);
+                t.start();
+                this.threads.add(t);
+            }
+        }
+
+        @Override
+        public void close() throws InterruptedException {
+            on.set(false);
+            for (Thread t : threads) {
+                t.join();
+            }
+        }
+    }
+
+    @Test
+    void lazyInputsComeAsLateAsCanStillBeMetWithBothCoresBusy() throws Exception {
+        // 10 ms per unit: a margin that misses the load's scheduling delay (milliseconds) aims past the end of a window
+        Path stats = dir.resolve("lazy-stats.txt");
+        CommandRun r;
+        try (ChildProcess lamp = ChildProcess.start(LampIutMain.class, dir.resolve("lazy-lamp.log"), "listen",
+                "REAL_TIME", "correct", "600", Integer.toString(TronLampEndToEndTest.REAL_TIME_UNIT));
+             Load load = new Load(2)) {
+            int port = lamp.awaitPort(Duration.ofSeconds(30));
+            r = tron("-P", "lazy", "-X", "13", "-F", "600", "-S", stats.toString(), lightContr.toString(), "--",
+                    "127.0.0.1", Integer.toString(port));
+            lamp.waitFor(Duration.ofSeconds(30));
+        }
+        // the margin is measured, not guessed: the tester says how late its thread woke up and what it leaves
+        java.util.regex.Matcher m = java.util.regex.Pattern.compile("wakes up to ([0-9.]+) ms late here; inputs are"
+                + " aimed at least ([0-9.]+) ms").matcher(r.out());
+        assertTrue(m.find(), r.out());
+        assertTrue(Double.parseDouble(m.group(2)) >= Math.max(2.0, 2 * Double.parseDouble(m.group(1))) - 0.001,
+                r.out());
+        assertFalse(r.out().contains("could not be applied") || r.out().contains("executed too late"),
+                "every lazy input was applied inside its window: " + r.out() + r.err());
+        String[] line = Files.readString(stats).strip().split(" ");
+        assertTrue(Integer.parseInt(line[2]) >= 2, "inputs: " + Files.readString(stats) + r.out());
+    }
+
     @Test
     void usageErrorsSayWhatIsWrong() throws Exception {
         String model = lightContr.toString();
