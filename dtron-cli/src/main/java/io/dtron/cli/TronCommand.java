@@ -302,7 +302,9 @@ final class TronCommand implements Callable<Integer> {
                 adapter = TronSocketAdapter.connect(address.get(0), port(), network, settings);
             }
         } catch (IOException e) {
-            err.println("dtron tron: the adapter's configuration failed: " + e.getMessage());
+            err.println("dtron tron: the adapter's configuration failed: " + e.getMessage() + (clock == null ? ""
+                    : " (" + clock.threadsConnected() + " of its threads connected to the virtual clock at "
+                    + clock.address() + ")"));
             return 1;
         }
         try {

@@ -46,13 +46,16 @@ import org.slf4j.LoggerFactory;
  * <p>Time:
  * <ul>
  *   <li>Real time: inputs are sent as the engine applies them; outputs are reported to the engine as they arrive,
- *       time-stamped on arrival. No acknowledgements.</li>
+ *       time-stamped with the arrival of their first byte. No acknowledgements.</li>
  *   <li>Virtual time, TRON's acknowledgements: after sending an input, the engine's thread waits for the adapter's
  *       acknowledgement, so virtual time does not move meanwhile; outputs that arrive before it are observed at the
  *       input's instant (the adapter's immediate reaction). Every output is acknowledged. An output the adapter
  *       sends on its own, not in answer to an input, is observed at whatever virtual time the tester has reached
  *       when it arrives, so adapters for virtual time should be reactive; a timed adapter should use real time or
  *       the shared virtual clock.</li>
+ *   <li>Virtual time, TRON's virtual clock server ({@link #useClockServer}, {@code -Q PORT}): as with TRON's
+ *       acknowledgements, and the adapter's threads take their time from the run's clock; the tester waits after
+ *       the start, each input and each wake-up until they are all blocked again.</li>
  *   <li>Virtual time, shared virtual clock (DTRON's extension, asked for by the adapter with command 200, which
  *       TRON's own adapters never send): the adapter's timers run on the tester's virtual clock. The adapter tells
  *       its next timer's time after every turn; the tester grants time (a clock message on channel 0) when the
