@@ -304,7 +304,8 @@ public final class OnlineTester {
                 Plan plan = plan();
                 long elapsed = ticksFloor(now - lastMicros);
                 Plan.Choice choice = plan.choose(elapsed, random, options.delayPolicy(),
-                        options.delayBound() * ticksPerUnit, inputMargin);
+                        options.delayBound() * ticksPerUnit,
+                        Math.max(inputMargin, ticksCeil(2 * clock.worstLatenessMicros())));
                 long at = lastMicros + micros(choice.ticks());
                 // a deadline within the test is declared missed only when the outputs stamped before it had the
                 // reorder window to arrive

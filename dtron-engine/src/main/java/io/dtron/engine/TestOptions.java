@@ -21,8 +21,8 @@ import java.util.Objects;
  * @param inputMarginMicros in real time, how far inside the end of its window the tester aims an input, at least:
  *                       the tester's thread wakes up late (tens of microseconds on an idle machine, milliseconds on a
  *                       loaded one), and an input applied after its window ends makes the run INCONCLUSIVE. In a
- *                       window narrower than the margin the input is aimed at the window's start. Not used in
- *                       virtual time
+ *                       window narrower than the margin the input is aimed at the window's start. During the run
+ *                       the tester widens it to twice the latest it has woken up so far. Not used in virtual time
  */
 public record TestOptions(long seed, long timeUnitMicros, long timeout, DelayPolicy delayPolicy, long delayBound,
                           boolean virtualTime, long reorderWindowMicros, long inputMarginMicros) {
