@@ -19,7 +19,6 @@ public class Reporter extends VirtualThread {
     private static final int ACK = 0x8000_0000;
 
     private final Adapter adapter;
-    private final Socket socket;
     private final DataInputStream in;
     private final DataOutputStream out;
     private final Object acks = new Object();
@@ -31,7 +30,6 @@ public class Reporter extends VirtualThread {
     public Reporter(Adapter adapter, Socket socket) throws IOException {
         super("reporter");
         this.adapter = adapter;
-        this.socket = socket;
         socket.setTcpNoDelay(true);
         in = new DataInputStream(socket.getInputStream());
         out = new DataOutputStream(socket.getOutputStream());
@@ -127,11 +125,6 @@ public class Reporter extends VirtualThread {
         }
     }
 
-    /** Whether the tester has ended the test (closed the connection). */
-    public boolean ended() {
-        return ended;
-    }
-
     @Override
     public void run() {
         try {
@@ -205,10 +198,5 @@ public class Reporter extends VirtualThread {
         byte[] bytes = new byte[in.readUnsignedByte()];
         in.readFully(bytes);
         return new String(bytes, StandardCharsets.UTF_8);
-    }
-
-    /** Closes the connection to the tester. */
-    public void close() throws IOException {
-        socket.close();
     }
 }

@@ -105,18 +105,16 @@ public class VirtualThread extends Thread {
         }
     }
 
-    /** The time in microseconds: the clock server's in virtual time, else since this class was loaded. */
+    /**
+     * The time in microseconds (TRON's API has it in milliseconds, {@code getTimeMillis}; the lamp needs finer): the
+     * clock server's in virtual time, else since this class was loaded.
+     */
     public static long getTimeMicros() {
         if (!isVirtual()) {
             return (System.nanoTime() - WALL_START) / 1000;
         }
         int[] t = current().call(14, 2);
         return t[0] * 1_000_000L + t[1];
-    }
-
-    /** The time in milliseconds. */
-    public static long getTimeMillis() {
-        return getTimeMicros() / 1000;
     }
 
     /** Before blocking outside the clock's knowledge (a socket read): the thread no longer holds time back. */
