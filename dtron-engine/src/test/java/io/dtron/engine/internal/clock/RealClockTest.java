@@ -77,7 +77,7 @@ class RealClockTest {
     @org.junit.jupiter.api.Test
     void itKeepsTheLatestItWokeUpAfterATargetAndVirtualTimeIsNeverLate() {
         RealClock clock = new RealClock();
-        clock.begin();
+        clock.begin(java.util.OptionalLong.empty());
         assertEquals(0, clock.worstLatenessMicros());
         long worst = 0;
         for (int i = 1; i <= 20; i++) {
