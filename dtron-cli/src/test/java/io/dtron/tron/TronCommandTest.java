@@ -229,30 +229,34 @@ class TronCommandTest {
 
     @Test
     void anInterfaceTheEngineRefusesIsTheReplyToTheAdaptersStart() throws Exception {
-        try (ServerSocket server = new ServerSocket(0, 1, InetAddress.getLoopbackAddress())) {
-            CompletableFuture<String> adapter = CompletableFuture.supplyAsync(() -> {
-                try (var socket = server.accept(); RawClient c = RawClient.over(socket)) {
-                    // release left out: the model's processes no longer split into an environment and a system
-                    c.bytes(1).string("grasp");
-                    assertEquals(1, c.readInt());
-                    c.bytes(2).string("level");
-                    assertEquals(2, c.readInt());
-                    c.bytes(64);
-                    String reply = c.readString();
-                    assertTrue(c.closedByTester());
-                    return reply;
-                } catch (IOException e) {
-                    throw new IllegalStateException(e);
-                }
-            });
-            CommandRun r = tron(lightContr.toString(), "--", "127.0.0.1", Integer.toString(server.getLocalPort()));
-            String reply = adapter.get(10, TimeUnit.SECONDS);
-            assertEquals(1, r.exit(), r.out() + r.err());
-            assertTrue(reply.startsWith("DTRON refuses the start: "), reply);
-            String reason = reply.substring("DTRON refuses the start: ".length());
-            assertTrue(reason.length() > 20, reply);
-            assertTrue(r.err().contains(reason.endsWith("...") ? reason.substring(0, reason.length() - 3) : reason),
-                    r.err());
+        for (boolean tronCommandLine : new boolean[] {true, false}) {
+            try (ServerSocket server = new ServerSocket(0, 1, InetAddress.getLoopbackAddress())) {
+                CompletableFuture<String> adapter = CompletableFuture.supplyAsync(() -> {
+                    try (var socket = server.accept(); RawClient c = RawClient.over(socket)) {
+                        // release left out: the model's processes no longer split into an environment and a system
+                        c.bytes(1).string("grasp");
+                        assertEquals(1, c.readInt());
+                        c.bytes(2).string("level");
+                        assertEquals(2, c.readInt());
+                        c.bytes(64);
+                        String reply = c.readString();
+                        assertTrue(c.closedByTester());
+                        return reply;
+                    } catch (IOException e) {
+                        throw new IllegalStateException(e);
+                    }
+                });
+                String port = Integer.toString(server.getLocalPort());
+                CommandRun r = tronCommandLine ? tron(lightContr.toString(), "--", "127.0.0.1", port)
+                        : CommandRun.of("run", lightContr.toString(), "--tron-adapter", "127.0.0.1:" + port);
+                String reply = adapter.get(10, TimeUnit.SECONDS);
+                assertEquals(1, r.exit(), r.out() + r.err());
+                assertTrue(reply.startsWith("DTRON refuses the start: "), reply);
+                String reason = reply.substring("DTRON refuses the start: ".length());
+                assertTrue(reason.length() > 20, reply);
+                assertTrue(r.err().contains(reason.endsWith("...") ? reason.substring(0, reason.length() - 3)
+                        : reason), r.err());
+            }
         }
     }
 
