@@ -793,7 +793,7 @@ final class RunCommand implements Callable<Integer> {
             err.println("dtron run: the TRON adapter's configuration failed: " + e.getMessage());
             return 1;
         }
-        try (adapter) {
+        try {
             TestInterface testInterface = adapter.testInterface();
             Long adapterUnit = testInterface.timeUnitMicros();
             if (timeUnit != null && adapterUnit != null && !timeUnit.equals(adapterUnit)) {
@@ -822,8 +822,12 @@ final class RunCommand implements Callable<Integer> {
             out.flush();
             return testWithEngine(network, testInterface, adapter, options, out).verdict().exitCode();
         } catch (UnsupportedModelException e) {
+            // the engine refused the interface before the test started: the adapter's start gets the reason
+            adapter.refuse("DTRON refuses the start: " + e.getMessage());
             err.println("dtron run: " + model + ": " + e.getMessage());
             return 1;
+        } finally {
+            adapter.close();
         }
     }
 

@@ -11,6 +11,7 @@ import io.dtron.model.ModelException;
 import io.dtron.model.ModelLoader;
 import io.dtron.model.Network;
 import io.dtron.model.TestInterface;
+import io.dtron.tron.TronClockServer;
 import io.dtron.tron.TronSocketAdapter;
 import java.io.IOException;
 import java.io.PrintWriter;
@@ -48,6 +49,9 @@ import picocli.CommandLine.Spec;
                 "-- HOST PORT connects to an adapter that listens (as TRON's samples do); -- PORT listens for one.",
                 "Exit code 0 PASSED, 2 FAILED, 3 INCONCLUSIVE, 1 usage, model or adapter configuration error."})
 final class TronCommand implements Callable<Integer> {
+    /** With -Q and -- HOST PORT: how long the adapter may take to open its port (TRON's samples open it late). */
+    private static final Duration ADAPTER_PORT_WAIT = Duration.ofSeconds(30);
+
     @Spec
     private CommandSpec spec;
 
@@ -92,8 +96,14 @@ final class TronCommand implements Callable<Integer> {
                     + " duration in microseconds).")
     private Path statsFile;
 
-    @Option(names = "-Q", description = "Quiet: print the verdict line only.")
+    @Option(names = "-q", description = "Quiet: print the verdict line only.")
     private boolean quiet;
+
+    @Option(names = "-Q", paramLabel = "PORT",
+            description = "Serve TRON's virtual clock on PORT (0: any free port, printed) and run in virtual time, as"
+                    + " TRON's -Q does: start the adapter with its clock at this port (TRON's samples: -C localhost"
+                    + " PORT). With -- HOST PORT, DTRON waits up to 30 s for the adapter's port to open.")
+    private String clockPort;
 
     @Option(names = "--virtual-time",
             description = "Run in virtual time: the adapter must acknowledge events (TRON's virtual-time protocol)"
@@ -107,6 +117,10 @@ final class TronCommand implements Callable<Integer> {
     @Option(names = "--reply-timeout", paramLabel = "SECONDS", defaultValue = "10",
             description = "In virtual time: how long the adapter may take to acknowledge an input (default 10).")
     private long replyTimeout;
+
+    @Option(names = "--config-timeout", paramLabel = "SECONDS", defaultValue = "10",
+            description = "How long the adapter may stay silent while it configures the test (default 10).")
+    private long configTimeout;
 
     @Option(names = "--trace", paramLabel = "FILE", description = "Write every event as one JSON line to FILE.")
     private Path trace;
@@ -184,6 +198,11 @@ final class TronCommand implements Callable<Integer> {
     }
 
     private String checkUsage() {
+        // first: "-Q MODEL" (DTRON's old quiet flag) leaves the model's place to what follows
+        if (clockPort != null && parsePort(clockPort) < 0) {
+            return "-Q " + clockPort + ": -Q takes the port of TRON's virtual clock server (0 to 65535), as TRON's"
+                    + " does; for quiet output use -q";
+        }
         if (!adapterName.equals("SocketAdapter")) {
             return "-I " + adapterName + " is not supported: DTRON speaks TRON's socket adapter protocol only (-I"
                     + " SocketAdapter); for a system in the JVM use dtron run --sut";
@@ -208,17 +227,23 @@ final class TronCommand implements Callable<Integer> {
             return "--reply-timeout must be a positive number of seconds, at most " + RunDefaults.MAX_WAIT_SECONDS
                     + " (about 292 years)";
         }
+        if (configTimeout <= 0 || configTimeout > Integer.MAX_VALUE / 1000) {
+            return "--config-timeout must be a positive number of seconds, at most " + Integer.MAX_VALUE / 1000;
+        }
         return null;
     }
 
-    private int port() {
-        String text = address.get(address.size() - 1);
+    private static int parsePort(String text) {
         try {
             int port = Integer.parseInt(text);
             return port >= 0 && port <= 65535 ? port : -1;
         } catch (NumberFormatException e) {
             return -1;
         }
+    }
+
+    private int port() {
+        return parsePort(address.get(address.size() - 1));
     }
 
     private void notes(PrintWriter err, DelayChoice choice) {
@@ -235,22 +260,65 @@ final class TronCommand implements Callable<Integer> {
     }
 
     private int run(Network network, DelayChoice choice, long runSeed, Printer printer, PrintWriter err) {
+        if (clockPort == null) {
+            return run(network, choice, runSeed, printer, err, null);
+        }
+        TronClockServer clock;
+        try {
+            clock = TronClockServer.open(InetAddress.getByName(bind), parsePort(clockPort));
+        } catch (IOException e) {
+            err.println("dtron tron: -Q " + clockPort + ": cannot serve the virtual clock on " + bind + ":" + clockPort
+                    + ": " + e.getMessage());
+            return 1;
+        }
+        try (clock) {
+            if (!quiet) {
+                printer.println("dtron tron: virtual clock server on " + clock.address());
+            }
+            return run(network, choice, runSeed, printer, err, clock);
+        }
+    }
+
+    private int run(Network network, DelayChoice choice, long runSeed, Printer printer, PrintWriter err,
+                    TronClockServer clock) {
+        boolean virtual = virtualTime || clock != null;
         boolean listen = address.size() == 1;
         String where = listen ? "listening for the adapter" : "connecting to " + address.get(0) + ":" + port();
         if (!quiet) {
             printer.println("dtron tron: " + model + ", random seed " + runSeed + ", " + where
-                    + (virtualTime ? ", virtual time" : ""));
+                    + (virtual ? ", virtual time" : ""));
         }
-        TronSocketAdapter.Settings settings = TronSocketAdapter.Settings.forRealTime().withVirtualTime(virtualTime)
-                .withReplyTimeout(Duration.ofSeconds(replyTimeout));
+        TronSocketAdapter.Settings settings = TronSocketAdapter.Settings.forRealTime().withVirtualTime(virtual)
+                .withReplyTimeout(Duration.ofSeconds(replyTimeout))
+                .withConfigurationTimeout(Duration.ofSeconds(configTimeout));
         TronSocketAdapter adapter;
         try {
-            adapter = listen ? acceptOne(network, settings, printer) : TronSocketAdapter.connect(address.get(0),
-                    port(), network, settings);
+            if (listen) {
+                adapter = acceptOne(network, settings, printer);
+            } else if (clock != null) {
+                adapter = TronSocketAdapter.connectWhenOpen(address.get(0), port(), network, settings,
+                        ADAPTER_PORT_WAIT);
+            } else {
+                adapter = TronSocketAdapter.connect(address.get(0), port(), network, settings);
+            }
         } catch (IOException e) {
-            err.println("dtron tron: the adapter's configuration failed: " + e.getMessage());
+            err.println("dtron tron: the adapter's configuration failed: " + e.getMessage() + (clock == null ? ""
+                    : " (" + clock.threadsConnected() + " of its threads connected to the virtual clock at "
+                    + clock.address() + ")"));
             return 1;
         }
+        try {
+            if (clock != null) {
+                adapter.useClockServer(clock);
+            }
+            return test(network, choice, runSeed, printer, err, adapter, virtual);
+        } finally {
+            adapter.close();
+        }
+    }
+
+    private int test(Network network, DelayChoice choice, long runSeed, Printer printer, PrintWriter err,
+                     TronSocketAdapter adapter, boolean virtual) {
         TestInterface ti = adapter.testInterface();
         long unit = RunDefaults.timeUnit(ti.timeUnitMicros());
         long units = RunDefaults.timeout(future, ti.timeout());
@@ -260,7 +328,10 @@ final class TronCommand implements Callable<Integer> {
         }
         TestOptions options;
         try {
-            options = new TestOptions(runSeed, unit, units, choice.policy(), choice.bound(), virtualTime);
+            options = new TestOptions(runSeed, unit, units, choice.policy(), choice.bound(), virtual);
+            if (!virtual) {
+                options = options.withInputMargin(inputMargin(network, ti, unit, printer, err));
+            }
         } catch (IllegalArgumentException e) {
             String reason = e.getMessage() + " (timeout from " + (future != null ? "-F" : ti.timeout() != null
                     ? "the adapter" : "the default") + ", time unit from " + (ti.timeUnitMicros() != null
@@ -274,9 +345,11 @@ final class TronCommand implements Callable<Integer> {
             tester.addListener(new EventPrinter(printer, unit));
         }
         TestResult result;
-        try (adapter) {
+        try {
             result = JsonTrace.run(tester, trace, model, options);
         } catch (UnsupportedModelException e) {
+            // the engine refused the interface before the test started: the adapter's start gets the reason
+            adapter.refuse("DTRON refuses the start: " + e.getMessage());
             err.println("dtron tron: " + model + ": " + e.getMessage());
             return 1;
         } catch (IOException e) {
@@ -294,6 +367,33 @@ final class TronCommand implements Callable<Integer> {
             }
         }
         return result.verdict().exitCode();
+    }
+
+    /**
+     * In real time: measures how late the tester's thread wakes up and returns the input margin that needs; says so
+     * (unless quiet), and warns when the model's narrowest input window is narrower than the margin.
+     */
+    private long inputMargin(Network network, TestInterface ti, long unit, Printer printer, PrintWriter err) {
+        // measured while the engine warms up on another thread, as a cold JVM compiles and collects
+        Thread warmUp = new Thread(() -> EngineWarmUp.run(network, ti), "dtron-warm-up");
+        warmUp.setDaemon(true);
+        warmUp.start();
+        SchedulingDelay delay = SchedulingDelay.measure();
+        try {
+            warmUp.join();
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+        }
+        if (!quiet) {
+            printer.println(String.format(Locale.ROOT, "dtron tron: the tester's thread wakes up to %.3f ms late"
+                    + " here; inputs are aimed at least %.3f ms (%.3f time units) inside the end of their windows",
+                    delay.worstMicros() / 1000.0, delay.marginMicros() / 1000.0, delay.marginMicros() / (double) unit));
+        }
+        delay.narrowInputWindow(network, ti, unit).ifPresent(warning -> {
+            err.println("dtron tron: warning: " + warning);
+            err.flush();
+        });
+        return delay.marginMicros();
     }
 
     private TronSocketAdapter acceptOne(Network network, TronSocketAdapter.Settings settings, Printer printer)

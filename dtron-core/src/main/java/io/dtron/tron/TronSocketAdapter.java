@@ -18,11 +18,13 @@ import java.net.ServerSocket;
 import java.net.Socket;
 import java.net.SocketTimeoutException;
 import java.time.Duration;
+import java.util.ArrayList;
 import java.util.HashMap;
 import java.util.LinkedHashMap;
 import java.util.List;
 import java.util.Map;
 import java.util.Objects;
+import java.util.Optional;
 import java.util.concurrent.BlockingQueue;
 import java.util.concurrent.LinkedBlockingQueue;
 import java.util.concurrent.TimeUnit;
@@ -44,13 +46,16 @@ import org.slf4j.LoggerFactory;
  * <p>Time:
  * <ul>
  *   <li>Real time: inputs are sent as the engine applies them; outputs are reported to the engine as they arrive,
- *       time-stamped on arrival. No acknowledgements.</li>
+ *       time-stamped with the arrival of their first byte. No acknowledgements.</li>
  *   <li>Virtual time, TRON's acknowledgements: after sending an input, the engine's thread waits for the adapter's
  *       acknowledgement, so virtual time does not move meanwhile; outputs that arrive before it are observed at the
  *       input's instant (the adapter's immediate reaction). Every output is acknowledged. An output the adapter
  *       sends on its own, not in answer to an input, is observed at whatever virtual time the tester has reached
  *       when it arrives, so adapters for virtual time should be reactive; a timed adapter should use real time or
  *       the shared virtual clock.</li>
+ *   <li>Virtual time, TRON's virtual clock server ({@link #useClockServer}, {@code -Q PORT}): as with TRON's
+ *       acknowledgements, and the adapter's threads take their time from the run's clock; the tester waits after
+ *       the start, each input and each wake-up until they are all blocked again.</li>
  *   <li>Virtual time, shared virtual clock (DTRON's extension, asked for by the adapter with command 200, which
  *       TRON's own adapters never send): the adapter's timers run on the tester's virtual clock. The adapter tells
  *       its next timer's time after every turn; the tester grants time (a clock message on channel 0) when the
@@ -65,7 +70,14 @@ import org.slf4j.LoggerFactory;
  * connection is closed.
  */
 public final class TronSocketAdapter implements Adapter, Closeable {
+    /** How long an adapter may stay silent during configuration by default. */
+    public static final Duration DEFAULT_CONFIGURATION_TIMEOUT = Duration.ofSeconds(10);
     private static final Logger LOG = LoggerFactory.getLogger(TronSocketAdapter.class);
+    /**
+     * The most events one acknowledgement is taken to count: a frame starting with bit 31 set and a larger count is a
+     * negative channel id, not an acknowledgement.
+     */
+    private static final int MAX_ACK_COUNT = 0xffff;
 
     /**
      * How the tester side runs.
@@ -91,9 +103,12 @@ public final class TronSocketAdapter implements Adapter, Closeable {
             }
         }
 
-        /** Real time: frames within 5 s, configuration within 60 s. */
+        /**
+         * Real time: frames within 5 s, configuration within {@link #DEFAULT_CONFIGURATION_TIMEOUT} (a TRON adapter
+         * registers its channels as soon as it is connected; a peer that stays silent is no TRON adapter).
+         */
         public static Settings forRealTime() {
-            return new Settings(false, Duration.ofSeconds(5), Duration.ofSeconds(10), Duration.ofSeconds(60));
+            return new Settings(false, Duration.ofSeconds(5), Duration.ofSeconds(10), DEFAULT_CONFIGURATION_TIMEOUT);
         }
 
         /** Virtual time: as real time, and acknowledgements within 10 s. */
@@ -142,8 +157,14 @@ public final class TronSocketAdapter implements Adapter, Closeable {
     private final InterfaceRegistry registry;
     private final Map<String, InterfaceRegistry.Registered> byName = new HashMap<>();
     private final BlockingQueue<Control> control = new LinkedBlockingQueue<>();
+    private final Object outputLock = new Object();
+    /** In virtual time: outputs that came while an input was not acknowledged yet, reported with its acknowledgement. */
+    private final List<Event> heldOutputs = new ArrayList<>();
+    private boolean awaitingAck;
     private TestInterface testInterface;
     private boolean sharedClock;
+    private boolean connected;
+    private TronClockServer clockServer;
 
     private volatile AdapterContext context;
     private volatile boolean closed;
@@ -178,7 +199,41 @@ public final class TronSocketAdapter implements Adapter, Closeable {
             socket.close();
             throw new IOException("cannot connect to the adapter at " + host + ":" + port + ": " + e.getMessage(), e);
         }
-        return configure(socket, network, settings);
+        return configure(socket, network, settings, true);
+    }
+
+    /**
+     * As {@link #connect}, for an adapter that opens its port only after a while (TRON's samples in virtual time open
+     * it once their threads have connected to the clock server): a refused connection is tried again every 100 ms
+     * until {@code wait} has passed.
+     */
+    public static TronSocketAdapter connectWhenOpen(String host, int port, Network network, Settings settings,
+                                                    Duration wait) throws IOException {
+        long deadline = System.nanoTime() + wait.toNanos();
+        while (true) {
+            Socket socket = new Socket();
+            try {
+                socket.connect(new InetSocketAddress(host, port), (int) settings.configurationTimeout().toMillis());
+            } catch (java.net.ConnectException e) {
+                socket.close();
+                if (System.nanoTime() - deadline >= 0) {
+                    throw new IOException("cannot connect to the adapter at " + host + ":" + port + ": nothing"
+                            + " listened there within " + wait.toSeconds() + " s (" + e.getMessage() + ")", e);
+                }
+                try {
+                    Thread.sleep(100);
+                } catch (InterruptedException ie) {
+                    Thread.currentThread().interrupt();
+                    throw new IOException("interrupted while waiting for the adapter at " + host + ":" + port, ie);
+                }
+                continue;
+            } catch (IOException e) {
+                socket.close();
+                throw new IOException("cannot connect to the adapter at " + host + ":" + port + ": " + e.getMessage(),
+                        e);
+            }
+            return configure(socket, network, settings, true);
+        }
     }
 
     /**
@@ -189,10 +244,16 @@ public final class TronSocketAdapter implements Adapter, Closeable {
      */
     public static TronSocketAdapter configure(Socket socket, Network network, Settings settings)
             throws IOException {
+        return configure(socket, network, settings, false);
+    }
+
+    private static TronSocketAdapter configure(Socket socket, Network network, Settings settings, boolean connected)
+            throws IOException {
         Objects.requireNonNull(network, "network");
         Objects.requireNonNull(settings, "settings");
         try {
             TronSocketAdapter adapter = new TronSocketAdapter(socket, network, settings);
+            adapter.connected = connected;
             adapter.configurationPhase();
             return adapter;
         } catch (IOException | RuntimeException e) {
@@ -209,6 +270,21 @@ public final class TronSocketAdapter implements Adapter, Closeable {
     /** Whether the adapter asked for the shared virtual clock (DTRON's extension). */
     public boolean sharedVirtualClock() {
         return sharedClock;
+    }
+
+    /**
+     * Serves the run's virtual time to the adapter's threads through {@code server} (TRON's {@code -Q PORT}): the
+     * server's time becomes the run's, and the tester waits after the start, after each input and after each timed
+     * wake-up until the adapter's threads are all blocked again. Call it before the run, in virtual time only.
+     *
+     * @throws IllegalStateException in a real-time run, or once the test has started
+     */
+    public void useClockServer(TronClockServer server) {
+        if (!settings.virtualTime() || context != null) {
+            throw new IllegalStateException(context != null ? "the test has started"
+                    : "the virtual clock server needs a run in virtual time");
+        }
+        this.clockServer = Objects.requireNonNull(server, "server");
     }
 
     /** The adapter's address. */
@@ -228,13 +304,19 @@ public final class TronSocketAdapter implements Adapter, Closeable {
             } catch (SocketTimeoutException e) {
                 throw new TronProtocolException("the adapter sent nothing for "
                         + settings.configurationTimeout().toSeconds() + " s during configuration; it must register"
-                        + " its channels and start the test (command 64)");
+                        + " its channels and start the test (command 64)" + silenceHint());
             }
             switch (command) {
                 case Wire.INPUT, Wire.OUTPUT -> {
                     String name = reader.string("the channel name of command " + command);
+                    int known = registry.channels().size();
                     int id = registry.registerChannel(name, command == Wire.INPUT);
-                    LOG.debug("register {} '{}' -> {}", command == Wire.INPUT ? "input" : "output", name, id);
+                    if (id > 0 && registry.channels().size() == known) {
+                        LOG.debug("{} '{}' registered again: the same id {}, as TRON gives",
+                                command == Wire.INPUT ? "input" : "output", name, id);
+                    } else {
+                        LOG.debug("register {} '{}' -> {}", command == Wire.INPUT ? "input" : "output", name, id);
+                    }
                     reply(Wire.int32(id));
                 }
                 case Wire.INPUT_VARIABLE, Wire.OUTPUT_VARIABLE -> {
@@ -279,6 +361,16 @@ public final class TronSocketAdapter implements Adapter, Closeable {
                 }
             }
         }
+    }
+
+    /** When the peer sent nothing at all: the likely reason. */
+    private String silenceHint() {
+        if (registry.channels().size() + registry.refusals().size() > 0) {
+            return "";
+        }
+        return connected ? "; it sent nothing at all since the connection opened: is something else listening on"
+                + " port " + socket.getPort() + "?" : "; it sent nothing at all since it connected: is the peer at "
+                + remote() + " a TRON adapter?";
     }
 
     private static String describeByte(int b) {
@@ -349,6 +441,10 @@ public final class TronSocketAdapter implements Adapter, Closeable {
         readerThread = new Thread(this::readLoop, "tron-tester-reader");
         readerThread.setDaemon(true);
         readerThread.start();
+        if (clockServer != null) {
+            clockServer.attach(runContext.clock(), settings.replyTimeout(), this::fail);
+            awaitQuiet();
+        }
         if (sharedClock) {
             granted = runContext.clock().nowMicros();
             inTurn = true;
@@ -377,9 +473,26 @@ public final class TronSocketAdapter implements Adapter, Closeable {
                 unacknowledged++;
                 awaitTurn("an acknowledgement of input " + input + " and its next timer");
             }
-        } else if (send(frame, input) && settings.virtualTime()) {
-            unacknowledged++;
-            awaitTurn("an acknowledgement of input " + input);
+        } else if (settings.virtualTime()) {
+            synchronized (outputLock) {
+                awaitingAck = true;
+            }
+            if (send(frame, input)) {
+                unacknowledged++;
+                if (awaitTurn("an acknowledgement of input " + input) && clockServer != null) {
+                    awaitQuiet();
+                }
+            }
+        } else {
+            send(frame, input);
+        }
+    }
+
+    /** With the clock server: waits until the adapter's threads are all blocked, so that time may move on. */
+    private void awaitQuiet() {
+        String stuck = clockServer.awaitQuiet(settings.replyTimeout());
+        if (stuck != null) {
+            fail(stuck);
         }
     }
 
@@ -421,9 +534,12 @@ public final class TronSocketAdapter implements Adapter, Closeable {
             while (unacknowledged > 0 || needNext) {
                 Control c = control.poll(deadline - System.nanoTime(), TimeUnit.NANOSECONDS);
                 if (c == null) {
+                    int unjudged = dropHeldOutputs();
                     fail("the adapter did not send " + what + " within " + settings.replyTimeout().toMillis()
                             + " ms; in virtual time it must acknowledge every input"
-                            + (sharedClock ? " and answer every time grant" : " (is it running in real time?)"));
+                            + (sharedClock ? " and answer every time grant" : " (is it running in real time?)")
+                            + (unjudged > 0 ? "; the " + unjudged + " output" + (unjudged == 1 ? "" : "s")
+                            + " it sent meanwhile " + (unjudged == 1 ? "was" : "were") + " not judged" : ""));
                     return false;
                 }
                 if (c instanceof Failure) {
@@ -449,6 +565,16 @@ public final class TronSocketAdapter implements Adapter, Closeable {
             return false;
         } finally {
             inTurn = false;
+        }
+    }
+
+    /** Forgets the outputs held for an acknowledgement that did not come; how many there were. */
+    private int dropHeldOutputs() {
+        synchronized (outputLock) {
+            int n = heldOutputs.size();
+            heldOutputs.clear();
+            awaitingAck = false;
+            return n;
         }
     }
 
@@ -484,6 +610,7 @@ public final class TronSocketAdapter implements Adapter, Closeable {
                 if (!readFrame(first)) {
                     return;
                 }
+                reader.endFrame();
             }
         } catch (IOException e) {
             if (!closed) {
@@ -497,14 +624,24 @@ public final class TronSocketAdapter implements Adapter, Closeable {
     private boolean readFrame(int first) throws IOException {
         if ((first & Wire.ACK_BIT) != 0) {
             int count = first & ~Wire.ACK_BIT;
+            if (count == 0 || count > MAX_ACK_COUNT) {
+                // no acknowledgement counts that many events: a negative number where a channel id belongs
+                fail(String.format("protocol error: the adapter sent an event on channel id %d (0x%08x): channel ids"
+                        + " are positive (%s)", first, first, registry.registeredList()));
+                return false;
+            }
             if (!settings.virtualTime()) {
                 fail(String.format("protocol error: the adapter sent an acknowledgement (0x%08x) in a real-time run;"
                         + " acknowledgements are for virtual time (is the adapter set to virtual time?)", first));
                 return false;
             }
-            if (count == 0) {
-                fail("protocol error: the adapter acknowledged 0 events");
-                return false;
+            synchronized (outputLock) {
+                for (Event held : heldOutputs) {
+                    LOG.debug("output {} (before the acknowledgement)", held);
+                    context.report(held);
+                }
+                heldOutputs.clear();
+                awaitingAck = false;
             }
             control.add(new Ack(count));
             return true;
@@ -545,17 +682,58 @@ public final class TronSocketAdapter implements Adapter, Closeable {
                     + channel.name() + "'"));
         }
         Event event = new Event(channel.name(), values);
-        if (settings.virtualTime()) {
-            writer.write(Wire.ack(1));
-        }
         if (sharedClock && !inTurn) {
             fail("protocol error: the adapter sent output " + event + " outside its turn; with the shared virtual"
                     + " clock, outputs are sent only in answer to a time grant or an input");
             return false;
         }
-        LOG.debug("output {}", event);
-        context.report(event);
+        if (settings.virtualTime()) {
+            // taken (reported, or held for an input's acknowledgement) before it is acknowledged: the adapter's
+            // thread goes on, and may let virtual time move, only once the tester has it
+            synchronized (outputLock) {
+                if (awaitingAck && !sharedClock) {
+                    heldOutputs.add(event);
+                } else {
+                    LOG.debug("output {}", event);
+                    context.report(event);
+                }
+            }
+            writer.write(Wire.ack(1));
+        } else {
+            // an output happened when its first byte came, not when its last did
+            long late = (System.nanoTime() - reader.frameStartNanos()) / 1000;
+            long at = Math.max(0, context.clock().nowMicros() - late);
+            LOG.debug("output {} at {} us", event, at);
+            context.report(event, at);
+        }
         return true;
+    }
+
+    /**
+     * Before the engine declares a missed deadline: an adapter in the middle of a frame is waited for until the frame
+     * is complete (its output then counts from its first byte) or its frame timeout passes (then the run is
+     * INCONCLUSIVE: the frame was truncated).
+     */
+    @Override
+    public Optional<String> unreachable() {
+        long deadline = reader.frameStartNanos() + reader.frameTimeout().toNanos() + 200_000_000L;
+        while (reader.inFrame() && failure == null && !closed && System.nanoTime() - deadline < 0) {
+            try {
+                Thread.sleep(1);
+            } catch (InterruptedException e) {
+                Thread.currentThread().interrupt();
+                break;
+            }
+        }
+        String why = failure;
+        if (why != null) {
+            return Optional.of(why);
+        }
+        if (reader.inFrame()) {
+            return Optional.of("a frame from the adapter began "
+                    + (System.nanoTime() - reader.frameStartNanos()) / 1_000_000 + " ms ago and is not complete");
+        }
+        return Optional.empty();
     }
 
     private void fail(String reason) {

@@ -1,6 +1,7 @@
 package io.dtron.tron;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertThrows;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
@@ -270,6 +271,88 @@ class TronProtocolRobustnessTest {
         TestResult r = runWith(FAST, c -> c.configureLamp(LONG_RUN));
         assertEquals(Verdict.INCONCLUSIVE, r.verdict());
         assertTrue(r.explanation().contains("the adapter closed the connection"), r.explanation());
+    }
+
+    @Test
+    void aChannelRegisteredAgainGetsItsIdAgainAsTronGivesIt() throws Exception {
+        CompletableFuture<Void> adapter = adapter(c -> {
+            c.bytes(1).string("grasp");
+            assertEquals(1, c.readInt());
+            c.bytes(2).string("level");
+            assertEquals(2, c.readInt());
+            c.bytes(2).string("level");
+            assertEquals(2, c.readInt(), "the same output again: the same id");
+            c.bytes(1).string("level");
+            assertEquals(-3, c.readInt(), "the output again as an input: refused");
+            c.bytes(127).int32(-3);
+            assertEquals("input 'level' is already registered as output 2", c.readString());
+            c.bytes(64);
+            assertTrue(c.readString().startsWith("1 registration was refused"));
+        });
+        TronProtocolException e = assertThrows(TronProtocolException.class,
+                () -> TronSocketAdapter.accept(server, lightContr, FAST));
+        adapter.get(10, TimeUnit.SECONDS);
+        assertTrue(e.getMessage().contains("input 'level' is already registered as output 2"), e.getMessage());
+    }
+
+    @Test
+    void aSilentPeerIsAskedWhetherItIsATronAdapter() throws Exception {
+        TronProtocolException e = configurationFails(c -> assertTrue(c.closedByTester()));
+        assertTrue(e.getMessage().contains("it sent nothing at all since it connected: is the peer at 127.0.0.1:"),
+                e.getMessage());
+        assertTrue(e.getMessage().endsWith("a TRON adapter?"), e.getMessage());
+    }
+
+    @Test
+    void aNegativeChannelIdIsNotTakenForAnAcknowledgement() throws Exception {
+        TestResult r = runWith(FAST, c -> {
+            c.configureLamp(LONG_RUN).int32(-1).uint16(0);
+            assertTrue(c.closedByTester());
+        });
+        assertEquals(Verdict.INCONCLUSIVE, r.verdict());
+        assertTrue(r.explanation().contains("protocol error: the adapter sent an event on channel id -1 (0xffffffff):"
+                + " channel ids are positive (registered: 1 input grasp, 2 input release, 3 output level)"),
+                r.explanation());
+        assertFalse(r.explanation().contains("virtual time"), r.explanation());
+    }
+
+    @Test
+    void aFrameBegunBeforeADeadlineAndNeverFinishedIsInconclusiveNotFailed() throws Exception {
+        // the lazy tester holds the lamp grasped until the model requires a level (tens of units of 1 ms); the
+        // adapter begins that output at once and never finishes it, and its frame timeout is longer than that
+        TronSocketAdapter.Settings settings = FAST.withFrameTimeout(Duration.ofSeconds(2));
+        CompletableFuture<Void> adapter = adapter(c -> {
+            c.configureLamp(LONG_RUN);
+            assertEquals(1, c.readInt());
+            assertEquals(0, c.readUint16());
+            c.int32(3).uint16(1).bytes(0, 0);
+            assertTrue(c.closedByTester());
+        });
+        TronSocketAdapter tester = TronSocketAdapter.accept(server, lightContr, settings);
+        TestOptions options = new TestOptions(3, 1000, LONG_RUN, DelayPolicy.LAZY, 0, false);
+        TestResult r = new OnlineTester(lightContr, tester.testInterface(), tester, options).run();
+        adapter.get(10, TimeUnit.SECONDS);
+        assertEquals(Verdict.INCONCLUSIVE, r.verdict(), r.explanation());
+        assertTrue(r.explanation().contains("truncated frame: value 1 of 1 of an event on 'level' did not arrive"
+                + " within 2000 ms"), r.explanation());
+    }
+
+    @Test
+    void outputsWithoutAnAcknowledgementInVirtualTimeAreNotJudgedAndTheRunNamesTheMissingOne() throws Exception {
+        // an adapter left in real time: it reacts to the input with an output, which the model does not allow at
+        // the input's instant, but never acknowledges the input
+        TestResult r = runWith(FAST.withVirtualTime(true), c -> {
+            c.configureLamp(LONG_RUN);
+            assertEquals(1, c.readInt());
+            assertEquals(0, c.readUint16());
+            c.int32(3).uint16(1).int32(0);
+            assertEquals(0x8000_0001, c.readInt(), "the tester acknowledges the output");
+            assertTrue(c.closedByTester());
+        });
+        assertEquals(Verdict.INCONCLUSIVE, r.verdict(), r.explanation());
+        assertTrue(r.explanation().contains("the adapter did not send an acknowledgement of input grasp() within 300"
+                + " ms; in virtual time it must acknowledge every input (is it running in real time?); the 1 output it"
+                + " sent meanwhile was not judged"), r.explanation());
     }
 
     @Test

@@ -33,12 +33,6 @@ import java.util.concurrent.atomic.AtomicLong;
 public final class OnlineTester {
     private static final int MAX_TICKS_PER_UNIT = 1000;
     /**
-     * In real time, an input is aimed at least this long before the end of its window (or in the first half of a
-     * narrower one): the tester's thread wakes up tens of microseconds late on an idle machine, milliseconds late on
-     * a loaded one.
-     */
-    private static final long INPUT_MARGIN_MICROS = 2000;
-    /**
      * How many reorder windows past its time a held verdict, or the commitment to an input, waits for the
      * acknowledgement of an input, when the adapters acknowledge inputs: its place decides the order of events.
      */
@@ -241,7 +235,7 @@ public final class OnlineTester {
             this.ticksPerUnit = ticksPerUnit;
             this.timeoutMicros = Math.multiplyExact(options.timeout(), unit);
             this.windowMicros = windowMicros;
-            this.inputMargin = options.virtualTime() ? 0 : ticksCeil(INPUT_MARGIN_MICROS);
+            this.inputMargin = options.virtualTime() ? 0 : ticksCeil(options.inputMarginMicros());
             this.set = StateSet.initial(semantics, partition);
             this.committed = set;
         }
@@ -310,7 +304,8 @@ public final class OnlineTester {
                 Plan plan = plan();
                 long elapsed = ticksFloor(now - lastMicros);
                 Plan.Choice choice = plan.choose(elapsed, random, options.delayPolicy(),
-                        options.delayBound() * ticksPerUnit, inputMargin);
+                        options.delayBound() * ticksPerUnit,
+                        Math.max(inputMargin, ticksCeil(2 * clock.worstLatenessMicros())));
                 long at = lastMicros + micros(choice.ticks());
                 // a deadline within the test is declared missed only when the outputs stamped before it had the
                 // reorder window to arrive

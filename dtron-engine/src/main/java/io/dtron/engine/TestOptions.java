@@ -18,9 +18,17 @@ import java.util.Objects;
  *                       are placed by their own times, a deadline is declared missed only this long after it
  *                       passed, and a verdict is final only when no earlier event can still arrive. 0 for systems
  *                       under test that report in time order (in-process adapters)
+ * @param inputMarginMicros in real time, how far inside the end of its window the tester aims an input, at least:
+ *                       the tester's thread wakes up late (tens of microseconds on an idle machine, milliseconds on a
+ *                       loaded one), and an input applied after its window ends makes the run INCONCLUSIVE. In a
+ *                       window narrower than the margin the input is aimed at the window's start. During the run
+ *                       the tester widens it to twice the latest it has woken up so far. Not used in virtual time
  */
 public record TestOptions(long seed, long timeUnitMicros, long timeout, DelayPolicy delayPolicy, long delayBound,
-                          boolean virtualTime, long reorderWindowMicros) {
+                          boolean virtualTime, long reorderWindowMicros, long inputMarginMicros) {
+    /** The input margin when none is given: 2 ms. */
+    public static final long DEFAULT_INPUT_MARGIN_MICROS = 2000;
+
     /**
      * The longest run DTRON can time, in microseconds (about 292 years): the engine counts time in nanoseconds and
      * in up to 1000 ticks per time unit, so a duration in microseconds times 1000 must fit in a {@code long}. The
@@ -41,6 +49,9 @@ public record TestOptions(long seed, long timeUnitMicros, long timeout, DelayPol
         }
         if (reorderWindowMicros < 0 || reorderWindowMicros > MAX_DURATION_MICROS) {
             throw new IllegalArgumentException("the reorder window must be 0 to " + MAX_DURATION_MICROS + " us");
+        }
+        if (inputMarginMicros < 0 || inputMarginMicros > MAX_DURATION_MICROS) {
+            throw new IllegalArgumentException("the input margin must be 0 to " + MAX_DURATION_MICROS + " us");
         }
         if (!fits(timeout, timeUnitMicros)) {
             throw new IllegalArgumentException(tooLong("the timeout", timeout, timeUnitMicros));
@@ -64,6 +75,13 @@ public record TestOptions(long seed, long timeUnitMicros, long timeout, DelayPol
                 + " most " + MAX_DURATION_MICROS + " us (about 292 years)";
     }
 
+    /** Options with the {@link #DEFAULT_INPUT_MARGIN_MICROS default input margin}. */
+    public TestOptions(long seed, long timeUnitMicros, long timeout, DelayPolicy delayPolicy, long delayBound,
+                       boolean virtualTime, long reorderWindowMicros) {
+        this(seed, timeUnitMicros, timeout, delayPolicy, delayBound, virtualTime, reorderWindowMicros,
+                DEFAULT_INPUT_MARGIN_MICROS);
+    }
+
     /** Options without a reorder window, for systems under test that report in time order. */
     public TestOptions(long seed, long timeUnitMicros, long timeout, DelayPolicy delayPolicy, long delayBound,
                        boolean virtualTime) {
@@ -77,26 +95,37 @@ public record TestOptions(long seed, long timeUnitMicros, long timeout, DelayPol
 
     /** These options with another timeout (model time units). */
     public TestOptions withTimeout(long units) {
-        return new TestOptions(seed, timeUnitMicros, units, delayPolicy, delayBound, virtualTime, reorderWindowMicros);
+        return new TestOptions(seed, timeUnitMicros, units, delayPolicy, delayBound, virtualTime, reorderWindowMicros,
+                inputMarginMicros);
     }
 
     /** These options with another time unit. */
     public TestOptions withTimeUnit(long micros) {
-        return new TestOptions(seed, micros, timeout, delayPolicy, delayBound, virtualTime, reorderWindowMicros);
+        return new TestOptions(seed, micros, timeout, delayPolicy, delayBound, virtualTime, reorderWindowMicros,
+                inputMarginMicros);
     }
 
     /** These options with another delay policy and bound. */
     public TestOptions withDelayPolicy(DelayPolicy policy, long bound) {
-        return new TestOptions(seed, timeUnitMicros, timeout, policy, bound, virtualTime, reorderWindowMicros);
+        return new TestOptions(seed, timeUnitMicros, timeout, policy, bound, virtualTime, reorderWindowMicros,
+                inputMarginMicros);
     }
 
     /** These options in real or virtual time. */
     public TestOptions withVirtualTime(boolean virtual) {
-        return new TestOptions(seed, timeUnitMicros, timeout, delayPolicy, delayBound, virtual, reorderWindowMicros);
+        return new TestOptions(seed, timeUnitMicros, timeout, delayPolicy, delayBound, virtual, reorderWindowMicros,
+                inputMarginMicros);
     }
 
     /** These options with another reorder window (microseconds). */
     public TestOptions withReorderWindow(long micros) {
-        return new TestOptions(seed, timeUnitMicros, timeout, delayPolicy, delayBound, virtualTime, micros);
+        return new TestOptions(seed, timeUnitMicros, timeout, delayPolicy, delayBound, virtualTime, micros,
+                inputMarginMicros);
+    }
+
+    /** These options with another input margin (microseconds). */
+    public TestOptions withInputMargin(long micros) {
+        return new TestOptions(seed, timeUnitMicros, timeout, delayPolicy, delayBound, virtualTime, reorderWindowMicros,
+                micros);
     }
 }

@@ -19,7 +19,8 @@ public final class FrameReader {
     private final InputStream in;
     private final long frameTimeoutNanos;
     private final byte[] buffer = new byte[4];
-    private long frameStart;
+    private volatile long frameStart;
+    private volatile boolean inFrame;
 
     /** A reader of {@code socket}; sets the socket's read timeout to poll for the frame timeout. */
     public FrameReader(Socket socket, Duration frameTimeout) throws IOException {
@@ -50,8 +51,29 @@ public final class FrameReader {
                 throw new EOFException("the connection was closed");
             }
             frameStart = System.nanoTime();
+            inFrame = true;
             return b;
         }
+    }
+
+    /** Marks the end of the current frame: its last field was read. */
+    public void endFrame() {
+        inFrame = false;
+    }
+
+    /** Whether a frame has begun and its end was not marked yet. */
+    public boolean inFrame() {
+        return inFrame;
+    }
+
+    /** When the current (or last) frame's first byte came, in {@link System#nanoTime()}. */
+    public long frameStartNanos() {
+        return frameStart;
+    }
+
+    /** The frame timeout. */
+    public Duration frameTimeout() {
+        return Duration.ofNanos(frameTimeoutNanos);
     }
 
     /** Waits without limit for the first int32 of a frame (an event's channel id, or an acknowledgement). */

@@ -24,7 +24,7 @@ public final class InterfaceRegistry {
     public static final int UNKNOWN_COMMAND = -1;
     /** The channel is not a global channel of the model. */
     public static final int NO_SUCH_CHANNEL = -2;
-    /** The channel was already registered. */
+    /** The channel was already registered in the other direction. */
     public static final int CHANNEL_TWICE = -3;
     /** The name is a whole channel array. */
     public static final int CHANNEL_ARRAY = -4;
@@ -50,7 +50,7 @@ public final class InterfaceRegistry {
     private static final Map<Integer, String> GENERIC = Map.ofEntries(
             Map.entry(UNKNOWN_COMMAND, "unknown command; the tester closes the connection"),
             Map.entry(NO_SUCH_CHANNEL, "no such global channel in the model"),
-            Map.entry(CHANNEL_TWICE, "the channel is already registered"),
+            Map.entry(CHANNEL_TWICE, "the channel is already registered in the other direction"),
             Map.entry(CHANNEL_ARRAY, "a channel array: register its elements, e.g. name[0]"),
             Map.entry(NO_SUCH_CHANNEL_ID, "no channel was registered with that id"),
             Map.entry(WRONG_DIRECTION, "the channel id belongs to a channel of the other direction"),
@@ -123,7 +123,10 @@ public final class InterfaceRegistry {
         }
     }
 
-    /** Registers an input or output; returns its id (positive) or an error code. */
+    /**
+     * Registers an input or output; returns its id (positive) or an error code. A channel registered again in the
+     * same direction gets the same id again, as TRON gives it; in the other direction it is refused.
+     */
     public int registerChannel(String rawName, boolean input) {
         String name = rawName.replaceAll("\\s+", "");
         String kind = input ? "input" : "output";
@@ -139,6 +142,9 @@ public final class InterfaceRegistry {
         }
         for (Registered r : byId.values()) {
             if (r.name.equals(name)) {
+                if (r.input == input) {
+                    return r.id; // as TRON does: the same channel again gets its id again
+                }
                 return refuse(CHANNEL_TWICE, kind + " '" + name + "' is already registered as "
                         + (r.input ? "input" : "output") + " " + r.id);
             }

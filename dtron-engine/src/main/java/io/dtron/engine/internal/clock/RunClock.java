@@ -166,6 +166,14 @@ public abstract class RunClock implements TestClock {
     }
 
     /**
+     * How late, at most, a wait of this clock has ended after its target so far, in microseconds: the scheduling delay
+     * of the tester's thread in real time; 0 in virtual time.
+     */
+    public long worstLatenessMicros() {
+        return 0;
+    }
+
+    /**
      * Sets time 0; called once, right before the adapter starts. In real time, time 0 is {@code zeroNanoTime} (a
      * {@link System#nanoTime()} reading) if given, waiting for it if it lies ahead, else now; virtual time starts at
      * 0 anyway.

@@ -138,8 +138,8 @@ public final class Plan {
      * Chooses the next move at {@code elapsed} ticks: an input among those the environment allows (with its
      * time by {@code policy}), or waiting until the deadline (or the horizon). When an input is possible at the
      * deadline, the tester does not wait past it. An input's time is chosen at least {@code marginTicks} before the
-     * end of its window (or in the first half of a narrower window), so that a tester that wakes up a little late
-     * still applies it inside the window.
+     * end of its window (at the window's start when it is narrower than that), so that a tester that wakes up a
+     * little late still applies it inside the window: as late as can still be met, for {@link DelayPolicy#LAZY}.
      */
     public Choice choose(long elapsed, Random random, DelayPolicy policy, long boundTicks, long marginTicks) {
         List<long[]> options = new ArrayList<>();
@@ -154,7 +154,9 @@ public final class Plan {
                 long lo = Math.max(w.lo(), elapsed);
                 long hi = hasDeadline() ? Math.min(w.hi(), deadline) : w.hi();
                 if (lo <= hi) {
-                    options.add(new long[] {lo, hi - Math.min(marginTicks, (hi - lo) / 2)});
+                    // never later than the margin before the end: the tester is never early, only late, so in a
+                    // window narrower than the margin the start gives it the most room
+                    options.add(new long[] {lo, Math.max(lo, hi - marginTicks)});
                     channels.add(input);
                     mustAct |= hasDeadline() && w.lo() <= deadline && deadline <= w.hi();
                 }

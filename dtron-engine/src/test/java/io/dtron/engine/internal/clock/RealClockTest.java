@@ -73,4 +73,26 @@ class RealClockTest {
         assertEquals(0, before, before + " outputs came in before a quiet time, the first: " + first);
         assertTrue(quiet >= 0, "the tester found the queue empty at least once");
     }
+
+    @org.junit.jupiter.api.Test
+    void itKeepsTheLatestItWokeUpAfterATargetAndVirtualTimeIsNeverLate() {
+        RealClock clock = new RealClock();
+        clock.begin(java.util.OptionalLong.empty());
+        assertEquals(0, clock.worstLatenessMicros());
+        long worst = 0;
+        for (int i = 1; i <= 20; i++) {
+            long target = clock.nowMicros() + 500;
+            assertEquals(null, clock.awaitUntil(target));
+            worst = Math.max(worst, clock.nowMicros() - target);
+        }
+        // the clock's own figure is taken right on waking, so it is at most what the caller sees afterwards
+        assertTrue(clock.worstLatenessMicros() > 0, "a thread never wakes up on the microsecond 20 times in a row");
+        assertTrue(clock.worstLatenessMicros() <= worst, clock.worstLatenessMicros() + " > " + worst);
+        long before = clock.worstLatenessMicros();
+        assertEquals(null, clock.awaitUntil(clock.nowMicros() - 10), "a target already past: no wait, no lateness");
+        assertEquals(before, clock.worstLatenessMicros());
+        VirtualClock virtual = new VirtualClock();
+        virtual.awaitUntil(1_000_000);
+        assertEquals(0, virtual.worstLatenessMicros());
+    }
 }

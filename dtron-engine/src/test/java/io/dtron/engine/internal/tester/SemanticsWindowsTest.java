@@ -109,8 +109,12 @@ class SemanticsWindowsTest {
         // lazy: the end of the window, less the margin of 2 units
         assertEquals(18 * TICKS, plan.choose(0, random, io.dtron.engine.DelayPolicy.LAZY, 0, 2 * TICKS).ticks());
         assertEquals(20 * TICKS, plan.choose(0, random, io.dtron.engine.DelayPolicy.LAZY, 0, 0).ticks());
-        // a window narrower than twice the margin: its first half
-        assertEquals(15 * TICKS, plan.choose(0, random, io.dtron.engine.DelayPolicy.LAZY, 0, 8 * TICKS).ticks());
+        // a window narrower than twice the margin: still the margin before its end
+        assertEquals(12 * TICKS, plan.choose(0, random, io.dtron.engine.DelayPolicy.LAZY, 0, 8 * TICKS).ticks());
+        // narrower than the margin: its start, the time with the most room, by every policy
+        for (io.dtron.engine.DelayPolicy policy : io.dtron.engine.DelayPolicy.values()) {
+            assertEquals(10 * TICKS, plan.choose(0, random, policy, 5, 12 * TICKS).ticks(), policy.name());
+        }
         for (int i = 0; i < 200; i++) {
             long t = plan.choose(0, random, io.dtron.engine.DelayPolicy.RANDOM, 0, 2 * TICKS).ticks();
             assertTrue(t >= 10 * TICKS && t <= 18 * TICKS, "chosen at " + t);

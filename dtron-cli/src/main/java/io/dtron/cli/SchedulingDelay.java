@@ -1,0 +1,69 @@
+package io.dtron.cli;
+
+import io.dtron.engine.ObservableWindow;
+import io.dtron.engine.TestOptions;
+import io.dtron.model.Network;
+import io.dtron.model.TestInterface;
+import java.util.List;
+import java.util.Optional;
+import java.util.concurrent.LinkedBlockingQueue;
+import java.util.concurrent.TimeUnit;
+
+/**
+ * How late this machine wakes the tester's thread, measured before a real-time run the way the tester waits (a
+ * timed poll of a queue), and the input margin that lateness needs: an input is aimed that far inside the end of its
+ * window, so that the tester never picks a time it cannot meet.
+ *
+ * @param worstMicros the latest wake-up measured, in microseconds
+ * @param marginMicros the input margin: twice the worst lateness, and never less than {@link
+ *                     TestOptions#DEFAULT_INPUT_MARGIN_MICROS}
+ */
+record SchedulingDelay(long worstMicros, long marginMicros) {
+    /** The waits measured, in microseconds: short ones, and longer ones after which a busy machine wakes later. */
+    private static final long[] WAITS_MICROS = {500, 500, 500, 500, 2000, 5000, 500, 500, 10_000, 500, 500, 20_000};
+    private static final int ROUNDS = 4;
+
+    /** Measures: {@value #ROUNDS} rounds of waits of 0.5 to 20 ms, about 160 ms in all. */
+    static SchedulingDelay measure() {
+        LinkedBlockingQueue<Object> never = new LinkedBlockingQueue<>();
+        long worst = 0;
+        try {
+            for (int round = 0; round < ROUNDS; round++) {
+                for (long wait : WAITS_MICROS) {
+                    long start = System.nanoTime();
+                    never.poll(wait, TimeUnit.MICROSECONDS);
+                    worst = Math.max(worst, (System.nanoTime() - start) / 1000 - wait);
+                }
+            }
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+        }
+        return of(worst);
+    }
+
+    /** The margin for a measured worst lateness. */
+    static SchedulingDelay of(long worstMicros) {
+        long worst = Math.max(0, worstMicros);
+        return new SchedulingDelay(worst, Math.max(TestOptions.DEFAULT_INPUT_MARGIN_MICROS, 2 * worst));
+    }
+
+    /**
+     * A warning when the model's narrowest input window ({@link ObservableWindow#narrowest}) at {@code unitMicros} per
+     * time unit is narrower than this margin: inputs in it are aimed at its start and may still come late.
+     */
+    Optional<String> narrowInputWindow(Network network, TestInterface testInterface, long unitMicros) {
+        TestInterface inputs = new TestInterface(testInterface.inputs(), List.of(), testInterface.timeUnitMicros(),
+                testInterface.timeout());
+        return ObservableWindow.narrowest(network, inputs).filter(w -> w.width() * unitMicros < marginMicros)
+                .map(w -> "the window of input " + w + " is " + w.width() + " time units of " + unitMicros + " us,"
+                        + " narrower than the margin of " + marginMicros + " us that inputs need here: they are aimed"
+                        + " at the window's start and may still come late (INCONCLUSIVE, input executed too late)"
+                        + (w.width() == 0 ? "; a single instant cannot be met in real time: run the model in virtual"
+                        + " time (-Q PORT)" : "; a time unit of at least " + ceilDiv(marginMicros, w.width())
+                        + " us leaves room"));
+    }
+
+    private static long ceilDiv(long a, long b) {
+        return -Math.floorDiv(-a, b);
+    }
+}
