@@ -219,6 +219,8 @@ public final class OnlineTester {
         private StateSet set;
         private long lastMicros;
         private Held held;
+        /** How the last output observed was understood (the edges it was taken as), until the next input. */
+        private String lastTaken;
         /** How many acknowledgements of inputs came in this run. */
         private long acknowledgements;
         private long performed;
@@ -350,7 +352,7 @@ public final class OnlineTester {
                         return result(Verdict.INCONCLUSIVE, "no output came by " + deadlineAt + ", and the system"
                                 + " under test may not have been able to act: " + unreachable.get());
                     }
-                    return result(Verdict.FAILED, "no output came by " + deadlineAt + ": the model required the"
+                    return result(Verdict.FAILED, afterLastTaken() + "no output came by " + deadlineAt + ": the model required the"
                             + " system under test to act by then" + (window() > 0
                             ? " (the tester waited " + Plan.units(window(), unit) + " time units more for messages"
                             + " in transit)" : "") + ". " + plan.explainOutputs(this::time, lastMicros));
@@ -542,7 +544,8 @@ public final class OnlineTester {
                             + time(at) + ": the model cannot let that much time pass before the input (input"
                             + " executed too late)");
                 }
-                return result(Verdict.FAILED, "output " + event + " observed at " + time(at) + " is too late: "
+                return result(Verdict.FAILED, afterLastTaken() + "output " + event + " observed at " + time(at)
+                        + " is too late: "
                         + plan().explainOutputs(this::time, lastMicros));
             }
             List<StateSet.Successor> moves = atTime.successors(channel.channel());
@@ -555,10 +558,12 @@ public final class OnlineTester {
             if (!matching.isEmpty()) {
                 set = atTime.of(matching);
                 lastMicros = at;
+                lastTaken = "output " + event + " at " + time(at) + " was taken as " + edgesTaken(channel, event, moves);
                 return null;
             }
             if (!moves.isEmpty()) {
-                return result(Verdict.FAILED, "output " + event + " observed at " + time(at) + " carries values the"
+                return result(Verdict.FAILED, afterLastTaken() + "output " + event + " observed at " + time(at)
+                        + " carries values the"
                         + " model does not allow then: it allowed " + allowedValues(channel, moves) + " ("
                         + semantics.describe(moves.get(0).move().steps().get(0)) + ")");
             }
@@ -568,7 +573,8 @@ public final class OnlineTester {
                         + time(at) + ": " + envRefusal);
             }
             Plan plan = plan();
-            return result(Verdict.FAILED, "output " + event + " observed at " + time(at) + " is not allowed then"
+            return result(Verdict.FAILED, afterLastTaken() + "output " + event + " observed at " + time(at)
+                    + " is not allowed then"
                     + plan.timing(channel.channel(), ticksFloor(at - lastMicros)) + ". "
                     + plan.explainOutputs(this::time, lastMicros));
         }
@@ -580,6 +586,25 @@ public final class OnlineTester {
         private StateSet afterDelay(long at, long uncertainty) {
             return set.afterWindow(ticksFloor(Math.max(0, at - uncertainty - lastMicros)),
                     ticksCeil(at + uncertainty - lastMicros));
+        }
+
+        /** The distinct edges of {@code moves} whose values match {@code event}, for explanations. */
+        private String edgesTaken(TestInterface.ObservableChannel channel, Event event, List<StateSet.Successor> moves) {
+            java.util.Set<String> edges = new java.util.LinkedHashSet<>();
+            for (StateSet.Successor s : moves) {
+                if (valuesMatch(channel, event, s.state())) {
+                    edges.add(semantics.describe(s.move().steps().get(0)));
+                }
+            }
+            return String.join(" or ", edges);
+        }
+
+        /**
+         * "OUTPUT at t=... was taken as EDGE; then " when the last observation moved the state set, so that a verdict
+         * that follows it says which way the tester understood it; "" otherwise.
+         */
+        private String afterLastTaken() {
+            return lastTaken == null ? "" : lastTaken + "; then ";
         }
 
         /** A pending input sent at or before {@code at} but applied after it, or null. */
@@ -639,6 +664,7 @@ public final class OnlineTester {
             Event event = new Event(channel.name(), values);
             set = atTime.of(next);
             lastMicros = now;
+            lastTaken = null;
             Pending p = new Pending(event, true, ++performed, now);
             p.after = set;
             p.afterMicros = now;
