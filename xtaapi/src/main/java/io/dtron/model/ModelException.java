@@ -1,6 +1,7 @@
 package io.dtron.model;
 
 import io.dtron.xta.Diagnostic;
+import java.util.Comparator;
 import java.util.List;
 import java.util.stream.Collectors;
 
@@ -13,13 +14,21 @@ public final class ModelException extends Exception {
 
     private final transient List<Diagnostic> diagnostics;
 
-    /** An exception for these diagnostics (errors, possibly with warnings). */
+    /** The order of diagnostics: by file, then by line and column; those about a whole file first. */
+    private static final Comparator<Diagnostic> BY_POSITION = Comparator.comparing(Diagnostic::file)
+            .thenComparingInt(Diagnostic::line).thenComparingInt(Diagnostic::column);
+
+    /** An exception for these diagnostics (errors, possibly with warnings), sorted by their place. */
     public ModelException(List<Diagnostic> diagnostics) {
-        super(diagnostics.stream().map(Diagnostic::format).collect(Collectors.joining("\n")));
-        this.diagnostics = List.copyOf(diagnostics);
+        super(sorted(diagnostics).stream().map(Diagnostic::format).collect(Collectors.joining("\n")));
+        this.diagnostics = sorted(diagnostics);
     }
 
-    /** Every diagnostic, errors and warnings, in the order found. */
+    private static List<Diagnostic> sorted(List<Diagnostic> diagnostics) {
+        return diagnostics.stream().sorted(BY_POSITION).toList();
+    }
+
+    /** Every diagnostic, errors and warnings, sorted by file, line and column. */
     public List<Diagnostic> diagnostics() {
         return diagnostics;
     }

@@ -42,6 +42,19 @@ sealed interface Symbol {
     record Func(Pos pos, FunctionInfo info) implements Symbol {
     }
 
+    /**
+     * An external function of an {@code import} block: type-checked, never evaluated.
+     *
+     * @param references for each parameter, whether it is a reference
+     */
+    record External(Pos pos, String name, Type returnType, java.util.List<Type> parameters,
+                    java.util.List<Boolean> references, String library) implements Symbol {
+        public External {
+            parameters = java.util.List.copyOf(parameters);
+            references = java.util.List.copyOf(references);
+        }
+    }
+
     /** A template. */
     record Template(Pos pos, Decl.Template decl) implements Symbol {
     }
