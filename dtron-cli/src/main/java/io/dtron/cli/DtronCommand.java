@@ -6,7 +6,6 @@ import java.nio.file.Files;
 import java.nio.file.InvalidPathException;
 import java.nio.file.Path;
 import java.util.concurrent.Callable;
-import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 import picocli.CommandLine;
 import picocli.CommandLine.Command;
@@ -28,8 +27,6 @@ import picocli.CommandLine.UnmatchedArgumentException;
                 "dtron MODEL [OPTIONS] is short for dtron run MODEL [OPTIONS]."},
         subcommands = {CheckCommand.class, RunCommand.class, TronCommand.class, CommandLine.HelpCommand.class})
 public final class DtronCommand implements Callable<Integer> {
-    private static final Logger LOG = LoggerFactory.getLogger(DtronCommand.class);
-
     @Spec
     private CommandSpec spec;
 
@@ -69,7 +66,8 @@ public final class DtronCommand implements Callable<Integer> {
             commandLine.getErr().println(commandLine.getCommandSpec().qualifiedName() + ": unexpected error: " + e
                     + (frames.length == 0 ? "" : " at " + frames[0]) + " (-Ddtron.log.level=DEBUG logs the stack"
                     + " trace)");
-            LOG.debug("internal error", e);
+            // the logger is set up here, not when the class loads: commands that log nothing (check) start faster
+            LoggerFactory.getLogger(DtronCommand.class).debug("internal error", e);
             return 1;
         });
         try {
