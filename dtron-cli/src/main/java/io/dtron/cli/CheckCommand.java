@@ -58,6 +58,11 @@ final class CheckCommand implements Callable<Integer> {
                 if (!quiet) {
                     summary(out, network, testInterface);
                 }
+                for (Query q : network.queries()) {
+                    for (Diagnostic d : q.errors()) {
+                        out.println("  " + d.format());
+                    }
+                }
             } catch (ModelException e) {
                 failed++;
                 printErrors(model, e, err);
@@ -109,11 +114,6 @@ final class CheckCommand implements Callable<Integer> {
         }
         for (Diagnostic w : n.warnings()) {
             out.println("  " + w.format());
-        }
-        for (Query q : n.queries()) {
-            for (Diagnostic d : q.errors()) {
-                out.println("  " + d.format());
-            }
         }
     }
 

@@ -35,7 +35,6 @@ final class XmlModelReader {
     private final String file;
     private final String raw;
     private final LineMap lines;
-    private final Fragment whole;
     private final List<Diagnostic> diagnostics;
     private XMLStreamReader reader;
     private String currentTemplate;
@@ -44,7 +43,6 @@ final class XmlModelReader {
         this.file = file;
         this.raw = raw;
         this.lines = LineMap.of(raw);
-        this.whole = Fragment.ofFile(file, raw);
         this.diagnostics = diagnostics;
     }
 
@@ -71,12 +69,12 @@ final class XmlModelReader {
                 // skip the prolog
             }
             if (!reader.isStartElement()) {
-                diagnostics.add(Diagnostic.error(new Pos(whole, 0, 0), "not an Uppaal model: the XML has no elements"));
+                diagnostics.add(Diagnostic.error(new Pos(whole(), 0, 0), "not an Uppaal model: the XML has no elements"));
                 return null;
             }
             if (!reader.getLocalName().equals("nta")) {
                 int at = posOfTag().fragment().fileOffset(0);
-                diagnostics.add(Diagnostic.error(new Pos(whole, at, at),
+                diagnostics.add(Diagnostic.error(new Pos(whole(), at, at),
                         "not an Uppaal model: the root element is <"
                         + reader.getLocalName() + ">, expected <nta>"));
                 return null;
@@ -105,7 +103,7 @@ final class XmlModelReader {
             int offset = e.getLocation() == null ? 0
                     : lines.offset(e.getLocation().getLineNumber(), Math.max(1, e.getLocation().getColumnNumber()));
             offset = Math.max(0, Math.min(offset, raw.length()));
-            diagnostics.add(Diagnostic.error(new Pos(whole, offset, offset), xmlError(xmlMessage(e))));
+            diagnostics.add(Diagnostic.error(new Pos(whole(), offset, offset), xmlError(xmlMessage(e))));
             return null;
         }
         List<Decl> all = new ArrayList<>(globals);
@@ -137,6 +135,11 @@ final class XmlModelReader {
                     + " &quot; &apos;)";
         }
         return "malformed XML: " + message;
+    }
+
+    /** The whole file as a fragment, for errors that concern the XML itself (made only then: it maps every line). */
+    private Fragment whole() {
+        return Fragment.ofFile(file, raw);
     }
 
     private static String xmlMessage(XMLStreamException e) {
