@@ -240,7 +240,7 @@ final class Checker {
     }
 
     /** The flat values of a constant expression of any type, or null if it is not a folded constant. */
-    static int[] constantValuesOf(Expression x) {
+    private static int[] constantValuesOf(Expression x) {
         if (x instanceof Expression.Constant c) {
             return new int[] {c.value()};
         }

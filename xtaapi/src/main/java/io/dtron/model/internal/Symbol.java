@@ -7,6 +7,7 @@ import io.dtron.model.Type;
 import io.dtron.model.Variable;
 import io.dtron.xta.Pos;
 import io.dtron.xta.ast.Decl;
+import java.util.List;
 
 /** What a name stands for in a scope. */
 sealed interface Symbol {
@@ -47,11 +48,11 @@ sealed interface Symbol {
      *
      * @param references for each parameter, whether it is a reference
      */
-    record External(Pos pos, String name, Type returnType, java.util.List<Type> parameters,
-                    java.util.List<Boolean> references, String library) implements Symbol {
+    record External(Pos pos, String name, Type returnType, List<Type> parameters, List<Boolean> references,
+                    String library) implements Symbol {
         public External {
-            parameters = java.util.List.copyOf(parameters);
-            references = java.util.List.copyOf(references);
+            parameters = List.copyOf(parameters);
+            references = List.copyOf(references);
         }
     }
 
