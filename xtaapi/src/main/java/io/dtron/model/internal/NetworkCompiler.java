@@ -571,8 +571,9 @@ public final class NetworkCompiler {
         private boolean probability(io.dtron.xta.ast.Edge e, Checker checker, boolean fromBranchpoint) {
             Expr w = e.probability();
             if (!fromBranchpoint) {
-                diagnostics.error(w.pos(), "only the edges that leave a branchpoint have a probability weight");
-                return false;
+                diagnostics.warning(w.pos(), "a probability weight is ignored on an edge that does not leave a"
+                        + " branchpoint");
+                return true;
             }
             Expression x = checker.compile(w);
             if (x == null) {
