@@ -286,6 +286,26 @@ class UppaalFidelityTest {
     }
 
     @Test
+    void aProbabilityWeightIsANumberOnAnEdgeThatLeavesABranchpoint() throws ModelException {
+        String model = """
+                <nta><declaration>int n; clock x;</declaration>
+                <template><name>P</name><location id="a"><name>A</name></location><branchpoint id="b"/><init ref="a"/>
+                <transition><source ref="a"/><target ref="b"/><label kind="probability">2</label></transition>
+                <transition><source ref="b"/><target ref="a"/><label kind="probability">WEIGHT</label></transition>
+                </template>
+                <system>system P;</system></nta>
+                """;
+        Network n = ModelLoader.load(XML, model.replace("WEIGHT", "n + 1"));
+        assertEquals(1, n.warnings().stream().filter(w -> w.message().equals("a probability weight is ignored on an"
+                + " edge that does not leave a branchpoint")).count(), () -> n.warnings().toString());
+        ModelException e = assertThrows(ModelException.class, () -> ModelLoader.load(XML,
+                model.replace("WEIGHT", "n = 1")));
+        assertEquals("a probability weight must not have side effects", e.errors().get(0).message());
+        e = assertThrows(ModelException.class, () -> ModelLoader.load(XML, model.replace("WEIGHT", "x")));
+        assertEquals("a probability weight is a number, not a clock", e.errors().get(0).message());
+    }
+
+    @Test
     void statisticalConstructsAreTypeChecked() {
         ModelException e = assertThrows(ModelException.class, () -> load("""
                 double d = 1.5;

@@ -579,9 +579,12 @@ public final class NetworkCompiler {
             if (x == null) {
                 return false;
             }
-            if (!Checker.isNumber(x.type()) || checker.hasSideEffects(x)) {
-                diagnostics.error(w.pos(), "a probability weight is a number without side effects, not "
-                        + Checker.describe(x.type()));
+            if (!Checker.isNumber(x.type())) {
+                diagnostics.error(w.pos(), "a probability weight is a number, not " + Checker.describe(x.type()));
+                return false;
+            }
+            if (checker.hasSideEffects(x)) {
+                diagnostics.error(w.pos(), "a probability weight must not have side effects");
                 return false;
             }
             return true;
