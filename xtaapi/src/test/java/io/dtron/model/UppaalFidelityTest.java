@@ -110,7 +110,9 @@ class UppaalFidelityTest {
         Network n = load("""
                 const int CYCLES = 2147483647;
                 const int LOW = -2147483647 - 1;
+                const int PERIODS[2] = {100000, -70000};
                 int[0, CYCLES] c = CYCLES;
+                int[LOW, 0] p = PERIODS[1];
                 process P(const int limit) { int[LOW, limit] v = limit; state A; init A; }
                 P1 = P(100000);
                 system P1;
@@ -118,6 +120,7 @@ class UppaalFidelityTest {
         assertEquals(new Type.Int(0, Integer.MAX_VALUE), n.variable("c").orElseThrow().type());
         assertEquals(Integer.MAX_VALUE, initial(n, "c"));
         assertEquals(100000, initial(n, "P1.v"));
+        assertEquals(-70000, initial(n, "p"));
         ModelException e = assertThrows(ModelException.class, () -> load("""
                 int big = 100000;
                 process P() { state A; init A; }
