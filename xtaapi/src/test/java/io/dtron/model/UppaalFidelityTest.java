@@ -289,6 +289,25 @@ class UppaalFidelityTest {
     }
 
     @Test
+    void aTemplateThatNoProcessInstantiatesDoesNotStopARun() throws ModelException {
+        Network n = load("""
+                int i;
+                process Unused() { state A; init A; trans A -> A { assign i = fint(random(2)); }; }
+                process P() { state A; init A; }
+                system P;
+                """);
+        assertTrue(n.startErrors().isEmpty(), () -> n.startErrors().toString());
+        ModelException e = assertThrows(ModelException.class, () -> load("""
+                int i;
+                process Unused() { state A; init A; trans A -> A { assign i = random(2); }; }
+                process P() { state A; init A; }
+                system P;
+                """));
+        assertEquals("cannot assign a double to 'i' of type int", e.errors().get(0).message(),
+                "it is still type-checked");
+    }
+
+    @Test
     void aProbabilityWeightIsANumberOnAnEdgeThatLeavesABranchpoint() throws ModelException {
         String model = """
                 <nta><declaration>int n; clock x;</declaration>

@@ -40,9 +40,12 @@ final class Compilation {
         unsupported(pos, feature, feature, why);
     }
 
-    /** As {@link #unsupported(Pos, String, String)}, once per {@code kind} (all built-in functions are one kind). */
+    /**
+     * As {@link #unsupported(Pos, String, String)}, once per {@code kind} (all built-in functions are one kind).
+     * A template that no process instantiates takes no part in a run: what it uses does not stop one.
+     */
     void unsupported(Pos pos, String kind, String feature, String why) {
-        if (unsupportedFeatures.add(kind)) {
+        if (!detached && unsupportedFeatures.add(kind)) {
             String message = feature + " cannot be run by DTRON's engine: " + why;
             startErrors.add(Diagnostic.error(pos, message));
             diagnostics.warning(pos, message + "; the model can be checked, but 'dtron run' refuses it");
