@@ -1,7 +1,6 @@
 package io.dtron.model;
 
 import io.dtron.xta.Diagnostic;
-import java.util.Comparator;
 import java.util.List;
 import java.util.stream.Collectors;
 
@@ -14,10 +13,6 @@ public final class ModelException extends Exception {
 
     private final transient List<Diagnostic> diagnostics;
 
-    /** The order of diagnostics: by file, then by line and column; those about a whole file first. */
-    private static final Comparator<Diagnostic> BY_POSITION = Comparator.comparing(Diagnostic::file)
-            .thenComparingInt(Diagnostic::line).thenComparingInt(Diagnostic::column);
-
     /** An exception for these diagnostics (errors, possibly with warnings), sorted by their place. */
     public ModelException(List<Diagnostic> diagnostics) {
         super(sorted(diagnostics).stream().map(Diagnostic::format).collect(Collectors.joining("\n")));
@@ -25,7 +20,7 @@ public final class ModelException extends Exception {
     }
 
     private static List<Diagnostic> sorted(List<Diagnostic> diagnostics) {
-        return diagnostics.stream().sorted(BY_POSITION).toList();
+        return diagnostics.stream().sorted(Diagnostic.BY_POSITION).toList();
     }
 
     /** Every diagnostic, errors and warnings, sorted by file, line and column. */

@@ -21,7 +21,7 @@ import java.util.Optional;
  * @param channelPriority  the priority of each channel (0 is the default level)
  * @param queries          the model's queries as written, each with its kind, text and place; one that does not
  *                         parse has kind {@code INVALID} and its errors, which are not errors of the model
- * @param warnings         warnings found while loading
+ * @param warnings         warnings found while loading, sorted by file, line and column
  * @param startErrors      errors that do not stop loading but stop any run: the initial state cannot be
  *                         computed (e.g. an argument out of an array's bounds in one expanded process), or the
  *                         model uses what DTRON's engine cannot execute (statistical model checking: doubles,

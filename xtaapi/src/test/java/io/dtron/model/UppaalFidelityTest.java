@@ -386,6 +386,13 @@ class UppaalFidelityTest {
                 e.errors().stream().map(Diagnostic::message).toList());
         assertEquals(e.diagnostics().stream().map(Diagnostic::format).collect(Collectors.joining("\n")),
                 e.getMessage());
+        Network n = load("""
+                int a[2];
+                process P() { state A; init A; trans A -> A { assign a[2] = 1; }; }
+                process Q() { state A; init A; trans A -> A { assign a[3] = 1; }; }
+                system Q, P;
+                """);
+        assertEquals(List.of(2, 3), n.warnings().stream().map(Diagnostic::line).toList(), "warnings too");
     }
 
     @Test

@@ -81,7 +81,7 @@ public final class NetworkCompiler {
         for (int i = 0; i < compilation.channelCount(); i++) {
             priorities.add(channelPriority == null ? 0 : channelPriority[i]);
         }
-        List<Diagnostic> warnings = all.stream().filter(d -> !d.isError()).toList();
+        List<Diagnostic> warnings = all.stream().filter(d -> !d.isError()).sorted(Diagnostic.BY_POSITION).toList();
         Network network = new Network(nta.file(), processes, compilation.variables, compilation.clocks,
                 compilation.channels, compilation.functions(), compilation.stateSize(), compilation.clockCount(),
                 compilation.channelCount(), priorities, nta.queries(), warnings, compilation.startErrors);
