@@ -375,7 +375,7 @@ class UppaalFidelityTest {
     }
 
     @Test
-    void errorsComeSortedByPosition() {
+    void errorsComeSortedByPosition() throws ModelException {
         // the system line compiles Q before P, so Q's error is found first
         ModelException e = assertThrows(ModelException.class, () -> load("""
                 process P() { state A; init A; trans A -> A { assign p_unknown = 1; }; }
