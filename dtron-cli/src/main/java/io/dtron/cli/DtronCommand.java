@@ -61,12 +61,22 @@ public final class DtronCommand implements Callable<Integer> {
         cli.setOut(out);
         cli.setErr(err);
         cli.setParameterExceptionHandler(DtronCommand::usageError);
+        cli.setExecutionStrategy(parseResult -> {
+            CommandLine.ParseResult command = parseResult.subcommand();
+            boolean quiet = command == null ? parseResult.isVersionHelpRequested() || parseResult.isUsageHelpRequested()
+                    : command.commandSpec().userObject() instanceof CheckCommand;
+            if (!quiet) {
+                // logging (logback reads its configuration: about 0.3 s) is set up before a command that logs
+                // starts, not in the middle of a timed run; check and --version log nothing and start faster
+                LoggerFactory.getILoggerFactory();
+            }
+            return new CommandLine.RunLast().execute(parseResult);
+        });
         cli.setExecutionExceptionHandler((e, commandLine, parseResult) -> {
             StackTraceElement[] frames = e.getStackTrace();
             commandLine.getErr().println(commandLine.getCommandSpec().qualifiedName() + ": unexpected error: " + e
                     + (frames.length == 0 ? "" : " at " + frames[0]) + " (-Ddtron.log.level=DEBUG logs the stack"
                     + " trace)");
-            // the logger is set up here, not when the class loads: commands that log nothing (check) start faster
             LoggerFactory.getLogger(DtronCommand.class).debug("internal error", e);
             return 1;
         });
