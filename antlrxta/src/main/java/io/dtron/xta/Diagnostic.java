@@ -1,5 +1,6 @@
 package io.dtron.xta;
 
+import java.util.Comparator;
 import java.util.Objects;
 
 /**
@@ -20,6 +21,10 @@ public record Diagnostic(Severity severity, Pos pos, String file, String message
         /** The model loads, but the user should look. */
         WARNING
     }
+
+    /** The order in which diagnostics are reported: by file, then line and column; those about a whole file first. */
+    public static final Comparator<Diagnostic> BY_POSITION = Comparator.comparing(Diagnostic::file)
+            .thenComparingInt(Diagnostic::line).thenComparingInt(Diagnostic::column);
 
     public Diagnostic {
         Objects.requireNonNull(severity, "severity");

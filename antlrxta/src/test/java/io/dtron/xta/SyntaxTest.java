@@ -60,6 +60,62 @@ class SyntaxTest {
     }
 
     @Test
+    void statisticalAndStrategyQueriesOfAQFile() {
+        Parsed<List<Query>> parsed = ModelSyntax.parseQueries("m.q", """
+                simulate 10 [<=100] {x, y}
+                Pr[<=10](<> P.done) >= 0.5
+                E[#<=3](min: n)
+                strategy S = control: A[] safe
+                E<> P.done under S
+                loadStrategy {n} -> {x} ("s.json")
+                inf{P.idle}: x
+                """);
+        assertFalse(parsed.hasErrors(), parsed.diagnostics().toString());
+        assertEquals(List.of(Query.Kind.SIMULATE, Query.Kind.PROBABILITY, Query.Kind.EXPECTATION,
+                Query.Kind.STRATEGY, Query.Kind.EXISTS_EVENTUALLY, Query.Kind.STRATEGY_FILE, Query.Kind.VALUE_BOUNDS),
+                parsed.value().stream().map(Query::kind).toList());
+        Query under = parsed.value().get(4);
+        assertEquals("S", under.strategy());
+        assertEquals("E<> P.done under S", under.text());
+        assertInstanceOf(Expr.Field.class, under.formula());
+    }
+
+    @Test
+    void powerBindsTighterThanProductAndToTheRight() {
+        Expr.Binary times = assertInstanceOf(Expr.Binary.class, ModelSyntax.parseExpression("e", "a * b ** c ** d").value());
+        assertEquals(Expr.BinaryOp.MUL, times.op());
+        Expr.Binary pow = assertInstanceOf(Expr.Binary.class, times.right());
+        assertEquals(Expr.BinaryOp.POW, pow.op());
+        assertEquals(Expr.BinaryOp.POW, assertInstanceOf(Expr.Binary.class, pow.right()).op());
+    }
+
+    @Test
+    void declarationsOfStatisticalModels() {
+        Parsed<Nta> parsed = ModelSyntax.parseXta("m.xta", """
+                import "lib.so" { int f(int, int &b); double g(double x) = c_g; };
+                dynamic W(int id);
+                chan a, b;
+                chan priority a < b;
+                process W(int id) { state A; init A; trans A -> A { assign spawn W(id + 1); }; }
+                system W;
+                """);
+        assertFalse(parsed.hasErrors(), parsed.diagnostics().toString());
+        List<Decl> decls = parsed.value().declarations();
+        Decl.External f = assertInstanceOf(Decl.External.class, decls.get(0));
+        assertEquals("lib.so", f.library());
+        assertEquals(List.of("", "b"), f.params().stream().map(io.dtron.xta.ast.Param::name).toList());
+        assertTrue(f.params().get(1).reference());
+        assertEquals("g", assertInstanceOf(Decl.External.class, decls.get(1)).name());
+        assertEquals("W", assertInstanceOf(Decl.Dynamic.class, decls.get(2)).name());
+        Decl.ChanPriority priority = assertInstanceOf(Decl.ChanPriority.class, decls.get(5));
+        assertEquals(2, priority.levels().size(), "'<' separates two levels");
+        Decl.Template w = assertInstanceOf(Decl.Template.class, decls.get(6));
+        Expr.Spawn spawn = assertInstanceOf(Expr.Spawn.class, w.edges().get(0).updates().get(0));
+        assertEquals("W", spawn.template());
+        assertEquals(1, spawn.args().size());
+    }
+
+    @Test
     void tronInterfaceFile() {
         Parsed<InterfaceSpec> parsed = ModelSyntax.parseInterface("l.trn", """
                 input grasp(), release();

@@ -6,6 +6,7 @@ import io.dtron.model.Network;
 import io.dtron.model.Process;
 import io.dtron.model.TestInterface;
 import io.dtron.xta.Diagnostic;
+import io.dtron.xta.ast.Query;
 import java.io.PrintWriter;
 import java.nio.file.Path;
 import java.util.List;
@@ -57,6 +58,11 @@ final class CheckCommand implements Callable<Integer> {
                 if (!quiet) {
                     summary(out, network, testInterface);
                 }
+                for (Query q : network.queries()) {
+                    for (Diagnostic d : q.errors()) {
+                        out.println("  " + d.format());
+                    }
+                }
             } catch (ModelException e) {
                 failed++;
                 printErrors(model, e, err);
@@ -100,6 +106,11 @@ final class CheckCommand implements Callable<Integer> {
         }
         if (i.inputs().isEmpty() && i.outputs().isEmpty()) {
             out.printf("  %-10s %s%n", "", "(name channels i_x / o_y, or give --interface FILE.trn, to test the model)");
+        }
+        long invalid = n.queries().stream().filter(q -> !q.isValid()).count();
+        if (!n.queries().isEmpty()) {
+            row(out, "queries", n.queries().size(), invalid == 0 ? "" : "(" + invalid + " with errors; they do not"
+                    + " stop the model from loading or running)");
         }
         for (Diagnostic w : n.warnings()) {
             out.println("  " + w.format());

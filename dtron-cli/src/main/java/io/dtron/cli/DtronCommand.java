@@ -6,7 +6,6 @@ import java.nio.file.Files;
 import java.nio.file.InvalidPathException;
 import java.nio.file.Path;
 import java.util.concurrent.Callable;
-import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 import picocli.CommandLine;
 import picocli.CommandLine.Command;
@@ -29,8 +28,6 @@ import picocli.CommandLine.UnmatchedArgumentException;
         subcommands = {CheckCommand.class, RunCommand.class, TronCommand.class, DeltaCommand.class,
                 CommandLine.HelpCommand.class})
 public final class DtronCommand implements Callable<Integer> {
-    private static final Logger LOG = LoggerFactory.getLogger(DtronCommand.class);
-
     @Spec
     private CommandSpec spec;
 
@@ -65,12 +62,23 @@ public final class DtronCommand implements Callable<Integer> {
         cli.setOut(out);
         cli.setErr(err);
         cli.setParameterExceptionHandler(DtronCommand::usageError);
+        cli.setExecutionStrategy(parseResult -> {
+            CommandLine.ParseResult command = parseResult.subcommand();
+            boolean quiet = command == null ? parseResult.isVersionHelpRequested() || parseResult.isUsageHelpRequested()
+                    : command.commandSpec().userObject() instanceof CheckCommand;
+            if (!quiet) {
+                // logging (logback reads its configuration: about 0.3 s) is set up before a command that logs
+                // starts, not in the middle of a timed run; check and --version log nothing and start faster
+                LoggerFactory.getILoggerFactory();
+            }
+            return new CommandLine.RunLast().execute(parseResult);
+        });
         cli.setExecutionExceptionHandler((e, commandLine, parseResult) -> {
             StackTraceElement[] frames = e.getStackTrace();
             commandLine.getErr().println(commandLine.getCommandSpec().qualifiedName() + ": unexpected error: " + e
                     + (frames.length == 0 ? "" : " at " + frames[0]) + " (-Ddtron.log.level=DEBUG logs the stack"
                     + " trace)");
-            LOG.debug("internal error", e);
+            LoggerFactory.getLogger(DtronCommand.class).debug("internal error", e);
             return 1;
         });
         try {

@@ -45,6 +45,27 @@ class CheckCommandTest {
     }
 
     @Test
+    void aQueryWithAnErrorIsReportedButTheModelIsOk(@TempDir Path dir) throws IOException {
+        Path model = dir.resolve("q.xml");
+        Files.writeString(model, """
+                <nta><declaration>int n;</declaration>
+                <template><name>P</name><location id="a"><name>A</name></location><init ref="a"/></template>
+                <system>system P;</system>
+                <queries><query><formula>Pr[&lt;=10](&lt;&gt; P.A)</formula></query>
+                <query><formula>E[&lt;=10](max: n)</formula></query>
+                <query><formula>A[] n &lt;</formula></query></queries>
+                </nta>
+                """);
+        CommandRun r = CommandRun.of("check", model.toString());
+        assertEquals(0, r.exit(), r.err());
+        assertTrue(r.out().contains(model + ": ok"), r.out());
+        assertTrue(r.out().matches("(?s).*queries\\s+3  \\(1 with errors; they do not stop the model from loading or"
+                + " running\\).*"), r.out());
+        assertTrue(r.out().contains(model + ":6:27: error: syntax error: an operand is missing after '<' (formula,"
+                + " column 8)"), r.out());
+    }
+
+    @Test
     void aMissingFileIsAnErrorWithoutStackTrace() {
         CommandRun r = CommandRun.of("check", "does/not/exist.xml");
         assertEquals(1, r.exit());

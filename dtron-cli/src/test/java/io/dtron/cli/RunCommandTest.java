@@ -60,6 +60,20 @@ class RunCommandTest {
     }
 
     @Test
+    void aStatisticalModelIsRefusedWithOneMessageNamingTheFeatureThePlaceAndWhy() throws IOException {
+        Path smc = dir.resolve("ticker-smc.xta");
+        Files.writeString(smc, TICKER.replace("system Ticker, Env;", "int jitter;\nsystem Ticker, Env;")
+                .replace("assign e = 0;", "assign e = 0, jitter = fint(random(3));"));
+        CommandRun check = CommandRun.of("check", smc.toString());
+        assertEquals(0, check.exit(), check.err());
+        CommandRun r = CommandRun.of("run", smc.toString(), "--sut", TickerForTests.class.getName(), "--virtual-time");
+        assertEquals(1, r.exit(), r.out() + r.err());
+        assertEquals("dtron run: " + smc + ": the model cannot start: " + smc + ":8:92: error: the built-in function"
+                + " 'random' cannot be run by DTRON's engine: the engine evaluates the integer functions of the model,"
+                + " not the real-valued and random functions of statistical model checking", r.err().strip());
+    }
+
+    @Test
     void aCorrectSystemPassesWithExitCodeZero() {
         CommandRun r = CommandRun.of("run", model.toString(), "--sut", TickerForTests.class.getName(), "--virtual-time", "--seed", "7",
                 "--timeout", "300");

@@ -24,6 +24,10 @@ public sealed interface Expression {
     record Constant(Pos pos, Type type, int value) implements Expression {
     }
 
+    /** A {@code double} literal (statistical model checking; the engine does not evaluate it). */
+    record DoubleConstant(Pos pos, Type type, double value) implements Expression {
+    }
+
     /** A constant array or struct known at load time, laid out like a variable of its type. */
     record ConstantTable(Pos pos, Type type, int[] values) implements Expression {
         public ConstantTable {
@@ -98,6 +102,20 @@ public sealed interface Expression {
     }
 
     /**
+     * A call of one of Uppaal's built-in functions of statistical model checking ({@code random}, {@code fint},
+     * {@code sqrt}, ...), of {@code spawn}, {@code exit} or {@code numOf} (dynamic templates), or of an external
+     * function of an {@code import} block. The engine evaluates none of them: a network with one has a start
+     * error.
+     *
+     * @param name the function's name ({@code spawn T} for a spawn of template T)
+     */
+    record Builtin(Pos pos, Type type, String name, List<Expression> args) implements Expression {
+        public Builtin {
+            args = List.copyOf(args);
+        }
+    }
+
+    /**
      * {@code forall}, {@code exists} or {@code sum} over the values {@code lower..upper} bound to
      * {@code slot}.
      */
@@ -118,7 +136,7 @@ public sealed interface Expression {
 
     /** Operators of the intermediate representation. */
     enum Operator {
-        NEG, NOT, ADD, SUB, MUL, DIV, MOD, SHL, SHR, MIN, MAX, BIT_AND, BIT_OR, BIT_XOR,
+        NEG, NOT, POW, ADD, SUB, MUL, DIV, MOD, SHL, SHR, MIN, MAX, BIT_AND, BIT_OR, BIT_XOR,
         LT, LE, EQ, NE, GE, GT, AND, OR, IMPLY
     }
 

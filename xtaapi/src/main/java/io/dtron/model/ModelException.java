@@ -13,13 +13,17 @@ public final class ModelException extends Exception {
 
     private final transient List<Diagnostic> diagnostics;
 
-    /** An exception for these diagnostics (errors, possibly with warnings). */
+    /** An exception for these diagnostics (errors, possibly with warnings), sorted by their place. */
     public ModelException(List<Diagnostic> diagnostics) {
-        super(diagnostics.stream().map(Diagnostic::format).collect(Collectors.joining("\n")));
-        this.diagnostics = List.copyOf(diagnostics);
+        super(sorted(diagnostics).stream().map(Diagnostic::format).collect(Collectors.joining("\n")));
+        this.diagnostics = sorted(diagnostics);
     }
 
-    /** Every diagnostic, errors and warnings, in the order found. */
+    private static List<Diagnostic> sorted(List<Diagnostic> diagnostics) {
+        return diagnostics.stream().sorted(Diagnostic.BY_POSITION).toList();
+    }
+
+    /** Every diagnostic, errors and warnings, sorted by file, line and column. */
     public List<Diagnostic> diagnostics() {
         return diagnostics;
     }

@@ -66,6 +66,7 @@ public final class ModelLoader {
         }
         List<Diagnostic> warnings = new ArrayList<>(parsed.diagnostics());
         warnings.addAll(network.warnings());
+        warnings.sort(Diagnostic.BY_POSITION);
         return new Network(network.file(), network.processes(), network.variables(), network.clocks(),
                 network.channels(), network.functions(), network.stateSize(), network.clockCount(),
                 network.channelCount(), network.channelPriority(), network.queries(), warnings, network.startErrors());

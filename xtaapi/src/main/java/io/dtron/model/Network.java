@@ -19,10 +19,14 @@ import java.util.Optional;
  * @param clockCount       the number of clocks, without the reference clock
  * @param channelCount     the number of channels
  * @param channelPriority  the priority of each channel (0 is the default level)
- * @param queries          the model's queries as written
- * @param warnings         warnings found while loading
+ * @param queries          the model's queries as written, each with its kind, text and place; one that does not
+ *                         parse has kind {@code INVALID} and its errors, which are not errors of the model
+ * @param warnings         warnings found while loading, sorted by file, line and column
  * @param startErrors      errors that do not stop loading but stop any run: the initial state cannot be
- *                         computed (e.g. an argument out of an array's bounds in one expanded process)
+ *                         computed (e.g. an argument out of an array's bounds in one expanded process), or the
+ *                         model uses what DTRON's engine cannot execute (statistical model checking: doubles,
+ *                         branchpoints, dynamic templates, external and random functions), one per kind of
+ *                         construct, at its first place
  */
 public record Network(String file, List<Process> processes, List<Variable> variables, List<ClockVariable> clocks,
                       List<ChannelVariable> channels, List<Function> functions, int stateSize, int clockCount,

@@ -100,6 +100,26 @@ public sealed interface Type {
         }
     }
 
+    /**
+     * {@code double}, of statistical model checking. Type-checked like Uppaal does, but DTRON's engine does not
+     * compute with real numbers: a network with doubles has a start error, and the slot a double takes in the
+     * state vector holds nothing.
+     */
+    record Double() implements Type {
+        /** The one double type. */
+        public static final Double INSTANCE = new Double();
+
+        @Override
+        public int slots() {
+            return 1;
+        }
+
+        @Override
+        public String toString() {
+            return "double";
+        }
+    }
+
     /** {@code clock}. */
     record Clock() implements Type {
         /** The one clock type. */

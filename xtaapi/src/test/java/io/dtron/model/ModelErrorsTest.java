@@ -373,20 +373,6 @@ class ModelErrorsTest {
     }
 
     @Test
-    void doubleIsNotSupported() {
-        ModelException e = rejected(XTA, """
-                clock x;
-                double d;
-                process P() {
-                state A;
-                init A;
-                }
-                system P;
-                """);
-        assertError(onlyError(e), "double is not supported by DTRON", 2, 1);
-    }
-
-    @Test
     void duplicateDeclarationInOneScope() {
         ModelException e = rejected(XTA, """
                 int i;

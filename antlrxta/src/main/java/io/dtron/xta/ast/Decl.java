@@ -65,4 +65,30 @@ public sealed interface Decl {
             args = List.copyOf(args);
         }
     }
+
+    /**
+     * {@code dynamic T(params);}: a template whose processes are created by {@code spawn} and end with
+     * {@code exit()} (statistical model checking); its body is the template of the same name.
+     */
+    record Dynamic(Pos pos, String name, List<Param> params) implements Decl {
+        public Dynamic {
+            params = List.copyOf(params);
+        }
+    }
+
+    /**
+     * A function of an {@code import "library" { ... }} block: implemented in a native library (statistical
+     * model checking). Parameters without a name have the empty name.
+     *
+     * @param pos        where its name was written
+     * @param returnType its return type
+     * @param name       the name the model calls it by
+     * @param params     its parameters
+     * @param library    the library's path as written
+     */
+    record External(Pos pos, TypeExpr returnType, String name, List<Param> params, String library) implements Decl {
+        public External {
+            params = List.copyOf(params);
+        }
+    }
 }

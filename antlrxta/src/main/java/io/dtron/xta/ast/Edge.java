@@ -13,11 +13,12 @@ import java.util.List;
  * @param guard   the guard, or null
  * @param sync    the synchronisation, or null
  * @param updates the update expressions, possibly empty
+ * @param probability the weight of an edge leaving a branchpoint (statistical model checking), or null
  * @param nails   the drawing's bend points
  * @param labels  the labels' raw texts and drawing positions
  */
 public record Edge(Pos pos, String source, String target, List<Select> selects, Expr guard, Sync sync,
-                   List<Expr> updates, List<Coord> nails, List<Label> labels) {
+                   List<Expr> updates, Expr probability, List<Coord> nails, List<Label> labels) {
     public Edge {
         selects = List.copyOf(selects);
         updates = List.copyOf(updates);

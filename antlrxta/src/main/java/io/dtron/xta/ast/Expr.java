@@ -60,6 +60,13 @@ public sealed interface Expr {
     record Conditional(Pos pos, Expr condition, Expr then, Expr otherwise) implements Expr {
     }
 
+    /** {@code spawn T(args)}: creates a process of the dynamic template {@code T} (statistical model checking). */
+    record Spawn(Pos pos, String template, Pos templatePos, List<Expr> args) implements Expr {
+        public Spawn {
+            args = List.copyOf(args);
+        }
+    }
+
     /** {@code forall (name : type) body}, {@code exists (...)} or {@code sum (...)}. */
     record Quantifier(Pos pos, QuantifierKind kind, String name, TypeExpr type, Expr body) implements Expr {
     }
@@ -84,7 +91,7 @@ public sealed interface Expr {
 
     /** Binary operators ({@code and}, {@code or} and {@code imply} are the keyword forms). */
     enum BinaryOp {
-        MUL("*"), DIV("/"), MOD("%"), ADD("+"), SUB("-"), SHL("<<"), SHR(">>"), MIN("<?"), MAX(">?"),
+        POW("**"), MUL("*"), DIV("/"), MOD("%"), ADD("+"), SUB("-"), SHL("<<"), SHR(">>"), MIN("<?"), MAX(">?"),
         LT("<"), LE("<="), GE(">="), GT(">"), EQ("=="), NE("!="), BIT_AND("&"), BIT_XOR("^"), BIT_OR("|"),
         AND("&&"), OR("||"), IMPLY("imply");
 

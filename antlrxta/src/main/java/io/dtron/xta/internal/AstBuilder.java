@@ -69,9 +69,10 @@ final class AstBuilder {
             declaration(item.declaration(), out);
         } else if (item.processDecl() != null) {
             out.add(process(item.processDecl()));
-        } else {
+        } else if (item.instantiation() != null) {
             out.add(instantiation(item.instantiation()));
         }
+        // a gantt block only draws charts in Uppaal's simulator: nothing to keep
     }
 
     List<Decl> declarations(List<DeclarationContext> contexts) {
@@ -102,8 +103,26 @@ final class AstBuilder {
                     params(f.parameterList()), block(f.block())));
         } else if (ctx.chanPriorityDecl() != null) {
             out.add(chanPriority(ctx.chanPriorityDecl()));
+        } else if (ctx.dynamicDecl() != null) {
+            DynamicDeclContext d = ctx.dynamicDecl();
+            out.add(new Decl.Dynamic(pos(d.identifier()), name(d.identifier()), params(d.parameterList())));
+        } else if (ctx.importDecl() != null) {
+            imports(ctx.importDecl(), out);
         } else {
             oldConst(ctx.oldConstDecl(), out);
+        }
+    }
+
+    private void imports(ImportDeclContext ctx, List<Decl> out) {
+        String quoted = ctx.STRING().getText();
+        String library = quoted.substring(1, quoted.length() - 1);
+        for (ImportFunctionContext f : ctx.importFunction()) {
+            List<Param> params = new ArrayList<>();
+            for (ImportParameterContext p : f.importParameter()) {
+                params.add(new Param(p.identifier() == null ? pos(p) : pos(p.identifier()), type(p.type()),
+                        p.ref != null, p.identifier() == null ? "" : name(p.identifier()), dims(p.arrayDim())));
+            }
+            out.add(new Decl.External(pos(f.identifier(0)), type(f.type()), name(f.identifier(0)), params, library));
         }
     }
 
@@ -129,7 +148,15 @@ final class AstBuilder {
                 current = new ArrayList<>();
             }
             ChanPriorityItemContext item = items.get(i);
-            current.add(item.expression() == null ? null : expr(item.expression()));
+            if (item.identifier() == null) {
+                current.add(null);
+                continue;
+            }
+            Expr channel = new Expr.Ident(pos(item.identifier()), name(item.identifier()));
+            for (ExpressionContext index : item.expression()) {
+                channel = new Expr.Index(pos(item.identifier()).to(pos(index)), channel, expr(index));
+            }
+            current.add(channel);
         }
         levels.add(current);
         return new Decl.ChanPriority(pos(ctx), levels);
@@ -206,7 +233,7 @@ final class AstBuilder {
         Edge.Sync sync = b.syncExpr() == null ? null : sync(b.syncExpr().expression(), b.syncExpr().direction,
                 pos(b.syncExpr()));
         List<Expr> updates = b.expressionList() == null ? List.of() : exprs(b.expressionList().expression());
-        return new Edge(pos(ctx), source, target, selects, guard, sync, updates, List.of(), List.of());
+        return new Edge(pos(ctx), source, target, selects, guard, sync, updates, null, List.of(), List.of());
     }
 
     Edge.Select select(SelectItemContext ctx) {
@@ -424,6 +451,8 @@ final class AstBuilder {
             return new Expr.BoolLit(pos, false);
         } else if (ctx instanceof DeadlockLiteralContext) {
             return new Expr.Deadlock(pos);
+        } else if (ctx instanceof SpawnExprContext s) {
+            return new Expr.Spawn(pos, name(s.identifier()), pos(s.identifier()), args(s.argumentList()));
         } else if (ctx instanceof IdentifierRefContext i) {
             return new Expr.Ident(pos, name(i.identifier()));
         } else {
@@ -443,20 +472,62 @@ final class AstBuilder {
 
     // ------------------------------------------------------------ queries
 
+    /**
+     * A query; problems found here (not syntax errors: {@code E[...]} with another name than E, an aggregate
+     * other than min or max) are added to the builder's diagnostics, which the caller makes the query's errors.
+     */
     Query query(QueryContext ctx, String comment) {
         Pos pos = pos(ctx);
-        if (ctx instanceof ExistsEventuallyContext q) {
-            return new Query(pos, Query.Kind.EXISTS_EVENTUALLY, expr(q.expression()), null, comment);
-        } else if (ctx instanceof AlwaysGloballyContext q) {
-            return new Query(pos, Query.Kind.ALWAYS_GLOBALLY, expr(q.expression()), null, comment);
-        } else if (ctx instanceof AlwaysEventuallyContext q) {
-            return new Query(pos, Query.Kind.ALWAYS_EVENTUALLY, expr(q.expression()), null, comment);
-        } else if (ctx instanceof ExistsGloballyContext q) {
-            return new Query(pos, Query.Kind.EXISTS_GLOBALLY, expr(q.expression()), null, comment);
+        String strategy = ctx.strategy == null ? null : name(ctx.strategy);
+        QueryFormulaContext f = ctx.queryFormula();
+        Expr formula = null;
+        Expr target = null;
+        Query.Kind kind;
+        if (f instanceof ExistsEventuallyContext q) {
+            kind = Query.Kind.EXISTS_EVENTUALLY;
+            formula = expr(q.expression());
+        } else if (f instanceof AlwaysGloballyContext q) {
+            kind = Query.Kind.ALWAYS_GLOBALLY;
+            formula = expr(q.expression());
+        } else if (f instanceof AlwaysEventuallyContext q) {
+            kind = Query.Kind.ALWAYS_EVENTUALLY;
+            formula = expr(q.expression());
+        } else if (f instanceof ExistsGloballyContext q) {
+            kind = Query.Kind.EXISTS_GLOBALLY;
+            formula = expr(q.expression());
+        } else if (f instanceof LeadsToContext q) {
+            kind = Query.Kind.LEADS_TO;
+            formula = expr(q.expression(0));
+            target = expr(q.expression(1));
+        } else if (f instanceof ValueBoundsContext) {
+            kind = Query.Kind.VALUE_BOUNDS;
+        } else if (f instanceof ControlContext) {
+            kind = Query.Kind.CONTROL;
+        } else if (f instanceof StrategyDefContext) {
+            kind = Query.Kind.STRATEGY;
+        } else if (f instanceof SaveStrategyContext || f instanceof LoadStrategyContext) {
+            kind = Query.Kind.STRATEGY_FILE;
+        } else if (f instanceof ScenarioContext) {
+            kind = Query.Kind.SCENARIO;
+        } else if (f instanceof SimulateContext) {
+            kind = Query.Kind.SIMULATE;
+        } else if (f instanceof ProbabilityQueryContext) {
+            kind = Query.Kind.PROBABILITY;
+        } else if (f instanceof ExpectationContext q) {
+            kind = Query.Kind.EXPECTATION;
+            if (!q.e.getText().equals("E")) {
+                diagnostics.add(Diagnostic.error(pos(q.e), "syntax error: unexpected '" + q.e.getText()
+                        + "', expected 'E' of an expectation E[<=bound](max: expression)"));
+            }
+            String aggregate = q.aggregate.getText();
+            if (!aggregate.equals("min") && !aggregate.equals("max")) {
+                diagnostics.add(Diagnostic.error(pos(q.aggregate), "syntax error: an expectation takes 'min' or"
+                        + " 'max', not '" + aggregate + "'"));
+            }
         } else {
-            LeadsToContext q = (LeadsToContext) ctx;
-            return new Query(pos, Query.Kind.LEADS_TO, expr(q.expression(0)), expr(q.expression(1)), comment);
+            kind = Query.Kind.OPTIMISE;
         }
+        return new Query(pos, kind, pos.text(), formula, target, strategy, comment, List.of());
     }
 
     /**

@@ -71,7 +71,7 @@ final class SyntaxErrorCollector extends BaseErrorListener {
 
     private static final Set<String> BINARY_OPERATORS = Set.of("+", "-", "*", "/", "%", "<", "<=", ">", ">=", "==",
             "!=", "&&", "||", "&", "|", "^", "<<", ">>", "<?", ">?", "?", ":", "=", ":=", "+=", "-=", "*=", "/=", "%=",
-            "and", "or", "imply", "not", "!");
+            "and", "or", "imply", "not", "!", "**");
 
     private static boolean isOperator(Token token) {
         return token != null && token.getType() != Token.EOF && BINARY_OPERATORS.contains(token.getText());
@@ -131,6 +131,7 @@ final class SyntaxErrorCollector extends BaseErrorListener {
             case "ID" -> "a name";
             case "NAT" -> "a number";
             case "FLOAT" -> "a number";
+            case "STRING" -> "a string";
             case "E_EVENTUALLY" -> "'E<>'";
             case "A_GLOBALLY" -> "'A[]'";
             case "A_EVENTUALLY" -> "'A<>'";

@@ -35,7 +35,6 @@ final class XmlModelReader {
     private final String file;
     private final String raw;
     private final LineMap lines;
-    private final Fragment whole;
     private final List<Diagnostic> diagnostics;
     private XMLStreamReader reader;
     private String currentTemplate;
@@ -44,7 +43,6 @@ final class XmlModelReader {
         this.file = file;
         this.raw = raw;
         this.lines = LineMap.of(raw);
-        this.whole = Fragment.ofFile(file, raw);
         this.diagnostics = diagnostics;
     }
 
@@ -71,12 +69,12 @@ final class XmlModelReader {
                 // skip the prolog
             }
             if (!reader.isStartElement()) {
-                diagnostics.add(Diagnostic.error(new Pos(whole, 0, 0), "not an Uppaal model: the XML has no elements"));
+                diagnostics.add(Diagnostic.error(new Pos(whole(), 0, 0), "not an Uppaal model: the XML has no elements"));
                 return null;
             }
             if (!reader.getLocalName().equals("nta")) {
                 int at = posOfTag().fragment().fileOffset(0);
-                diagnostics.add(Diagnostic.error(new Pos(whole, at, at),
+                diagnostics.add(Diagnostic.error(new Pos(whole(), at, at),
                         "not an Uppaal model: the root element is <"
                         + reader.getLocalName() + ">, expected <nta>"));
                 return null;
@@ -105,13 +103,43 @@ final class XmlModelReader {
             int offset = e.getLocation() == null ? 0
                     : lines.offset(e.getLocation().getLineNumber(), Math.max(1, e.getLocation().getColumnNumber()));
             offset = Math.max(0, Math.min(offset, raw.length()));
-            diagnostics.add(Diagnostic.error(new Pos(whole, offset, offset), "malformed XML: " + xmlMessage(e)));
+            diagnostics.add(Diagnostic.error(new Pos(whole(), offset, offset), xmlError(xmlMessage(e))));
             return null;
         }
         List<Decl> all = new ArrayList<>(globals);
         all.addAll(templates);
         all.addAll(systemDecls);
         return new Nta(file, all, system, queries);
+    }
+
+    private static final java.util.regex.Pattern UNDECLARED_ENTITY =
+            java.util.regex.Pattern.compile("The entity \"([^\"]+)\" was referenced, but not declared\\.?");
+
+    /**
+     * The message for an XML error: an entity that the DOCTYPE declares is not "not declared", it is unread,
+     * because DTRON reads no DTD (by design: nothing is fetched, no entity of a DOCTYPE is expanded).
+     */
+    private String xmlError(String message) {
+        java.util.regex.Matcher m = UNDECLARED_ENTITY.matcher(message);
+        if (m.matches()) {
+            String name = m.group(1);
+            int doctype = raw.indexOf("<!DOCTYPE");
+            int root = raw.indexOf("<nta");
+            if (doctype >= 0 && java.util.regex.Pattern.compile("<!ENTITY\\s+" + java.util.regex.Pattern.quote(name)
+                    + "\\s").matcher(raw.substring(doctype, root < doctype ? raw.length() : root)).find()) {
+                return "the entity '&" + name + ";' is declared in the DOCTYPE, but DTRON reads no DTD, by design"
+                        + " (nothing is fetched and no entity of a DOCTYPE is expanded): write its text in place of &"
+                        + name + ";";
+            }
+            return "malformed XML: the entity '&" + name + ";' is not declared (XML declares only &lt; &gt; &amp;"
+                    + " &quot; &apos;)";
+        }
+        return "malformed XML: " + message;
+    }
+
+    /** The whole file as a fragment, for errors that concern the XML itself (made only then: it maps every line). */
+    private Fragment whole() {
+        return Fragment.ofFile(file, raw);
     }
 
     private static String xmlMessage(XMLStreamException e) {
@@ -220,6 +248,7 @@ final class XmlModelReader {
         Expr guard = null;
         Edge.Sync sync = null;
         List<Expr> updates = List.of();
+        Expr probability = null;
         while (nextChild()) {
             switch (reader.getLocalName()) {
                 case "source" -> {
@@ -268,6 +297,12 @@ final class XmlModelReader {
                                 updates = builder.exprs(ctx.expressionList().expression());
                             }
                         }
+                        case "probability" -> {
+                            UppaalParser.GuardLabelContext ctx = parseRule(f, UppaalParser::guardLabel);
+                            if (ctx != null) {
+                                probability = builder.expr(ctx.guardExpr().expression());
+                            }
+                        }
                         default -> {
                             // comments, testcode and the like carry no semantics for DTRON
                         }
@@ -276,7 +311,7 @@ final class XmlModelReader {
                 default -> skipElement();
             }
         }
-        return new Edge(pos, source, target, selects, guard, sync, updates, nails, labels);
+        return new Edge(pos, source, target, selects, guard, sync, updates, probability, nails, labels);
     }
 
     // ------------------------------------------------------------ label parsing
@@ -317,12 +352,35 @@ final class XmlModelReader {
                 }
             }
             if (formula != null && !formula.text().isBlank()) {
-                UppaalParser.QueryTextContext ctx = parseRule(formula, UppaalParser::queryText);
-                if (ctx != null && ctx.query() != null) {
-                    out.add(new AstBuilder(formula, diagnostics).query(ctx.query(), comment));
-                }
+                out.add(query(formula, comment));
             }
         }
+    }
+
+    /**
+     * One query. Its syntax errors are the query's own: they are kept in the query (of kind
+     * {@link Query.Kind#INVALID}) and never become errors of the model.
+     */
+    private static Query query(Fragment formula, String comment) {
+        List<Diagnostic> errors = new ArrayList<>();
+        UppaalParser.QueryTextContext ctx = ParserDriver.parse(formula, UppaalParser::queryText, errors);
+        if (ctx != null && ctx.query() != null) {
+            Query q = new AstBuilder(formula, errors).query(ctx.query(), comment);
+            if (errors.isEmpty()) {
+                return q;
+            }
+        }
+        String t = formula.text();
+        int start = 0;
+        while (start < t.length() && Character.isWhitespace(t.charAt(start))) {
+            start++;
+        }
+        int end = t.length();
+        while (end > start && Character.isWhitespace(t.charAt(end - 1))) {
+            end--;
+        }
+        Pos pos = new Pos(formula, start, end);
+        return new Query(pos, Query.Kind.INVALID, pos.text(), null, null, null, comment, errors);
     }
 
     // ------------------------------------------------------------ StAX helpers

@@ -90,10 +90,10 @@ final class Checker {
                 case CLOCK -> Type.Clock.INSTANCE;
                 case CHAN -> new Type.Channel(urgent, broadcast);
                 case VOID -> Type.Void.INSTANCE;
-                case DOUBLE -> null;
+                case DOUBLE -> Type.Double.INSTANCE;
             };
-            if (base == null) {
-                return error(t.pos(), "double is not supported by DTRON: its engine works on integers and clocks");
+            if (base instanceof Type.Double) {
+                unsupportedDouble(t.pos());
             }
         } else if (t instanceof TypeExpr.ScalarType s) {
             Integer size = requireConstant(s.size(), "the size of a scalar set");
@@ -128,6 +128,9 @@ final class Checker {
             TypeExpr.NamedType n = (TypeExpr.NamedType) t;
             Symbol sym = scope.lookup(n.name());
             if (!(sym instanceof Symbol.TypeName tn)) {
+                if (sym == null && !compilation.firstUnknown("type", n.name())) {
+                    return null;
+                }
                 return error(t.pos(), sym == null ? "unknown type '" + n.name() + "'"
                         : "'" + n.name() + "' is not a type");
             }
@@ -140,7 +143,18 @@ final class Checker {
         if ((urgent || broadcast) && !(base instanceof Type.Channel)) {
             return error(t.pos(), (urgent ? "'urgent'" : "'broadcast'") + " applies to channels only, not to " + base);
         }
+        if (t.qualifiers().contains(TypeExpr.Qualifier.HYBRID)) {
+            if (!(base instanceof Type.Clock)) {
+                return error(t.pos(), "'hybrid' applies to clocks only, not to " + base);
+            }
+            compilation.unsupported(t.pos(), "a hybrid clock", "hybrid clocks belong to statistical model checking,"
+                    + " and the engine treats clocks symbolically, as zones");
+        }
         return new Resolved(base, constant, meta);
+    }
+
+    private void unsupportedDouble(Pos pos) {
+        compilation.unsupported(pos, "real numbers (double)", "the engine computes with integers and clock zones");
     }
 
     private static boolean containsClockOrChannel(Type t) {
@@ -203,17 +217,30 @@ final class Checker {
         if (x instanceof Expression.ModelError m) {
             return error(e.pos(), m.message());
         }
-        if (!(x instanceof Expression.Constant c)) {
+        int[] values = constantValues(x);
+        if (values == null || values.length != 1 || !x.type().isIntegral()) {
+            if (x.type() instanceof Type.Double) {
+                return error(e.pos(), what + " must be an integer, not a double");
+            }
             return error(e.pos(), what + " must be computable at compile time");
         }
-        if (!x.type().isIntegral() || x.type() instanceof Type.Scalar) {
+        if (x.type() instanceof Type.Scalar) {
             return error(e.pos(), what + " must be an integer");
         }
-        return c.value();
+        return values[0];
     }
 
-    /** The flat values of a constant expression of any type, or null if it is not a constant. */
-    static int[] constantValues(Expression x) {
+    /**
+     * The flat values of {@code x} when it is computable at compile time: a constant, or calls of functions
+     * without side effects on constants, evaluated as Uppaal does; null otherwise.
+     */
+    int[] constantValues(Expression x) {
+        int[] values = constantValuesOf(x);
+        return values != null ? values : ConstantEvaluator.evaluate(x, compilation);
+    }
+
+    /** The flat values of a constant expression of any type, or null if it is not a folded constant. */
+    private static int[] constantValuesOf(Expression x) {
         if (x instanceof Expression.Constant c) {
             return new int[] {c.value()};
         }
@@ -233,8 +260,11 @@ final class Checker {
             return new Expression.Constant(e.pos(), Type.Int.UNBOUNDED, (int) i.value());
         } else if (e instanceof Expr.BoolLit b) {
             return new Expression.Constant(e.pos(), Type.Bool.INSTANCE, b.value() ? 1 : 0);
-        } else if (e instanceof Expr.DoubleLit) {
-            return error(e.pos(), "floating-point values are not supported by DTRON: its engine works on integers");
+        } else if (e instanceof Expr.DoubleLit d) {
+            unsupportedDouble(e.pos());
+            return new Expression.DoubleConstant(e.pos(), Type.Double.INSTANCE, d.value());
+        } else if (e instanceof Expr.Spawn s) {
+            return spawn(s);
         } else if (e instanceof Expr.Deadlock) {
             return error(e.pos(), "'deadlock' can only be used in queries");
         } else if (e instanceof Expr.Ident id) {
@@ -262,7 +292,7 @@ final class Checker {
         Symbol sym = scope.lookup(id.name());
         Pos pos = id.pos();
         if (sym == null) {
-            return error(pos, "unknown name '" + id.name() + "'");
+            return compilation.firstUnknown("name", id.name()) ? error(pos, "unknown name '" + id.name() + "'") : null;
         }
         if (sym instanceof Symbol.Constant c) {
             return c.type().slots() == 1 && c.type().isIntegral()
@@ -326,6 +356,10 @@ final class Checker {
                 String message = "index " + c.value() + " is out of range [" + first + "," + last + "] of '"
                         + ix.array().pos().text() + "'";
                 diagnostics.warning(ix.pos(), message + "; evaluating it is a model error");
+                if (!(array instanceof Expression.ConstantTable)) {
+                    // as in Uppaal, an error when the run evaluates it; it is still a variable that can be assigned
+                    return new Expression.Index(ix.pos(), element, array, index);
+                }
                 return new Expression.ModelError(ix.pos(), element, message);
             }
             if (array instanceof Expression.ConstantTable t) {
@@ -371,7 +405,19 @@ final class Checker {
             return error(c.function().pos(), "only functions can be called");
         }
         Symbol sym = scope.lookup(id.name());
+        if (sym instanceof Symbol.External x) {
+            return external(c, x);
+        }
+        if (sym == null && ("exit".equals(id.name()) || "numOf".equals(id.name()))) {
+            return dynamicBuiltin(c, id.name());
+        }
+        if (sym == null && Builtins.of(id.name()) != null) {
+            return builtin(c, id.name(), Builtins.of(id.name()));
+        }
         if (!(sym instanceof Symbol.Func f)) {
+            if (sym == null && !compilation.firstUnknown("function", id.name())) {
+                return null;
+            }
             return error(id.pos(), sym == null ? "unknown function '" + id.name() + "'"
                     : "'" + id.name() + "' is not a function");
         }
@@ -396,7 +442,7 @@ final class Checker {
                     error(argExpr.pos(), "argument " + (i + 1) + " of '" + id.name() + "' is passed by reference, so it"
                             + " must be a variable" + (why == null ? "" : " (" + why + ")"));
                     ok = false;
-                } else if (!sameType(p.type(), arg.type())) {
+                } else if (!sameReferenceType(p.type(), arg.type())) {
                     error(argExpr.pos(), "argument " + (i + 1) + " of '" + id.name() + "' must be " + p.type()
                             + " (a reference parameter takes exactly its type), not " + describe(arg.type()));
                     ok = false;
@@ -409,6 +455,110 @@ final class Checker {
             args.add(arg);
         }
         return ok ? new Expression.Call(c.pos(), info.returnType, info.index, info.name, args) : null;
+    }
+
+    /** A call of a built-in function of statistical model checking (see {@link Builtins}). */
+    private Expression builtin(Expr.Call c, String name, Builtins.Signature signature) {
+        List<Expression> args = arguments(c, name, signature.parameters(), null);
+        if (args == null) {
+            return null;
+        }
+        compilation.unsupported(c.pos(), "built-in", "the built-in function '" + name + "'", "the engine evaluates the"
+                + " integer functions of the model, not the real-valued and random functions of statistical model"
+                + " checking");
+        return new Expression.Builtin(c.pos(), signature.returns(), name, args);
+    }
+
+    /** A call of an external function of an {@code import} block. */
+    private Expression external(Expr.Call c, Symbol.External x) {
+        List<Expression> args = arguments(c, x.name(), x.parameters(), x.references());
+        if (args == null) {
+            return null;
+        }
+        compilation.unsupported(c.pos(), "external", "the external function '" + x.name() + "' of \"" + x.library()
+                + "\"",
+                "the engine does not load native libraries");
+        return new Expression.Builtin(c.pos(), x.returnType(), x.name(), args);
+    }
+
+    /**
+     * The checked arguments of a call of {@code name} with parameters of types {@code types} ({@code references}
+     * says which are references; null for none), or null after an error.
+     */
+    private List<Expression> arguments(Expr.Call c, String name, List<Type> types, List<Boolean> references) {
+        if (c.args().size() != types.size()) {
+            return error(c.pos(), "'" + name + "' takes " + types.size() + " argument" + (types.size() == 1 ? "" : "s")
+                    + ", not " + c.args().size());
+        }
+        List<Expression> args = new ArrayList<>();
+        boolean ok = true;
+        for (int i = 0; i < types.size(); i++) {
+            Expr argExpr = c.args().get(i);
+            Expression arg = compile(argExpr);
+            if (arg == null) {
+                ok = false;
+                continue;
+            }
+            boolean reference = references != null && references.get(i);
+            if (reference ? !isLvalue(arg) || !sameReferenceType(types.get(i), arg.type())
+                    : !assignable(types.get(i), arg)) {
+                error(argExpr.pos(), "argument " + (i + 1) + " of '" + name + "' must be " + types.get(i)
+                        + (reference ? " (a variable: it is passed by reference)" : "") + ", not "
+                        + describe(arg.type()));
+                ok = false;
+            }
+            args.add(arg);
+        }
+        return ok ? args : null;
+    }
+
+    private void unsupportedDynamic(Pos pos) {
+        compilation.unsupported(pos, "dynamic templates (spawn, exit, numOf)", "the engine runs the fixed set of"
+                + " processes of the system line");
+    }
+
+    /** {@code exit()} ends a spawned process; {@code numOf(T)} counts the processes of dynamic template T. */
+    private Expression dynamicBuiltin(Expr.Call c, String name) {
+        if (name.equals("exit")) {
+            if (!c.args().isEmpty()) {
+                return error(c.pos(), "'exit' takes no arguments");
+            }
+            unsupportedDynamic(c.pos());
+            return new Expression.Builtin(c.pos(), Type.Void.INSTANCE, name, List.of());
+        }
+        if (c.args().size() != 1 || !(c.args().get(0) instanceof Expr.Ident t)) {
+            return error(c.pos(), "'numOf' takes the name of a dynamic template");
+        }
+        if (!compilation.dynamicTemplates.contains(t.name())) {
+            return error(t.pos(), "'" + t.name() + "' is not a dynamic template (declare it: dynamic " + t.name()
+                    + "(...);)");
+        }
+        unsupportedDynamic(c.pos());
+        return new Expression.Builtin(c.pos(), Type.Int.UNBOUNDED, name + " " + t.name(), List.of());
+    }
+
+    /** {@code spawn T(args)}: T must be a dynamic template, and the arguments fit its parameters. */
+    private Expression spawn(Expr.Spawn s) {
+        Symbol sym = scope.lookup(s.template());
+        if (!(sym instanceof Symbol.Template t) || !compilation.dynamicTemplates.contains(s.template())) {
+            return error(s.templatePos(), "'" + s.template() + "' is not a dynamic template (declare it: dynamic "
+                    + s.template() + "(...);)");
+        }
+        List<io.dtron.xta.ast.Param> params = t.decl().params();
+        if (params.size() != s.args().size()) {
+            return error(s.pos(), "'" + s.template() + "' takes " + params.size() + " argument"
+                    + (params.size() == 1 ? "" : "s") + ", not " + s.args().size());
+        }
+        List<Expression> args = new ArrayList<>();
+        for (Expr a : s.args()) {
+            Expression x = compile(a);
+            if (x == null) {
+                return null;
+            }
+            args.add(x);
+        }
+        unsupportedDynamic(s.pos());
+        return new Expression.Builtin(s.pos(), Type.Int.UNBOUNDED, "spawn " + s.template(), args);
     }
 
     private Expression unary(Expr.Unary u) {
@@ -447,6 +597,10 @@ final class Checker {
             }
             return fold(new Expression.Unary(u.pos(), Type.Bool.INSTANCE, Operator.NOT, operand));
         }
+        if (operand.type() instanceof Type.Double) {
+            return u.op() == Expr.UnaryOp.PLUS ? operand
+                    : new Expression.Unary(u.pos(), Type.Double.INSTANCE, Operator.NEG, operand);
+        }
         if (!isInteger(operand.type())) {
             return error(u.pos(), "'" + u.op().symbol() + "' needs an integer, not " + describe(operand.type()));
         }
@@ -457,6 +611,9 @@ final class Checker {
     }
 
     private Expression binary(Expr.Binary b) {
+        if (b.op() == Expr.BinaryOp.EQ && b.left() instanceof Expr.Unary u && u.op() == Expr.UnaryOp.PRIME) {
+            return rate(b, u);
+        }
         Expression left = compile(b.left());
         Expression right = compile(b.right());
         if (left == null || right == null) {
@@ -510,6 +667,9 @@ final class Checker {
                 // arithmetic below
             }
         }
+        if (left.type() instanceof Type.Double || right.type() instanceof Type.Double) {
+            return doubleArithmetic(b, op, left, right);
+        }
         for (Expression x : List.of(left, right)) {
             if (!isInteger(x.type())) {
                 String hint = x.type() instanceof Type.Clock
@@ -519,6 +679,35 @@ final class Checker {
             }
         }
         return fold(new Expression.Binary(pos, Type.Int.UNBOUNDED, op, left, right));
+    }
+
+    /** {@code x' == e}: the rate of clock {@code x}, an integer or a double (0 stops the clock). */
+    private Expression rate(Expr.Binary b, Expr.Unary prime) {
+        Expression clock = compile(prime.operand());
+        Expression rate = compile(b.right());
+        if (clock == null || rate == null) {
+            return null;
+        }
+        if (!(clock.type() instanceof Type.Clock) || !isNumber(rate.type())) {
+            return error(b.pos(), "a rate is written x' == expression, with a clock x and a number, not "
+                    + describe(clock.type()) + " and " + describe(rate.type()));
+        }
+        return new Expression.ClockRate(b.pos(), new Type.ClockConstraint(ConstraintKind.INVARIANT), clock, rate);
+    }
+
+    /** Arithmetic with a double operand gives a double; the other operand is an integer or a double. */
+    private Expression doubleArithmetic(Expr.Binary b, Operator op, Expression left, Expression right) {
+        for (Expression x : List.of(left, right)) {
+            if (!isNumber(x.type())) {
+                return error(x.pos(), "'" + b.op().symbol() + "' needs numbers, not " + describe(x.type()));
+            }
+        }
+        return switch (op) {
+            case ADD, SUB, MUL, DIV, POW, MIN, MAX -> new Expression.Binary(b.pos(), Type.Double.INSTANCE, op, left,
+                    right);
+            case AND, OR, IMPLY -> new Expression.Binary(b.pos(), Type.Bool.INSTANCE, op, left, right);
+            default -> error(b.pos(), "'" + b.op().symbol() + "' needs integers, not a double");
+        };
     }
 
     private Expression comparison(Expr.Binary b, Operator op, Expression left, Expression right) {
@@ -540,6 +729,15 @@ final class Checker {
         }
         boolean lClock = lt instanceof Type.Clock || lt instanceof Type.ClockDifference;
         boolean rClock = rt instanceof Type.Clock || rt instanceof Type.ClockDifference;
+        if (isNumber(lt) && isNumber(rt)) {
+            // one of them is a double
+            return new Expression.Binary(pos, Type.Bool.INSTANCE, op, left, right);
+        }
+        if (lClock && rt instanceof Type.Double || lt instanceof Type.Double && rClock) {
+            // statistical model checking compares clocks with real numbers
+            return new Expression.Binary(pos, new Type.ClockConstraint(op == Operator.EQ ? ConstraintKind.GUARD
+                    : op == Operator.NE ? ConstraintKind.CONSTRAINT : ConstraintKind.INVARIANT), op, left, right);
+        }
         // clocks are compared with integers (not booleans), with clocks, or as differences with integers
         if (lClock && rt instanceof Type.Int || lt instanceof Type.Int && rClock
                 || lt instanceof Type.Clock && rt instanceof Type.Clock) {
@@ -616,6 +814,13 @@ final class Checker {
             }
             return new Expression.Assign(a.pos(), Type.Clock.INSTANCE, target, null, value);
         }
+        if (target.type() instanceof Type.Double) {
+            if (!isNumber(value.type())) {
+                return error(a.value().pos(), "cannot assign " + describe(value.type()) + " to the double '"
+                        + a.target().pos().text() + "'");
+            }
+            return new Expression.Assign(a.pos(), target.type(), target, op, value);
+        }
         if (op != null) {
             if (!isInteger(target.type()) || !isInteger(value.type())) {
                 return error(a.pos(), "'" + a.op().symbol() + "=' needs integers");
@@ -672,12 +877,20 @@ final class Checker {
         if (body == null) {
             return null;
         }
+        Expression.Quantifier kind = Expression.Quantifier.valueOf(q.kind().name());
+        if (body.type() instanceof Type.ClockConstraint c && kind != Expression.Quantifier.SUM) {
+            // forall is a conjunction, so it keeps the body's kind; exists is a disjunction of clock constraints
+            compilation.unsupported(q.pos(), "'" + q.kind().name().toLowerCase(java.util.Locale.ROOT)
+                    + "' over clock constraints", "the engine's zones take conjunctions of single clock bounds, written"
+                    + " out");
+            ConstraintKind k = kind == Expression.Quantifier.FORALL ? c.kind() : ConstraintKind.CONSTRAINT;
+            return new Expression.Quantified(q.pos(), new Type.ClockConstraint(k), kind, slot, lower, upper, body);
+        }
         if (!isInteger(body.type())) {
             return error(q.body().pos(), "the body of '" + q.kind().name().toLowerCase(java.util.Locale.ROOT)
                     + "' must be " + (q.kind() == Expr.QuantifierKind.SUM ? "an integer" : "a boolean") + ", not "
                     + describe(body.type()));
         }
-        Expression.Quantifier kind = Expression.Quantifier.valueOf(q.kind().name());
         Type type = kind == Expression.Quantifier.SUM ? Type.Int.UNBOUNDED : Type.Bool.INSTANCE;
         return new Expression.Quantified(q.pos(), type, kind, slot, lower, upper, body);
     }
@@ -689,6 +902,9 @@ final class Checker {
         Type v = value.type();
         if (target instanceof Type.Int || target instanceof Type.Bool) {
             return isInteger(v);
+        }
+        if (target instanceof Type.Double) {
+            return isNumber(v);
         }
         if (target instanceof Type.Scalar s) {
             return v instanceof Type.Scalar vs && vs.id() == s.id();
@@ -705,6 +921,26 @@ final class Checker {
     /** Equality of types for references and whole-array assignment; integer ranges must agree. */
     static boolean sameType(Type a, Type b) {
         return a.equals(b);
+    }
+
+    /**
+     * The rule for reference parameters: exactly the parameter's type, except that a channel (or an array of
+     * channels) of any kind may be passed where a channel of another kind is expected, as Uppaal's type checker
+     * accepts (a {@code broadcast chan} for an {@code urgent chan &} parameter).
+     */
+    static boolean sameReferenceType(Type parameter, Type argument) {
+        if (parameter instanceof Type.Channel && argument instanceof Type.Channel) {
+            return true;
+        }
+        if (parameter instanceof Type.Array p && argument instanceof Type.Array a) {
+            return p.index().equals(a.index()) && sameReferenceType(p.element(), a.element());
+        }
+        return sameType(parameter, argument);
+    }
+
+    /** Integers, booleans and doubles. */
+    static boolean isNumber(Type t) {
+        return isInteger(t) || t instanceof Type.Double;
     }
 
     /** Integers and booleans, not scalars. */
@@ -801,6 +1037,9 @@ final class Checker {
             return hasSideEffects(q.body());
         } else if (e instanceof Expression.ClockRate r) {
             return hasSideEffects(r.rate());
+        } else if (e instanceof Expression.Builtin b) {
+            return b.name().startsWith("spawn ") || b.name().equals("exit")
+                    || b.args().stream().anyMatch(this::hasSideEffects);
         }
         return false;
     }
@@ -833,11 +1072,15 @@ final class Checker {
         if (t instanceof Type.Void) {
             return "nothing (void)";
         }
+        if (t instanceof Type.Double) {
+            return "a double";
+        }
         return "a " + t;
     }
 
     private static Operator operator(Expr.BinaryOp op) {
         return switch (op) {
+            case POW -> Operator.POW;
             case MUL -> Operator.MUL;
             case DIV -> Operator.DIV;
             case MOD -> Operator.MOD;
@@ -885,6 +1128,13 @@ final class Checker {
                     }
                     v = b.op() == Operator.DIV ? x / y : x % y;
                 }
+                case POW -> {
+                    if (y < 0) {
+                        diagnostics.warning(e.pos(), "negative exponent; evaluating it is a model error");
+                        return new Expression.ModelError(e.pos(), e.type(), "negative exponent");
+                    }
+                    v = power(x, y);
+                }
                 case SHL -> v = (long) l.value() << r.value();
                 case SHR -> v = l.value() >> r.value();
                 case MIN -> v = Math.min(x, y);
@@ -912,5 +1162,23 @@ final class Checker {
             return new Expression.Constant(e.pos(), e.type(), (int) v);
         }
         return e;
+    }
+
+    /** {@code x ** y} for {@code y >= 0}, saturated past the range of int so that an overflow is seen. */
+    static long power(long x, long y) {
+        long r = 1;
+        for (long i = 0; i < y; i++) {
+            r *= x;
+            if (Math.abs(r) > Integer.MAX_VALUE + 1L) {
+                return r;
+            }
+            if (r == 0 || r == 1 && x == 1) {
+                return r;
+            }
+            if (x == -1) {
+                return y % 2 == 0 ? 1 : -1;
+            }
+        }
+        return r;
     }
 }

@@ -8,7 +8,9 @@ import io.dtron.model.Variable;
 import io.dtron.xta.Diagnostic;
 import io.dtron.xta.Pos;
 import java.util.ArrayList;
+import java.util.HashSet;
 import java.util.List;
+import java.util.Set;
 
 /** What one load builds up: diagnostics, and the variables, clocks, channels and functions of the network. */
 final class Compilation {
@@ -25,6 +27,38 @@ final class Compilation {
     private int scalarIds;
     /** While a template is checked without being instantiated, nothing it declares joins the network. */
     boolean detached;
+    /** The templates declared {@code dynamic}: spawned, not listed in the system line. */
+    final Set<String> dynamicTemplates = new HashSet<>();
+    private final Set<String> unsupportedFeatures = new HashSet<>();
+    private final Set<String> unknownNames = new HashSet<>();
+
+    /**
+     * Records that the model uses {@code feature}, which DTRON's engine cannot execute: the model loads, and
+     * {@code check} says so with a warning, but every run is refused with the first such place and {@code why}.
+     */
+    void unsupported(Pos pos, String feature, String why) {
+        unsupported(pos, feature, feature, why);
+    }
+
+    /**
+     * As {@link #unsupported(Pos, String, String)}, once per {@code kind} (all built-in functions are one kind).
+     * A template that no process instantiates takes no part in a run: what it uses does not stop one.
+     */
+    void unsupported(Pos pos, String kind, String feature, String why) {
+        if (!detached && unsupportedFeatures.add(kind)) {
+            String message = feature + " cannot be run by DTRON's engine: " + why;
+            startErrors.add(Diagnostic.error(pos, message));
+            diagnostics.warning(pos, message + "; the model can be checked, but 'dtron run' refuses it");
+        }
+    }
+
+    /**
+     * Whether the unknown {@code name} (a variable, function or type, as {@code what} says) is reported for the
+     * first time: one undeclared name gives one error, at its first use, however often it is used.
+     */
+    boolean firstUnknown(String what, String name) {
+        return unknownNames.add(what + " " + name);
+    }
 
     int nextScalarId() {
         return ++scalarIds;
@@ -66,6 +100,11 @@ final class Compilation {
 
     void completeFunction(Function f) {
         functions.set(f.index(), f);
+    }
+
+    /** The compiled function number {@code index}, or null while its body is being compiled. */
+    Function compiledFunction(int index) {
+        return functions.get(index);
     }
 
     FunctionInfo function(int index) {

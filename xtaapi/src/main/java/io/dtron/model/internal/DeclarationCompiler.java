@@ -39,6 +39,12 @@ final class DeclarationCompiler {
                 }
             } else if (d instanceof Decl.Function f) {
                 function(f, checker, owner);
+            } else if (d instanceof Decl.External x) {
+                external(x, checker);
+            } else if (d instanceof Decl.Dynamic dynamic && others != null) {
+                if (!compilation.dynamicTemplates.add(dynamic.name())) {
+                    diagnostics.error(dynamic.pos(), "dynamic template '" + dynamic.name() + "' is declared twice");
+                }
             } else if (others != null) {
                 if (d instanceof Decl.Template t && declarable(checker.scope(), t.name(), t.pos())) {
                     checker.scope().put(t.name(), new Symbol.Template(t.pos(), t));
@@ -49,9 +55,31 @@ final class DeclarationCompiler {
             } else {
                 diagnostics.error(d.pos(), d instanceof Decl.ChanPriority
                         ? "channel priorities can only be declared globally"
+                        : d instanceof Decl.Dynamic ? "dynamic templates can only be declared globally"
                         : "templates and instantiations can only be declared globally");
             }
         }
+    }
+
+    /** An external function of an {@code import} block: its signature is checked, its calls are type-checked. */
+    private void external(Decl.External x, Checker checker) {
+        Checker.Resolved ret = checker.resolve(x.returnType());
+        if (ret == null || !declarable(checker.scope(), x.name(), x.pos())) {
+            return;
+        }
+        List<Type> types = new ArrayList<>();
+        List<Boolean> references = new ArrayList<>();
+        for (Param p : x.params()) {
+            Checker.Resolved r = checker.resolve(p.type());
+            Type t = r == null ? null : checker.applyDims(r.type(), p.dims());
+            if (t == null) {
+                return;
+            }
+            types.add(t);
+            references.add(p.reference());
+        }
+        checker.scope().put(x.name(), new Symbol.External(x.pos(), x.name(), ret.type(), types, references,
+                x.library()));
     }
 
     private boolean declarable(Scope scope, String name, Pos pos) {
@@ -98,18 +126,42 @@ final class DeclarationCompiler {
                 diagnostics.error(v.pos(), "constant '" + v.name() + "' needs a value");
                 return;
             }
-            int[] values = initialValues(v.init(), type, checker, "'" + v.name() + "'");
+            if (type instanceof Type.Double) {
+                Expression value = doubleConstant(v, checker);
+                if (value != null) {
+                    scope.put(v.name(), new Symbol.Alias(v.pos(), value, false, false, false));
+                }
+                return;
+            }
+            int[] values = initialValues(v.init(), type, checker, "'" + v.name() + "'", true);
             if (values != null) {
                 scope.put(v.name(), new Symbol.Constant(v.pos(), type, values));
             }
         } else {
-            int[] values = v.init() == null ? defaults(type) : initialValues(v.init(), type, checker, "'" + v.name() + "'");
+            int[] values = v.init() == null ? defaults(type)
+                    : initialValues(v.init(), type, checker, "'" + v.name() + "'", false);
             if (values == null) {
                 values = defaults(type);
             }
             scope.put(v.name(), new Symbol.Var(v.pos(), compilation.newVariable(qualified(owner, v.name()), type,
                     values, r.meta(), owner, v.pos())));
         }
+    }
+
+    /** The value of a {@code const double}: a number, kept as the expression (the engine does not run doubles). */
+    private Expression doubleConstant(Decl.Variable v, Checker checker) {
+        if (!(v.init() instanceof Initializer.Single single)) {
+            diagnostics.error(v.init().pos(), "a brace list initialises arrays and structs, but '" + v.name()
+                    + "' is a double");
+            return null;
+        }
+        Expression x = checker.compile(single.value());
+        if (x != null && (!Checker.isNumber(x.type()) || checker.hasSideEffects(x))) {
+            diagnostics.error(single.pos(), "'" + v.name() + "' is a double and cannot be initialised with "
+                    + Checker.describe(x.type()));
+            return null;
+        }
+        return x;
     }
 
     /** The default initial values: 0, or the lower bound of a range that excludes 0. */
@@ -143,9 +195,10 @@ final class DeclarationCompiler {
 
     /**
      * The initial values of a variable or constant of {@code type}: they must be computable at compile time,
-     * as Uppaal requires. Null after an error.
+     * as Uppaal requires. The range of a plain {@code int} bounds variables, not constants ({@code constant}),
+     * which may take any 32-bit value. Doubles are checked but hold nothing (0). Null after an error.
      */
-    int[] initialValues(Initializer init, Type type, Checker checker, String what) {
+    int[] initialValues(Initializer init, Type type, Checker checker, String what, boolean constant) {
         if (init instanceof Initializer.Braces b) {
             if (type instanceof Type.Array a) {
                 if (b.elements().size() != a.length()) {
@@ -156,7 +209,7 @@ final class DeclarationCompiler {
                 int[] values = new int[type.slots()];
                 int offset = 0;
                 for (Initializer e : b.elements()) {
-                    int[] part = initialValues(e, a.element(), checker, what);
+                    int[] part = initialValues(e, a.element(), checker, what, constant);
                     if (part == null) {
                         return null;
                     }
@@ -174,7 +227,8 @@ final class DeclarationCompiler {
                 int[] values = new int[type.slots()];
                 int offset = 0;
                 for (int i = 0; i < s.fields().size(); i++) {
-                    int[] part = initialValues(b.elements().get(i), s.fields().get(i).type(), checker, what);
+                    int[] part = initialValues(b.elements().get(i), s.fields().get(i).type(), checker, what,
+                            constant);
                     if (part == null) {
                         return null;
                     }
@@ -203,7 +257,15 @@ final class DeclarationCompiler {
             diagnostics.error(single.pos(), "the initial value of " + what + " cannot be computed: " + m.message());
             return null;
         }
-        int[] values = reference ? null : Checker.constantValues(x);
+        if (type instanceof Type.Double) {
+            if (!Checker.isNumber(x.type())) {
+                diagnostics.error(single.pos(), what + " is a double and cannot be initialised with "
+                        + Checker.describe(x.type()));
+                return null;
+            }
+            return new int[1];
+        }
+        int[] values = reference ? null : checker.constantValues(x);
         if (values == null) {
             if (placeholder) {
                 return defaults(type);
@@ -217,7 +279,8 @@ final class DeclarationCompiler {
                     + Checker.describe(x.type()));
             return null;
         }
-        if (type instanceof Type.Int i && (values[0] < i.lower() || values[0] > i.upper())) {
+        if (type instanceof Type.Int i && (values[0] < i.lower() || values[0] > i.upper())
+                && !(constant && i.equals(Type.Int.DEFAULT))) {
             diagnostics.error(single.pos(), "the initial value " + values[0] + " of " + what + " is outside its range "
                     + i);
             return null;
@@ -297,7 +360,7 @@ final class DeclarationCompiler {
                 diagnostics.error(v.pos(), "constant '" + v.name() + "' needs a value");
                 return null;
             }
-            int[] values = initialValues(v.init(), type, checker, "'" + v.name() + "'");
+            int[] values = initialValues(v.init(), type, checker, "'" + v.name() + "'", true);
             if (values != null) {
                 checker.scope().put(v.name(), new Symbol.Constant(v.pos(), type, values));
             }
@@ -313,7 +376,7 @@ final class DeclarationCompiler {
                 initial = null;
             }
         } else if (v.init() instanceof Initializer.Braces b) {
-            int[] values = initialValues(b, type, checker, "'" + v.name() + "'");
+            int[] values = initialValues(b, type, checker, "'" + v.name() + "'", false);
             if (values != null) {
                 initial = new Expression.ConstantTable(b.pos(), type, values);
             }

@@ -81,7 +81,7 @@ public final class NetworkCompiler {
         for (int i = 0; i < compilation.channelCount(); i++) {
             priorities.add(channelPriority == null ? 0 : channelPriority[i]);
         }
-        List<Diagnostic> warnings = all.stream().filter(d -> !d.isError()).toList();
+        List<Diagnostic> warnings = all.stream().filter(d -> !d.isError()).sorted(Diagnostic.BY_POSITION).toList();
         Network network = new Network(nta.file(), processes, compilation.variables, compilation.clocks,
                 compilation.channels, compilation.functions(), compilation.stateSize(), compilation.clockCount(),
                 compilation.channelCount(), priorities, nta.queries(), warnings, compilation.startErrors);
@@ -241,7 +241,7 @@ public final class NetworkCompiler {
             diagnostics.error(argAst.pos(), what + " must be free of side effects");
             return null;
         }
-        int[] values = Checker.constantValues(arg);
+        int[] values = argChecker.constantValues(arg);
         if (p.reference()) {
             if (constant) {
                 if (values == null) {
@@ -261,7 +261,7 @@ public final class NetworkCompiler {
                         + " indices" + (why == null ? "" : " (" + why + ")"));
                 return null;
             }
-            if (!Checker.sameType(pt, arg.type())) {
+            if (!Checker.sameReferenceType(pt, arg.type())) {
                 diagnostics.error(argAst.pos(), what + " must be exactly " + pt + " (it is passed by reference), not "
                         + arg.type());
                 return null;
@@ -312,7 +312,8 @@ public final class NetworkCompiler {
         if (values == null) {
             return new Symbol.Alias(p.pos(), arg, false, false, false);
         }
-        if (pt instanceof Type.Int i && (values[0] < i.lower() || values[0] > i.upper())) {
+        if (pt instanceof Type.Int i && (values[0] < i.lower() || values[0] > i.upper())
+                && !(constant && i.equals(Type.Int.DEFAULT))) {
             diagnostics.error(argAst.pos(), what + " is " + values[0] + ", outside its range " + i);
             return null;
         }
@@ -384,8 +385,22 @@ public final class NetworkCompiler {
         }
     }
 
+    private static boolean containsRate(Expression e) {
+        if (e instanceof Expression.ClockRate) {
+            return true;
+        } else if (e instanceof Expression.Binary b) {
+            return containsRate(b.left()) || containsRate(b.right());
+        } else if (e instanceof Expression.Unary u) {
+            return containsRate(u.operand());
+        } else if (e instanceof Expression.Quantified q) {
+            return containsRate(q.body());
+        }
+        return false;
+    }
+
     /** Compiles one process: local declarations, locations, edges. */
     private final class ProcessCompiler {
+        private final Set<Integer> branchpoints = new HashSet<>();
         private final Decl.Template template;
         private final Scope params;
         private final String name;
@@ -423,6 +438,17 @@ public final class NetworkCompiler {
                 Location.Kind kind = Location.Kind.valueOf(l.kind().name());
                 locations.add(new Location(locations.size(), locationName, kind, invariant, frame.size(), l.pos()));
             }
+            for (String id : template.branchpoints()) {
+                if (byId.containsKey(id)) {
+                    diagnostics.error(template.pos(), "template " + template.name() + " has two locations with id '"
+                            + id + "'");
+                    continue;
+                }
+                byId.put(id, locations.size());
+                branchpoints.add(locations.size());
+                locations.add(new Location(locations.size(), "_" + id, Location.Kind.BRANCHPOINT, null, 0,
+                        template.pos()));
+            }
             int initial = -1;
             if (template.init() == null) {
                 if (!template.locations().isEmpty()) {
@@ -447,6 +473,7 @@ public final class NetworkCompiler {
             return new Process(index, name, template.name(), locations, initial, edges, level);
         }
 
+        /** An invariant; a conjunction is checked conjunct by conjunct, so that an error names the bad one. */
         private Expression invariant(Expr e, Checker checker) {
             if (e instanceof Expr.Binary b && b.op() == Expr.BinaryOp.AND) {
                 Expression left = invariant(b.left(), checker);
@@ -454,23 +481,10 @@ public final class NetworkCompiler {
                 if (left == null || right == null) {
                     return null;
                 }
-                return new Expression.Binary(b.pos(), combinedInvariantType(left, right), Expression.Operator.AND,
-                        left, right);
-            }
-            if (e instanceof Expr.Binary b && b.op() == Expr.BinaryOp.EQ && b.left() instanceof Expr.Unary u
-                    && u.op() == Expr.UnaryOp.PRIME) {
-                Expression clock = checker.compile(u.operand());
-                Expression rate = checker.compile(b.right());
-                if (clock == null || rate == null) {
-                    return null;
-                }
-                if (!(clock.type() instanceof Type.Clock) || !Checker.isInteger(rate.type())) {
-                    diagnostics.error(e.pos(), "a rate is written x' == expression, with a clock x and an integer"
-                            + " expression");
-                    return null;
-                }
-                return new Expression.ClockRate(e.pos(), new Type.ClockConstraint(Type.ConstraintKind.INVARIANT),
-                        clock, rate);
+                boolean clocks = left.type() instanceof Type.ClockConstraint
+                        || right.type() instanceof Type.ClockConstraint;
+                return new Expression.Binary(b.pos(), clocks ? new Type.ClockConstraint(Type.ConstraintKind.INVARIANT)
+                        : Type.Bool.INSTANCE, Expression.Operator.AND, left, right);
             }
             Expression x = checker.compile(e);
             if (x == null) {
@@ -492,11 +506,6 @@ public final class NetworkCompiler {
             return x;
         }
 
-        private Type combinedInvariantType(Expression left, Expression right) {
-            boolean clocks = left.type() instanceof Type.ClockConstraint || right.type() instanceof Type.ClockConstraint;
-            return clocks ? new Type.ClockConstraint(Type.ConstraintKind.INVARIANT) : Type.Bool.INSTANCE;
-        }
-
         private Edge edge(io.dtron.xta.ast.Edge e, Scope local, Map<String, Integer> byId, int index) {
             Integer source = e.source() == null ? null : byId.get(e.source());
             Integer target = e.target() == null ? null : byId.get(e.target());
@@ -510,6 +519,13 @@ public final class NetworkCompiler {
             Scope scope = new Scope(local);
             Checker checker = new Checker(compilation, scope, frame);
             boolean ok = true;
+            if (branchpoints.contains(source)) {
+                compilation.unsupported(e.pos(), "a branchpoint", "it is a probabilistic choice of statistical model"
+                        + " checking, and the engine has no probabilities");
+            }
+            if (e.probability() != null) {
+                ok &= probability(e, checker, branchpoints.contains(source));
+            }
             List<Edge.Select> selects = new ArrayList<>();
             for (io.dtron.xta.ast.Edge.Select s : e.selects()) {
                 Checker.Range range = checker.boundedRange(s.type(), "select '" + s.name() + "'");
@@ -551,9 +567,36 @@ public final class NetworkCompiler {
             return ok ? new Edge(index, source, target, selects, guard, sync, updates, frame.size(), e.pos()) : null;
         }
 
+        /** The weight of an edge leaving a branchpoint: a number without side effects. */
+        private boolean probability(io.dtron.xta.ast.Edge e, Checker checker, boolean fromBranchpoint) {
+            Expr w = e.probability();
+            if (!fromBranchpoint) {
+                diagnostics.warning(w.pos(), "a probability weight is ignored on an edge that does not leave a"
+                        + " branchpoint");
+                return true;
+            }
+            Expression x = checker.compile(w);
+            if (x == null) {
+                return false;
+            }
+            if (!Checker.isNumber(x.type())) {
+                diagnostics.error(w.pos(), "a probability weight is a number, not " + Checker.describe(x.type()));
+                return false;
+            }
+            if (checker.hasSideEffects(x)) {
+                diagnostics.error(w.pos(), "a probability weight must not have side effects");
+                return false;
+            }
+            return true;
+        }
+
         private Expression guard(Expr e, Checker checker) {
             Expression x = checker.compile(e);
             if (x == null) {
+                return null;
+            }
+            if (containsRate(x)) {
+                diagnostics.error(e.pos(), "a clock rate (x' == e) can only stand in an invariant");
                 return null;
             }
             if (checker.hasSideEffects(x)) {

@@ -7,6 +7,7 @@ import io.dtron.model.Type;
 import io.dtron.model.Variable;
 import io.dtron.xta.Pos;
 import io.dtron.xta.ast.Decl;
+import java.util.List;
 
 /** What a name stands for in a scope. */
 sealed interface Symbol {
@@ -40,6 +41,19 @@ sealed interface Symbol {
 
     /** A function; its signature is known before its body is compiled. */
     record Func(Pos pos, FunctionInfo info) implements Symbol {
+    }
+
+    /**
+     * An external function of an {@code import} block: type-checked, never evaluated.
+     *
+     * @param references for each parameter, whether it is a reference
+     */
+    record External(Pos pos, String name, Type returnType, List<Type> parameters, List<Boolean> references,
+                    String library) implements Symbol {
+        public External {
+            parameters = List.copyOf(parameters);
+            references = List.copyOf(references);
+        }
     }
 
     /** A template. */

@@ -9,7 +9,8 @@ import java.util.Arrays;
  * resolved, type-checked, instantiated) from text. Prints the first load in this JVM (what a command-line
  * user waits for) and the median and maximum of later loads. Run with
  * {@code mvn -pl xtaapi -q test-compile exec:java -Dexec.classpathScope=test
- * -Dexec.mainClass=io.dtron.model.bench.LoadBench}.
+ * -Dexec.mainClass=io.dtron.model.bench.LoadBench}. With {@code --write DIR} it writes the two models to
+ * {@code DIR/many.xml} and {@code DIR/large.xml} instead, for {@code scripts/check-bench.sh}.
  */
 public final class LoadBench {
     private static final int RUNS = 15;
@@ -18,6 +19,12 @@ public final class LoadBench {
     }
 
     public static void main(String[] args) throws Exception {
+        if (args.length == 2 && args[0].equals("--write")) {
+            java.nio.file.Path dir = java.nio.file.Path.of(args[1]);
+            java.nio.file.Files.writeString(dir.resolve("many.xml"), GeneratedModels.manyProcesses(1000));
+            java.nio.file.Files.writeString(dir.resolve("large.xml"), GeneratedModels.largeFile(1 << 20));
+            return;
+        }
         System.out.printf("machine: %d cores, Java %s, %s%n", Runtime.getRuntime().availableProcessors(),
                 System.getProperty("java.version"), System.getProperty("os.name"));
         String many = GeneratedModels.manyProcesses(1000);

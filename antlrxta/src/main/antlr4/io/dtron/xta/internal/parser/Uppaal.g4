@@ -1,7 +1,8 @@
 /*
  * The textual languages of Uppaal 4.x/5.x: declarations, templates in XTA
  * syntax, the system definition, the old Uppaal 3 syntax, label languages
- * (select, guard, synchronisation, update, invariant) and TCTL queries.
+ * (select, guard, synchronisation, update, invariant, probability) and the whole query language
+ * (symbolic, statistical, strategies, scenarios).
  *
  * One grammar with one entry rule per kind of text, so that every label of an
  * XML model is parsed by the rule for its kind.
@@ -54,6 +55,7 @@ topItem
     : declaration
     | processDecl
     | instantiation
+    | ganttDecl
     ;
 
 declaration
@@ -62,6 +64,8 @@ declaration
     | functionDecl
     | chanPriorityDecl
     | oldConstDecl
+    | dynamicDecl
+    | importDecl
     ;
 
 variableDecl : type variableDeclarator (',' variableDeclarator)* ';' ;
@@ -87,10 +91,21 @@ parameter : type ref='&'? identifier arrayDim* ;
 
 chanPriorityDecl : 'chan' 'priority' chanPriorityItem (separators+=(',' | '<') chanPriorityItem)* ';' ;
 
+/** A channel, possibly indexed; not an expression, so that {@code a < b} separates two levels. */
 chanPriorityItem
     : 'default'
-    | expression
+    | identifier ('[' expression ']')*
     ;
+
+/** Statistical model checking: {@code dynamic T(int a);} declares a template that processes spawn. */
+dynamicDecl : 'dynamic' identifier '(' parameterList? ')' ';' ;
+
+/** Statistical model checking: {@code import "lib.so" { int f(int a); };} declares external functions. */
+importDecl : 'import' STRING '{' importFunction* '}' ';'? ;
+
+importFunction : type identifier '(' (importParameter (',' importParameter)*)? ')' ('=' identifier)? ';' ;
+
+importParameter : type ref='&'? identifier? arrayDim* ;
 
 /** Uppaal 3: {@code const N 5;} */
 oldConstDecl : 'const' oldConstItem (',' oldConstItem)* ';' ;
@@ -171,7 +186,15 @@ systemItem : identifier ;
 trailer
     : ioDecl
     | progressDecl
+    | ganttDecl
     ;
+
+/** Uppaal's Gantt chart definitions: read and ignored (they only draw charts in Uppaal's simulator). */
+ganttDecl : 'gantt' '{' ganttItem* '}' ;
+
+ganttItem : identifier ('(' selectItem (',' selectItem)* ')')? ':' ganttMap (',' ganttMap)* ';' ;
+
+ganttMap : ('for' '(' selectItem (',' selectItem)* ')')? expression '->' expression ;
 
 /** ECDAR-style IO declarations, accepted and ignored. */
 ioDecl : 'IO' identifier '{' syncExpr (',' syncExpr)* '}' ;
@@ -214,6 +237,7 @@ expression
     | expression op=('++' | '--')                                                   # PostfixExpr
     | expression '\''                                                               # PrimeExpr
     | <assoc=right> op=('++' | '--' | '-' | '+' | '!') expression                   # PrefixExpr
+    | <assoc=right> expression op='**' expression                                   # BinaryExpr
     | expression op=('*' | '/' | '%') expression                                    # BinaryExpr
     | expression op=('+' | '-') expression                                          # BinaryExpr
     | expression op=('<<' | '>>') expression                                        # BinaryExpr
@@ -240,18 +264,44 @@ primary
     | 'true'                        # TrueLiteral
     | 'false'                       # FalseLiteral
     | 'deadlock'                    # DeadlockLiteral
+    | 'spawn' identifier '(' argumentList? ')' # SpawnExpr
     | identifier                    # IdentifierRef
     | '(' expression ')'            # ParenExpr
     ;
 
 // ---------------------------------------------------------------- queries
 
-query
-    : E_EVENTUALLY expression       # ExistsEventually
-    | A_GLOBALLY expression         # AlwaysGlobally
-    | A_EVENTUALLY expression       # AlwaysEventually
-    | E_GLOBALLY expression         # ExistsGlobally
-    | expression '-->' expression   # LeadsTo
+/** A query of Uppaal's verifier, optionally under a strategy. */
+query : queryFormula ('under' strategy=identifier)? ;
+
+queryFormula
+    : E_EVENTUALLY expression                                                       # ExistsEventually
+    | A_GLOBALLY expression                                                         # AlwaysGlobally
+    | A_EVENTUALLY expression                                                       # AlwaysEventually
+    | E_GLOBALLY expression                                                         # ExistsGlobally
+    | expression '-->' expression                                                   # LeadsTo
+    | kind=('sup' | 'inf' | 'bounds') ('{' expression '}')? ':' expressionList      # ValueBounds
+    | 'control' ':' queryFormula                                                    # Control
+    | 'control_t' '*' ('(' expressionList ')')? ':' queryFormula                    # Control
+    | 'strategy' identifier '=' query                                               # StrategyDef
+    | 'sat' ':' expression                                                          # Scenario
+    | 'simulate' runs=expression? '[' runBound ']' '{' expressionList? '}' (':' expression (':' expression)?)? # Simulate
+    | probability (op=('<=' | '>=' | '<' | '>') (probability | expression))?        # ProbabilityQuery
+    | e=ID '[' runBound ']' '(' aggregate=identifier ':' expression ')'             # Expectation
+    | kind=('minE' | 'maxE') '(' expression ')' '[' runBound ']'
+      ('{' expressionList? '}' '->' '{' expressionList? '}')? ':' pathFormula       # Optimise
+    | 'saveStrategy' '(' STRING ',' identifier ')'                                  # SaveStrategy
+    | 'loadStrategy' ('{' expressionList? '}' '->' '{' expressionList? '}')? '(' STRING ')' # LoadStrategy
+    ;
+
+/** The bound of a run: {@code <=100}, {@code x<=100}, {@code #<=10}, and the number of runs after {@code ;}. */
+runBound : ('#' | identifier)? '<=' expression (';' expression)? ;
+
+probability : 'Pr' '[' runBound ']' '(' pathFormula ')' ;
+
+pathFormula
+    : '<' '>' expression
+    | '[' ']' expression
     ;
 
 // ---------------------------------------------------------------- identifiers
@@ -262,6 +312,9 @@ identifier
     | 'state' | 'init' | 'trans' | 'commit' | 'branchpoint'
     | 'guard' | 'sync' | 'assign' | 'select' | 'priority' | 'progress' | 'IO'
     | 'input' | 'output' | 'precision' | 'timeout'
+    | 'gantt' | 'dynamic' | 'spawn' | 'import'
+    | 'simulate' | 'Pr' | 'sup' | 'inf' | 'bounds' | 'control' | 'control_t' | 'strategy' | 'under' | 'sat'
+    | 'minE' | 'maxE' | 'saveStrategy' | 'loadStrategy'
     ;
 
 // ---------------------------------------------------------------- lexer
@@ -274,6 +327,7 @@ E_GLOBALLY : 'E' [ \t]* '[' [ \t]* ']' ;
 NAT : [0-9]+ ;
 FLOAT : [0-9]+ '.' [0-9]+ ([eE] [+-]? [0-9]+)? | [0-9]+ [eE] [+-]? [0-9]+ ;
 ID : [a-zA-Z_] [a-zA-Z_0-9]* ;
+STRING : '"' (~["\\\r\n] | '\\' .)* '"' ;
 
 LINE_COMMENT : '//' ~[\r\n]* -> skip ;
 BLOCK_COMMENT : '/*' .*? '*/' -> skip ;

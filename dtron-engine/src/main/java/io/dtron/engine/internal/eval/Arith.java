@@ -35,6 +35,28 @@ final class Arith {
         return (int) r;
     }
 
+    /** {@code x ** y}; a negative exponent is a model error, as an overflow is. */
+    static int pow(int x, int y, Expression at) {
+        if (y < 0) {
+            throw new ModelRuntimeException(at.pos(), "negative exponent in '" + at.pos().text() + "'");
+        }
+        if (x == 0 || x == 1) {
+            return y == 0 ? 1 : x;
+        }
+        if (x == -1) {
+            return y % 2 == 0 ? 1 : -1;
+        }
+        long r = 1;
+        for (int i = 0; i < y; i++) {
+            // |x| >= 2: an overflow comes within 32 steps
+            r *= x;
+            if ((int) r != r) {
+                throw overflow(at);
+            }
+        }
+        return (int) r;
+    }
+
     static int div(int x, int y, Expression at) {
         if (y == 0) {
             throw divisionByZero(at);

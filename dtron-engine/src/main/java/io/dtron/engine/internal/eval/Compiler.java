@@ -106,6 +106,7 @@ final class Compiler {
         return switch (b.op()) {
             case ADD -> new ValueNode.Add(l, r, b);
             case SUB -> new ValueNode.Sub(l, r, b);
+            case POW -> new ValueNode.Pow(l, r, b);
             case MUL -> new ValueNode.Mul(l, r, b);
             case DIV -> new ValueNode.Div(l, r, b);
             case MOD -> new ValueNode.Mod(l, r, b);

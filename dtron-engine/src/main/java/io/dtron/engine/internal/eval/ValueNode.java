@@ -203,6 +203,18 @@ abstract class ValueNode {
         }
     }
 
+    /** {@code **} on integers. */
+    static final class Pow extends Checked {
+        Pow(ValueNode left, ValueNode right, Expression source) {
+            super(left, right, source);
+        }
+
+        @Override
+        int eval(Env env) {
+            return Arith.pow(left.eval(env), right.eval(env), source);
+        }
+    }
+
     /** {@code /}, truncating toward zero. */
     static final class Div extends Checked {
         Div(ValueNode left, ValueNode right, Expression source) {
