@@ -76,6 +76,12 @@ public final class TickerBusAdapter implements DtronAdapter {
                 restart(0);
             }
         });
+        bus.addDtronListener(new DtronListener(Dtron.RUN_STOP) {
+            @Override
+            public void messageReceived(IDtronChannelValued message) {
+                overdue(message);
+            }
+        });
         bus.addDtronListener(new DtronListener(RESET) {
             @Override
             public void messageReceived(IDtronChannelValued message) {
@@ -140,6 +146,20 @@ public final class TickerBusAdapter implements DtronAdapter {
         }
         last = at;
         schedule(ofGeneration);
+    }
+
+    /**
+     * At the end of a run: warns when the next tick was due (outside its tolerance) before the run ended but never
+     * ran, as when this JVM was held up so long that the tester gave up waiting for it.
+     */
+    private synchronized void overdue(IDtronChannelValued stop) {
+        RunClock clock = dtron.runClock();
+        double end = clock.runNanosOf(stop) / (clock.timeUnitMicros() * 1000.0);
+        double due = last + variant.period;
+        if (due + TOLERANCE < end) {
+            LOG.warn("Tick {} was due at t={} by this adapter's run clock and had not been published when the run"
+                    + " ended at t={} (this JVM was held up)", seq + 1, units(due), units(end));
+        }
     }
 
     private static String units(double value) {

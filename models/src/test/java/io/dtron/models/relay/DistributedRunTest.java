@@ -45,41 +45,46 @@ class DistributedRunTest {
         return ChildJvm.start(DtronCommand.class, dir.resolve(name + ".log"), all);
     }
 
-    @Test
-    void bothPortsOfACorrectRelayPass(@TempDir Path dir) throws Exception {
+    /** The exit codes and outputs of the relay's two testers, with the relay's output. */
+    private record Relay(int port1, int port2, String port1Output, String port2Output, String relayOutput) {
+        String all() {
+            return port1Output + port2Output + relayOutput;
+        }
+    }
+
+    /** Runs both ports' testers against a relay of the variant, each port in a JVM of its own. */
+    private static Relay relay(Path dir, String variant) throws Exception {
         String cluster = cluster();
         try (ChildJvm port1 = tester(dir, "port1", "relay/port1.xta", cluster, "127.0.0.1", "--testers", "2");
                 ChildJvm port2 = tester(dir, "port2", "relay/port2.xta", cluster, "127.0.0.2", "--join");
                 ChildJvm relay = ChildJvm.start(RelayAdapters.class, dir.resolve("relay.log"), cluster, "127.0.0.3",
-                        MEMBERS, "correct")) {
-            int first = port1.waitFor(WAIT);
+                        MEMBERS, variant)) {
             int second = port2.waitFor(WAIT);
-            assertEquals(0, first, port1.output() + port2.output() + relay.output());
-            assertEquals(0, second, port2.output() + port1.output() + relay.output());
-            assertTrue(port1.output().contains("PASSED: the timeout of 150 time units was reached"), port1.output());
-            assertTrue(port2.output().contains("PASSED: the timeout of 150 time units was reached"), port2.output());
-            assertTrue(port1.output().contains("dtron run: the run's testers: "), port1.output());
-            assertTrue(port1.output().matches("(?s).*tester \\S+ of this run: PASSED.*"), port1.output());
+            int first = port1.waitFor(WAIT);
+            return new Relay(first, second, port1.output(), port2.output(), relay.output());
         }
     }
 
     @Test
+    void bothPortsOfACorrectRelayPass(@TempDir Path dir) throws Exception {
+        Relay r = relay(dir, "correct");
+        assertEquals(0, r.port1(), r.all());
+        assertEquals(0, r.port2(), r.all());
+        assertTrue(r.port1Output().contains("PASSED: the timeout of 150 time units was reached"), r.all());
+        assertTrue(r.port2Output().contains("PASSED: the timeout of 150 time units was reached"), r.all());
+        assertTrue(r.port1Output().contains("dtron run: the run's testers: "), r.all());
+        assertTrue(r.port1Output().matches("(?s).*tester \\S+ of this run: PASSED.*"), r.all());
+    }
+
+    @Test
     void aLateResponseFailsAtPortTwoAndEndsPortOneWithTheReason(@TempDir Path dir) throws Exception {
-        String cluster = cluster();
-        try (ChildJvm port1 = tester(dir, "port1", "relay/port1.xta", cluster, "127.0.0.1", "--testers", "2");
-                ChildJvm port2 = tester(dir, "port2", "relay/port2.xta", cluster, "127.0.0.2", "--join");
-                ChildJvm relay = ChildJvm.start(RelayAdapters.class, dir.resolve("relay.log"), cluster, "127.0.0.3",
-                        MEMBERS, "late")) {
-            int second = port2.waitFor(WAIT);
-            int first = port1.waitFor(WAIT);
-            assertEquals(2, second, port2.output() + port1.output() + relay.output());
-            assertTrue(port2.output().contains("FAILED: output resp() observed at")
-                    || port2.output().contains("FAILED: no output came by"), port2.output());
-            assertTrue(port2.output().contains("resp between"), "the response was due: " + port2.output());
-            assertEquals(3, first, port1.output() + port2.output());
-            assertTrue(port1.output().matches("(?s).*INCONCLUSIVE: tester \\S+ of this run ended it FAILED.*"),
-                    port1.output());
-        }
+        Relay r = relay(dir, "late");
+        assertEquals(2, r.port2(), r.all());
+        assertTrue(r.port2Output().contains("FAILED: output resp() observed at")
+                || r.port2Output().contains("FAILED: no output came by"), r.all());
+        assertTrue(r.port2Output().contains("resp between"), "the response was due: " + r.all());
+        assertEquals(3, r.port1(), r.all());
+        assertTrue(r.port1Output().matches("(?s).*INCONCLUSIVE: tester \\S+ of this run ended it FAILED.*"), r.all());
     }
 
     @Test
