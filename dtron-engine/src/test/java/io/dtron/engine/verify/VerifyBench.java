@@ -29,8 +29,8 @@ public final class VerifyBench {
         VerifierOptions options = VerifierOptions.defaults().withOrder(order.equals("dfs") ? SearchOrder.DEPTH_FIRST
                 : SearchOrder.BREADTH_FIRST);
         run(dir.resolve("fischer-6.xml"), options, 1, true);
-        System.out.printf("%-14s %-10s %10s %10s %9s %8s%n", "model", "answer", "explored", "stored", "seconds",
-                "heap MB");
+        System.out.printf("%-14s %-16s %-10s %10s %10s %9s %8s%n", "model", "query", "answer", "explored", "stored",
+                "seconds", "heap MB");
         for (String m : models) {
             run(dir.resolve(m), options, runs, false);
         }
@@ -52,7 +52,9 @@ public final class VerifyBench {
                 VerificationResult result = verifier.verify(q);
                 VerificationResult.Statistics s = result.statistics();
                 if (!quiet) {
-                    System.out.printf("%-14s %-10s %,10d %,10d %9.2f %8d%n", file.getFileName(), result.outcome(),
+                    String text = q.text().length() > 16 ? q.text().substring(0, 13) + "..." : q.text();
+                    System.out.printf("%-14s %-16s %-10s %,10d %,10d %9.2f %8d%n", file.getFileName(), text,
+                            result.outcome(),
                             s.explored(), s.stored(), s.time().toNanos() / 1e9, s.memoryBytes() >> 20);
                 }
             }

@@ -12,7 +12,7 @@ import java.util.List;
 /**
  * The zone graph the checker explores, on the engine's {@link Semantics} (so that checker and tester agree on
  * committed and urgent locations, urgent and broadcast channels, selects and functions): states are closed under
- * delay as the invariants allow, then extrapolated (Extra+_LU for reachability; Extra_M, which keeps region
+ * delay as the invariants allow, then extrapolated (Extra+_LU for reachability; Extra+_M, which stays within the closure under region
  * equivalence, where {@code deadlock} or liveness is asked). The engine's tester clock (its last clock) is
  * left free.
  */
@@ -97,6 +97,9 @@ final class ZoneGraph {
         boolean mayDelay = semantics.mayDelay(s);
         int[] vars = vars(s);
         semantics.moves(s, (move, next) -> {
+            if (dead.isEmpty()) {
+                return;
+            }
             Dbm enabled = enablingZone(s, vars, move, next.zone());
             if (enabled != null) {
                 if (mayDelay) {
@@ -183,10 +186,11 @@ final class ZoneGraph {
         if (abstraction == Abstraction.LU) {
             zone.extrapolateLU(lower, upper);
         } else {
+            // Extra+_M: Extra+_LU with L = U = M, within the closure of the zone under M-region equivalence
             for (int x = 1; x < dimension; x++) {
                 upper[x] = Math.max(upper[x], lower[x]);
             }
-            zone.extrapolateMaxBounds(upper);
+            zone.extrapolateLU(upper, upper);
         }
     }
 }
