@@ -262,20 +262,24 @@ abstract class Property {
     }
 
     static final class And extends Property {
-        private final List<Property> parts;
+        private final Property[] parts;
+        private final boolean dependsOnZone;
+        private final boolean mentionsDeadlock;
 
         And(List<Property> parts) {
-            this.parts = List.copyOf(parts);
+            this.parts = parts.toArray(new Property[0]);
+            this.dependsOnZone = parts.stream().anyMatch(Property::dependsOnZone);
+            this.mentionsDeadlock = parts.stream().anyMatch(Property::mentionsDeadlock);
         }
 
         @Override
         boolean dependsOnZone() {
-            return parts.stream().anyMatch(Property::dependsOnZone);
+            return dependsOnZone;
         }
 
         @Override
         boolean mentionsDeadlock() {
-            return parts.stream().anyMatch(Property::mentionsDeadlock);
+            return mentionsDeadlock;
         }
 
         @Override
@@ -323,20 +327,24 @@ abstract class Property {
     }
 
     static final class Or extends Property {
-        private final List<Property> parts;
+        private final Property[] parts;
+        private final boolean dependsOnZone;
+        private final boolean mentionsDeadlock;
 
         Or(List<Property> parts) {
-            this.parts = List.copyOf(parts);
+            this.parts = parts.toArray(new Property[0]);
+            this.dependsOnZone = parts.stream().anyMatch(Property::dependsOnZone);
+            this.mentionsDeadlock = parts.stream().anyMatch(Property::mentionsDeadlock);
         }
 
         @Override
         boolean dependsOnZone() {
-            return parts.stream().anyMatch(Property::dependsOnZone);
+            return dependsOnZone;
         }
 
         @Override
         boolean mentionsDeadlock() {
-            return parts.stream().anyMatch(Property::mentionsDeadlock);
+            return mentionsDeadlock;
         }
 
         @Override
