@@ -26,7 +26,8 @@ import picocli.CommandLine.UnmatchedArgumentException;
         exitCodeOnInvalidInput = 1, exitCodeOnExecutionException = 1,
         description = {"Online model-based testing and control of timed systems with Uppaal timed automata.",
                 "dtron MODEL [OPTIONS] is short for dtron run MODEL [OPTIONS]."},
-        subcommands = {CheckCommand.class, RunCommand.class, TronCommand.class, CommandLine.HelpCommand.class})
+        subcommands = {CheckCommand.class, RunCommand.class, TronCommand.class, VerifyCommand.class,
+                CommandLine.HelpCommand.class})
 public final class DtronCommand implements Callable<Integer> {
     private static final Logger LOG = LoggerFactory.getLogger(DtronCommand.class);
 
