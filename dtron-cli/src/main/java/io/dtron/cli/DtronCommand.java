@@ -16,7 +16,8 @@ import picocli.CommandLine.Spec;
 import picocli.CommandLine.UnmatchedArgumentException;
 
 /**
- * The {@code dtron} command line: {@code dtron check MODEL...} loads and type-checks models, {@code dtron run
+ * The {@code dtron} command line: {@code dtron check MODEL...} loads and type-checks models, {@code dtron verify
+ * MODEL} checks queries on a model, {@code dtron run
  * MODEL} tests a system under test against a model, in process ({@code --sut CLASS}), through a TRON adapter
  * ({@code --tron-adapter}) or on the bus; {@code dtron tron} takes Uppaal TRON's command line; {@code dtron
  * MODEL ...} is short for {@code dtron run MODEL ...}. Exit codes follow TRON's: 0 passed, 2 failed, 3
