@@ -52,13 +52,26 @@ public final class Semantics {
 
     /** The semantics of {@code network} with zones over {@code ticksPerUnit} ticks per model time unit. */
     public Semantics(Network network, int ticksPerUnit) {
+        this(network, ticksPerUnit, true);
+    }
+
+    /**
+     * The semantics of {@code network} with zones over {@code ticksPerUnit} ticks per model time unit, with or
+     * without the tester's clock of time elapsed since its last observation (a model checker needs none).
+     */
+    public Semantics(Network network, int ticksPerUnit, boolean testerClock) {
         this.network = network;
         this.ticksPerUnit = ticksPerUnit;
-        this.dimension = network.clockCount() + 2;
+        this.dimension = network.clockCount() + (testerClock ? 2 : 1);
         this.processes = network.processes().toArray(new Process[0]);
         checkSupported(network);
         this.evaluator = new Evaluator(network);
-        this.maxBounds = maxBounds(network, ticksPerUnit, dimension);
+        this.maxBounds = testerClock ? maxBounds(network, ticksPerUnit, dimension) : null;
+    }
+
+    /** The dimension of the zones: the model's clocks, the reference clock and the tester's clock if any. */
+    public int dimension() {
+        return dimension;
     }
 
     /** The network. */
@@ -76,7 +89,10 @@ public final class Semantics {
         return ticksPerUnit;
     }
 
-    /** The number of the clock that measures time elapsed since the tester's last observation. */
+    /**
+     * The number of the clock that measures time elapsed since the tester's last observation (the last clock of
+     * a semantics made with the tester's clock).
+     */
     public int elapsedClock() {
         return dimension - 1;
     }

@@ -51,17 +51,15 @@ public final class Checker {
     public Checker(Network network, VerifierOptions options) {
         this.network = network;
         this.options = options;
-        this.semantics = new Semantics(network, 1);
+        this.semantics = new Semantics(network, 1, false);
         this.compiler = new PropertyCompiler(network);
-        int dim = semantics.elapsedClock() + 1;
-        this.clockNames = new String[dim];
+        this.clockNames = new String[semantics.dimension()];
         clockNames[0] = "0";
         for (var c : network.clocks()) {
             for (int i = c.index(); i < c.index() + c.type().clocks(); i++) {
                 clockNames[i] = c.elementName(i);
             }
         }
-        clockNames[dim - 1] = "(tester)";
     }
 
     /**
@@ -104,7 +102,7 @@ public final class Checker {
                 exact &= p.clockAtoms(atoms);
             }
         }
-        ClockLimits limits = exact ? ClockLimits.of(network, semantics.elapsedClock() + 1, atoms) : null;
+        ClockLimits limits = exact ? ClockLimits.of(network, semantics.dimension(), atoms) : null;
         if (limits == null) {
             LOG.warn("{}: clocks are compared with clocks or with variables, so states are not extrapolated: the"
                     + " search may not end (use a time limit)", network.file());
@@ -114,17 +112,20 @@ public final class Checker {
 
     // ================================================================ reachability
 
-    /** A stored state: its parent and the move from it, for traces. */
+    /**
+     * A stored state, with its parent and which of the parent's successors it is (in the order the semantics
+     * gives them), for traces: the move itself is found again when a trace is built.
+     */
     private static final class Node {
         final SymState state;
         final Node parent;
-        final Semantics.Move move;
+        final int successor;
         boolean covered;
 
-        Node(SymState state, Node parent, Semantics.Move move) {
+        Node(SymState state, Node parent, int successor) {
             this.state = state;
             this.parent = parent;
-            this.move = move;
+            this.successor = successor;
         }
     }
 
@@ -194,7 +195,7 @@ public final class Checker {
         Map<Discrete, List<Node>> passed = new HashMap<>();
         ArrayDeque<Node> waiting = new ArrayDeque<>();
         boolean depthFirst = options.order() == SearchOrder.DEPTH_FIRST;
-        Node init = new Node(graph.initial(), null, null);
+        Node init = new Node(graph.initial(), null, -1);
         Found hit = check(init, target, info, visitor);
         if (hit != null) {
             return hit;
@@ -209,7 +210,9 @@ public final class Checker {
                 continue;
             }
             budget.explore();
+            int[] index = {0};
             graph.successors(n.state, (move, next) -> {
+                int successor = index[0]++;
                 if (result[0] != null) {
                     return;
                 }
@@ -229,7 +232,8 @@ public final class Checker {
                         budget.stored--;
                     }
                 }
-                Node child = new Node(next, n, move);
+                // states with the same locations and variables share those arrays
+                Node child = new Node(same.isEmpty() ? next : same.get(0).state.withZone(zone), n, successor);
                 same.add(child);
                 budget.stored++;
                 waiting.add(child);
@@ -408,8 +412,8 @@ public final class Checker {
         List<Semantics.Move> moves = new ArrayList<>();
         for (Node n : path) {
             states.add(n.state);
-            if (n.move != null) {
-                moves.add(n.move);
+            if (n.parent != null) {
+                moves.add(move(graph, n));
             }
         }
         SymState last = states.get(states.size() - 1).copy();
@@ -424,7 +428,7 @@ public final class Checker {
         List<Semantics.Move> moves = new ArrayList<>();
         for (int i = 0; i + 1 < prefix.size(); i++) {
             states.add(prefix.get(i).state);
-            moves.add(prefix.get(i + 1).move);
+            moves.add(move(graph, prefix.get(i + 1)));
         }
         int offset = states.size();
         states.addAll(lasso.states);
@@ -432,6 +436,18 @@ public final class Checker {
         int loop = lasso.loopStart < 0 ? -1 : lasso.loopStart + offset;
         String end = loop < 0 ? lasso.end : lasso.end + loop;
         return build(graph, states, moves, loop, end, null);
+    }
+
+    /** The move from {@code n}'s parent to {@code n}: the parent's successor number {@code n.successor}. */
+    private static Semantics.Move move(ZoneGraph graph, Node n) {
+        Semantics.Move[] found = new Semantics.Move[1];
+        int[] index = {0};
+        graph.successors(n.parent.state, (move, next) -> {
+            if (index[0]++ == n.successor) {
+                found[0] = move;
+            }
+        });
+        return found[0];
     }
 
     private Trace build(ZoneGraph graph, List<SymState> states, List<Semantics.Move> moves, int loopStart,
@@ -451,7 +467,7 @@ public final class Checker {
             Concretizer.Step step = steps.get(i);
             time = time.add(step.delay());
             Map<String, BigDecimal> clocks = new LinkedHashMap<>();
-            for (int c = 1; c < clockNames.length - 1; c++) {
+            for (int c = 1; c < clockNames.length; c++) {
                 clocks.put(clockNames[c], step.clocks()[c]);
             }
             concrete.add(new Trace.ConcreteStep(step.delay(), time, clocks, i < transitions.size()

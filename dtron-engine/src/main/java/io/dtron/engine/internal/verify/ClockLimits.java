@@ -33,8 +33,8 @@ final class ClockLimits {
 
     /**
      * The limits of {@code network}'s guards and invariants plus {@code extra} atoms of the queries ({@code
-     * {clock, constant, isLower}}), over {@code dimension} clocks (the last one, the tester's elapsed clock,
-     * is unbounded: -1); null when extrapolation would be unsound. The limits are local to locations (Behrmann,
+     * {clock, constant, isLower}}), over {@code dimension} clocks (with the reference clock); null when
+     * extrapolation would be unsound. The limits are local to locations (Behrmann,
      * Bouyer, Fleury, Larsen, "Static guard analysis in timed automata verification", 2003): a constant counts
      * in a location when a guard or invariant compares a clock with it on a path from there before the process
      * resets that clock; a state's limit is the largest over its processes' locations.

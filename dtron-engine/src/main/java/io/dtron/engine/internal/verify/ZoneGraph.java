@@ -13,8 +13,7 @@ import java.util.List;
  * The zone graph the checker explores, on the engine's {@link Semantics} (so that checker and tester agree on
  * committed and urgent locations, urgent and broadcast channels, selects and functions): states are closed under
  * delay as the invariants allow, then extrapolated (Extra+_LU for reachability; Extra+_M, which stays within the closure under region
- * equivalence, where {@code deadlock} or liveness is asked). The engine's tester clock (its last clock) is
- * left free.
+ * equivalence, where {@code deadlock} or liveness is asked). The zones have no tester's clock.
  */
 final class ZoneGraph {
     /** How states are extrapolated. */
@@ -36,7 +35,7 @@ final class ZoneGraph {
 
     ZoneGraph(Semantics semantics, ClockLimits limits, boolean regionPreserving) {
         this.semantics = semantics;
-        this.dimension = semantics.elapsedClock() + 1;
+        this.dimension = semantics.dimension();
         this.stateSize = semantics.network().stateSize();
         this.abstraction = limits == null ? Abstraction.NONE : regionPreserving ? Abstraction.M : Abstraction.LU;
         this.limits = limits;
@@ -179,7 +178,6 @@ final class ZoneGraph {
     private void extrapolate(SymState s) {
         Dbm zone = s.zone();
         if (abstraction == Abstraction.NONE) {
-            zone.free(dimension - 1);
             return;
         }
         limits.fill(s, lower, upper);
