@@ -117,7 +117,8 @@ public final class Checker {
      * gives them), for traces: the move itself is found again when a trace is built.
      */
     private static final class Node {
-        final SymState state;
+        /** The state; null once covered by a larger one, as the node is then only a link of traces. */
+        SymState state;
         final Node parent;
         final int successor;
         boolean covered;
@@ -227,6 +228,7 @@ public final class Checker {
                     Node old = same.get(i);
                     if (old.state.zone().isSubsetOf(zone)) {
                         old.covered = true;
+                        old.state = null;
                         same.set(i, same.get(same.size() - 1));
                         same.remove(same.size() - 1);
                         budget.stored--;
@@ -410,12 +412,7 @@ public final class Checker {
                         Function<SymState, Dbm> target) {
         List<SymState> states = new ArrayList<>();
         List<Semantics.Move> moves = new ArrayList<>();
-        for (Node n : path) {
-            states.add(n.state);
-            if (n.parent != null) {
-                moves.add(move(graph, n));
-            }
-        }
+        replay(graph, path, states, moves);
         SymState last = states.get(states.size() - 1).copy();
         last.zone().copyFrom(lastPart);
         states.set(states.size() - 1, last);
@@ -426,9 +423,9 @@ public final class Checker {
     private Trace trace(ZoneGraph graph, List<Node> prefix, Lasso lasso) {
         List<SymState> states = new ArrayList<>();
         List<Semantics.Move> moves = new ArrayList<>();
-        for (int i = 0; i + 1 < prefix.size(); i++) {
-            states.add(prefix.get(i).state);
-            moves.add(move(graph, prefix.get(i + 1)));
+        if (!prefix.isEmpty()) {
+            replay(graph, prefix, states, moves);
+            states.remove(states.size() - 1);
         }
         int offset = states.size();
         states.addAll(lasso.states);
@@ -438,16 +435,28 @@ public final class Checker {
         return build(graph, states, moves, loop, end, null);
     }
 
-    /** The move from {@code n}'s parent to {@code n}: the parent's successor number {@code n.successor}. */
-    private static Semantics.Move move(ZoneGraph graph, Node n) {
-        Semantics.Move[] found = new Semantics.Move[1];
-        int[] index = {0};
-        graph.successors(n.parent.state, (move, next) -> {
-            if (index[0]++ == n.successor) {
-                found[0] = move;
-            }
-        });
-        return found[0];
+    /**
+     * The states and moves of a path of nodes, found again from the initial state by taking each node's successor
+     * number (covered nodes no longer hold their states).
+     */
+    private static void replay(ZoneGraph graph, List<Node> path, List<SymState> states, List<Semantics.Move> moves) {
+        SymState s = graph.initial();
+        states.add(s);
+        for (int i = 1; i < path.size(); i++) {
+            int wanted = path.get(i).successor;
+            Semantics.Move[] move = new Semantics.Move[1];
+            SymState[] next = new SymState[1];
+            int[] index = {0};
+            graph.successors(s, (m, successor) -> {
+                if (index[0]++ == wanted) {
+                    move[0] = m;
+                    next[0] = successor;
+                }
+            });
+            moves.add(move[0]);
+            s = next[0];
+            states.add(s);
+        }
     }
 
     private Trace build(ZoneGraph graph, List<SymState> states, List<Semantics.Move> moves, int loopStart,
