@@ -40,6 +40,8 @@ import org.slf4j.LoggerFactory;
  */
 public final class Checker {
     private static final Logger LOG = LoggerFactory.getLogger("io.dtron.engine.verify");
+    /** The zone of the passed list's keys, which stand for locations and variables only. */
+    private static final Dbm NO_ZONE = Dbm.zero(1);
 
     private final Network network;
     private final VerifierOptions options;
@@ -201,7 +203,7 @@ public final class Checker {
         if (hit != null) {
             return hit;
         }
-        passed.computeIfAbsent(new Discrete(init.state), k -> new ArrayList<>()).add(init);
+        passed.computeIfAbsent(new Discrete(init.state.withZone(NO_ZONE)), k -> new ArrayList<>()).add(init);
         budget.stored = 1;
         waiting.add(init);
         Found[] result = new Found[1];
@@ -217,7 +219,12 @@ public final class Checker {
                 if (result[0] != null) {
                     return;
                 }
-                List<Node> same = passed.computeIfAbsent(new Discrete(next), k -> new ArrayList<>());
+                List<Node> same = passed.get(new Discrete(next));
+                if (same == null) {
+                    // the key keeps the locations and variables (shared with the first node), not the zone
+                    same = new ArrayList<>(2);
+                    passed.put(new Discrete(next.withZone(NO_ZONE)), same);
+                }
                 Dbm zone = next.zone();
                 for (int i = 0; i < same.size(); i++) {
                     if (zone.isSubsetOf(same.get(i).state.zone())) {
