@@ -28,7 +28,7 @@ for m in "$@"; do
     out=$( { /usr/bin/time -f "TIME %e %M" java ${JAVA_OPTS:-} -jar "$jar" verify "$f" --query "$q" --trace none; } 2>&1 || true)
     answer=$(echo "$out" | grep -o "satisfied\|NOT satisfied\|unknown" | head -1 || true)
     explored=$(echo "$out" | sed -n 's/.*(\([0-9,]*\) states explored.*/\1/p' | head -1 || true)
-    stored=$(echo "$out" | sed -n 's/.*explored, \([0-9,]*\) stored.*/\1/p' | head -1 || true)
+    stored=$(echo "$out" | sed -n 's/.*([0-9,]* states explored, \([0-9,]*\) stored.*/\1/p' | head -1 || true)
     wall=$(echo "$out" | sed -n 's/^TIME \([0-9.]*\) .*/\1/p' || true)
     rss=$(echo "$out" | sed -n 's/^TIME [0-9.]* \([0-9]*\)/\1/p')
     printf "%-14s %-10s %12s %10s %10s %7s MB\n" "$m" "$answer" "$explored" "$stored" "$wall" "$((rss / 1024))"
