@@ -47,4 +47,16 @@ public final class Verifier {
     public VerificationResult verify(Query query) {
         return checker.verify(query);
     }
+
+    /**
+     * Checks that the model can serve as a test specification with {@code testInterface}: output observability
+     * (the environment and the implementation interact only through inputs and outputs), input enabledness,
+     * connectedness with the model's environment (every location of the implementation is reachable), time-lock
+     * freedom and (structurally) Zeno freedom; see {@code testability} in the site's verify page.
+     *
+     * @throws UnsupportedModelException on a model error met during the exploration
+     */
+    public TestabilityReport testability(io.dtron.model.TestInterface testInterface) {
+        return checker.testability(testInterface);
+    }
 }
