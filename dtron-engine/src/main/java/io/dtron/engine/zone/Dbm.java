@@ -28,6 +28,9 @@ import java.util.Objects;
   */
 public final class Dbm {
 
+    /** The smallest finite raw bound ({@code < -Bound.MAX_VALUE}); sums below it are clamped to it. */
+    private static final int MIN_RAW = Bound.lt(-Bound.MAX_VALUE);
+
     private final int dim;
     private final int[] m;
 
@@ -551,21 +554,28 @@ public final class Dbm {
 
     /** Floyd-Warshall closure; returns false (and marks the zone empty) on a negative cycle. */
     private boolean close() {
-        for (int k = 0; k < dim; k++) {
-            int rowK = k * dim;
-            for (int i = 0; i < dim; i++) {
-                int rowI = i * dim;
-                int ik = m[rowI + k];
+        int[] d = m;
+        int n = dim;
+        for (int k = 0; k < n; k++) {
+            int rowK = k * n;
+            for (int i = 0; i < n; i++) {
+                int rowI = i * n;
+                int ik = d[rowI + k];
                 if (i == k || ik == INFINITY) {
                     continue;
                 }
-                for (int j = 0; j < dim; j++) {
-                    int b = Bound.add(ik, m[rowK + j]);
-                    if (b < m[rowI + j]) {
-                        m[rowI + j] = b;
+                for (int j = 0; j < n; j++) {
+                    int kj = d[rowK + j];
+                    if (kj == INFINITY) {
+                        continue;
+                    }
+                    // Bound.add inlined: both finite, so only the lower clamp can apply to a tighter sum
+                    long sum = (long) ik + kj - ((ik | kj) & 1);
+                    if (sum < d[rowI + j]) {
+                        d[rowI + j] = sum < MIN_RAW ? MIN_RAW : (int) sum;
                     }
                 }
-                if (m[rowI + i] < LE_ZERO) {
+                if (d[rowI + i] < LE_ZERO) {
                     makeEmpty();
                     return false;
                 }
