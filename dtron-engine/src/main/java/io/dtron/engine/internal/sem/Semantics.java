@@ -32,6 +32,10 @@ public final class Semantics {
     private final int dimension;
     private final int[] maxBounds;
     private final Process[] processes;
+    /** Per process and location, its outgoing edges in the order of the process's edge list. */
+    private final Edge[][][] outgoing;
+    /** Aligned with {@link #outgoing}: each edge's channel when it is fixed, -1 for none, -2 when computed. */
+    private final int[][][] outgoingChannel;
 
     /** A move: the edges that take part, in the order their updates run, and the channel (-1 for none). */
     public record Move(int channel, List<Step> steps) {
@@ -67,6 +71,25 @@ public final class Semantics {
         checkSupported(network);
         this.evaluator = new Evaluator(network);
         this.maxBounds = testerClock ? maxBounds(network, ticksPerUnit, dimension) : null;
+        this.outgoing = new Edge[processes.length][][];
+        this.outgoingChannel = new int[processes.length][][];
+        for (Process p : processes) {
+            int locations = p.locations().size();
+            outgoing[p.index()] = new Edge[locations][];
+            outgoingChannel[p.index()] = new int[locations][];
+            for (int l = 0; l < locations; l++) {
+                int source = l;
+                Edge[] from = p.edges().stream().filter(e -> e.source() == source).toArray(Edge[]::new);
+                int[] channels = new int[from.length];
+                for (int i = 0; i < from.length; i++) {
+                    Edge e = from[i];
+                    channels[i] = e.sync() == null ? -1 : e.sync().channel() instanceof Expression.ChannelRef ref
+                            && ref.type() instanceof Type.Channel ? ref.channel().index() : -2;
+                }
+                outgoing[p.index()][l] = from;
+                outgoingChannel[p.index()][l] = channels;
+            }
+        }
     }
 
     /** The dimension of the zones: the model's clocks, the reference clock and the tester's clock if any. */
@@ -153,6 +176,9 @@ public final class Semantics {
     }
 
     // ================================================================ discrete moves
+
+    /** The frame of an edge without selects (never changed: the evaluator copies frames). */
+    private static final int[] NO_FRAME = new int[0];
 
     /** A process's edge that may take part in a move, its data guard true. */
     private record Candidate(int process, Edge edge, int[] frame, int channel) {
@@ -278,18 +304,27 @@ public final class Semantics {
             if (l < 0) {
                 continue;
             }
-            for (Edge e : p.edges()) {
-                if (e.source() != l) {
+            Edge[] edges = outgoing[p.index()][l];
+            int[] channels = outgoingChannel[p.index()][l];
+            for (int i = 0; i < edges.length; i++) {
+                Edge e = edges[i];
+                List<Edge.Select> selects = e.selects();
+                int fixed = channels[i];
+                if (selects.isEmpty()) {
+                    int[] frame = e.frameSize() == 0 ? NO_FRAME : new int[e.frameSize()];
+                    if (e.guard() == null || evaluator.dataHolds(e.guard(), s.vars, frame)) {
+                        int channel = fixed != -2 ? fixed : evaluator.channel(e.sync().channel(), s.vars, frame);
+                        out.add(new Candidate(p.index(), e, frame, channel));
+                    }
                     continue;
                 }
                 int[] frame = new int[e.frameSize()];
-                List<Edge.Select> selects = e.selects();
                 for (Edge.Select sel : selects) {
                     frame[sel.slot()] = sel.lower();
                 }
                 while (true) {
                     if (e.guard() == null || evaluator.dataHolds(e.guard(), s.vars, frame)) {
-                        int channel = e.sync() == null ? -1 : evaluator.channel(e.sync().channel(), s.vars, frame);
+                        int channel = fixed != -2 ? fixed : evaluator.channel(e.sync().channel(), s.vars, frame);
                         out.add(new Candidate(p.index(), e, frame.clone(), channel));
                     }
                     int k = selects.size() - 1;
