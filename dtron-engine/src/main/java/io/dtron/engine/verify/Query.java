@@ -20,28 +20,17 @@ public record Query(String text, Kind kind, String property, String target, Stri
     /** The kinds of query. */
     public enum Kind {
         /** {@code E<> p}: some reachable state satisfies p. */
-        EXISTS_EVENTUALLY("E<>"),
+        EXISTS_EVENTUALLY,
         /** {@code A[] p}: every reachable state satisfies p. */
-        ALWAYS_GLOBALLY("A[]"),
+        ALWAYS_GLOBALLY,
         /** {@code E[] p}: p holds on every state of some maximal path. */
-        EXISTS_GLOBALLY("E[]"),
+        EXISTS_GLOBALLY,
         /** {@code A<> p}: every maximal path reaches a state satisfying p. */
-        ALWAYS_EVENTUALLY("A<>"),
+        ALWAYS_EVENTUALLY,
         /** {@code p --> q}: every reachable p-state is followed by a q-state on every maximal path. */
-        LEADS_TO("-->"),
+        LEADS_TO,
         /** A query the checker does not check; see {@link Query#reason()}. */
-        UNSUPPORTED("");
-
-        private final String symbol;
-
-        Kind(String symbol) {
-            this.symbol = symbol;
-        }
-
-        /** The quantifier as written ({@code E<>}); empty for unsupported queries. */
-        public String symbol() {
-            return symbol;
-        }
+        UNSUPPORTED
     }
 
     public Query {

@@ -2,7 +2,6 @@ package io.dtron.engine.verify;
 
 import java.time.Duration;
 import java.util.Objects;
-import java.util.Optional;
 
 /**
  * The answer to one query.
@@ -45,10 +44,5 @@ public record VerificationResult(Query query, Outcome outcome, String reason, St
         Objects.requireNonNull(query, "query");
         Objects.requireNonNull(outcome, "outcome");
         Objects.requireNonNull(statistics, "statistics");
-    }
-
-    /** The trace, when there is one. */
-    public Optional<Trace> diagnosticTrace() {
-        return Optional.ofNullable(trace);
     }
 }

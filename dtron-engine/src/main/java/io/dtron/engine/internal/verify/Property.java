@@ -44,16 +44,6 @@ abstract class Property {
     /** Appends to {@code out} zones whose union is the part of {@code zone} (in state {@code s}) where it holds. */
     abstract void restrict(SymState s, Dbm zone, StateInfo info, List<Dbm> out);
 
-    /** Whether some valuation of {@code s}'s zone satisfies the property. */
-    final boolean holdsSomewhere(SymState s, StateInfo info) {
-        if (!dependsOnZone()) {
-            return holds(s);
-        }
-        List<Dbm> out = new ArrayList<>(2);
-        restrict(s, s.zone(), info, out);
-        return !out.isEmpty();
-    }
-
     static final class Constant extends Property {
         private final boolean value;
 

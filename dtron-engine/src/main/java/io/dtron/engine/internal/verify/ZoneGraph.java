@@ -47,10 +47,6 @@ final class ZoneGraph {
         return semantics;
     }
 
-    Abstraction abstraction() {
-        return abstraction;
-    }
-
     int dimension() {
         return dimension;
     }
