@@ -92,6 +92,13 @@ class VerifyCommandTest {
         CommandRun r = CommandRun.of("verify", grows.toString(), "--query", "A[] i < 30000", "--time-limit", "0");
         assertEquals(3, r.exit(), r.out() + r.err());
         assertTrue(r.out().contains("unknown: the time limit was reached"), r.out());
+        // the JVM running the tests holds more than 1 MB of heap, so the first check stops the search
+        CommandRun memory = CommandRun.of("verify", grows.toString(), "--query", "A[] i < 30000", "--memory-limit",
+                "1");
+        assertEquals(3, memory.exit(), memory.out() + memory.err());
+        assertTrue(memory.out().contains("unknown: the memory limit was reached after 1024 explored states"),
+                memory.out());
+        assertTrue(memory.out().contains("0 of 1 checked hold, 1 unknown"), memory.out());
     }
 
     @Test
