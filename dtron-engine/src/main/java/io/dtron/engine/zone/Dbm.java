@@ -182,6 +182,77 @@ public final class Dbm {
     }
 
     /**
+      * Returns the canonical matrix as {@code short}s, for storing many zones compactly: each raw bound as is,
+      * {@link Bound#INFINITY} as {@link Short#MAX_VALUE}; null when a finite raw bound does not fit in a short
+      * (constants beyond about ±16,000). The order of raw bounds is kept, so inclusion can be decided on the
+      * packed form ({@link #isSubsetOf(short[])}, {@link #includes(short[])}).
+      */
+    public short[] pack() {
+        short[] out = new short[m.length];
+        for (int k = 0; k < m.length; k++) {
+            int b = m[k];
+            if (b == INFINITY) {
+                out[k] = Short.MAX_VALUE;
+            } else if (b >= Short.MAX_VALUE || b < Short.MIN_VALUE) {
+                return null;
+            } else {
+                out[k] = (short) b;
+            }
+        }
+        return out;
+    }
+
+    /**
+      * Returns the zone that {@link #pack()} packed.
+      *
+      * @throws IllegalArgumentException if {@code packed.length != dimension * dimension}
+      */
+    public static Dbm unpack(int dimension, short[] packed) {
+        Dbm z = new Dbm(dimension);
+        if (packed.length != z.m.length) {
+            throw new IllegalArgumentException("need " + z.m.length + " bounds, got " + packed.length);
+        }
+        for (int k = 0; k < packed.length; k++) {
+            z.m[k] = packed[k] == Short.MAX_VALUE ? INFINITY : packed[k];
+        }
+        return z;
+    }
+
+    /**
+      * Returns whether every valuation of this zone is in the packed zone {@code other} (see {@link #pack()}),
+      * of the same dimension and not empty.
+      */
+    public boolean isSubsetOf(short[] other) {
+        if (isEmpty()) {
+            return true;
+        }
+        for (int k = 0; k < m.length; k++) {
+            int o = other[k] == Short.MAX_VALUE ? INFINITY : other[k];
+            if (m[k] > o) {
+                return false;
+            }
+        }
+        return true;
+    }
+
+    /**
+      * Returns whether every valuation of the packed zone {@code other} (see {@link #pack()}), of the same
+      * dimension and not empty, is in this zone.
+      */
+    public boolean includes(short[] other) {
+        if (isEmpty()) {
+            return false;
+        }
+        for (int k = 0; k < m.length; k++) {
+            int o = other[k] == Short.MAX_VALUE ? INFINITY : other[k];
+            if (o > m[k]) {
+                return false;
+            }
+        }
+        return true;
+    }
+
+    /**
       * Returns how this zone relates to {@code other} as sets of valuations.
       *
       * @throws IllegalArgumentException if the dimensions differ

@@ -30,6 +30,7 @@ import java.util.LinkedHashMap;
 import java.util.List;
 import java.util.Map;
 import java.util.Set;
+import java.util.function.BiFunction;
 import java.util.function.Function;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
@@ -123,16 +124,42 @@ public final class Checker {
      * gives them), for traces: the move itself is found again when a trace is built.
      */
     private static final class Node {
-        /** The state; null once covered by a larger one, as the node is then only a link of traces. */
-        SymState state;
+        /** The locations and variables (shared by the nodes of the same discrete state; its zone is unused). */
+        final SymState discrete;
+        /** The zone, packed when its bounds fit in shorts; both null once covered by a larger zone. */
+        short[] packed;
+        Dbm zone;
         final Node parent;
         final int successor;
         boolean covered;
 
-        Node(SymState state, Node parent, int successor) {
-            this.state = state;
+        Node(SymState discrete, Dbm zone, Node parent, int successor) {
+            this.discrete = discrete;
+            this.packed = zone.pack();
+            this.zone = packed == null ? zone : null;
             this.parent = parent;
             this.successor = successor;
+        }
+
+        /** The state (a new object on each call when the zone is packed). */
+        SymState state(int dimension) {
+            return discrete.withZone(zone != null ? zone : Dbm.unpack(dimension, packed));
+        }
+
+        /** Whether {@code z} is included in this node's zone. */
+        boolean includes(Dbm z) {
+            return zone != null ? z.isSubsetOf(zone) : z.isSubsetOf(packed);
+        }
+
+        /** Whether this node's zone is included in {@code z}. */
+        boolean isIncludedIn(Dbm z) {
+            return zone != null ? zone.isSubsetOf(z) : z.includes(packed);
+        }
+
+        void cover() {
+            covered = true;
+            packed = null;
+            zone = null;
         }
     }
 
@@ -198,16 +225,18 @@ public final class Checker {
      * with a {@code visitor}, every stored state visited (the visitor may stop the search by returning a result).
      */
     private Found search(ZoneGraph graph, Property target, Property.StateInfo info, Budget budget,
-                         Function<Node, Found> visitor) {
+                         BiFunction<Node, SymState, Found> visitor) {
         Map<Discrete, List<Node>> passed = new HashMap<>();
         ArrayDeque<Node> waiting = new ArrayDeque<>();
         boolean depthFirst = options.order() == SearchOrder.DEPTH_FIRST;
-        Node init = new Node(graph.initial(), null, -1);
-        Found hit = check(init, target, info, visitor);
+        int dimension = graph.dimension();
+        SymState initial = graph.initial();
+        Node init = new Node(initial.withZone(NO_ZONE), initial.zone(), null, -1);
+        Found hit = check(init, initial, target, info, visitor);
         if (hit != null) {
             return hit;
         }
-        passed.computeIfAbsent(new Discrete(init.state.withZone(NO_ZONE)), k -> new ArrayList<>()).add(init);
+        passed.computeIfAbsent(new Discrete(init.discrete), k -> new ArrayList<>()).add(init);
         budget.stored = 1;
         waiting.add(init);
         Found[] result = new Found[1];
@@ -218,53 +247,57 @@ public final class Checker {
             }
             budget.explore();
             int[] index = {0};
-            graph.successors(n.state, (move, next) -> {
+            graph.successors(n.state(dimension), (move, next) -> {
                 int successor = index[0]++;
                 if (result[0] != null) {
                     return;
                 }
                 List<Node> same = passed.get(new Discrete(next));
+                SymState discrete;
                 if (same == null) {
-                    // the key keeps the locations and variables (shared with the first node), not the zone
+                    // the key keeps the locations and variables (shared with the nodes), not the zone
+                    discrete = next.withZone(NO_ZONE);
                     same = new ArrayList<>(2);
-                    passed.put(new Discrete(next.withZone(NO_ZONE)), same);
+                    passed.put(new Discrete(discrete), same);
+                } else {
+                    discrete = same.get(0).discrete;
                 }
                 Dbm zone = next.zone();
                 for (int i = 0; i < same.size(); i++) {
-                    if (zone.isSubsetOf(same.get(i).state.zone())) {
+                    if (same.get(i).includes(zone)) {
                         return;
                     }
                 }
                 for (int i = same.size() - 1; i >= 0; i--) {
                     Node old = same.get(i);
-                    if (old.state.zone().isSubsetOf(zone)) {
-                        old.covered = true;
-                        old.state = null;
+                    if (old.isIncludedIn(zone)) {
+                        old.cover();
                         same.set(i, same.get(same.size() - 1));
                         same.remove(same.size() - 1);
                         budget.stored--;
                     }
                 }
-                // states with the same locations and variables share those arrays
-                Node child = new Node(same.isEmpty() ? next : same.get(0).state.withZone(zone), n, successor);
+                Node child = new Node(discrete, zone, n, successor);
                 same.add(child);
                 budget.stored++;
                 waiting.add(child);
-                result[0] = check(child, target, info, visitor);
+                result[0] = check(child, next, target, info, visitor);
             });
         }
         return result[0];
     }
 
-    private static Found check(Node n, Property target, Property.StateInfo info, Function<Node, Found> visitor) {
+    /** Checks the state {@code s} of node {@code n} when it is stored. */
+    private static Found check(Node n, SymState s, Property target, Property.StateInfo info,
+                               BiFunction<Node, SymState, Found> visitor) {
         if (visitor != null) {
-            return visitor.apply(n);
+            return visitor.apply(n, s);
         }
         if (!target.dependsOnZone()) {
-            return target.holds(n.state) ? new Found(n, n.state.zone()) : null;
+            return target.holds(s) ? new Found(n, s.zone()) : null;
         }
         List<Dbm> parts = new ArrayList<>(2);
-        target.restrict(n.state, n.state.zone(), info, parts);
+        target.restrict(s, s.zone(), info, parts);
         return parts.isEmpty() ? null : new Found(n, parts.get(0));
     }
 
@@ -303,12 +336,12 @@ public final class Checker {
         }
         // p --> q: from every reachable p-state that is not a q-state, no maximal path avoiding q
         Lasso[] witness = new Lasso[1];
-        Found found = search(graph, null, graph::deadlocked, budget, n -> {
-            if (p.holds(n.state) && inside.holds(n.state)) {
-                Lasso lasso = maximalPath(graph, n.state, inside, done, budget);
+        Found found = search(graph, null, graph::deadlocked, budget, (n, s) -> {
+            if (p.holds(s) && inside.holds(s)) {
+                Lasso lasso = maximalPath(graph, s, inside, done, budget);
                 if (lasso != null) {
                     witness[0] = lasso;
-                    return new Found(n, n.state.zone());
+                    return new Found(n, s.zone());
                 }
             }
             return null;
@@ -454,8 +487,7 @@ public final class Checker {
             reached[p.index()] = new boolean[p.locations().size()];
         }
         try {
-            search(graph, null, graph::deadlocked, budget, n -> {
-                SymState s = n.state;
+            search(graph, null, graph::deadlocked, budget, (n, s) -> {
                 for (Process p : network.processes()) {
                     if (s.location(p.index()) >= 0) {
                         reached[p.index()][s.location(p.index())] = true;
