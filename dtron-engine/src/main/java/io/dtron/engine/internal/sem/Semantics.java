@@ -22,8 +22,8 @@ import java.util.List;
  * edge takes part, in the order of the system line), committed locations (a move must involve a process in a
  * committed location when there is one), urgent locations and urgent channels (no delay), select bindings,
  * guards on data and clocks, and location invariants bounding delays. Zones are over integer ticks, a fixed
- * number per model time unit; the last clock of every zone is the tester's clock of time elapsed since its
- * last observation.
+ * number per model time unit; unless made without it, the last clock of every zone is the tester's clock of time
+ * elapsed since its last observation.
  */
 public final class Semantics {
     private final Network network;
