@@ -1,5 +1,10 @@
 package io.dtron.cli;
 
+import io.dtron.engine.UnsupportedModelException;
+import io.dtron.engine.verify.TestabilityReport;
+import io.dtron.engine.verify.VerificationResult;
+import io.dtron.engine.verify.Verifier;
+import io.dtron.engine.verify.VerifierOptions;
 import io.dtron.model.ModelException;
 import io.dtron.model.ModelLoader;
 import io.dtron.model.Network;
@@ -18,12 +23,16 @@ import picocli.CommandLine.Option;
 import picocli.CommandLine.Parameters;
 import picocli.CommandLine.Spec;
 
-/** {@code dtron check MODEL...}: loads and type-checks models and prints a summary of each, or its errors. */
+/**
+ * {@code dtron check MODEL...}: loads and type-checks models and prints a summary of each, or its errors; with
+ * {@code --testability}, also whether each can serve as a test specification.
+ */
 @Command(name = "check", mixinStandardHelpOptions = true, exitCodeOnInvalidInput = 1, exitCodeOnExecutionException = 1,
         description = {"Load and type-check Uppaal models (.xml, .xta, .ta).",
                 "Prints a summary of each model (templates, processes, clocks, channels, inputs and outputs with"
                         + " their attached variables), or every error with its file, line and column.",
-                "Exit code 0 when every model loads, 1 otherwise."})
+                "Exit code 0 when every model loads (and, with --testability, passes), 2 when a testability check"
+                        + " fails, 1 for an error."})
 final class CheckCommand implements Callable<Integer> {
     private static final int MAX_NAMES = 8;
 
@@ -41,6 +50,11 @@ final class CheckCommand implements Callable<Integer> {
     @Option(names = {"-q", "--quiet"}, description = "Print errors only.")
     private boolean quiet;
 
+    @Option(names = "--testability", description = "Also check that the model can serve as a test specification:"
+            + " output observability, input enabledness, connectedness, time-lock and Zeno freedom (exit code 2 when"
+            + " a check fails).")
+    private boolean testability;
+
     @Override
     public Integer call() {
         PrintWriter out = spec.commandLine().getOut();
@@ -50,6 +64,7 @@ final class CheckCommand implements Callable<Integer> {
             return 1;
         }
         int failed = 0;
+        int untestable = 0;
         for (Path model : models) {
             try {
                 Network network = ModelLoader.load(model);
@@ -63,6 +78,12 @@ final class CheckCommand implements Callable<Integer> {
                         out.println("  " + d.format());
                     }
                 }
+                if (testability && !testability(out, network, testInterface)) {
+                    untestable++;
+                }
+            } catch (UnsupportedModelException e) {
+                failed++;
+                err.println("dtron check: " + model + ": " + e.getMessage());
             } catch (ModelException e) {
                 failed++;
                 printErrors(model, e, err);
@@ -73,7 +94,29 @@ final class CheckCommand implements Callable<Integer> {
         }
         out.flush();
         err.flush();
-        return failed == 0 ? 0 : 1;
+        return failed > 0 ? 1 : untestable > 0 ? 2 : 0;
+    }
+
+    /** Runs the testability checks and prints each with its problems; true when all pass. */
+    private static boolean testability(PrintWriter out, Network network, TestInterface testInterface) {
+        TestabilityReport report = new Verifier(network, VerifierOptions.defaults()).testability(testInterface);
+        VerificationResult.Statistics s = report.statistics();
+        out.printf("  testability (%,d states explored, %.2f s):%n", s.explored(), s.time().toNanos() / 1e9);
+        for (TestabilityReport.Check c : report.checks()) {
+            out.printf("    %-22s %s%n", c.name(), c.passed() ? "ok" : c.problems().size() + " problem"
+                    + (c.problems().size() == 1 ? "" : "s"));
+            if (c.note() != null && (!c.passed() || c.note().startsWith("not checked") || c.note().startsWith(
+                    "unknown"))) {
+                out.println("      (" + c.note() + ")");
+            }
+            for (TestabilityReport.Problem p : c.problems()) {
+                out.println("      - " + p.message());
+                if (p.trace() != null) {
+                    out.print(p.trace().toText().replaceAll("(?m)^", "      "));
+                }
+            }
+        }
+        return report.passed();
     }
 
     /** Prints a model's errors: the count, then each with its place. The other commands print them the same way. */

@@ -15,7 +15,8 @@ import picocli.CommandLine.Spec;
 import picocli.CommandLine.UnmatchedArgumentException;
 
 /**
- * The {@code dtron} command line: {@code dtron check MODEL...} loads and type-checks models, {@code dtron run
+ * The {@code dtron} command line: {@code dtron check MODEL...} loads and type-checks models, {@code dtron verify
+ * MODEL} checks queries on a model, {@code dtron run
  * MODEL} tests a system under test against a model, in process ({@code --sut CLASS}), through a TRON adapter
  * ({@code --tron-adapter}) or on the bus; {@code dtron tron} takes Uppaal TRON's command line; {@code dtron
  * MODEL ...} is short for {@code dtron run MODEL ...}; {@code dtron delta} writes the Delta-extended model. Exit
@@ -25,7 +26,7 @@ import picocli.CommandLine.UnmatchedArgumentException;
         exitCodeOnInvalidInput = 1, exitCodeOnExecutionException = 1,
         description = {"Online model-based testing and control of timed systems with Uppaal timed automata.",
                 "dtron MODEL [OPTIONS] is short for dtron run MODEL [OPTIONS]."},
-        subcommands = {CheckCommand.class, RunCommand.class, TronCommand.class, DeltaCommand.class,
+        subcommands = {CheckCommand.class, RunCommand.class, TronCommand.class, VerifyCommand.class, DeltaCommand.class,
                 CommandLine.HelpCommand.class})
 public final class DtronCommand implements Callable<Integer> {
     @Spec

@@ -28,6 +28,9 @@ import java.util.Objects;
   */
 public final class Dbm {
 
+    /** The smallest finite raw bound ({@code < -Bound.MAX_VALUE}); sums below it are clamped to it. */
+    private static final int MIN_RAW = Bound.lt(-Bound.MAX_VALUE);
+
     private final int dim;
     private final int[] m;
 
@@ -172,6 +175,77 @@ public final class Dbm {
         int[] o = other.m;
         for (int k = 0; k < m.length; k++) {
             if (m[k] > o[k]) {
+                return false;
+            }
+        }
+        return true;
+    }
+
+    /**
+      * Returns the canonical matrix as {@code short}s, for storing many zones compactly: each raw bound as is,
+      * {@link Bound#INFINITY} as {@link Short#MAX_VALUE}; null when a finite raw bound does not fit in a short
+      * (constants beyond about ±16,000). The order of raw bounds is kept, so inclusion can be decided on the
+      * packed form ({@link #isSubsetOf(short[])}, {@link #includes(short[])}).
+      */
+    public short[] pack() {
+        short[] out = new short[m.length];
+        for (int k = 0; k < m.length; k++) {
+            int b = m[k];
+            if (b == INFINITY) {
+                out[k] = Short.MAX_VALUE;
+            } else if (b >= Short.MAX_VALUE || b < Short.MIN_VALUE) {
+                return null;
+            } else {
+                out[k] = (short) b;
+            }
+        }
+        return out;
+    }
+
+    /**
+      * Returns the zone that {@link #pack()} packed.
+      *
+      * @throws IllegalArgumentException if {@code packed.length != dimension * dimension}
+      */
+    public static Dbm unpack(int dimension, short[] packed) {
+        Dbm z = new Dbm(dimension);
+        if (packed.length != z.m.length) {
+            throw new IllegalArgumentException("need " + z.m.length + " bounds, got " + packed.length);
+        }
+        for (int k = 0; k < packed.length; k++) {
+            z.m[k] = packed[k] == Short.MAX_VALUE ? INFINITY : packed[k];
+        }
+        return z;
+    }
+
+    /**
+      * Returns whether every valuation of this zone is in the packed zone {@code other} (see {@link #pack()}),
+      * of the same dimension and not empty.
+      */
+    public boolean isSubsetOf(short[] other) {
+        if (isEmpty()) {
+            return true;
+        }
+        for (int k = 0; k < m.length; k++) {
+            int o = other[k] == Short.MAX_VALUE ? INFINITY : other[k];
+            if (m[k] > o) {
+                return false;
+            }
+        }
+        return true;
+    }
+
+    /**
+      * Returns whether every valuation of the packed zone {@code other} (see {@link #pack()}), of the same
+      * dimension and not empty, is in this zone.
+      */
+    public boolean includes(short[] other) {
+        if (isEmpty()) {
+            return false;
+        }
+        for (int k = 0; k < m.length; k++) {
+            int o = other[k] == Short.MAX_VALUE ? INFINITY : other[k];
+            if (o > m[k]) {
                 return false;
             }
         }
@@ -551,21 +625,28 @@ public final class Dbm {
 
     /** Floyd-Warshall closure; returns false (and marks the zone empty) on a negative cycle. */
     private boolean close() {
-        for (int k = 0; k < dim; k++) {
-            int rowK = k * dim;
-            for (int i = 0; i < dim; i++) {
-                int rowI = i * dim;
-                int ik = m[rowI + k];
+        int[] d = m;
+        int n = dim;
+        for (int k = 0; k < n; k++) {
+            int rowK = k * n;
+            for (int i = 0; i < n; i++) {
+                int rowI = i * n;
+                int ik = d[rowI + k];
                 if (i == k || ik == INFINITY) {
                     continue;
                 }
-                for (int j = 0; j < dim; j++) {
-                    int b = Bound.add(ik, m[rowK + j]);
-                    if (b < m[rowI + j]) {
-                        m[rowI + j] = b;
+                for (int j = 0; j < n; j++) {
+                    int kj = d[rowK + j];
+                    if (kj == INFINITY) {
+                        continue;
+                    }
+                    // Bound.add inlined: both finite, so only the lower clamp can apply to a tighter sum
+                    long sum = (long) ik + kj - ((ik | kj) & 1);
+                    if (sum < d[rowI + j]) {
+                        d[rowI + j] = sum < MIN_RAW ? MIN_RAW : (int) sum;
                     }
                 }
-                if (m[rowI + i] < LE_ZERO) {
+                if (d[rowI + i] < LE_ZERO) {
                     makeEmpty();
                     return false;
                 }

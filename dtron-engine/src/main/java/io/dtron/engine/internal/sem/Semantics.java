@@ -22,8 +22,8 @@ import java.util.List;
  * edge takes part, in the order of the system line), committed locations (a move must involve a process in a
  * committed location when there is one), urgent locations and urgent channels (no delay), select bindings,
  * guards on data and clocks, and location invariants bounding delays. Zones are over integer ticks, a fixed
- * number per model time unit; the last clock of every zone is the tester's clock of time elapsed since its
- * last observation.
+ * number per model time unit; unless made without it, the last clock of every zone is the tester's clock of time
+ * elapsed since its last observation.
  */
 public final class Semantics {
     private final Network network;
@@ -32,6 +32,10 @@ public final class Semantics {
     private final int dimension;
     private final int[] maxBounds;
     private final Process[] processes;
+    /** Per process and location, its outgoing edges in the order of the process's edge list. */
+    private final Edge[][][] outgoing;
+    /** Aligned with {@link #outgoing}: each edge's channel when it is fixed, -1 for none, -2 when computed. */
+    private final int[][][] outgoingChannel;
 
     /** A move: the edges that take part, in the order their updates run, and the channel (-1 for none). */
     public record Move(int channel, List<Step> steps) {
@@ -52,13 +56,45 @@ public final class Semantics {
 
     /** The semantics of {@code network} with zones over {@code ticksPerUnit} ticks per model time unit. */
     public Semantics(Network network, int ticksPerUnit) {
+        this(network, ticksPerUnit, true);
+    }
+
+    /**
+     * The semantics of {@code network} with zones over {@code ticksPerUnit} ticks per model time unit, with or
+     * without the tester's clock of time elapsed since its last observation (a model checker needs none).
+     */
+    public Semantics(Network network, int ticksPerUnit, boolean testerClock) {
         this.network = network;
         this.ticksPerUnit = ticksPerUnit;
-        this.dimension = network.clockCount() + 2;
+        this.dimension = network.clockCount() + (testerClock ? 2 : 1);
         this.processes = network.processes().toArray(new Process[0]);
         checkSupported(network);
         this.evaluator = new Evaluator(network);
-        this.maxBounds = maxBounds(network, ticksPerUnit, dimension);
+        this.maxBounds = testerClock ? maxBounds(network, ticksPerUnit, dimension) : null;
+        this.outgoing = new Edge[processes.length][][];
+        this.outgoingChannel = new int[processes.length][][];
+        for (Process p : processes) {
+            int locations = p.locations().size();
+            outgoing[p.index()] = new Edge[locations][];
+            outgoingChannel[p.index()] = new int[locations][];
+            for (int l = 0; l < locations; l++) {
+                int source = l;
+                Edge[] from = p.edges().stream().filter(e -> e.source() == source).toArray(Edge[]::new);
+                int[] channels = new int[from.length];
+                for (int i = 0; i < from.length; i++) {
+                    Edge e = from[i];
+                    channels[i] = e.sync() == null ? -1 : e.sync().channel() instanceof Expression.ChannelRef ref
+                            && ref.type() instanceof Type.Channel ? ref.channel().index() : -2;
+                }
+                outgoing[p.index()][l] = from;
+                outgoingChannel[p.index()][l] = channels;
+            }
+        }
+    }
+
+    /** The dimension of the zones: the model's clocks, the reference clock and the tester's clock if any. */
+    public int dimension() {
+        return dimension;
     }
 
     /** The network. */
@@ -76,7 +112,10 @@ public final class Semantics {
         return ticksPerUnit;
     }
 
-    /** The number of the clock that measures time elapsed since the tester's last observation. */
+    /**
+     * The number of the clock that measures time elapsed since the tester's last observation (the last clock of
+     * a semantics made with the tester's clock).
+     */
     public int elapsedClock() {
         return dimension - 1;
     }
@@ -137,6 +176,9 @@ public final class Semantics {
     }
 
     // ================================================================ discrete moves
+
+    /** The frame of an edge without selects (never changed: the evaluator copies frames). */
+    private static final int[] NO_FRAME = new int[0];
 
     /** A process's edge that may take part in a move, its data guard true. */
     private record Candidate(int process, Edge edge, int[] frame, int channel) {
@@ -262,18 +304,27 @@ public final class Semantics {
             if (l < 0) {
                 continue;
             }
-            for (Edge e : p.edges()) {
-                if (e.source() != l) {
+            Edge[] edges = outgoing[p.index()][l];
+            int[] channels = outgoingChannel[p.index()][l];
+            for (int i = 0; i < edges.length; i++) {
+                Edge e = edges[i];
+                List<Edge.Select> selects = e.selects();
+                int fixed = channels[i];
+                if (selects.isEmpty()) {
+                    int[] frame = e.frameSize() == 0 ? NO_FRAME : new int[e.frameSize()];
+                    if (e.guard() == null || evaluator.dataHolds(e.guard(), s.vars, frame)) {
+                        int channel = fixed != -2 ? fixed : evaluator.channel(e.sync().channel(), s.vars, frame);
+                        out.add(new Candidate(p.index(), e, frame, channel));
+                    }
                     continue;
                 }
                 int[] frame = new int[e.frameSize()];
-                List<Edge.Select> selects = e.selects();
                 for (Edge.Select sel : selects) {
                     frame[sel.slot()] = sel.lower();
                 }
                 while (true) {
                     if (e.guard() == null || evaluator.dataHolds(e.guard(), s.vars, frame)) {
-                        int channel = e.sync() == null ? -1 : evaluator.channel(e.sync().channel(), s.vars, frame);
+                        int channel = fixed != -2 ? fixed : evaluator.channel(e.sync().channel(), s.vars, frame);
                         out.add(new Candidate(p.index(), e, frame.clone(), channel));
                     }
                     int k = selects.size() - 1;

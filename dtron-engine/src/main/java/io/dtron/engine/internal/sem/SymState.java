@@ -40,6 +40,11 @@ public final class SymState {
         return new SymState(locations, vars, zone.copy());
     }
 
+    /** A state with the same discrete part (shared, not copied) and {@code zone}. */
+    public SymState withZone(Dbm zone) {
+        return new SymState(locations, vars, zone);
+    }
+
     /** Whether the discrete parts (locations and variables) are equal. */
     public boolean sameDiscrete(SymState o) {
         return discreteHash == o.discreteHash && Arrays.equals(locations, o.locations) && Arrays.equals(vars, o.vars);

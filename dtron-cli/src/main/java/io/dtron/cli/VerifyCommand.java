@@ -1,0 +1,174 @@
+package io.dtron.cli;
+
+import io.dtron.engine.UnsupportedModelException;
+import io.dtron.engine.verify.Query;
+import io.dtron.engine.verify.QueryException;
+import io.dtron.engine.verify.SearchOrder;
+import io.dtron.engine.verify.VerificationResult;
+import io.dtron.engine.verify.VerificationResult.Outcome;
+import io.dtron.engine.verify.Verifier;
+import io.dtron.engine.verify.VerifierOptions;
+import io.dtron.model.ModelException;
+import io.dtron.model.ModelLoader;
+import io.dtron.model.Network;
+import java.io.IOException;
+import java.io.PrintWriter;
+import java.nio.charset.StandardCharsets;
+import java.nio.file.Files;
+import java.nio.file.NoSuchFileException;
+import java.nio.file.Path;
+import java.time.Duration;
+import java.util.ArrayList;
+import java.util.List;
+import java.util.Locale;
+import java.util.concurrent.Callable;
+import picocli.CommandLine.Command;
+import picocli.CommandLine.Model.CommandSpec;
+import picocli.CommandLine.Option;
+import picocli.CommandLine.Parameters;
+import picocli.CommandLine.Spec;
+
+/** {@code dtron verify MODEL}: checks the model's queries, or queries given, by symbolic model checking. */
+@Command(name = "verify", mixinStandardHelpOptions = true, exitCodeOnInvalidInput = 1, exitCodeOnExecutionException = 1,
+        description = {"Check queries on a model by symbolic model checking: E<> p, A[] p, E[] p, A<> p, p --> q.",
+                "The queries come from the model's <queries>, from --queries FILE.q, or from --query; queries that"
+                        + " are not symbolic (Pr[...], simulate, sup:, control:, ...) are listed as skipped.",
+                "Exit code 0 when every query checked holds, 2 when some does not, 3 when none fails but some could"
+                        + " not be decided within the limits, 1 for an error."})
+final class VerifyCommand implements Callable<Integer> {
+
+    enum Order { bfs, dfs }
+
+    enum Format { text, json, none }
+
+    @Spec
+    private CommandSpec spec;
+
+    @Parameters(index = "0", paramLabel = "MODEL", description = "The model file (.xml, .xta, .ta).")
+    private Path model;
+
+    @Option(names = "--query", paramLabel = "Q", description = "A query to check (repeatable); replaces the model's"
+            + " own queries.")
+    private List<String> queries = new ArrayList<>();
+
+    @Option(names = "--queries", paramLabel = "FILE.q", description = "A file of queries, one per line; replaces the"
+            + " model's own queries.")
+    private Path queryFile;
+
+    @Option(names = "--order", paramLabel = "bfs|dfs", defaultValue = "bfs", description = "Search order of"
+            + " reachability queries: breadth-first (shortest traces, the default) or depth-first.")
+    private Order order;
+
+    @Option(names = "--trace", paramLabel = "text|json|none", defaultValue = "text", description = "How to print the"
+            + " diagnostic trace of a query that has one (default: text).")
+    private Format traceFormat;
+
+    @Option(names = "--time-limit", paramLabel = "SECONDS", description = "Give up a query after this long: its"
+            + " answer is then unknown.")
+    private Double timeLimit;
+
+    @Option(names = "--memory-limit", paramLabel = "MB", description = "Give up a query when the heap in use"
+            + " passes this many MB: its answer is then unknown.")
+    private Long memoryLimit;
+
+    @Override
+    public Integer call() {
+        PrintWriter out = spec.commandLine().getOut();
+        PrintWriter err = spec.commandLine().getErr();
+        try {
+            return verify(out, err);
+        } catch (ModelException e) {
+            CheckCommand.printErrors(model, e, err);
+            return 1;
+        } catch (UnsupportedModelException | QueryException e) {
+            err.println("dtron verify: " + model + ": " + e.getMessage());
+            return 1;
+        } catch (NoSuchFileException e) {
+            err.println("dtron verify: " + e.getFile() + ": error: no such file");
+            return 1;
+        } catch (IOException e) {
+            err.println("dtron verify: " + e.getMessage());
+            return 1;
+        } finally {
+            out.flush();
+            err.flush();
+        }
+    }
+
+    private int verify(PrintWriter out, PrintWriter err) throws ModelException, IOException {
+        if (timeLimit != null && timeLimit < 0 || memoryLimit != null && memoryLimit <= 0) {
+            err.println("dtron verify: --time-limit must not be negative and --memory-limit must be positive");
+            return 1;
+        }
+        Network network = ModelLoader.load(model);
+        VerifierOptions options = VerifierOptions.defaults()
+                .withOrder(order == Order.dfs ? SearchOrder.DEPTH_FIRST : SearchOrder.BREADTH_FIRST)
+                .withTimeLimit(timeLimit == null ? null : Duration.ofNanos((long) (timeLimit * 1e9)))
+                .withMemoryLimit(memoryLimit == null ? 0 : memoryLimit << 20);
+        Verifier verifier = new Verifier(network, options);
+        List<Query> toCheck = new ArrayList<>();
+        for (String q : queries) {
+            toCheck.add(Query.parse(q));
+        }
+        if (queryFile != null) {
+            try {
+                toCheck.addAll(Query.parseFile(Files.readString(queryFile, StandardCharsets.UTF_8)));
+            } catch (QueryException e) {
+                err.println("dtron verify: " + queryFile + ": " + e.getMessage());
+                return 1;
+            }
+        }
+        String source = "--query";
+        if (queryFile != null) {
+            source = queries.isEmpty() ? queryFile.toString() : "--query and " + queryFile;
+        }
+        if (toCheck.isEmpty()) {
+            toCheck.addAll(verifier.modelQueries());
+            source = "the model";
+        }
+        if (toCheck.isEmpty()) {
+            err.println("dtron verify: " + model + " has no queries: give --query Q or --queries FILE.q");
+            return 1;
+        }
+        out.println(model + ": " + toCheck.size() + " quer" + (toCheck.size() == 1 ? "y" : "ies") + " from " + source);
+        int violated = 0;
+        int unknown = 0;
+        int skipped = 0;
+        for (int i = 0; i < toCheck.size(); i++) {
+            Query q = toCheck.get(i);
+            VerificationResult r = verifier.verify(q);
+            out.println("[" + (i + 1) + "] " + q.text());
+            out.println("    " + line(r));
+            switch (r.outcome()) {
+                case VIOLATED -> violated++;
+                case UNKNOWN -> unknown++;
+                case SKIPPED -> skipped++;
+                default -> {
+                }
+            }
+            if (r.trace() != null && traceFormat != Format.none) {
+                out.println("    " + (r.outcome() == Outcome.SATISFIED ? "witness" : "counterexample") + ":");
+                out.print(traceFormat == Format.json ? "    " + r.trace().toJson() + System.lineSeparator()
+                        : r.trace().toText().replaceAll("(?m)^", "  "));
+            }
+            out.flush();
+        }
+        int checked = toCheck.size() - skipped;
+        out.println(checked - violated - unknown + " of " + checked + " checked hold" + (violated > 0 ? ", " + violated
+                + " do not" : "") + (unknown > 0 ? ", " + unknown + " unknown" : "") + (skipped > 0 ? "; " + skipped
+                + " skipped" : ""));
+        return violated > 0 ? 2 : unknown > 0 ? 3 : 0;
+    }
+
+    private static String line(VerificationResult r) {
+        VerificationResult.Statistics s = r.statistics();
+        String figures = String.format(Locale.ROOT, "(%,d states explored, %,d stored, %.2f s, %d MB)", s.explored(),
+                s.stored(), s.time().toNanos() / 1e9, s.memoryBytes() >> 20);
+        return switch (r.outcome()) {
+            case SATISFIED -> "satisfied " + figures;
+            case VIOLATED -> "NOT satisfied " + figures;
+            case UNKNOWN -> "unknown: " + r.reason() + " " + figures;
+            case SKIPPED -> "skipped: " + r.reason();
+        };
+    }
+}

@@ -1,0 +1,125 @@
+package io.dtron.cli;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertFalse;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+import java.io.IOException;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.io.TempDir;
+
+class VerifyCommandTest {
+    private static final Path SHARED = Path.of(System.getProperty("dtron.shared", "../../shared"), "models");
+    private static final String FISCHER = """
+            const int N = 2;
+            typedef int[1,N] pid_t;
+            int id = 0;
+            process P(const pid_t pid) {
+                clock x;
+                state idle, req { x <= 2 }, wait, cs;
+                init idle;
+                trans idle -> req { guard id == 0; assign x = 0; },
+                      req -> wait { assign x = 0, id = pid; },
+                      wait -> req { guard id == 0; assign x = 0; },
+                      wait -> cs { guard x > WAIT && id == pid; },
+                      cs -> idle { assign id = 0; };
+            }
+            system P;
+            """;
+
+    private static Path fischer(Path dir, int wait) throws IOException {
+        Path f = dir.resolve("fischer" + wait + ".xta");
+        Files.writeString(f, "const int WAIT = " + wait + ";\n" + FISCHER);
+        return f;
+    }
+
+    @Test
+    void holdingQueriesExitWithZeroAndShowTheirFigures(@TempDir Path dir) throws IOException {
+        CommandRun r = CommandRun.of("verify", fischer(dir, 2).toString(), "--query", "A[] not (P(1).cs and P(2).cs)",
+                "--query", "E<> P(2).cs", "--trace", "none");
+        assertEquals(0, r.exit(), r.out() + r.err());
+        assertTrue(r.out().contains("2 queries from --query"), r.out());
+        assertTrue(r.out().contains("[1] A[] not (P(1).cs and P(2).cs)\n    satisfied ("), r.out());
+        assertTrue(r.out().matches("(?s).*states explored, [0-9,]+ stored, [0-9.]+ s, \\d+ MB\\).*"), r.out());
+        assertTrue(r.out().contains("2 of 2 checked hold"), r.out());
+        assertFalse(r.out().contains("witness"), "--trace none: " + r.out());
+    }
+
+    @Test
+    void aViolatedQueryExitsWithTwoAndPrintsItsCounterexampleInTextOrJson(@TempDir Path dir) throws IOException {
+        Path wrong = fischer(dir, 1);
+        CommandRun text = CommandRun.of("verify", wrong.toString(), "--query", "A[] not (P(1).cs and P(2).cs)");
+        assertEquals(2, text.exit(), text.out() + text.err());
+        assertTrue(text.out().contains("NOT satisfied"), text.out());
+        assertTrue(text.out().contains("counterexample:"), text.out());
+        assertTrue(text.out().contains("P(1).cs, P(2).cs"), text.out());
+        assertTrue(text.out().contains("concrete:"), text.out());
+        assertTrue(text.out().contains("0 of 1 checked hold, 1 do not"), text.out());
+        CommandRun json = CommandRun.of("verify", wrong.toString(), "--query", "A[] not (P(1).cs and P(2).cs)",
+                "--trace", "json");
+        assertEquals(2, json.exit());
+        assertTrue(json.out().contains("    {\"states\":[{\"locations\":[\"P(1).idle\",\"P(2).idle\"]"), json.out());
+    }
+
+    @Test
+    void queriesFromAFileAndSkippedOnesAreListed(@TempDir Path dir) throws IOException {
+        Path q = dir.resolve("q.q");
+        Files.writeString(q, "// mutual exclusion\nA[] not (P(1).cs and P(2).cs)\nPr[<=10](<> P(1).cs)\n");
+        CommandRun r = CommandRun.of("verify", fischer(dir, 2).toString(), "--queries", q.toString());
+        assertEquals(0, r.exit(), r.out() + r.err());
+        assertTrue(r.out().contains("[2] Pr[<=10](<> P(1).cs)\n    skipped: a probability estimate"), r.out());
+        assertTrue(r.out().contains("1 of 1 checked hold; 1 skipped"), r.out());
+    }
+
+    @Test
+    void theModelsOwnQueriesAreTheDefault() {
+        CommandRun r = CommandRun.of("verify", SHARED.resolve("benchmarks/fischer-4.xml").toString(), "--trace", "none");
+        assertEquals(0, r.exit(), r.out() + r.err());
+        assertTrue(r.out().contains("2 queries from the model"), r.out());
+        assertTrue(r.out().contains("2 of 2 checked hold"), r.out());
+    }
+
+    @Test
+    void aLimitGivesUnknownAndExitCodeThree(@TempDir Path dir) throws IOException {
+        Path grows = dir.resolve("grows.xta");
+        Files.writeString(grows, """
+                int[0,30000] i = 0;
+                process P() { state a; init a; trans a -> a { guard i < 30000; assign i = i + 1; }; }
+                system P;
+                """);
+        CommandRun r = CommandRun.of("verify", grows.toString(), "--query", "A[] i < 30000", "--time-limit", "0");
+        assertEquals(3, r.exit(), r.out() + r.err());
+        assertTrue(r.out().contains("unknown: the time limit was reached"), r.out());
+        // the JVM running the tests holds more than 1 MB of heap, so the first check stops the search
+        CommandRun memory = CommandRun.of("verify", grows.toString(), "--query", "A[] i < 30000", "--memory-limit",
+                "1");
+        assertEquals(3, memory.exit(), memory.out() + memory.err());
+        assertTrue(memory.out().contains("unknown: the memory limit was reached after 1024 explored states"),
+                memory.out());
+        assertTrue(memory.out().contains("0 of 1 checked hold, 1 unknown"), memory.out());
+    }
+
+    @Test
+    void errorsAreOneLineAndExitWithOne(@TempDir Path dir) throws IOException {
+        Path f = fischer(dir, 2);
+        CommandRun syntax = CommandRun.of("verify", f.toString(), "--query", "E<> P(1).cs &&");
+        assertEquals(1, syntax.exit());
+        assertTrue(syntax.err().startsWith("dtron verify: " + f + ": query 'E<> P(1).cs &&', column "), syntax.err());
+        CommandRun noQueries = CommandRun.of("verify", f.toString());
+        assertEquals(1, noQueries.exit());
+        assertTrue(noQueries.err().contains("has no queries: give --query Q or --queries FILE.q"), noQueries.err());
+        CommandRun missing = CommandRun.of("verify", dir.resolve("nope.xml").toString(), "--query", "E<> true");
+        assertEquals(1, missing.exit());
+        assertTrue(missing.err().contains("nope.xml: error: no such file"), missing.err());
+        Path bad = dir.resolve("bad.xta");
+        Files.writeString(bad, "int i;\nprocess P() { state a; init a; trans a -> a { assign j = 1; }; }\nsystem P;\n");
+        CommandRun model = CommandRun.of("verify", bad.toString(), "--query", "E<> true");
+        assertEquals(1, model.exit());
+        assertTrue(model.err().contains(bad + ": 1 error"), model.err());
+        for (CommandRun r : new CommandRun[] {syntax, noQueries, missing, model}) {
+            assertFalse(r.err().contains("Exception") || r.err().contains("\tat "), "no stack trace: " + r.err());
+        }
+    }
+}

@@ -1,0 +1,768 @@
+package io.dtron.engine.internal.verify;
+
+import io.dtron.engine.UnsupportedModelException;
+import io.dtron.engine.internal.eval.ModelRuntimeException;
+import io.dtron.engine.internal.sem.Semantics;
+import io.dtron.engine.internal.sem.SymState;
+import io.dtron.engine.verify.Query;
+import io.dtron.engine.internal.sem.Partition;
+import io.dtron.engine.internal.sem.PartitionException;
+import io.dtron.engine.verify.SearchOrder;
+import io.dtron.engine.verify.TestabilityReport;
+import io.dtron.engine.verify.Trace;
+import io.dtron.engine.verify.VerificationResult;
+import io.dtron.engine.verify.VerificationResult.Outcome;
+import io.dtron.engine.verify.VerificationResult.Statistics;
+import io.dtron.engine.verify.VerifierOptions;
+import io.dtron.engine.zone.Dbm;
+import io.dtron.model.Network;
+import io.dtron.model.Process;
+import io.dtron.model.TestInterface;
+import io.dtron.model.Type;
+import io.dtron.model.Variable;
+import java.math.BigDecimal;
+import java.util.ArrayDeque;
+import java.util.ArrayList;
+import java.util.Collections;
+import java.util.HashMap;
+import java.util.HashSet;
+import java.util.LinkedHashMap;
+import java.util.List;
+import java.util.Map;
+import java.util.Set;
+import java.util.function.BiFunction;
+import java.util.function.Function;
+import org.slf4j.Logger;
+import org.slf4j.LoggerFactory;
+
+/**
+ * Checks queries on one network. Reachability ({@code E<>}, {@code A[]}) is a passed/waiting search with zone
+ * inclusion on both sides (a new state included in a stored one is dropped; stored states included in a new one
+ * are dropped, and skipped if still waiting). Liveness ({@code E[]}, {@code A<>}, {@code -->}) is a depth-first
+ * search for a maximal path inside the states that satisfy the property: a cycle (a state met again on the
+ * search stack), a state where time can pass forever, or a deadlock; for {@code -->}, one such search from each
+ * reachable state satisfying the premise, sharing the states already shown to have none.
+ */
+public final class Checker {
+    private static final Logger LOG = LoggerFactory.getLogger("io.dtron.engine.verify");
+    /** The zone of the passed list's keys, which stand for locations and variables only. */
+    private static final Dbm NO_ZONE = Dbm.zero(1);
+
+    private final Network network;
+    private final VerifierOptions options;
+    private final Semantics semantics;
+    private final PropertyCompiler compiler;
+    private final String[] clockNames;
+
+    /** A checker of {@code network}'s queries. */
+    public Checker(Network network, VerifierOptions options) {
+        this.network = network;
+        this.options = options;
+        this.semantics = new Semantics(network, 1, false);
+        this.compiler = new PropertyCompiler(network);
+        this.clockNames = new String[semantics.dimension()];
+        clockNames[0] = "0";
+        for (var c : network.clocks()) {
+            for (int i = c.index(); i < c.index() + c.type().clocks(); i++) {
+                clockNames[i] = c.elementName(i);
+            }
+        }
+    }
+
+    /**
+     * Checks {@code query}.
+     *
+     * @throws io.dtron.engine.verify.QueryException when a property does not compile
+     * @throws UnsupportedModelException on a model error met during the search
+     */
+    public VerificationResult verify(Query query) {
+        if (query.kind() == Query.Kind.UNSUPPORTED) {
+            return new VerificationResult(query, Outcome.SKIPPED, query.reason(), Statistics.NONE, null);
+        }
+        boolean negate = query.kind() == Query.Kind.ALWAYS_GLOBALLY || query.kind() == Query.Kind.ALWAYS_EVENTUALLY;
+        Property p = compiler.compile(query.text(), query.property(), query.column(), negate);
+        Property q = query.target() == null ? null
+                : compiler.compile(query.text(), query.target(), query.text().indexOf(query.target()) + 1, true);
+        Budget budget = new Budget(query.text(), options.timeLimit(), options.memoryLimitBytes(),
+                options.progressInterval());
+        try {
+            return switch (query.kind()) {
+                case EXISTS_EVENTUALLY, ALWAYS_GLOBALLY -> reachability(query, p, budget);
+                default -> liveness(query, p, q, budget);
+            };
+        } catch (Budget.LimitReached e) {
+            return new VerificationResult(query, Outcome.UNKNOWN, e.getMessage(), statistics(budget), null);
+        } catch (ModelRuntimeException e) {
+            throw new UnsupportedModelException("model error while checking '" + query.text() + "': " + e.format());
+        }
+    }
+
+    private Statistics statistics(Budget b) {
+        return new Statistics(b.explored, b.stored, b.elapsed(), b.peakMemory());
+    }
+
+    private ZoneGraph graph(boolean regionPreserving, List<Property> properties) {
+        List<int[]> atoms = new ArrayList<>();
+        boolean exact = true;
+        for (Property p : properties) {
+            if (p != null) {
+                exact &= p.clockAtoms(atoms);
+            }
+        }
+        ClockLimits limits = exact ? ClockLimits.of(network, semantics.dimension(), atoms) : null;
+        if (limits == null) {
+            LOG.warn("{}: clocks are compared with clocks or with variables, so states are not extrapolated: the"
+                    + " search may not end (use a time limit)", network.file());
+        }
+        return new ZoneGraph(semantics, limits, regionPreserving);
+    }
+
+    // ================================================================ reachability
+
+    /**
+     * A stored state, with its parent and which of the parent's successors it is (in the order the semantics
+     * gives them), for traces: the move itself is found again when a trace is built.
+     */
+    private static final class Node {
+        /** The locations and variables (shared by the nodes of the same discrete state; its zone is unused). */
+        final SymState discrete;
+        /** The zone, packed when its bounds fit in shorts; both null once covered by a larger zone. */
+        short[] packed;
+        Dbm zone;
+        final Node parent;
+        final int successor;
+        boolean covered;
+
+        Node(SymState discrete, Dbm zone, Node parent, int successor) {
+            this.discrete = discrete;
+            this.packed = zone.pack();
+            this.zone = packed == null ? zone : null;
+            this.parent = parent;
+            this.successor = successor;
+        }
+
+        /** The state (a new object on each call when the zone is packed). */
+        SymState state(int dimension) {
+            return discrete.withZone(zone != null ? zone : Dbm.unpack(dimension, packed));
+        }
+
+        /** Whether {@code z} is included in this node's zone. */
+        boolean includes(Dbm z) {
+            return zone != null ? z.isSubsetOf(zone) : z.isSubsetOf(packed);
+        }
+
+        /** Whether this node's zone is included in {@code z}. */
+        boolean isIncludedIn(Dbm z) {
+            return zone != null ? zone.isSubsetOf(z) : z.includes(packed);
+        }
+
+        void cover() {
+            covered = true;
+            packed = null;
+            zone = null;
+        }
+    }
+
+    /** The discrete part of a state as a hash key. */
+    private record Discrete(SymState state) {
+        @Override
+        public boolean equals(Object o) {
+            return o instanceof Discrete d && d.state.sameDiscrete(state);
+        }
+
+        @Override
+        public int hashCode() {
+            return state.discreteHash();
+        }
+    }
+
+    /** A whole state (discrete part and zone) as a hash key. */
+    private record Exact(SymState state, int hash) {
+        Exact(SymState state) {
+            this(state, 31 * state.discreteHash() + state.zone().hashCode());
+        }
+
+        @Override
+        public boolean equals(Object o) {
+            return o instanceof Exact e && e.hash == hash && e.state.sameDiscrete(state)
+                    && e.state.zone().equals(state.zone());
+        }
+
+        @Override
+        public int hashCode() {
+            return hash;
+        }
+    }
+
+    /** Where {@code E<> target} was found: the node and the part of its zone that satisfies the target. */
+    private record Found(Node node, Dbm part) {
+    }
+
+    private VerificationResult reachability(Query query, Property target, Budget budget) {
+        ZoneGraph graph = graph(target.mentionsDeadlock(), List.of(target));
+        Property.StateInfo info = graph::deadlocked;
+        Found found = search(graph, target, info, budget, null);
+        boolean exists = found != null;
+        boolean holds = query.kind() == Query.Kind.EXISTS_EVENTUALLY ? exists : !exists;
+        Trace trace = null;
+        if (exists) {
+            List<Node> path = path(found.node);
+            Function<SymState, Dbm> part = target.dependsOnZone() ? exact -> firstPart(target, exact, graph) : null;
+            trace = trace(graph, path, found.part, -1, null, part);
+        }
+        return new VerificationResult(query, holds ? Outcome.SATISFIED : Outcome.VIOLATED, null, statistics(budget),
+                trace);
+    }
+
+    private static Dbm firstPart(Property p, SymState exact, ZoneGraph graph) {
+        List<Dbm> parts = new ArrayList<>();
+        p.restrict(exact, exact.zone(), graph::deadlocked, parts);
+        return parts.isEmpty() ? null : parts.get(0);
+    }
+
+    /**
+     * The passed/waiting search: the first stored state where {@code target} holds somewhere (null: none), or,
+     * with a {@code visitor}, every stored state visited (the visitor may stop the search by returning a result).
+     */
+    private Found search(ZoneGraph graph, Property target, Property.StateInfo info, Budget budget,
+                         BiFunction<Node, SymState, Found> visitor) {
+        Map<Discrete, List<Node>> passed = new HashMap<>();
+        ArrayDeque<Node> waiting = new ArrayDeque<>();
+        boolean depthFirst = options.order() == SearchOrder.DEPTH_FIRST;
+        int dimension = graph.dimension();
+        SymState initial = graph.initial();
+        Node init = new Node(initial.withZone(NO_ZONE), initial.zone(), null, -1);
+        Found hit = check(init, initial, target, info, visitor);
+        if (hit != null) {
+            return hit;
+        }
+        passed.computeIfAbsent(new Discrete(init.discrete), k -> new ArrayList<>()).add(init);
+        budget.stored = 1;
+        waiting.add(init);
+        Found[] result = new Found[1];
+        while (!waiting.isEmpty() && result[0] == null) {
+            Node n = depthFirst ? waiting.pollLast() : waiting.pollFirst();
+            if (n.covered) {
+                continue;
+            }
+            budget.explore();
+            int[] index = {0};
+            graph.successors(n.state(dimension), (move, next) -> {
+                int successor = index[0]++;
+                if (result[0] != null) {
+                    return;
+                }
+                List<Node> same = passed.get(new Discrete(next));
+                SymState discrete;
+                if (same == null) {
+                    // the key keeps the locations and variables (shared with the nodes), not the zone
+                    discrete = next.withZone(NO_ZONE);
+                    same = new ArrayList<>(2);
+                    passed.put(new Discrete(discrete), same);
+                } else {
+                    discrete = same.get(0).discrete;
+                }
+                Dbm zone = next.zone();
+                for (int i = 0; i < same.size(); i++) {
+                    if (same.get(i).includes(zone)) {
+                        return;
+                    }
+                }
+                for (int i = same.size() - 1; i >= 0; i--) {
+                    Node old = same.get(i);
+                    if (old.isIncludedIn(zone)) {
+                        old.cover();
+                        same.set(i, same.get(same.size() - 1));
+                        same.remove(same.size() - 1);
+                        budget.stored--;
+                    }
+                }
+                Node child = new Node(discrete, zone, n, successor);
+                same.add(child);
+                budget.stored++;
+                waiting.add(child);
+                result[0] = check(child, next, target, info, visitor);
+            });
+        }
+        return result[0];
+    }
+
+    /** Checks the state {@code s} of node {@code n} when it is stored. */
+    private static Found check(Node n, SymState s, Property target, Property.StateInfo info,
+                               BiFunction<Node, SymState, Found> visitor) {
+        if (visitor != null) {
+            return visitor.apply(n, s);
+        }
+        if (!target.dependsOnZone()) {
+            return target.holds(s) ? new Found(n, s.zone()) : null;
+        }
+        List<Dbm> parts = new ArrayList<>(2);
+        target.restrict(s, s.zone(), info, parts);
+        return parts.isEmpty() ? null : new Found(n, parts.get(0));
+    }
+
+    private static List<Node> path(Node last) {
+        List<Node> path = new ArrayList<>();
+        for (Node n = last; n != null; n = n.parent) {
+            path.add(n);
+        }
+        Collections.reverse(path);
+        return path;
+    }
+
+    // ================================================================ liveness
+
+    /** A maximal path inside a property: the states, the moves between them, and how it ends. */
+    private record Lasso(List<SymState> states, List<Semantics.Move> moves, int loopStart, String end) {
+    }
+
+    private VerificationResult liveness(Query query, Property p, Property q, Budget budget) {
+        Property inside = q == null ? p : q;
+        if (p.dependsOnZone() || inside.dependsOnZone()) {
+            return new VerificationResult(query, Outcome.SKIPPED, "clock constraints and deadlock in the properties"
+                    + " of E[], A<> and --> queries are not supported yet", Statistics.NONE, null);
+        }
+        ZoneGraph graph = graph(true, List.of(p, inside));
+        Set<Exact> done = new HashSet<>();
+        if (q == null) {
+            SymState init = graph.initial();
+            Lasso lasso = inside.holds(init) ? maximalPath(graph, init, inside, done, budget) : null;
+            budget.stored = done.size();
+            boolean found = lasso != null;
+            boolean holds = query.kind() == Query.Kind.EXISTS_GLOBALLY ? found : !found;
+            Trace trace = found ? trace(graph, List.of(), lasso) : null;
+            return new VerificationResult(query, holds ? Outcome.SATISFIED : Outcome.VIOLATED, null,
+                    statistics(budget), trace);
+        }
+        // p --> q: from every reachable p-state that is not a q-state, no maximal path avoiding q
+        Lasso[] witness = new Lasso[1];
+        Found found = search(graph, null, graph::deadlocked, budget, (n, s) -> {
+            if (p.holds(s) && inside.holds(s)) {
+                Lasso lasso = maximalPath(graph, s, inside, done, budget);
+                if (lasso != null) {
+                    witness[0] = lasso;
+                    return new Found(n, s.zone());
+                }
+            }
+            return null;
+        });
+        budget.stored += done.size();
+        if (found == null) {
+            return new VerificationResult(query, Outcome.SATISFIED, null, statistics(budget), null);
+        }
+        List<Node> prefix = path(found.node);
+        return new VerificationResult(query, Outcome.VIOLATED, null, statistics(budget),
+                trace(graph, prefix, witness[0]));
+    }
+
+    /** A search frame: a state on the stack, its successors, the next one to look at. */
+    private static final class Frame {
+        final SymState state;
+        final Semantics.Move move;
+        final List<Semantics.Move> moves = new ArrayList<>();
+        final List<SymState> successors = new ArrayList<>();
+        int next;
+
+        Frame(SymState state, Semantics.Move move) {
+            this.state = state;
+            this.move = move;
+        }
+    }
+
+    /**
+     * A maximal path from {@code start} through states satisfying {@code inside} (which {@code start} does), or
+     * null. {@code done} holds states from which there is none; the search adds the states it finishes.
+     */
+    private Lasso maximalPath(ZoneGraph graph, SymState start, Property inside, Set<Exact> done, Budget budget) {
+        if (done.contains(new Exact(start))) {
+            return null;
+        }
+        List<Frame> stack = new ArrayList<>();
+        Map<Exact, Integer> onStack = new HashMap<>();
+        Lasso end = open(graph, start, null, stack, onStack, budget);
+        if (end != null) {
+            return end;
+        }
+        while (!stack.isEmpty()) {
+            Frame top = stack.get(stack.size() - 1);
+            if (top.next == top.successors.size()) {
+                stack.remove(stack.size() - 1);
+                Exact key = new Exact(top.state);
+                onStack.remove(key);
+                done.add(key);
+                continue;
+            }
+            int i = top.next++;
+            SymState child = top.successors.get(i);
+            Semantics.Move move = top.moves.get(i);
+            if (!inside.holds(child)) {
+                continue;
+            }
+            Exact key = new Exact(child);
+            if (done.contains(key)) {
+                continue;
+            }
+            Integer loop = onStack.get(key);
+            if (loop != null) {
+                List<SymState> states = new ArrayList<>();
+                List<Semantics.Move> moves = new ArrayList<>();
+                lassoOf(stack, states, moves);
+                states.add(child);
+                moves.add(move);
+                return new Lasso(states, moves, loop, "a cycle back to state ");
+            }
+            end = open(graph, child, move, stack, onStack, budget);
+            if (end != null) {
+                return end;
+            }
+        }
+        return null;
+    }
+
+    /** Pushes a frame for {@code s}; returns the path if {@code s} ends one (time diverges, or a deadlock). */
+    private Lasso open(ZoneGraph graph, SymState s, Semantics.Move move, List<Frame> stack, Map<Exact, Integer> onStack,
+                       Budget budget) {
+        budget.explore();
+        Frame f = new Frame(s, move);
+        stack.add(f);
+        onStack.put(new Exact(s), stack.size() - 1);
+        String ending = graph.timeDiverges(s) ? "time passing forever" : !graph.deadlocked(s).isEmpty()
+                ? "a deadlock" : null;
+        if (ending != null) {
+            List<SymState> states = new ArrayList<>();
+            List<Semantics.Move> moves = new ArrayList<>();
+            lassoOf(stack, states, moves);
+            return new Lasso(states, moves, -1, ending);
+        }
+        graph.successors(s, (m, next) -> {
+            f.moves.add(m);
+            f.successors.add(next);
+        });
+        return null;
+    }
+
+    private static void lassoOf(List<Frame> stack, List<SymState> states, List<Semantics.Move> moves) {
+        for (int i = 0; i < stack.size(); i++) {
+            states.add(stack.get(i).state);
+            if (i > 0) {
+                moves.add(stack.get(i).move);
+            }
+        }
+    }
+
+    // ================================================================ testability
+
+    private static final int MAX_PROBLEMS = 3;
+
+    /** The testability checks; see {@link io.dtron.engine.verify.Verifier#testability}. */
+    public TestabilityReport testability(TestInterface testInterface) {
+        Budget budget = new Budget("testability", options.timeLimit(), options.memoryLimitBytes(),
+                options.progressInterval());
+        List<TestabilityReport.Problem> observability = new ArrayList<>();
+        Partition partition;
+        try {
+            partition = Partition.of(network, testInterface);
+        } catch (PartitionException e) {
+            observability.add(new TestabilityReport.Problem(e.getMessage(), null));
+            String notRun = "not checked: the model does not split into environment and implementation";
+            return new TestabilityReport(List.of(
+                    new TestabilityReport.Check("output observability", observability, null),
+                    new TestabilityReport.Check("input enabledness", List.of(), notRun),
+                    new TestabilityReport.Check("connectedness", List.of(), notRun),
+                    new TestabilityReport.Check("time-lock freedom", List.of(), notRun),
+                    new TestabilityReport.Check("Zeno freedom", List.of(), notRun)), Statistics.NONE);
+        }
+        boolean[] sends = channelsSentByImplementation(partition);
+        for (TestInterface.ObservableChannel o : testInterface.outputs()) {
+            if (!sends[o.channel()]) {
+                observability.add(new TestabilityReport.Problem("the implementation never sends the output "
+                        + o.name() + " (" + network.channelName(o.channel()) + ")", null));
+            }
+        }
+        ZoneGraph graph = graph(true, List.of());
+        List<TestabilityReport.Problem> inputs = new ArrayList<>();
+        List<TestabilityReport.Problem> timelocks = new ArrayList<>();
+        boolean[][] reached = new boolean[network.processes().size()][];
+        for (Process p : network.processes()) {
+            reached[p.index()] = new boolean[p.locations().size()];
+        }
+        try {
+            search(graph, null, graph::deadlocked, budget, (n, s) -> {
+                for (Process p : network.processes()) {
+                    if (s.location(p.index()) >= 0) {
+                        reached[p.index()][s.location(p.index())] = true;
+                    }
+                }
+                if (inputs.size() < MAX_PROBLEMS && semantics.mayDelay(s)) {
+                    for (TestInterface.ObservableChannel i : testInterface.inputs()) {
+                        List<Dbm> refused = refused(s, i.channel(), partition);
+                        if (!refused.isEmpty() && inputs.size() < MAX_PROBLEMS) {
+                            inputs.add(new TestabilityReport.Problem("the implementation does not accept the input "
+                                    + i.name() + " in " + describeLocations(s, partition, false) + " when "
+                                    + refused.get(0).toString(clockNames), trace(graph, path(n), s.zone(), -1, null,
+                                    null)));
+                        }
+                    }
+                }
+                if (timelocks.size() < MAX_PROBLEMS) {
+                    List<Dbm> dead = graph.deadlocked(s);
+                    if (!dead.isEmpty() && !graph.timeDiverges(s)) {
+                        timelocks.add(new TestabilityReport.Problem("time cannot pass and nothing can happen in "
+                                + describeLocations(s, partition, true) + " when " + dead.get(0).toString(clockNames),
+                                trace(graph, path(n), dead.get(0), -1, null, null)));
+                    }
+                }
+                return null;
+            });
+        } catch (Budget.LimitReached e) {
+            String unknown = "unknown: " + e.getMessage();
+            return new TestabilityReport(List.of(
+                    new TestabilityReport.Check("output observability", observability, null),
+                    new TestabilityReport.Check("input enabledness", inputs, unknown),
+                    new TestabilityReport.Check("connectedness", List.of(), unknown),
+                    new TestabilityReport.Check("time-lock freedom", timelocks, unknown),
+                    zenoCheck()), statistics(budget));
+        } catch (ModelRuntimeException e) {
+            throw new UnsupportedModelException("model error while checking testability: " + e.format());
+        }
+        List<TestabilityReport.Problem> unreached = new ArrayList<>();
+        for (Process p : network.processes()) {
+            if (partition.isEnvironment(p.index())) {
+                continue;
+            }
+            for (int l = 0; l < reached[p.index()].length; l++) {
+                if (!reached[p.index()][l]) {
+                    unreached.add(new TestabilityReport.Problem("the environment never leads the implementation to "
+                            + p.name() + "." + p.locations().get(l).name(), null));
+                }
+            }
+        }
+        return new TestabilityReport(List.of(
+                new TestabilityReport.Check("output observability", observability, null),
+                new TestabilityReport.Check("input enabledness", inputs, "in every reachable state where time may"
+                        + " pass, for every valuation, some receiving edge of the implementation has its guard true"
+                        + " (the target's invariant is not checked)"),
+                new TestabilityReport.Check("connectedness", unreached, "with the model's own environment"),
+                new TestabilityReport.Check("time-lock freedom", timelocks, null),
+                zenoCheck()), statistics(budget));
+    }
+
+    private TestabilityReport.Check zenoCheck() {
+        List<TestabilityReport.Problem> zeno = new ArrayList<>();
+        for (Process p : network.processes()) {
+            List<String> cycle = ZenoCycles.possiblyZeno(p, semantics.dimension());
+            if (cycle != null) {
+                zeno.add(new TestabilityReport.Problem("the cycle " + String.join(" -> ", cycle) + " of " + p.name()
+                        + " may take no time: no clock is both reset and bounded from below on it", null));
+            }
+        }
+        return new TestabilityReport.Check("Zeno freedom", zeno, "structural: a cycle passes when a clock is reset"
+                + " on it and compared with x > c or x >= c, c > 0, on it");
+    }
+
+    /** The channels the implementation's edges may send on (all elements of a channel array indexed by data). */
+    private boolean[] channelsSentByImplementation(Partition partition) {
+        boolean[] sends = new boolean[network.channelCount()];
+        for (Process p : network.processes()) {
+            if (partition.isEnvironment(p.index())) {
+                continue;
+            }
+            for (io.dtron.model.Edge e : p.edges()) {
+                if (e.sync() == null || e.sync().direction() != io.dtron.model.Edge.Direction.SEND) {
+                    continue;
+                }
+                io.dtron.model.Expression c = e.sync().channel();
+                while (c instanceof io.dtron.model.Expression.Index i) {
+                    c = i.array();
+                }
+                if (c instanceof io.dtron.model.Expression.ChannelRef ref) {
+                    int first = ref.channel().index();
+                    for (int k = first; k < first + ref.channel().type().channels(); k++) {
+                        sends[k] = true;
+                    }
+                }
+            }
+        }
+        return sends;
+    }
+
+    /** The valuations of {@code s}'s zone where no receiving edge of the implementation takes {@code channel}. */
+    private List<Dbm> refused(SymState s, int channel, Partition partition) {
+        List<Dbm> refused = new ArrayList<>(List.of(s.zone()));
+        int[] vars = new int[network.stateSize()];
+        for (int i = 0; i < vars.length; i++) {
+            vars[i] = s.var(i);
+        }
+        for (Process p : network.processes()) {
+            int l = s.location(p.index());
+            if (partition.isEnvironment(p.index()) || l < 0) {
+                continue;
+            }
+            for (io.dtron.model.Edge e : p.edges()) {
+                if (e.source() != l || e.sync() == null
+                        || e.sync().direction() != io.dtron.model.Edge.Direction.RECEIVE) {
+                    continue;
+                }
+                for (int[] frame : frames(e)) {
+                    if (semantics.evaluator().channel(e.sync().channel(), vars, frame) != channel
+                            || e.guard() != null && !semantics.evaluator().dataHolds(e.guard(), vars, frame)) {
+                        continue;
+                    }
+                    Dbm accepted = s.zone().copy();
+                    if (e.guard() == null || semantics.evaluator().constrain(e.guard(), vars, frame, accepted, 1)) {
+                        refused = Zones.subtract(refused, accepted);
+                        if (refused.isEmpty()) {
+                            return refused;
+                        }
+                    }
+                }
+            }
+        }
+        return refused;
+    }
+
+    /** Every binding of an edge's selects, as frames. */
+    private static List<int[]> frames(io.dtron.model.Edge e) {
+        List<int[]> out = new ArrayList<>();
+        int[] frame = new int[e.frameSize()];
+        List<io.dtron.model.Edge.Select> selects = e.selects();
+        for (io.dtron.model.Edge.Select sel : selects) {
+            frame[sel.slot()] = sel.lower();
+        }
+        while (true) {
+            out.add(frame.clone());
+            int k = selects.size() - 1;
+            while (k >= 0 && frame[selects.get(k).slot()] == selects.get(k).upper()) {
+                frame[selects.get(k).slot()] = selects.get(k).lower();
+                k--;
+            }
+            if (k < 0) {
+                return out;
+            }
+            frame[selects.get(k).slot()]++;
+        }
+    }
+
+    private String describeLocations(SymState s, Partition partition, boolean all) {
+        List<String> out = new ArrayList<>();
+        for (Process p : network.processes()) {
+            int l = s.location(p.index());
+            if (l >= 0 && (all || !partition.isEnvironment(p.index()))) {
+                out.add(p.name() + "." + p.locations().get(l).name());
+            }
+        }
+        return String.join(", ", out);
+    }
+
+    // ================================================================ traces
+
+    private Trace trace(ZoneGraph graph, List<Node> path, Dbm lastPart, int loopStart, String end,
+                        Function<SymState, Dbm> target) {
+        List<SymState> states = new ArrayList<>();
+        List<Semantics.Move> moves = new ArrayList<>();
+        replay(graph, path, states, moves);
+        SymState last = states.get(states.size() - 1).copy();
+        last.zone().copyFrom(lastPart);
+        states.set(states.size() - 1, last);
+        return build(graph, states, moves, loopStart, end, target);
+    }
+
+    /** A liveness trace: the reachability prefix up to the lasso's start, then the lasso. */
+    private Trace trace(ZoneGraph graph, List<Node> prefix, Lasso lasso) {
+        List<SymState> states = new ArrayList<>();
+        List<Semantics.Move> moves = new ArrayList<>();
+        if (!prefix.isEmpty()) {
+            replay(graph, prefix, states, moves);
+            states.remove(states.size() - 1);
+        }
+        int offset = states.size();
+        states.addAll(lasso.states);
+        moves.addAll(lasso.moves);
+        int loop = lasso.loopStart < 0 ? -1 : lasso.loopStart + offset;
+        String end = loop < 0 ? lasso.end : lasso.end + loop;
+        return build(graph, states, moves, loop, end, null);
+    }
+
+    /**
+     * The states and moves of a path of nodes, found again from the initial state by taking each node's successor
+     * number (covered nodes no longer hold their states).
+     */
+    private static void replay(ZoneGraph graph, List<Node> path, List<SymState> states, List<Semantics.Move> moves) {
+        SymState s = graph.initial();
+        states.add(s);
+        for (int i = 1; i < path.size(); i++) {
+            int wanted = path.get(i).successor;
+            Semantics.Move[] move = new Semantics.Move[1];
+            SymState[] next = new SymState[1];
+            int[] index = {0};
+            graph.successors(s, (m, successor) -> {
+                if (index[0]++ == wanted) {
+                    move[0] = m;
+                    next[0] = successor;
+                }
+            });
+            moves.add(move[0]);
+            s = next[0];
+            states.add(s);
+        }
+    }
+
+    private Trace build(ZoneGraph graph, List<SymState> states, List<Semantics.Move> moves, int loopStart,
+                        String end, Function<SymState, Dbm> target) {
+        List<Trace.State> symbolic = new ArrayList<>();
+        for (SymState s : states) {
+            symbolic.add(describe(s));
+        }
+        List<Trace.Transition> transitions = new ArrayList<>();
+        for (Semantics.Move m : moves) {
+            transitions.add(describe(m));
+        }
+        List<Trace.ConcreteStep> concrete = new ArrayList<>();
+        List<Concretizer.Step> steps = new Concretizer(graph).concretize(moves, target);
+        BigDecimal time = BigDecimal.ZERO;
+        for (int i = 0; i < steps.size(); i++) {
+            Concretizer.Step step = steps.get(i);
+            time = time.add(step.delay());
+            Map<String, BigDecimal> clocks = new LinkedHashMap<>();
+            for (int c = 1; c < clockNames.length; c++) {
+                clocks.put(clockNames[c], step.clocks()[c]);
+            }
+            concrete.add(new Trace.ConcreteStep(step.delay(), time, clocks, i < transitions.size()
+                    ? transitions.get(i) : null));
+        }
+        return new Trace(symbolic, transitions, loopStart, end, concrete);
+    }
+
+    private Trace.State describe(SymState s) {
+        List<String> locations = new ArrayList<>();
+        for (Process p : network.processes()) {
+            int l = s.location(p.index());
+            if (l >= 0) {
+                locations.add(p.name() + "." + p.locations().get(l).name());
+            }
+        }
+        Map<String, Integer> variables = new LinkedHashMap<>();
+        for (Variable v : network.variables()) {
+            if (v.type() instanceof Type.Array a && a.element().slots() == 1) {
+                for (int i = 0; i < a.length(); i++) {
+                    variables.put(v.name() + "[" + (a.firstIndex() + i) + "]", s.var(v.offset() + i));
+                }
+            } else if (v.type().slots() == 1) {
+                variables.put(v.name(), s.var(v.offset()));
+            } else {
+                for (int i = 0; i < v.type().slots(); i++) {
+                    variables.put(v.name() + "#" + i, s.var(v.offset() + i));
+                }
+            }
+        }
+        return new Trace.State(locations, variables, s.zone().toString(clockNames));
+    }
+
+    private Trace.Transition describe(Semantics.Move m) {
+        List<String> edges = new ArrayList<>();
+        for (Semantics.Step step : m.steps()) {
+            edges.add(semantics.describe(step));
+        }
+        return new Trace.Transition(m.channel() < 0 ? null : network.channelName(m.channel()), edges);
+    }
+}

@@ -1,0 +1,524 @@
+package io.dtron.engine.internal.verify;
+
+import io.dtron.engine.verify.QueryException;
+import io.dtron.model.ChannelVariable;
+import io.dtron.model.ClockVariable;
+import io.dtron.model.Location;
+import io.dtron.model.Network;
+import io.dtron.model.Process;
+import io.dtron.model.Type;
+import io.dtron.model.Variable;
+import io.dtron.xta.Diagnostic;
+import io.dtron.xta.Fragment;
+import io.dtron.xta.ModelSyntax;
+import io.dtron.xta.Parsed;
+import io.dtron.xta.ast.Decl;
+import io.dtron.xta.ast.Expr;
+import io.dtron.xta.ast.Initializer;
+import io.dtron.xta.ast.Nta;
+import io.dtron.xta.ast.TypeExpr;
+import java.util.ArrayList;
+import java.util.HashMap;
+import java.util.List;
+import java.util.Map;
+import java.util.Optional;
+import java.util.stream.Stream;
+
+/**
+ * Compiles the state properties of queries over one network: locations ({@code P.loc}, {@code Train(1).Cross}),
+ * integer variables and arrays, the model's global constants and integer typedefs, clock constraints ({@code x
+ * <= 5}, {@code x - y < 3}), {@code deadlock}, the boolean operators, and {@code forall}/{@code exists} over
+ * integer ranges (expanded when compiled).
+ */
+public final class PropertyCompiler {
+    private final Network network;
+    private final Map<String, Integer> constants = new HashMap<>();
+    private final Map<String, int[]> ranges = new HashMap<>();
+    private final Map<String, Integer> bound = new HashMap<>();
+    private String query;
+    private int column;
+
+    /** A compiler for properties of {@code network}. */
+    public PropertyCompiler(Network network) {
+        this.network = network;
+        readGlobalConstants();
+    }
+
+    /**
+     * Compiles a property written in {@code query} from 1-based {@code column}, or its negation.
+     *
+     * @throws QueryException for syntax errors, unknown names and what queries cannot say
+     */
+    Property compile(String queryText, String property, int startColumn, boolean negated) {
+        this.query = queryText;
+        this.column = startColumn;
+        Parsed<Expr> parsed = ModelSyntax.parseExpression("query", property);
+        for (Diagnostic d : parsed.diagnostics()) {
+            if (d.isError()) {
+                throw error(d.pos() == null ? 0 : d.pos().start(), d.message());
+            }
+        }
+        bound.clear();
+        return bool(parsed.value(), negated);
+    }
+
+    private QueryException error(Expr at, String message) {
+        return error(at.pos().start(), message);
+    }
+
+    private QueryException error(int offset, String message) {
+        return new QueryException("query '" + query + "', column " + (column + offset) + ": " + message);
+    }
+
+    // ---------------------------------------------------------------- boolean formulas (negation normal form)
+
+    private Property bool(Expr e, boolean negated) {
+        if (e instanceof Expr.BoolLit b) {
+            return new Property.Constant(b.value() != negated);
+        }
+        if (e instanceof Expr.Deadlock) {
+            return new Property.Deadlock(negated);
+        }
+        if (e instanceof Expr.Unary u && u.op() == Expr.UnaryOp.NOT) {
+            return bool(u.operand(), !negated);
+        }
+        if (e instanceof Expr.Binary b) {
+            switch (b.op()) {
+                case AND, OR -> {
+                    boolean conj = (b.op() == Expr.BinaryOp.AND) != negated;
+                    List<Property> parts = List.of(bool(b.left(), negated), bool(b.right(), negated));
+                    return conj ? new Property.And(parts) : new Property.Or(parts);
+                }
+                case IMPLY -> {
+                    List<Property> parts = List.of(bool(b.left(), !negated), bool(b.right(), negated));
+                    return negated ? new Property.And(parts) : new Property.Or(parts);
+                }
+                default -> {
+                    if (b.op().isComparison() && (isClock(b.left()) || isClock(b.right()))) {
+                        return clockComparison(b, negated);
+                    }
+                }
+            }
+        }
+        if (e instanceof Expr.Quantifier q && q.kind() != Expr.QuantifierKind.SUM) {
+            int[] range = range(q.type(), q);
+            List<Property> parts = new ArrayList<>();
+            Integer outer = bound.get(q.name());
+            for (int v = range[0]; v <= range[1]; v++) {
+                bound.put(q.name(), v);
+                parts.add(bool(q.body(), negated));
+            }
+            restore(q.name(), outer);
+            boolean conj = (q.kind() == Expr.QuantifierKind.FORALL) != negated;
+            return conj ? new Property.And(parts) : new Property.Or(parts);
+        }
+        Optional<Property> location = location(e, negated);
+        if (location.isPresent()) {
+            return location.get();
+        }
+        return new Property.Data(integer(e), negated);
+    }
+
+    private void restore(String name, Integer outer) {
+        if (outer == null) {
+            bound.remove(name);
+        } else {
+            bound.put(name, outer);
+        }
+    }
+
+    /** {@code P.loc}: a process's location. */
+    private Optional<Property> location(Expr e, boolean negated) {
+        if (!(e instanceof Expr.Field f)) {
+            return Optional.empty();
+        }
+        Process p = process(f.value());
+        if (p == null) {
+            return Optional.empty();
+        }
+        Location l = p.location(f.name());
+        if (l == null) {
+            return Optional.empty();
+        }
+        return Optional.of(new Property.AtLocation(p.index(), l.index(), negated));
+    }
+
+    /** The process an expression names ({@code Gate}, {@code Train(1)}), or null. */
+    private Process process(Expr e) {
+        String name;
+        if (e instanceof Expr.Ident id && !bound.containsKey(id.name())) {
+            name = id.name();
+        } else if (e instanceof Expr.Call c && c.function() instanceof Expr.Ident f) {
+            StringBuilder sb = new StringBuilder(f.name()).append('(');
+            for (int i = 0; i < c.args().size(); i++) {
+                sb.append(i == 0 ? "" : ",").append(constant(c.args().get(i)));
+            }
+            name = sb.append(')').toString();
+        } else {
+            return null;
+        }
+        return network.process(name).orElse(null);
+    }
+
+    // ---------------------------------------------------------------- clock constraints
+
+    /** {@code x_i - x_j + offset}: a clock term (j is 0 for a single clock). */
+    private record ClockTerm(int i, int j, Property.IntTerm offset) {
+    }
+
+    private boolean isClock(Expr e) {
+        if (e instanceof Expr.Binary b && (b.op() == Expr.BinaryOp.ADD || b.op() == Expr.BinaryOp.SUB)) {
+            return isClock(b.left()) || isClock(b.right());
+        }
+        return clock(e) >= 0;
+    }
+
+    private Property clockComparison(Expr.Binary b, boolean negated) {
+        ClockTerm left = clockTerm(b.left());
+        ClockTerm right = clockTerm(b.right());
+        // left.i - left.j + left.off  op  right.i - right.j + right.off
+        int i;
+        int j;
+        Property.IntTerm lo = left.offset;
+        Property.IntTerm ro = right.offset;
+        if (left.i > 0 && right.i > 0) {
+            if (left.j > 0 || right.j > 0) {
+                throw error(b, "a clock constraint compares at most two clocks");
+            }
+            i = left.i;
+            j = right.i;
+        } else if (left.i > 0) {
+            i = left.i;
+            j = left.j;
+        } else if (right.i > 0) {
+            // c op x - y  is  y - x op' -c: swap sides and flip the operator
+            Expr.BinaryOp flipped = switch (b.op()) {
+                case LT -> Expr.BinaryOp.GT;
+                case LE -> Expr.BinaryOp.GE;
+                case GT -> Expr.BinaryOp.LT;
+                case GE -> Expr.BinaryOp.LE;
+                default -> b.op();
+            };
+            return clockComparison(new Expr.Binary(b.pos(), flipped, b.right(), b.left()), negated);
+        } else {
+            throw error(b, "not a clock constraint");
+        }
+        // x_i - x_j  op  c  with c = ro - lo
+        Property.IntTerm c = s -> ro.eval(s) - lo.eval(s);
+        Property.IntTerm minusC = s -> lo.eval(s) - ro.eval(s);
+        Property.ClockBound upperStrict = new Property.ClockBound(i, j, c, true);
+        Property.ClockBound upper = new Property.ClockBound(i, j, c, false);
+        Property.ClockBound lowerStrict = new Property.ClockBound(j, i, minusC, true);
+        Property.ClockBound lower = new Property.ClockBound(j, i, minusC, false);
+        Property p = switch (b.op()) {
+            case LT -> negated ? upperStrict.negate() : upperStrict;
+            case LE -> negated ? upper.negate() : upper;
+            case GT -> negated ? lowerStrict.negate() : lowerStrict;
+            case GE -> negated ? lower.negate() : lower;
+            case EQ -> negated ? new Property.Or(List.of(upper.negate(), lower.negate()))
+                    : new Property.And(List.of(upper, lower));
+            case NE -> negated ? new Property.And(List.of(upper, lower))
+                    : new Property.Or(List.of(upper.negate(), lower.negate()));
+            default -> throw error(b, "'" + b.op().symbol() + "' does not compare clocks");
+        };
+        return p;
+    }
+
+    private ClockTerm clockTerm(Expr e) {
+        int x = clock(e);
+        if (x >= 0) {
+            return new ClockTerm(x, 0, s -> 0);
+        }
+        if (e instanceof Expr.Binary b && (b.op() == Expr.BinaryOp.ADD || b.op() == Expr.BinaryOp.SUB)
+                && isClock(b.left())) {
+            ClockTerm left = clockTerm(b.left());
+            if (b.op() == Expr.BinaryOp.SUB && isClock(b.right())) {
+                ClockTerm right = clockTerm(b.right());
+                if (left.j > 0 || right.j > 0) {
+                    throw error(e, "a clock constraint compares at most two clocks");
+                }
+                Property.IntTerm lo = left.offset;
+                Property.IntTerm ro = right.offset;
+                return new ClockTerm(left.i, right.i, s -> lo.eval(s) - ro.eval(s));
+            }
+            Property.IntTerm off = integer(b.right());
+            Property.IntTerm lo = left.offset;
+            return new ClockTerm(left.i, left.j, b.op() == Expr.BinaryOp.ADD ? s -> lo.eval(s) + off.eval(s)
+                    : s -> lo.eval(s) - off.eval(s));
+        }
+        if (e instanceof Expr.Binary b && b.op() == Expr.BinaryOp.ADD && isClock(b.right())) {
+            return clockTerm(new Expr.Binary(b.pos(), b.op(), b.right(), b.left()));
+        }
+        if (isClock(e)) {
+            throw error(e, "clocks may only be added to or subtracted from integers");
+        }
+        return new ClockTerm(0, 0, integer(e));
+    }
+
+    /** The clock index (1..) an expression names, or -1. */
+    private int clock(Expr e) {
+        if (e instanceof Expr.Ident id && !bound.containsKey(id.name()) && !constants.containsKey(id.name())) {
+            return network.clock(id.name()).filter(c -> c.type() instanceof Type.Clock).map(ClockVariable::index)
+                    .orElse(-1);
+        }
+        if (e instanceof Expr.Field f) {
+            Process p = process(f.value());
+            if (p != null) {
+                return network.clock(p.name() + "." + f.name()).filter(c -> c.type() instanceof Type.Clock)
+                        .map(ClockVariable::index).orElse(-1);
+            }
+        }
+        if (e instanceof Expr.Index ix) {
+            ClockVariable array = clockArray(ix.array());
+            if (array != null) {
+                Type.Array t = (Type.Array) array.type();
+                int i = constant(ix.index()) - t.firstIndex();
+                if (i < 0 || i >= t.length()) {
+                    throw error(ix.index(), "index " + (i + t.firstIndex()) + " is out of the range of " + array.name());
+                }
+                return array.index() + i * t.element().clocks();
+            }
+        }
+        return -1;
+    }
+
+    private ClockVariable clockArray(Expr e) {
+        String name = e instanceof Expr.Ident id ? id.name()
+                : e instanceof Expr.Field f && process(f.value()) != null ? process(f.value()).name() + "." + f.name()
+                : null;
+        return name == null ? null : network.clock(name).filter(c -> c.type() instanceof Type.Array).orElse(null);
+    }
+
+    // ---------------------------------------------------------------- integer expressions
+
+    private Property.IntTerm integer(Expr e) {
+        if (e instanceof Expr.IntLit l) {
+            int v = (int) l.value();
+            return s -> v;
+        }
+        if (e instanceof Expr.BoolLit b) {
+            int v = b.value() ? 1 : 0;
+            return s -> v;
+        }
+        if (e instanceof Expr.Ident id) {
+            if (bound.containsKey(id.name())) {
+                int v = bound.get(id.name());
+                return s -> v;
+            }
+            if (constants.containsKey(id.name())) {
+                int v = constants.get(id.name());
+                return s -> v;
+            }
+        }
+        if (e instanceof Expr.Unary u) {
+            Property.IntTerm a = integer(u.operand());
+            return switch (u.op()) {
+                case NEG -> s -> -a.eval(s);
+                case PLUS -> a;
+                case NOT -> s -> a.eval(s) == 0 ? 1 : 0;
+                default -> throw error(e, "'" + u.op().symbol() + "' changes the state: not allowed in a query");
+            };
+        }
+        if (e instanceof Expr.Binary b) {
+            if (isClock(b.left()) || isClock(b.right())) {
+                throw error(e, "a clock constraint cannot be used as a number");
+            }
+            Property.IntTerm l = integer(b.left());
+            Property.IntTerm r = integer(b.right());
+            return switch (b.op()) {
+                case MUL -> s -> l.eval(s) * r.eval(s);
+                case DIV -> s -> {
+                    int d = r.eval(s);
+                    if (d == 0) {
+                        throw error(e, "division by zero");
+                    }
+                    return l.eval(s) / d;
+                };
+                case MOD -> s -> {
+                    int d = r.eval(s);
+                    if (d == 0) {
+                        throw error(e, "division by zero");
+                    }
+                    return l.eval(s) % d;
+                };
+                case ADD -> s -> l.eval(s) + r.eval(s);
+                case SUB -> s -> l.eval(s) - r.eval(s);
+                case SHL -> s -> l.eval(s) << r.eval(s);
+                case SHR -> s -> l.eval(s) >> r.eval(s);
+                case MIN -> s -> Math.min(l.eval(s), r.eval(s));
+                case MAX -> s -> Math.max(l.eval(s), r.eval(s));
+                case LT -> s -> l.eval(s) < r.eval(s) ? 1 : 0;
+                case LE -> s -> l.eval(s) <= r.eval(s) ? 1 : 0;
+                case GE -> s -> l.eval(s) >= r.eval(s) ? 1 : 0;
+                case GT -> s -> l.eval(s) > r.eval(s) ? 1 : 0;
+                case EQ -> s -> l.eval(s) == r.eval(s) ? 1 : 0;
+                case NE -> s -> l.eval(s) != r.eval(s) ? 1 : 0;
+                case BIT_AND -> s -> l.eval(s) & r.eval(s);
+                case BIT_XOR -> s -> l.eval(s) ^ r.eval(s);
+                case BIT_OR -> s -> l.eval(s) | r.eval(s);
+                case AND -> s -> l.eval(s) != 0 && r.eval(s) != 0 ? 1 : 0;
+                case OR -> s -> l.eval(s) != 0 || r.eval(s) != 0 ? 1 : 0;
+                case IMPLY -> s -> l.eval(s) == 0 || r.eval(s) != 0 ? 1 : 0;
+            };
+        }
+        if (e instanceof Expr.Conditional c) {
+            Property.IntTerm cond = integer(c.condition());
+            Property.IntTerm then = integer(c.then());
+            Property.IntTerm otherwise = integer(c.otherwise());
+            return s -> cond.eval(s) != 0 ? then.eval(s) : otherwise.eval(s);
+        }
+        if (e instanceof Expr.Field f) {
+            Process p = process(f.value());
+            if (p != null && p.location(f.name()) != null) {
+                int proc = p.index();
+                int loc = p.location(f.name()).index();
+                return s -> s.location(proc) == loc ? 1 : 0;
+            }
+        }
+        if (e instanceof Expr.Quantifier q && q.kind() == Expr.QuantifierKind.SUM) {
+            int[] range = range(q.type(), q);
+            List<Property.IntTerm> parts = new ArrayList<>();
+            Integer outer = bound.get(q.name());
+            for (int v = range[0]; v <= range[1]; v++) {
+                bound.put(q.name(), v);
+                parts.add(integer(q.body()));
+            }
+            restore(q.name(), outer);
+            Property.IntTerm[] terms = parts.toArray(new Property.IntTerm[0]);
+            return s -> {
+                int sum = 0;
+                for (Property.IntTerm t : terms) {
+                    sum += t.eval(s);
+                }
+                return sum;
+            };
+        }
+        if (e instanceof Expr.Quantifier || e instanceof Expr.Deadlock) {
+            throw error(e, "a formula cannot be used as a number here");
+        }
+        return variable(e);
+    }
+
+    /** A slot of the state vector: a variable, an array element, a process's local variable. */
+    private Property.IntTerm variable(Expr e) {
+        if (e instanceof Expr.Index ix) {
+            Variable array = arrayVariable(ix.array());
+            if (array == null) {
+                throw error(ix.array(), "'" + ix.array().pos().text() + "' is not an integer array of the model");
+            }
+            Type.Array t = (Type.Array) array.type();
+            if (t.element().slots() != 1) {
+                throw error(e, "only arrays of integers can be indexed in a query");
+            }
+            Property.IntTerm index = integer(ix.index());
+            int first = t.firstIndex();
+            int length = t.length();
+            int offset = array.offset();
+            String name = array.name();
+            return s -> {
+                int i = index.eval(s) - first;
+                if (i < 0 || i >= length) {
+                    throw error(ix.index(), "index " + (i + first) + " is out of the range of " + name);
+                }
+                return s.var(offset + i);
+            };
+        }
+        String name = variableName(e);
+        if (name == null) {
+            throw error(e, "'" + e.pos().text() + "' cannot be used in a query");
+        }
+        Optional<Variable> v = network.variable(name);
+        if (v.isEmpty()) {
+            if (network.clock(name).isPresent()) {
+                throw error(e, "the clock '" + name + "' can only be compared, not used as a number");
+            }
+            if (network.channel(name).map(ChannelVariable::name).isPresent()) {
+                throw error(e, "the channel '" + name + "' cannot be used in a query");
+            }
+            if (e instanceof Expr.Field f && process(f.value()) != null) {
+                throw error(e, "'" + process(f.value()).name() + "' has no location or variable '" + f.name() + "'");
+            }
+            throw error(e, "unknown name '" + name + "'");
+        }
+        if (v.get().type().slots() != 1 || !v.get().type().isIntegral()) {
+            throw error(e, "'" + name + "' is not an integer, boolean or scalar");
+        }
+        int slot = v.get().offset();
+        return s -> s.var(slot);
+    }
+
+    private Variable arrayVariable(Expr e) {
+        String name = variableName(e);
+        return name == null ? null : network.variable(name).filter(v -> v.type() instanceof Type.Array).orElse(null);
+    }
+
+    private String variableName(Expr e) {
+        if (e instanceof Expr.Ident id) {
+            return id.name();
+        }
+        if (e instanceof Expr.Field f) {
+            Process p = process(f.value());
+            return p == null ? null : p.name() + "." + f.name();
+        }
+        return null;
+    }
+
+    // ---------------------------------------------------------------- constants and ranges
+
+    private int constant(Expr e) {
+        try {
+            return integer(e).eval(null);
+        } catch (NullPointerException notConstant) {
+            throw error(e, "'" + e.pos().text() + "' is not a constant");
+        }
+    }
+
+    private int[] range(TypeExpr type, Expr at) {
+        if (type instanceof TypeExpr.IntType t && t.lower() != null && t.upper() != null) {
+            return new int[] {constant(t.lower()), constant(t.upper())};
+        }
+        if (type instanceof TypeExpr.NamedType n && ranges.containsKey(n.name())) {
+            return ranges.get(n.name());
+        }
+        throw error(at, "a quantifier ranges over an integer range int[a,b] or a typedef of one");
+    }
+
+    /**
+     * Reads the global constants and integer typedefs from the model's global declarations, so that queries can
+     * use them as the model does ({@code N}, {@code id_t}).
+     */
+    private void readGlobalConstants() {
+        Fragment declarations = Stream.of(
+                        network.variables().stream().filter(v -> v.owner() == null).map(v -> v.pos()),
+                        network.clocks().stream().filter(c -> c.owner() == null).map(c -> c.pos()),
+                        network.channels().stream().filter(c -> c.owner() == null).map(c -> c.pos()))
+                .flatMap(s -> s).filter(p -> p != null && p.fragment().template() == null)
+                .map(p -> p.fragment()).findFirst().orElse(null);
+        if (declarations == null) {
+            return;
+        }
+        Parsed<Nta> parsed = ModelSyntax.parseXta(declarations.file(), declarations.text());
+        if (parsed.value() == null) {
+            return;
+        }
+        this.query = "";
+        for (Decl d : parsed.value().declarations()) {
+            try {
+                if (d instanceof Decl.Variable v && v.dims().isEmpty()
+                        && v.type() instanceof TypeExpr.IntType t && t.qualifiers().contains(TypeExpr.Qualifier.CONST)
+                        && v.init() instanceof Initializer.Single init) {
+                    constants.put(v.name(), constant(init.value()));
+                } else if (d instanceof Decl.Variable v && v.dims().isEmpty() && v.init() instanceof Initializer.Single init
+                        && v.type() instanceof TypeExpr.PrimitiveType t && t.primitive() == TypeExpr.Primitive.BOOL
+                        && t.qualifiers().contains(TypeExpr.Qualifier.CONST)) {
+                    constants.put(v.name(), constant(init.value()));
+                } else if (d instanceof Decl.Typedef t && t.dims().isEmpty() && t.type() instanceof TypeExpr.IntType i
+                        && i.lower() != null && i.upper() != null) {
+                    ranges.put(t.name(), new int[] {constant(i.lower()), constant(i.upper())});
+                }
+            } catch (QueryException notConstant) {
+                // a declaration whose value the query compiler cannot compute is not available to queries
+            }
+        }
+    }
+}

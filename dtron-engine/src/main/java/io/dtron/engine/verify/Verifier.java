@@ -1,0 +1,62 @@
+package io.dtron.engine.verify;
+
+import io.dtron.engine.UnsupportedModelException;
+import io.dtron.engine.internal.verify.Checker;
+import io.dtron.engine.internal.verify.QueryParser;
+import io.dtron.model.Network;
+import java.util.ArrayList;
+import java.util.List;
+
+/**
+ * Checks queries on one network by symbolic exploration of its zone graph, with the semantics the online tester
+ * runs. Not thread-safe: one verifier per thread.
+ */
+public final class Verifier {
+    private final Network network;
+    private final Checker checker;
+
+    /**
+     * A verifier of {@code network}.
+     *
+     * @throws UnsupportedModelException when the model uses something the engine cannot run
+     */
+    public Verifier(Network network, VerifierOptions options) {
+        this.network = network;
+        this.checker = new Checker(network, options);
+    }
+
+    /**
+     * The queries written in the model ({@code <queries>} of an XML model), in order.
+     *
+     * @throws QueryException naming the first one that does not parse
+     */
+    public List<Query> modelQueries() {
+        List<Query> out = new ArrayList<>();
+        for (io.dtron.xta.ast.Query q : network.queries()) {
+            out.add(QueryParser.parse(q.pos().text()));
+        }
+        return out;
+    }
+
+    /**
+     * Checks one query.
+     *
+     * @throws QueryException when its properties do not compile against the model (unknown names, type errors)
+     * @throws UnsupportedModelException on a model error met during the search (an index out of range, ...)
+     */
+    public VerificationResult verify(Query query) {
+        return checker.verify(query);
+    }
+
+    /**
+     * Checks that the model can serve as a test specification with {@code testInterface}: output observability
+     * (the environment and the implementation interact only through inputs and outputs), input enabledness,
+     * connectedness with the model's environment (every location of the implementation is reachable), time-lock
+     * freedom and (structurally) Zeno freedom; see {@code testability} in the site's verify page.
+     *
+     * @throws UnsupportedModelException on a model error met during the exploration
+     */
+    public TestabilityReport testability(io.dtron.model.TestInterface testInterface) {
+        return checker.testability(testInterface);
+    }
+}
