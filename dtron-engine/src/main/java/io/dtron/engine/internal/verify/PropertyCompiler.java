@@ -343,6 +343,7 @@ public final class PropertyCompiler {
                 };
                 case ADD -> s -> l.eval(s) + r.eval(s);
                 case SUB -> s -> l.eval(s) - r.eval(s);
+                case POW -> s -> power(l.eval(s), r.eval(s), e);
                 case SHL -> s -> l.eval(s) << r.eval(s);
                 case SHR -> s -> l.eval(s) >> r.eval(s);
                 case MIN -> s -> Math.min(l.eval(s), r.eval(s));
@@ -520,5 +521,26 @@ public final class PropertyCompiler {
                 // a declaration whose value the query compiler cannot compute is not available to queries
             }
         }
+    }
+
+    /** {@code base ** exponent} as the engine computes it: a negative exponent or an overflow is an error. */
+    private int power(int base, int exponent, Expr at) {
+        if (exponent < 0) {
+            throw error(at, "negative exponent");
+        }
+        if (base == 0 || base == 1) {
+            return exponent == 0 ? 1 : base;
+        }
+        if (base == -1) {
+            return exponent % 2 == 0 ? 1 : -1;
+        }
+        long value = 1;
+        for (int i = 0; i < exponent; i++) {
+            value *= base; // |base| >= 2: an overflow comes within 32 steps
+            if ((int) value != value) {
+                throw error(at, "overflow");
+            }
+        }
+        return (int) value;
     }
 }
