@@ -6,12 +6,12 @@ import io.dtron.api.DtronOptions;
 import io.dtron.bridge.BusBridge;
 import io.dtron.model.TestInterface;
 import java.io.PrintWriter;
-import java.net.InetAddress;
 import java.time.Duration;
 import java.util.ArrayList;
 import java.util.List;
 import java.util.Locale;
 import java.util.Set;
+import java.util.function.Supplier;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
@@ -27,32 +27,27 @@ final class BusSession implements AutoCloseable {
     /** How long after joining a tester of another run has surely greeted this one (it does 100 ms after a join). */
     private static final Duration GREETING = Duration.ofMillis(400);
 
-    private final String cluster;
-    private final InetAddress bind;
+    private final Supplier<DtronOptions.Builder> options;
     private final BusBridge bridge;
     private final List<DtronAdapter> adapters = new ArrayList<>();
     private final List<Dtron> adapterMembers = new ArrayList<>();
 
     private final long openedNanos = System.nanoTime();
 
-    private BusSession(String cluster, InetAddress bind, BusBridge bridge) {
-        this.cluster = cluster;
-        this.bind = bind;
+    private BusSession(Supplier<DtronOptions.Builder> options, BusBridge bridge) {
+        this.options = options;
         this.bridge = bridge;
     }
 
     /**
      * Joins the bus as the tester of the interface.
      *
+     * @param options makes the options of each member of this JVM: the tester and each {@code --adapter}
      * @throws IllegalArgumentException if the interface's channels cannot travel on the bus
      * @throws io.dtron.api.DtronException if the bus cannot be joined
      */
-    static BusSession open(TestInterface testInterface, String cluster, InetAddress bind) {
-        return new BusSession(cluster, bind, BusBridge.connect(testInterface, options(cluster, bind)));
-    }
-
-    private static DtronOptions.Builder options(String cluster, InetAddress bind) {
-        return DtronOptions.builder().clusterName(cluster).bindAddress(bind);
+    static BusSession open(TestInterface testInterface, Supplier<DtronOptions.Builder> options) {
+        return new BusSession(options, BusBridge.connect(testInterface, options.get()));
     }
 
     /** The engine's adapter. */
@@ -67,7 +62,7 @@ final class BusSession implements AutoCloseable {
      * @throws io.dtron.api.DtronException if it cannot join the bus
      */
     String startAdapter(DtronAdapter adapter) {
-        Dtron member = Dtron.connect(options(cluster, bind).build());
+        Dtron member = Dtron.connect(options.get().build());
         adapterMembers.add(member);
         adapters.add(adapter);
         adapter.start(member);

@@ -279,7 +279,8 @@ class RunCommandTest {
     void aSecondTesterOnABusWithARunRefusesToStartAndNamesTheOtherTester() throws Exception {
         TestInterface testInterface = TestInterface.fromNames(ModelLoader.load(model));
         String shared = cluster();
-        try (BusSession first = BusSession.open(testInterface, shared, InetAddress.getLoopbackAddress())) {
+        try (BusSession first = BusSession.open(testInterface,
+                () -> DtronOptions.builder().clusterName(shared).bindAddress(InetAddress.getLoopbackAddress()))) {
             String tester = first.bridge().memberId();
             CommandRun second = CommandRun.of(model.toString(), "--adapter", BusTicker.class.getName(), "--cluster", shared,
                     "--timeunit", "10000", "--timeout", "100");
@@ -330,7 +331,9 @@ class RunCommandTest {
     void outputsAfterTheEndAreCountedInTheSummary() throws Exception {
         TestInterface testInterface = TestInterface.fromNames(ModelLoader.load(model));
         List<Dtron> member = new ArrayList<>();
-        try (BusSession session = BusSession.open(testInterface, cluster(), InetAddress.getLoopbackAddress())) {
+        String cluster = cluster();
+        try (BusSession session = BusSession.open(testInterface,
+                () -> DtronOptions.builder().clusterName(cluster).bindAddress(InetAddress.getLoopbackAddress()))) {
             session.startAdapter(member::add);
             assertTrue(session.awaitAdapters(1, Duration.ofSeconds(30)), session.bridge().members().toString());
             session.bridge().start(new AdapterContext() {
