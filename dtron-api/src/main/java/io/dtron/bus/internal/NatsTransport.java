@@ -259,16 +259,22 @@ public final class NatsTransport implements Transport {
         send(settings.channelSubject(group), headers, payload);
     }
 
+    /**
+     * Hands a message to the connection without waiting for the stream's acknowledgement (the connection keeps the
+     * order, and buffers while it reconnects); a message the stream refuses later is logged.
+     */
     private void send(String subject, Headers headers, byte[] payload) throws IOException {
         Message message = NatsMessage.builder().subject(subject).headers(headers).data(payload).build();
         PublishOptions options = PublishOptions.builder()
                 .messageId(settings.memberName() + "-" + published.incrementAndGet())
                 .build();
         try {
-            jetStream.publish(message, options);
-        } catch (JetStreamApiException e) {
-            throw new IOException("stream " + settings.streamName() + " refused a message on " + subject + ": "
-                    + e.getMessage(), e);
+            jetStream.publishAsync(message, options).whenComplete((ack, failure) -> {
+                if (failure != null && !closed) {
+                    LOG.warn("{}: stream {} did not take a message on {}: {}", settings.memberName(),
+                            settings.streamName(), subject, failure.toString());
+                }
+            });
         } catch (IllegalStateException e) {
             throw new IOException("cannot publish on " + subject + ": " + e.getMessage(), e);
         }
@@ -343,6 +349,11 @@ public final class NatsTransport implements Transport {
             publishPresence("leave");
         } catch (IOException | RuntimeException e) {
             LOG.debug("{} cannot say leave: {}", settings.memberName(), e.toString());
+        }
+        try {
+            connection.flush(java.time.Duration.ofSeconds(2));
+        } catch (java.util.concurrent.TimeoutException | InterruptedException | RuntimeException e) {
+            LOG.debug("{} cannot flush its leave: {}", settings.memberName(), e.toString());
         }
         closed = true;
         try {

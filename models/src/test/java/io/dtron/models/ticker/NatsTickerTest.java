@@ -17,7 +17,9 @@ import org.junit.jupiter.api.io.TempDir;
 
 /**
  * The ticker through a NATS bus ({@code dtron run --bus nats://...} on a nats-server of the test's): the Java bus
- * adapter passes and its slow variant fails.
+ * adapter, the Python adapter ({@code clients/python/examples/ticker.py}) and the C adapter each pass, and their slow
+ * variants fail. The Python adapter runs with {@code $DTRON_PYTHON} (a Python with the {@code dtron} package
+ * installed; {@code .ci/run} makes one), else {@code python3} if it has the package.
  */
 @Timeout(value = 2, unit = TimeUnit.MINUTES)
 class NatsTickerTest {
@@ -26,11 +28,14 @@ class NatsTickerTest {
     @TempDir
     Path dir;
 
-    /** A dtron run of the ticker model on the NATS bus, in this JVM. */
+    /**
+     * A dtron run of the ticker model on the NATS bus, in this JVM: 80 time units of 50 ms, so that the model's
+     * tolerance of 2 units (100 ms) holds on a loaded machine, and a slow ticker (13 units) is still late.
+     */
     record Run(int exit, String out, String err) {
         static Run of(String url, String cluster, String... more) {
             List<String> args = new java.util.ArrayList<>(List.of(MODEL, "--bus", url, "--cluster", cluster,
-                    "--timeunit", "10000", "--timeout", "300", "--delay-policy", "eager", "--wait-timeout", "60"));
+                    "--timeunit", "50000", "--timeout", "80", "--delay-policy", "eager", "--wait-timeout", "60"));
             args.addAll(List.of(more));
             StringWriter out = new StringWriter();
             StringWriter err = new StringWriter();
@@ -57,6 +62,59 @@ class NatsTickerTest {
             assertTrue(passed.out().contains("on bus '") && passed.out().contains(server.url()), passed.shown());
             Run failed = Run.of(server.url(), cluster("java-slow"), "--adapter",
                     TickerBusAdapter.class.getName() + ":slow");
+            assertEquals(2, failed.exit(), failed.shown());
+            assertTrue(failed.out().contains("FAILED"), failed.shown());
+        }
+    }
+
+    /** A Python with the dtron package, or the test is skipped (failed under DTRON_REQUIRE_NATS=1). */
+    static String python() throws Exception {
+        String python = System.getenv().getOrDefault("DTRON_PYTHON", "python3");
+        boolean usable;
+        try {
+            Process probe = new ProcessBuilder(python, "-c", "import dtron, nats").redirectErrorStream(true).start();
+            usable = probe.waitFor(30, TimeUnit.SECONDS) && probe.exitValue() == 0;
+        } catch (java.io.IOException e) {
+            usable = false;
+        }
+        NatsServer.requireTool(usable, "a Python with the dtron package (pip install ./clients/python; DTRON_PYTHON)");
+        return python;
+    }
+
+    /** Starts an adapter process for one run on the bus; its output goes to a log in the test's folder. */
+    Process adapter(String name, List<String> command) throws Exception {
+        return new ProcessBuilder(command).redirectErrorStream(true)
+                .redirectOutput(dir.resolve(name + ".log").toFile()).start();
+    }
+
+    String log(String name) throws Exception {
+        return java.nio.file.Files.readString(dir.resolve(name + ".log"));
+    }
+
+    /** Runs the tester against an adapter process; returns the run, with the adapter's log when it went wrong. */
+    Run against(NatsServer server, String name, List<String> command) throws Exception {
+        String cluster = cluster(name);
+        List<String> full = new java.util.ArrayList<>(command);
+        full.addAll(List.of("--bus", server.url(), "--cluster", cluster, "--runs", "1"));
+        Process process = adapter(name, full);
+        try {
+            Run run = Run.of(server.url(), cluster);
+            assertTrue(process.waitFor(30, TimeUnit.SECONDS), "the adapter exits after its run:\n" + log(name));
+            return new Run(run.exit(), run.out(), run.err() + "\nadapter " + name + ":\n" + log(name));
+        } finally {
+            process.destroyForcibly();
+        }
+    }
+
+    @Test
+    void thePythonAdapterPassesOnNatsAndItsSlowVariantFails() throws Exception {
+        String python = python();
+        Path ticker = Path.of("../clients/python/examples/ticker.py").toAbsolutePath().normalize();
+        try (NatsServer server = NatsServer.start(dir)) {
+            Run passed = against(server, "py", List.of(python, ticker.toString()));
+            assertEquals(0, passed.exit(), passed.shown());
+            assertTrue(passed.out().contains("PASSED"), passed.shown());
+            Run failed = against(server, "py-slow", List.of(python, ticker.toString(), "--variant", "slow"));
             assertEquals(2, failed.exit(), failed.shown());
             assertTrue(failed.out().contains("FAILED"), failed.shown());
         }
