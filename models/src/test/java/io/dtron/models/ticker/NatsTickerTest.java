@@ -120,6 +120,43 @@ class NatsTickerTest {
         }
     }
 
+    /** Builds the C client and its ticker with CMake into target/clients-c, or skips (fails under DTRON_REQUIRE_NATS). */
+    static Path cTicker() throws Exception {
+        Path source = Path.of("../clients/c").toAbsolutePath().normalize();
+        Path build = Path.of("target/clients-c").toAbsolutePath();
+        boolean built;
+        try {
+            Process configure = new ProcessBuilder("cmake", "-S", source.toString(), "-B", build.toString())
+                    .redirectErrorStream(true).redirectOutput(Path.of("target/clients-c.log").toFile()).start();
+            built = configure.waitFor(120, TimeUnit.SECONDS) && configure.exitValue() == 0;
+            if (built) {
+                Process make = new ProcessBuilder("cmake", "--build", build.toString(), "--target", "dtron-ticker")
+                        .redirectErrorStream(true)
+                        .redirectOutput(ProcessBuilder.Redirect.appendTo(Path.of("target/clients-c.log").toFile()))
+                        .start();
+                built = make.waitFor(300, TimeUnit.SECONDS) && make.exitValue() == 0;
+            }
+        } catch (java.io.IOException e) {
+            built = false;
+        }
+        NatsServer.requireTool(built, "cmake with libnats-dev, libprotobuf-c-dev and protobuf-c-compiler (see"
+                + " target/clients-c.log)");
+        return build.resolve("dtron-ticker");
+    }
+
+    @Test
+    void theCAdapterPassesOnNatsAndItsSlowVariantFails() throws Exception {
+        String ticker = cTicker().toString();
+        try (NatsServer server = NatsServer.start(dir)) {
+            Run passed = against(server, "c", List.of(ticker));
+            assertEquals(0, passed.exit(), passed.shown());
+            assertTrue(passed.out().contains("PASSED"), passed.shown());
+            Run failed = against(server, "c-slow", List.of(ticker, "--variant", "slow"));
+            assertEquals(2, failed.exit(), failed.shown());
+            assertTrue(failed.out().contains("FAILED"), failed.shown());
+        }
+    }
+
     @Test
     void aBusThatCannotBeReachedIsOneLine() throws Exception {
         Run run = Run.of("nats://127.0.0.1:" + NatsServer.freePort(), cluster("none"), "--adapter",
