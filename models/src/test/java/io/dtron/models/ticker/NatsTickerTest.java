@@ -67,20 +67,6 @@ class NatsTickerTest {
         }
     }
 
-    /** A Python with the dtron package, or the test is skipped (failed under DTRON_REQUIRE_NATS=1). */
-    static String python() throws Exception {
-        String python = System.getenv().getOrDefault("DTRON_PYTHON", "python3");
-        boolean usable;
-        try {
-            Process probe = new ProcessBuilder(python, "-c", "import dtron, nats").redirectErrorStream(true).start();
-            usable = probe.waitFor(30, TimeUnit.SECONDS) && probe.exitValue() == 0;
-        } catch (java.io.IOException e) {
-            usable = false;
-        }
-        NatsServer.requireTool(usable, "a Python with the dtron package (pip install ./clients/python; DTRON_PYTHON)");
-        return python;
-    }
-
     /** Starts an adapter process for one run on the bus; its output goes to a log in the test's folder. */
     Process adapter(String name, List<String> command) throws Exception {
         return new ProcessBuilder(command).redirectErrorStream(true)
@@ -108,8 +94,8 @@ class NatsTickerTest {
 
     @Test
     void thePythonAdapterPassesOnNatsAndItsSlowVariantFails() throws Exception {
-        String python = python();
-        Path ticker = Path.of("../clients/python/examples/ticker.py").toAbsolutePath().normalize();
+        String python = NatsClients.python();
+        Path ticker = NatsClients.PYTHON.resolve("examples/ticker.py").toAbsolutePath().normalize();
         try (NatsServer server = NatsServer.start(dir)) {
             Run passed = against(server, "py", List.of(python, ticker.toString()));
             assertEquals(0, passed.exit(), passed.shown());
@@ -120,33 +106,9 @@ class NatsTickerTest {
         }
     }
 
-    /** Builds the C client and its ticker with CMake into target/clients-c, or skips (fails under DTRON_REQUIRE_NATS). */
-    static Path cTicker() throws Exception {
-        Path source = Path.of("../clients/c").toAbsolutePath().normalize();
-        Path build = Path.of("target/clients-c").toAbsolutePath();
-        boolean built;
-        try {
-            Process configure = new ProcessBuilder("cmake", "-S", source.toString(), "-B", build.toString())
-                    .redirectErrorStream(true).redirectOutput(Path.of("target/clients-c.log").toFile()).start();
-            built = configure.waitFor(120, TimeUnit.SECONDS) && configure.exitValue() == 0;
-            if (built) {
-                Process make = new ProcessBuilder("cmake", "--build", build.toString(), "--target", "dtron-ticker")
-                        .redirectErrorStream(true)
-                        .redirectOutput(ProcessBuilder.Redirect.appendTo(Path.of("target/clients-c.log").toFile()))
-                        .start();
-                built = make.waitFor(300, TimeUnit.SECONDS) && make.exitValue() == 0;
-            }
-        } catch (java.io.IOException e) {
-            built = false;
-        }
-        NatsServer.requireTool(built, "cmake with libnats-dev, libprotobuf-c-dev and protobuf-c-compiler (see"
-                + " target/clients-c.log)");
-        return build.resolve("dtron-ticker");
-    }
-
     @Test
     void theCAdapterPassesOnNatsAndItsSlowVariantFails() throws Exception {
-        String ticker = cTicker().toString();
+        String ticker = NatsClients.cProgram("dtron-ticker").toString();
         try (NatsServer server = NatsServer.start(dir)) {
             Run passed = against(server, "c", List.of(ticker));
             assertEquals(0, passed.exit(), passed.shown());
