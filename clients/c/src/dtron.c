@@ -25,6 +25,8 @@
 #define WINDOW 8
 #define PENDING_PINGS 64
 #define MAX_MEMBERS 256
+#define PUBLISH_WAIT_MS 2000
+#define RETRIES 150
 
 typedef struct channel {
     char *name;
@@ -203,7 +205,10 @@ static int publish(dtron_bus *bus, const char *subject, const char *presence, co
             natsMsgHeader_Set(msg, "Dtron-Joined", joined);
         }
     }
-    natsStatus status = js_PublishMsgAsync(bus->js, &msg, NULL);
+    jsPubOptions options;
+    jsPubOptions_Init(&options);
+    options.MaxWait = PUBLISH_WAIT_MS; /* no acknowledgement by then: publish_failed publishes it again */
+    natsStatus status = js_PublishMsgAsync(bus->js, &msg, &options);
     if (status != NATS_OK) {
         natsMsg_Destroy(msg);
         return DTRON_ERR_BUS;
@@ -647,9 +652,34 @@ static void free_bus(dtron_bus *bus) {
     free(bus);
 }
 
+/*
+ * The stream did not acknowledge a message (a server failing over, or the library timed out waiting): publish it
+ * again, with the same Nats-Msg-Id so that the stream stores it once, until it was tried RETRIES times. Runs on the
+ * library's thread; messages refused for good (limits) are reported.
+ */
 static void publish_failed(jsCtx *js, jsPubAckErr *pae, void *closure) {
-    (void)js;
-    warn(closure, "the stream did not take a message: %s", pae->ErrText ? pae->ErrText : natsStatus_GetText(pae->Err));
+    dtron_bus *bus = closure;
+    int transient = pae->Err == NATS_TIMEOUT || pae->Err == NATS_NO_RESPONDERS || pae->ErrCode == 503
+                    || pae->Err == NATS_CONNECTION_CLOSED || pae->Err == NATS_CONNECTION_DISCONNECTED;
+    const char *tries_text = NULL;
+    int tries = 0;
+    if (natsMsgHeader_Get(pae->Msg, "Dtron-Tries", &tries_text) == NATS_OK) {
+        tries = atoi(tries_text);
+    }
+    if (transient && !bus->closed && tries < RETRIES) {
+        char next[16];
+        struct timespec pause = {0, 100000000L};
+        nanosleep(&pause, NULL);
+        snprintf(next, sizeof next, "%d", tries + 1);
+        natsMsgHeader_Set(pae->Msg, "Dtron-Tries", next);
+        jsPubOptions options;
+        jsPubOptions_Init(&options);
+        options.MaxWait = PUBLISH_WAIT_MS;
+        if (js_PublishMsgAsync(js, &(pae->Msg), &options) == NATS_OK) {
+            return; /* the library owns the message again */
+        }
+    }
+    warn(bus, "a message was not stored: %s", pae->ErrText ? pae->ErrText : natsStatus_GetText(pae->Err));
 }
 
 int dtron_connect(const dtron_options *options, dtron_bus **out, char *err, size_t errlen) {

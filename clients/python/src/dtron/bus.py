@@ -20,7 +20,7 @@ from typing import Any, Awaitable, Callable, Optional, Sequence, Union
 
 import nats
 from nats.js import api
-from nats.js.errors import NotFoundError
+from nats.js.errors import APIError, NotFoundError
 
 from dtron._proto import Sync_pb2
 from dtron.channel import RESERVED, Channel, InvalidMessage, Message
@@ -41,6 +41,7 @@ DUPLICATE_WINDOW_S = 60.0
 PING_BURST = 8
 PING_SPACING_S = 0.02
 PING_PERIOD_S = 1.0
+RETRY_FOR_S = 30.0
 _BUS_NAME = re.compile(r"[A-Za-z0-9_-]{1,64}\Z")
 _MEMBER_NAME = re.compile(r"[\x21-\x7e]{1,128}\Z")
 _CONTROL = frozenset({"dtron_hello", "dtron_ping", "dtron_pong", "dtron_serve"})
@@ -283,11 +284,26 @@ class Bus:
         if future is not None:
             await future
 
-    async def _publish(self, subject: str, headers: dict[str, str], payload: bytes, timeout: float = 5.0) -> None:
-        """Publishes into the stream and waits for its acknowledgement."""
+    async def _publish(self, subject: str, headers: dict[str, str], payload: bytes) -> None:
+        """Publishes into the stream until it acknowledged the message: a message that fails while a server fails
+        over is published again with the same ``Nats-Msg-Id``, so that the stream stores it once."""
         self._msg_ids += 1
         headers = dict(headers, **{"Nats-Msg-Id": f"{self.member}-{self._msg_ids}"})
-        await self._js.publish(subject, payload, headers=headers, timeout=timeout)
+        loop = asyncio.get_running_loop()
+        deadline = loop.time() + RETRY_FOR_S
+        while True:
+            try:
+                await self._js.publish(subject, payload, headers=headers, timeout=2.0)
+                return
+            except APIError as e:
+                if e.code != 503:  # refused for good (limits, a bad subject)
+                    raise
+                failure: Exception = e
+            except Exception as e:  # a timeout, no responders, a connection being re-established
+                failure = e
+            if self._nc.is_closed or loop.time() > deadline:
+                raise ConnectionError(f"not stored within {RETRY_FOR_S} s: {failure}")
+            await asyncio.sleep(0.1)
 
     async def _publisher(self) -> None:
         """Publishes the queued messages one after the other, in the order they were stamped."""
@@ -301,10 +317,9 @@ class Bus:
                 if future is not None and not future.done():
                     future.set_result(None)
             except Exception as e:
+                LOG.warning("%s: a message on %s was dropped: %s", self.member, subject, e)
                 if future is not None and not future.done():
                     future.set_exception(ConnectionError(f"cannot publish on {subject}: {e}"))
-                else:
-                    LOG.debug("%s cannot publish on %s: %s", self.member, subject, e)
 
     def _control(self, channel: str, event_ns: Optional[int] = None, acked: tuple[str, int] = ("", 0)) -> None:
         """Queues a control message (hello, ping, pong, serve) without waiting for it."""

@@ -15,7 +15,6 @@ import io.nats.client.JetStreamSubscription;
 import io.nats.client.Message;
 import io.nats.client.Nats;
 import io.nats.client.Options;
-import io.nats.client.PublishOptions;
 import io.nats.client.PushSubscribeOptions;
 import io.nats.client.api.ConsumerConfiguration;
 import io.nats.client.api.DeliverPolicy;
@@ -76,6 +75,14 @@ public final class NatsTransport implements Transport {
 
     private static final Logger LOG = LoggerFactory.getLogger(NatsTransport.class);
     private static final long CONNECT_TIMEOUT_MILLIS = 10_000;
+    /** How many messages may wait for the publisher thread. */
+    private static final int OUTBOX = 100_000;
+    /** How long the publisher tries a message before it drops it. */
+    private static final java.time.Duration RETRY_FOR = java.time.Duration.ofSeconds(30);
+    private static final long RETRY_PAUSE_MILLIS = 100;
+    private static final long CLOSE_WAIT_MILLIS = 3_000;
+    /** Tells the publisher thread to stop, after the messages before it. */
+    private static final Message STOP = NatsMessage.builder().subject("stop").build();
 
     private final Connection connection;
     private final NatsSettings settings;
@@ -85,6 +92,9 @@ public final class NatsTransport implements Transport {
     private final List<java.util.function.Consumer<BusMessage>> allHandlers = new CopyOnWriteArrayList<>();
     private final List<java.util.function.Consumer<MembershipView>> viewListeners = new CopyOnWriteArrayList<>();
     private final ScheduledExecutorService presence;
+    private final java.util.concurrent.BlockingQueue<Message> outbox =
+            new java.util.concurrent.LinkedBlockingQueue<>(OUTBOX);
+    private final Thread publisher;
     private final AtomicLong published = new AtomicLong();
     private final CountDownLatch joined = new CountDownLatch(1);
     /** Membership state, touched on the receive thread only: last stream time (ns) and join sequence per member. */
@@ -108,6 +118,9 @@ public final class NatsTransport implements Transport {
             thread.setDaemon(true);
             return thread;
         });
+        this.publisher = new Thread(this::publishing, "dtron-nats-publisher-" + settings.memberName());
+        this.publisher.setDaemon(true);
+        this.publisher.start();
     }
 
     /**
@@ -133,6 +146,7 @@ public final class NatsTransport implements Transport {
         } catch (IOException | InterruptedException | RuntimeException | Error e) {
             if (transport != null) {
                 transport.presence.shutdownNow();
+                transport.publisher.interrupt();
             }
             connection.close();
             throw e;
@@ -260,23 +274,57 @@ public final class NatsTransport implements Transport {
     }
 
     /**
-     * Hands a message to the connection without waiting for the stream's acknowledgement (the connection keeps the
-     * order, and buffers while it reconnects); a message the stream refuses later is logged.
+     * Queues a message for the publisher thread, which publishes the messages one after the other, in this order,
+     * each until the stream acknowledged it: a message that fails while a server fails over is published again,
+     * with the same {@code Nats-Msg-Id}, so that the stream stores it once.
      */
     private void send(String subject, Headers headers, byte[] payload) throws IOException {
+        headers.put("Nats-Msg-Id", settings.memberName() + "-" + published.incrementAndGet());
         Message message = NatsMessage.builder().subject(subject).headers(headers).data(payload).build();
-        PublishOptions options = PublishOptions.builder()
-                .messageId(settings.memberName() + "-" + published.incrementAndGet())
-                .build();
+        if (!outbox.offer(message)) {
+            throw new IOException("too many messages waiting for the bus (" + OUTBOX + ")");
+        }
+    }
+
+    /** The publisher thread's loop. */
+    private void publishing() {
         try {
-            jetStream.publishAsync(message, options).whenComplete((ack, failure) -> {
-                if (failure != null && !closed) {
-                    LOG.warn("{}: stream {} did not take a message on {}: {}", settings.memberName(),
-                            settings.streamName(), subject, failure.toString());
+            while (true) {
+                Message message = outbox.take();
+                if (message == STOP) {
+                    return;
                 }
-            });
-        } catch (IllegalStateException e) {
-            throw new IOException("cannot publish on " + subject + ": " + e.getMessage(), e);
+                publishUntilStored(message);
+            }
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+        }
+    }
+
+    private void publishUntilStored(Message message) throws InterruptedException {
+        long deadline = System.nanoTime() + RETRY_FOR.toNanos();
+        while (true) {
+            try {
+                jetStream.publish(NatsMessage.builder().subject(message.getSubject()).headers(message.getHeaders())
+                        .data(message.getData()).build());
+                return;
+            } catch (JetStreamApiException e) {
+                if (e.getErrorCode() != 503) { // the stream refused it for good (limits, a bad subject)
+                    LOG.warn("{}: stream {} refused a message on {}: {}", settings.memberName(),
+                            settings.streamName(), message.getSubject(), e.getMessage());
+                    return;
+                }
+                LOG.debug("{}: JetStream unavailable for a moment: {}", settings.memberName(), e.getMessage());
+            } catch (IOException | RuntimeException e) {
+                LOG.debug("{}: publishing on {} failed, again: {}", settings.memberName(), message.getSubject(),
+                        e.toString());
+            }
+            if (System.nanoTime() > deadline || connection.getStatus() == Connection.Status.CLOSED) {
+                LOG.warn("{}: a message on {} was not stored within {}; dropped", settings.memberName(),
+                        message.getSubject(), RETRY_FOR);
+                return;
+            }
+            Thread.sleep(RETRY_PAUSE_MILLIS);
         }
     }
 
@@ -350,11 +398,14 @@ public final class NatsTransport implements Transport {
         } catch (IOException | RuntimeException e) {
             LOG.debug("{} cannot say leave: {}", settings.memberName(), e.toString());
         }
+        // the messages queued before, and the leave, go out first
+        outbox.offer(STOP);
         try {
-            connection.flush(java.time.Duration.ofSeconds(2));
-        } catch (java.util.concurrent.TimeoutException | InterruptedException | RuntimeException e) {
-            LOG.debug("{} cannot flush its leave: {}", settings.memberName(), e.toString());
+            publisher.join(CLOSE_WAIT_MILLIS);
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
         }
+        publisher.interrupt();
         closed = true;
         try {
             if (dispatcher != null && subscription != null) {
