@@ -75,14 +75,10 @@ public final class NatsTransport implements Transport {
 
     private static final Logger LOG = LoggerFactory.getLogger(NatsTransport.class);
     private static final long CONNECT_TIMEOUT_MILLIS = 10_000;
-    /** How many messages may wait for the publisher thread. */
-    private static final int OUTBOX = 100_000;
     /** How long the publisher tries a message before it drops it. */
     private static final java.time.Duration RETRY_FOR = java.time.Duration.ofSeconds(30);
     private static final long RETRY_PAUSE_MILLIS = 100;
     private static final long CLOSE_WAIT_MILLIS = 3_000;
-    /** Tells the publisher thread to stop, after the messages before it. */
-    private static final Message STOP = NatsMessage.builder().subject("stop").build();
 
     private final Connection connection;
     private final NatsSettings settings;
@@ -92,9 +88,9 @@ public final class NatsTransport implements Transport {
     private final List<java.util.function.Consumer<BusMessage>> allHandlers = new CopyOnWriteArrayList<>();
     private final List<java.util.function.Consumer<MembershipView>> viewListeners = new CopyOnWriteArrayList<>();
     private final ScheduledExecutorService presence;
-    private final java.util.concurrent.BlockingQueue<Message> outbox =
-            new java.util.concurrent.LinkedBlockingQueue<>(OUTBOX);
-    private final Thread publisher;
+    private final Object sendLock = new Object();
+    private final java.util.concurrent.atomic.AtomicInteger inFlight = new java.util.concurrent.atomic.AtomicInteger();
+    private final java.util.concurrent.ExecutorService retries;
     private final AtomicLong published = new AtomicLong();
     private final CountDownLatch joined = new CountDownLatch(1);
     /** Membership state, touched on the receive thread only: last stream time (ns) and join sequence per member. */
@@ -118,9 +114,11 @@ public final class NatsTransport implements Transport {
             thread.setDaemon(true);
             return thread;
         });
-        this.publisher = new Thread(this::publishing, "dtron-nats-publisher-" + settings.memberName());
-        this.publisher.setDaemon(true);
-        this.publisher.start();
+        this.retries = Executors.newSingleThreadExecutor(task -> {
+            Thread thread = new Thread(task, "dtron-nats-retry-" + settings.memberName());
+            thread.setDaemon(true);
+            return thread;
+        });
     }
 
     /**
@@ -146,7 +144,7 @@ public final class NatsTransport implements Transport {
         } catch (IOException | InterruptedException | RuntimeException | Error e) {
             if (transport != null) {
                 transport.presence.shutdownNow();
-                transport.publisher.interrupt();
+                transport.retries.shutdownNow();
             }
             connection.close();
             throw e;
@@ -274,30 +272,46 @@ public final class NatsTransport implements Transport {
     }
 
     /**
-     * Queues a message for the publisher thread, which publishes the messages one after the other, in this order,
-     * each until the stream acknowledged it: a message that fails while a server fails over is published again,
-     * with the same {@code Nats-Msg-Id}, so that the stream stores it once.
+     * Hands a message to the connection, which sends the messages in the order they were handed over, and does not
+     * wait for the stream's acknowledgement. A message the stream did not acknowledge (a server failing over) is
+     * published again by the retry thread, with the same {@code Nats-Msg-Id}, so that the stream stores it once;
+     * while a server fails over, a message published again may come after later ones of the same member.
      */
     private void send(String subject, Headers headers, byte[] payload) throws IOException {
-        headers.put("Nats-Msg-Id", settings.memberName() + "-" + published.incrementAndGet());
-        Message message = NatsMessage.builder().subject(subject).headers(headers).data(payload).build();
-        if (!outbox.offer(message)) {
-            throw new IOException("too many messages waiting for the bus (" + OUTBOX + ")");
+        synchronized (sendLock) { // the ids and the connection's order agree
+            headers.put("Nats-Msg-Id", settings.memberName() + "-" + published.incrementAndGet());
+            Message message = NatsMessage.builder().subject(subject).headers(headers).data(payload).build();
+            try {
+                inFlight.incrementAndGet();
+                jetStream.publishAsync(message).whenComplete((ack, failure) -> {
+                    if (failure == null) {
+                        inFlight.decrementAndGet();
+                    } else {
+                        retryLater(message, failure);
+                    }
+                });
+            } catch (IllegalStateException e) {
+                inFlight.decrementAndGet();
+                throw new IOException("cannot publish on " + subject + ": " + e.getMessage(), e);
+            }
         }
     }
 
-    /** The publisher thread's loop. */
-    private void publishing() {
+    private void retryLater(Message message, Throwable failure) {
+        LOG.debug("{}: the stream did not acknowledge a message on {}, again: {}", settings.memberName(),
+                message.getSubject(), failure.toString());
         try {
-            while (true) {
-                Message message = outbox.take();
-                if (message == STOP) {
-                    return;
+            retries.execute(() -> {
+                try {
+                    publishUntilStored(message);
+                } catch (InterruptedException e) {
+                    Thread.currentThread().interrupt();
+                } finally {
+                    inFlight.decrementAndGet();
                 }
-                publishUntilStored(message);
-            }
-        } catch (InterruptedException e) {
-            Thread.currentThread().interrupt();
+            });
+        } catch (RejectedExecutionException e) {
+            inFlight.decrementAndGet(); // closed
         }
     }
 
@@ -398,14 +412,16 @@ public final class NatsTransport implements Transport {
         } catch (IOException | RuntimeException e) {
             LOG.debug("{} cannot say leave: {}", settings.memberName(), e.toString());
         }
-        // the messages queued before, and the leave, go out first
-        outbox.offer(STOP);
+        // the messages handed over before, and the leave, are stored first
+        long deadline = System.nanoTime() + TimeUnit.MILLISECONDS.toNanos(CLOSE_WAIT_MILLIS);
         try {
-            publisher.join(CLOSE_WAIT_MILLIS);
+            while (inFlight.get() > 0 && System.nanoTime() < deadline) {
+                Thread.sleep(5);
+            }
         } catch (InterruptedException e) {
             Thread.currentThread().interrupt();
         }
-        publisher.interrupt();
+        retries.shutdownNow();
         closed = true;
         try {
             if (dispatcher != null && subscription != null) {
