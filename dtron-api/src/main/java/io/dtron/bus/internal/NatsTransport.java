@@ -31,6 +31,7 @@ import java.security.GeneralSecurityException;
 import java.security.KeyStore;
 import java.security.cert.Certificate;
 import java.security.cert.CertificateFactory;
+import java.time.Duration;
 import java.time.Instant;
 import java.util.ArrayList;
 import java.util.Comparator;
@@ -41,10 +42,12 @@ import java.util.Objects;
 import java.util.concurrent.ConcurrentHashMap;
 import java.util.concurrent.CopyOnWriteArrayList;
 import java.util.concurrent.CountDownLatch;
+import java.util.concurrent.ExecutorService;
 import java.util.concurrent.Executors;
 import java.util.concurrent.RejectedExecutionException;
 import java.util.concurrent.ScheduledExecutorService;
 import java.util.concurrent.TimeUnit;
+import java.util.concurrent.atomic.AtomicInteger;
 import java.util.concurrent.atomic.AtomicLong;
 import javax.net.ssl.SSLContext;
 import javax.net.ssl.TrustManagerFactory;
@@ -75,8 +78,8 @@ public final class NatsTransport implements Transport {
 
     private static final Logger LOG = LoggerFactory.getLogger(NatsTransport.class);
     private static final long CONNECT_TIMEOUT_MILLIS = 10_000;
-    /** How long the publisher tries a message before it drops it. */
-    private static final java.time.Duration RETRY_FOR = java.time.Duration.ofSeconds(30);
+    /** How long a message the stream did not acknowledge is tried again before it is dropped. */
+    private static final Duration RETRY_FOR = Duration.ofSeconds(30);
     private static final long RETRY_PAUSE_MILLIS = 100;
     private static final long CLOSE_WAIT_MILLIS = 3_000;
 
@@ -89,8 +92,8 @@ public final class NatsTransport implements Transport {
     private final List<java.util.function.Consumer<MembershipView>> viewListeners = new CopyOnWriteArrayList<>();
     private final ScheduledExecutorService presence;
     private final Object sendLock = new Object();
-    private final java.util.concurrent.atomic.AtomicInteger inFlight = new java.util.concurrent.atomic.AtomicInteger();
-    private final java.util.concurrent.ExecutorService retries;
+    private final AtomicInteger inFlight = new AtomicInteger();
+    private final ExecutorService retries;
     private final AtomicLong published = new AtomicLong();
     private final CountDownLatch joined = new CountDownLatch(1);
     /** Membership state, touched on the receive thread only: last stream time (ns) and join sequence per member. */
@@ -196,16 +199,36 @@ public final class NatsTransport implements Transport {
         return context;
     }
 
-    /** Creates the bus's stream unless it exists (created by another member, maybe with other limits). */
-    private static void ensureStream(Connection connection, NatsSettings settings) throws IOException {
+    /**
+     * Creates the bus's stream unless it exists (created by another member, maybe with other limits); waits up to
+     * the connect timeout while JetStream is unavailable (a cluster electing its leader).
+     */
+    private static void ensureStream(Connection connection, NatsSettings settings)
+            throws IOException, InterruptedException {
         JetStreamManagement management = connection.jetStreamManagement();
+        long deadline = System.nanoTime() + TimeUnit.MILLISECONDS.toNanos(CONNECT_TIMEOUT_MILLIS);
+        while (true) {
+            try {
+                ensureStream(management, settings);
+                return;
+            } catch (JetStreamApiException e) {
+                if (e.getErrorCode() != 503 || System.nanoTime() > deadline) {
+                    throw new IOException("JetStream refused stream " + settings.streamName() + ": " + e.getMessage(),
+                            e);
+                }
+                Thread.sleep(RETRY_PAUSE_MILLIS);
+            }
+        }
+    }
+
+    private static void ensureStream(JetStreamManagement management, NatsSettings settings)
+            throws IOException, JetStreamApiException {
         try {
             management.getStreamInfo(settings.streamName());
             return;
         } catch (JetStreamApiException e) {
             if (e.getErrorCode() != 404) {
-                throw new IOException("JetStream refused to describe stream " + settings.streamName() + ": "
-                        + e.getMessage(), e);
+                throw e;
             }
         }
         StreamConfiguration config = StreamConfiguration.builder()
@@ -222,12 +245,10 @@ public final class NatsTransport implements Transport {
             management.addStream(config);
             LOG.info("Created stream {} for bus '{}'", settings.streamName(), settings.busName());
         } catch (JetStreamApiException e) {
-            try {
-                management.getStreamInfo(settings.streamName()); // another member created it meanwhile
-            } catch (JetStreamApiException again) {
-                throw new IOException("JetStream refused to create stream " + settings.streamName() + ": "
-                        + e.getMessage(), e);
+            if (e.getErrorCode() == 503) {
+                throw e;
             }
+            management.getStreamInfo(settings.streamName()); // another member created it meanwhile, or this throws
         }
     }
 
