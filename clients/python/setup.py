@@ -19,7 +19,7 @@ class BuildWithProto(build_py):
         target = Path(self.build_lib) / "dtron" / "_proto"
         target.mkdir(parents=True, exist_ok=True)
         (target / "__init__.py").write_text('"""Generated from Sync.proto at build time."""\n')
-        status = protoc.main(["protoc", f"-I{PROTO.parent}", f"--python_out={target}", str(PROTO)])
+        status = protoc.main(["protoc", f"-I{PROTO.parent}", f"--python_out={target}", f"--pyi_out={target}", str(PROTO)])
         if status != 0:
             raise RuntimeError(f"protoc failed on {PROTO} ({status})")
         super().run()
