@@ -128,8 +128,12 @@ static int is_control(const char *name) {
            || strcmp(name, "dtron_serve") == 0 || strcmp(name, "dtron_ack") == 0;
 }
 
+static int is_run_channel(const char *name) {
+    return strcmp(name, DTRON_RUN_START) == 0 || strcmp(name, DTRON_RUN_STOP) == 0;
+}
+
 static int is_reserved(const char *name) {
-    return is_control(name) || strcmp(name, DTRON_RUN_START) == 0 || strcmp(name, DTRON_RUN_STOP) == 0;
+    return is_control(name) || is_run_channel(name) || strcmp(name, "dtron_verdict") == 0;
 }
 
 /* ---- channels (lock held) ---- */
@@ -505,7 +509,7 @@ static void on_message(natsConnection *nc, natsSubscription *sub, natsMsg *msg, 
     const char *name = subject + prefix;
     channel *template = find_channel(bus, name);
     int listened = template != NULL && template->listener != NULL;
-    if (!is_reserved(name) && !listened) {
+    if (!listened && !is_control(name) && !is_run_channel(name)) { /* another member's channel, or a verdict */
         pthread_mutex_unlock(&bus->lock);
         natsMsg_Destroy(msg);
         return;

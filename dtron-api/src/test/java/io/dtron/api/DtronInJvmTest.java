@@ -41,12 +41,14 @@ class DtronInJvmTest {
             IDtronChannelValued first = inbox.take();
             assertEquals(Map.of("amount", 7), first.getVariables());
             assertEquals("tester", first.getSender());
-            assertEquals(1, first.getSequence());
+            // the member's channel-serving announcement, published from its listener thread when it first sends on
+            // move, takes a sequence number too, before, between or after these two
+            assertTrue(first.getSequence() >= 1, "sequence numbers start at 1");
             assertTrue(first.getPublishTimeNanos() >= before - 1_000_000, "publish time is epoch nanos");
             assertTrue(first.getReceiveTimeNanos() >= first.getPublishTimeNanos(), "received after published");
             IDtronChannelValued second = inbox.take();
             assertEquals(-2, second.getVariables().get("amount"));
-            assertEquals(2, second.getSequence());
+            assertTrue(second.getSequence() > first.getSequence(), "each message takes the next number");
             assertEquals(2, tester.getStats().getPublished());
             assertEquals(2, adapter.getStats().getAccepted());
         }
