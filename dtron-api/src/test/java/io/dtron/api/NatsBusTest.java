@@ -118,6 +118,25 @@ class NatsBusTest {
     }
 
     @Test
+    void aServerWithAUserTakesOnlyMembersWithItsPassword() throws Exception {
+        try (NatsServer server = NatsServer.startWith(dir, List.of("--user", "lab", "--pass", "s3cret"))) {
+            String cluster = TestClusters.uniqueName("auth");
+            DtronException refused = org.junit.jupiter.api.Assertions.assertThrows(DtronException.class,
+                    () -> Dtron.connect(nats(server, cluster, "nobody").build()));
+            assertTrue(String.valueOf(refused.getCause()).toLowerCase(java.util.Locale.ROOT).contains("author"),
+                    "the server refused the member: " + refused.getCause());
+            DtronException wrong = org.junit.jupiter.api.Assertions.assertThrows(DtronException.class,
+                    () -> Dtron.connect(nats(server, cluster, "guesser").natsUser("lab", "guess").build()));
+            assertTrue(String.valueOf(wrong.getCause()).toLowerCase(java.util.Locale.ROOT).contains("author"),
+                    String.valueOf(wrong.getCause()));
+            try (Dtron member = Dtron.connect(nats(server, cluster, "member").natsUser("lab", "s3cret").build())) {
+                assertEquals(List.of("member"), member.getMembers());
+                assertTrue(member.toString().contains("member"));
+            }
+        }
+    }
+
+    @Test
     void badInputIsRejectedAndCounted() throws Exception {
         try (NatsServer server = NatsServer.start(dir)) {
             String cluster = TestClusters.uniqueName("bad");

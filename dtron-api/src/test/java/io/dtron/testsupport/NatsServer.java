@@ -62,6 +62,11 @@ public final class NatsServer implements AutoCloseable {
         return start(dir, "n", freePort(), List.of());
     }
 
+    /** Starts a single server with JetStream and more options of nats-server's ({@code --user}, {@code --pass}). */
+    public static NatsServer startWith(Path dir, List<String> options) throws IOException, InterruptedException {
+        return start(dir, "n", freePort(), options);
+    }
+
     /**
      * Starts a server with JetStream on {@code port}, its store and log in {@code dir}: alone when {@code routes} is
      * empty, else as server {@code name} of the cluster {@code dtron-test} listening for routes on {@code
