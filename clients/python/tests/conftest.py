@@ -27,6 +27,16 @@ def free_port() -> int:
 
 @pytest.fixture
 def nats_url(tmp_path: Path) -> Iterator[str]:
+    yield from _serve(tmp_path, [])
+
+
+@pytest.fixture
+def nats_url_with_user(tmp_path: Path) -> Iterator[str]:
+    """A server that takes only user "lab" with password "s3cret"."""
+    yield from _serve(tmp_path, ["--user", "lab", "--pass", "s3cret"])
+
+
+def _serve(tmp_path: Path, options: list[str]) -> Iterator[str]:
     binary = _nats_server()
     if binary is None:
         if os.environ.get("DTRON_REQUIRE_NATS") == "1":
@@ -35,8 +45,8 @@ def nats_url(tmp_path: Path) -> Iterator[str]:
     port = free_port()
     log = tmp_path / "nats.log"
     with open(log, "w") as out:
-        server = subprocess.Popen([binary, "-a", "127.0.0.1", "-p", str(port), "-js", "-sd", str(tmp_path / "js")],
-                                  stdout=out, stderr=subprocess.STDOUT)
+        server = subprocess.Popen([binary, "-a", "127.0.0.1", "-p", str(port), "-js", "-sd", str(tmp_path / "js"),
+                                   *options], stdout=out, stderr=subprocess.STDOUT)
     try:
         deadline = time.monotonic() + 30
         while "Server is ready" not in log.read_text():

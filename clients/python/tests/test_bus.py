@@ -158,3 +158,16 @@ def test_unreachable_servers_and_bad_names_are_refused() -> None:
             await dtron.connect("nats://127.0.0.1:1", bus="none")
 
     run(test)
+
+
+def test_a_server_with_a_user_takes_only_members_with_its_password(nats_url_with_user: str) -> None:
+    async def test() -> None:
+        with pytest.raises(ConnectionError):
+            await dtron.connect(nats_url_with_user, bus="auth")
+        with pytest.raises(ConnectionError):
+            await dtron.connect(nats_url_with_user, bus="auth", user="lab", password="guess")
+        async with await dtron.connect(nats_url_with_user, bus="auth", member="m", user="lab",
+                                       password="s3cret") as bus:
+            assert bus.members == ["m"]
+
+    run(test)
