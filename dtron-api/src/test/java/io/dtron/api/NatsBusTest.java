@@ -136,6 +136,48 @@ class NatsBusTest {
         }
     }
 
+    /** Runs openssl in the test's folder; skips the test without it (fails under DTRON_REQUIRE_NATS=1). */
+    private void openssl(String... args) throws Exception {
+        List<String> command = new ArrayList<>(List.of("openssl"));
+        command.addAll(List.of(args));
+        boolean ran;
+        Process process = null;
+        try {
+            process = new ProcessBuilder(command).directory(dir.toFile()).redirectErrorStream(true)
+                    .redirectOutput(dir.resolve("openssl.log").toFile()).start();
+            ran = process.waitFor(60, TimeUnit.SECONDS) && process.exitValue() == 0;
+        } catch (java.io.IOException e) {
+            ran = false;
+        }
+        NatsServer.requireTool(ran || process != null, "openssl");
+        assertTrue(ran, "openssl " + String.join(" ", args) + ":\n" + Files.readString(dir.resolve("openssl.log")));
+    }
+
+    @Test
+    void tlsToTheServersTrustsTheGivenAuthorityOnly() throws Exception {
+        openssl("req", "-x509", "-newkey", "rsa:2048", "-nodes", "-keyout", "ca.key", "-out", "ca.pem", "-days", "1",
+                "-subj", "/CN=dtron-test-ca");
+        openssl("req", "-newkey", "rsa:2048", "-nodes", "-keyout", "server.key", "-out", "server.csr", "-subj",
+                "/CN=127.0.0.1");
+        Files.writeString(dir.resolve("san.cnf"), "subjectAltName=IP:127.0.0.1\n");
+        openssl("x509", "-req", "-in", "server.csr", "-CA", "ca.pem", "-CAkey", "ca.key", "-CAcreateserial", "-out",
+                "server.pem", "-days", "1", "-extfile", "san.cnf");
+        try (NatsServer server = NatsServer.startWith(dir, List.of("--tls", "--tlscert",
+                dir.resolve("server.pem").toString(), "--tlskey", dir.resolve("server.key").toString()))) {
+            String cluster = TestClusters.uniqueName("tls");
+            String url = server.url().replace("nats://", "tls://");
+            org.junit.jupiter.api.Assertions.assertThrows(DtronException.class, () -> Dtron.connect(
+                    DtronOptions.builder().clusterName(cluster).memberName("untrusting").natsServers(url).build()));
+            try (Dtron member = Dtron.connect(DtronOptions.builder().clusterName(cluster).memberName("trusting")
+                    .natsServers(url).natsTlsCaFile(dir.resolve("ca.pem")).build())) {
+                Inbox inbox = new Inbox(ORDER);
+                member.addDtronListener(inbox);
+                member.send(ORDER.constructValued(Map.of("n", 1)));
+                assertEquals(1, inbox.take().getVariables().get("n"), "a message over TLS");
+            }
+        }
+    }
+
     @Test
     void badInputIsRejectedAndCounted() throws Exception {
         try (NatsServer server = NatsServer.start(dir)) {
