@@ -136,6 +136,22 @@ class NatsBusTest {
         }
     }
 
+    @Test
+    void aServerWithAnNkeyUserTakesTheMemberWithItsSeed() throws Exception {
+        io.nats.client.NKey user = io.nats.client.NKey.createUser(null);
+        Path seed = Files.writeString(dir.resolve("user.nk"), new String(user.getSeed()) + "\n");
+        Path config = Files.writeString(dir.resolve("nkey.conf"), "authorization { users = [ { nkey: "
+                + new String(user.getPublicKey()) + " } ] }\n");
+        try (NatsServer server = NatsServer.startWith(dir, List.of("-c", config.toString()))) {
+            String cluster = TestClusters.uniqueName("nkey");
+            org.junit.jupiter.api.Assertions.assertThrows(DtronException.class,
+                    () -> Dtron.connect(nats(server, cluster, "nobody").build()));
+            try (Dtron member = Dtron.connect(nats(server, cluster, "seeded").natsNkeyFile(seed).build())) {
+                assertEquals(List.of("seeded"), member.getMembers());
+            }
+        }
+    }
+
     /** Runs openssl in the test's folder; skips the test without it (fails under DTRON_REQUIRE_NATS=1). */
     private void openssl(String... args) throws Exception {
         List<String> command = new ArrayList<>(List.of("openssl"));
