@@ -166,6 +166,9 @@ public final class NatsTransport implements Transport {
             builder.userInfo(settings.user().get(), settings.password().orElseThrow());
         }
         settings.token().ifPresent(builder::token);
+        if (settings.credentialsFile().isPresent() || settings.nkeyFile().isPresent()) {
+            requireNkeySigning();
+        }
         if (settings.credentialsFile().isPresent()) {
             builder.authHandler(Nats.credentials(settings.credentialsFile().get().toString()));
         }
@@ -177,6 +180,16 @@ public final class NatsTransport implements Transport {
             builder.sslContext(trusting(settings.tlsCaFile().get()));
         }
         return builder.build();
+    }
+
+    /** Nkeys are signed with Bouncy Castle, which DTRON does not bring along (see the root pom). */
+    private static void requireNkeySigning() throws IOException {
+        try {
+            Class.forName("org.bouncycastle.crypto.signers.Ed25519Signer", false, NatsTransport.class.getClassLoader());
+        } catch (ClassNotFoundException e) {
+            throw new IOException("nkey and credentials-file authentication need Bouncy Castle on the classpath"
+                    + " (org.bouncycastle:bcprov-lts8on)", e);
+        }
     }
 
     /** An SSL context that trusts the certificates of a PEM file. */
