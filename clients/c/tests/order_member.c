@@ -133,7 +133,7 @@ int main(int argc, char **argv) {
             fclose(out);
         }
         dtron_send(bus, "finished", NULL, 0, 0);
-        int done = wait_for(bus, 3, (size_t)members, 30);
+        int done = wait_for(bus, 3, (size_t)members, 60);
         if (!complete || !done) {
             fprintf(stderr, "%s: received %zu, finished %d\n", me, nlines, nfinished);
             result = 3;

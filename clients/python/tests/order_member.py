@@ -56,7 +56,7 @@ async def main(url: str, bus_name: str, name: str, out: str, messages: int, memb
         with open(out, "w") as file:
             file.write("".join(line + "\n" for line in received))
         await bus.send(FINISHED.value())
-        done = await until(lambda: len(finished) >= members, 30)
+        done = await until(lambda: len(finished) >= members, 60)
         if not complete or not done:
             print(f"{name}: received {len(received)}, finished {finished}", file=sys.stderr)
             return 3
