@@ -2,6 +2,7 @@ package io.dtron.api;
 
 import java.net.InetAddress;
 import java.net.InetSocketAddress;
+import java.nio.file.Path;
 import java.time.Duration;
 import java.util.Collection;
 import java.util.Collections;
@@ -45,6 +46,14 @@ public final class DtronOptions {
     private final Optional<Map<String, IDtronChannel>> channels;
     private final boolean tester;
     private final Duration clockShift;
+    private final List<String> natsServers;
+    private final Optional<String> natsUser;
+    private final Optional<String> natsPassword;
+    private final Optional<String> natsToken;
+    private final Optional<Path> natsCredentialsFile;
+    private final Optional<Path> natsNkeyFile;
+    private final Optional<Path> natsTlsCaFile;
+    private final int natsReplicas;
 
     private DtronOptions(Builder b) {
         clusterName = b.clusterName;
@@ -59,6 +68,14 @@ public final class DtronOptions {
         channels = b.channels;
         tester = b.tester;
         clockShift = b.clockShift;
+        natsServers = b.natsServers;
+        natsUser = b.natsUser;
+        natsPassword = b.natsPassword;
+        natsToken = b.natsToken;
+        natsCredentialsFile = b.natsCredentialsFile;
+        natsNkeyFile = b.natsNkeyFile;
+        natsTlsCaFile = b.natsTlsCaFile;
+        natsReplicas = b.natsReplicas;
     }
 
     /** Returns a builder with the defaults. */
@@ -129,8 +146,57 @@ public final class DtronOptions {
         return clockShift;
     }
 
+    /** Returns the NATS server URLs of the bus; empty for the embedded JGroups bus. Immutable. */
+    public List<String> getNatsServers() {
+        return natsServers;
+    }
+
+    /** Returns the user name for the NATS servers, if any (then with {@link #getNatsPassword()}). */
+    public Optional<String> getNatsUser() {
+        return natsUser;
+    }
+
+    /** Returns the password for the NATS servers, if any. */
+    public Optional<String> getNatsPassword() {
+        return natsPassword;
+    }
+
+    /** Returns the token for the NATS servers, if any. */
+    public Optional<String> getNatsToken() {
+        return natsToken;
+    }
+
+    /** Returns the NATS credentials file (a user JWT and its nkey seed), if any. */
+    public Optional<Path> getNatsCredentialsFile() {
+        return natsCredentialsFile;
+    }
+
+    /** Returns the file with the nkey seed for the NATS servers, if any. */
+    public Optional<Path> getNatsNkeyFile() {
+        return natsNkeyFile;
+    }
+
+    /** Returns the PEM file of the certificate authorities that TLS to the NATS servers trusts, if any. */
+    public Optional<Path> getNatsTlsCaFile() {
+        return natsTlsCaFile;
+    }
+
+    /** Returns how many replicas the bus's stream gets when this member creates it. */
+    public int getNatsReplicas() {
+        return natsReplicas;
+    }
+
     @Override
     public String toString() {
+        if (!natsServers.isEmpty()) {
+            return "DtronOptions[cluster=" + clusterName + memberName.map(n -> ", member=" + n).orElse("")
+                    + ", nats=" + natsServers + natsUser.map(u -> ", user=" + u).orElse("")
+                    + (natsToken.isPresent() ? ", token" : "")
+                    + natsCredentialsFile.map(f -> ", creds=" + f).orElse("")
+                    + natsNkeyFile.map(f -> ", nkey=" + f).orElse("") + natsTlsCaFile.map(f -> ", tlsCa=" + f).orElse("")
+                    + channels.map(c -> ", channels=" + c.keySet()).orElse("") + (tester ? ", tester" : "")
+                    + (clockShift.isZero() ? "" : ", clockShift=" + clockShift) + "]";
+        }
         return "DtronOptions[cluster=" + clusterName + memberName.map(n -> ", member=" + n).orElse("")
                 + (inJvm ? ", in-JVM" : ", bind=" + bindAddress.getHostAddress() + ", port=" + port + "+" + portRange
                         + (initialMembers.isEmpty() ? "" : ", initialMembers=" + initialMembers))
@@ -153,8 +219,89 @@ public final class DtronOptions {
         private Optional<Map<String, IDtronChannel>> channels = Optional.empty();
         private boolean tester;
         private Duration clockShift = Duration.ZERO;
+        private List<String> natsServers = List.of();
+        private Optional<String> natsUser = Optional.empty();
+        private Optional<String> natsPassword = Optional.empty();
+        private Optional<String> natsToken = Optional.empty();
+        private Optional<Path> natsCredentialsFile = Optional.empty();
+        private Optional<Path> natsNkeyFile = Optional.empty();
+        private Optional<Path> natsTlsCaFile = Optional.empty();
+        private int natsReplicas = 1;
 
         private Builder() {
+        }
+
+        /**
+         * Uses a NATS JetStream bus on these servers instead of the embedded JGroups bus (default: none, JGroups).
+         * Each URL is {@code nats://HOST:PORT} or {@code tls://HOST:PORT}; several are servers of one NATS cluster.
+         *
+         * @throws IllegalArgumentException if a URL has another scheme or no host
+         */
+        public Builder natsServers(Collection<String> urls) {
+            List<String> checked = List.copyOf(urls);
+            for (String url : checked) {
+                if (!url.matches("(nats|tls)://[^\\s/]+")) {
+                    throw new IllegalArgumentException("not a NATS server URL (nats://HOST:PORT or tls://HOST:PORT): '"
+                            + url + "'");
+                }
+            }
+            natsServers = checked;
+            return this;
+        }
+
+        /** Uses a NATS JetStream bus on these servers; see {@link #natsServers(Collection)}. */
+        public Builder natsServers(String... urls) {
+            return natsServers(List.of(urls));
+        }
+
+        /** Authenticates to the NATS servers with a user name and password (default: none). */
+        public Builder natsUser(String user, String password) {
+            if (Objects.requireNonNull(user, "user").isEmpty() || Objects.requireNonNull(password, "password")
+                    .isEmpty()) {
+                throw new IllegalArgumentException("NATS user and password must not be empty");
+            }
+            natsUser = Optional.of(user);
+            natsPassword = Optional.of(password);
+            return this;
+        }
+
+        /** Authenticates to the NATS servers with a token (default: none). */
+        public Builder natsToken(String token) {
+            if (Objects.requireNonNull(token, "token").isEmpty()) {
+                throw new IllegalArgumentException("NATS token is empty");
+            }
+            natsToken = Optional.of(token);
+            return this;
+        }
+
+        /** Authenticates to the NATS servers with a credentials file: a user JWT and its nkey seed (default: none). */
+        public Builder natsCredentialsFile(Path file) {
+            natsCredentialsFile = Optional.of(Objects.requireNonNull(file, "file"));
+            return this;
+        }
+
+        /** Authenticates to the NATS servers with the nkey seed in a file (default: none). */
+        public Builder natsNkeyFile(Path file) {
+            natsNkeyFile = Optional.of(Objects.requireNonNull(file, "file"));
+            return this;
+        }
+
+        /** Talks TLS to the NATS servers, trusting the certificate authorities of a PEM file (default: none). */
+        public Builder natsTlsCaFile(Path file) {
+            natsTlsCaFile = Optional.of(Objects.requireNonNull(file, "file"));
+            return this;
+        }
+
+        /**
+         * Sets the replicas of the bus's stream, when this member is the first and creates it (default 1): 3 in a
+         * cluster of three servers keeps the bus going when one fails.
+         */
+        public Builder natsReplicas(int replicas) {
+            if (replicas < 1 || replicas > 5) {
+                throw new IllegalArgumentException("stream replicas must be in 1..5: " + replicas);
+            }
+            natsReplicas = replicas;
+            return this;
         }
 
         /** Sets the cluster name (default {@value DtronOptions#DEFAULT_CLUSTER}). */
@@ -271,9 +418,17 @@ public final class DtronOptions {
         /**
          * Builds the options.
          *
-         * @throws IllegalStateException if encryption is on without a secret, or the port range exceeds 65535
+         * @throws IllegalStateException if encryption is on without a secret, the port range exceeds 65535, or NATS
+         *                               credentials come without NATS servers
          */
         public DtronOptions build() {
+            if (natsServers.isEmpty() && (natsUser.isPresent() || natsToken.isPresent()
+                    || natsCredentialsFile.isPresent() || natsNkeyFile.isPresent() || natsTlsCaFile.isPresent())) {
+                throw new IllegalStateException("NATS credentials or TLS given without NATS servers");
+            }
+            if (!natsServers.isEmpty() && inJvm) {
+                throw new IllegalStateException("in-JVM mode is for the JGroups bus, not NATS");
+            }
             if (encrypt && secret.isEmpty()) {
                 throw new IllegalStateException("encryption needs a secret");
             }

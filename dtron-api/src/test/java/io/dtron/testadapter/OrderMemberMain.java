@@ -20,7 +20,7 @@ import java.util.concurrent.TimeUnit;
 /**
  * One member of the total-order test, using only {@code io.dtron.api}.
  * Arguments: cluster name, member name, output file, messages to publish,
- * number of members. Waits until it heard every member announce itself
+ * number of members, and optionally the NATS server URLs (comma-separated) of a NATS bus. Waits until it heard every member announce itself
  * (answering each newcomer's announcement with its own), publishes
  * {@code order(n)} for n = 1..messages, records "sender n sequence" of every
  * {@code order} message it receives, in receive order, to the output file,
@@ -38,6 +38,10 @@ public final class OrderMemberMain {
         Path out = Path.of(args[2]);
         int messages = Integer.parseInt(args[3]);
         int members = Integer.parseInt(args[4]);
+        DtronOptions.Builder options = DtronOptions.builder().clusterName(cluster).memberName(name);
+        if (args.length > 5) {
+            options.natsServers(List.of(args[5].split(",")));
+        }
 
         IDtronChannel order = IDtronChannel.of("order", "n");
         IDtronChannel ready = IDtronChannel.of("ready");
@@ -49,7 +53,7 @@ public final class OrderMemberMain {
         Set<String> finishedMembers = ConcurrentHashMap.newKeySet();
         CountDownLatch allFinished = new CountDownLatch(members);
 
-        try (Dtron dtron = Dtron.connect(DtronOptions.builder().clusterName(cluster).memberName(name).build())) {
+        try (Dtron dtron = Dtron.connect(options.build())) {
             dtron.addDtronListener(new DtronListener(order) {
                 @Override
                 public void messageReceived(IDtronChannelValued message) {

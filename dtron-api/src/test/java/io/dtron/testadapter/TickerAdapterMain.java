@@ -7,7 +7,8 @@ import java.util.concurrent.TimeUnit;
 
 /**
  * A ticker adapter process, using only {@code io.dtron.api}: a {@link BusTicker} on the bus. Arguments: cluster
- * name, member name, variant ({@code correct} or {@code slow}), the number of runs to serve. Prints
+ * name, member name, variant ({@code correct} or {@code slow}), the number of runs to serve, and optionally the NATS
+ * server URLs (comma-separated) of a NATS bus. Prints
  * {@code joined} once on the bus; stops ticking whenever another member (a tester) leaves, leaves when that many
  * have left the bus, and prints {@code resets N}. Exit code 0, or 2 if they did not come and go within ten minutes.
  */
@@ -22,7 +23,11 @@ public final class TickerAdapterMain {
         CountDownLatch testersGone = new CountDownLatch(Integer.parseInt(args[3]));
         boolean done;
         BusTicker ticker = new BusTicker(variant);
-        try (Dtron dtron = Dtron.connect(DtronOptions.builder().clusterName(cluster).memberName(name).build());
+        DtronOptions.Builder options = DtronOptions.builder().clusterName(cluster).memberName(name);
+        if (args.length > 4) {
+            options.natsServers(java.util.List.of(args[4].split(",")));
+        }
+        try (Dtron dtron = Dtron.connect(options.build());
                 ticker) {
             dtron.addMembershipListener((members, joined, left) -> left.forEach(member -> {
                 ticker.stop();

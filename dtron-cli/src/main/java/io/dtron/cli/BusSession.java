@@ -6,7 +6,6 @@ import io.dtron.api.DtronOptions;
 import io.dtron.bridge.BusBridge;
 import io.dtron.model.TestInterface;
 import java.io.PrintWriter;
-import java.net.InetAddress;
 import java.util.function.Supplier;
 import java.time.Duration;
 import java.util.ArrayList;
@@ -38,16 +37,6 @@ final class BusSession implements AutoCloseable {
     private BusSession(Supplier<DtronOptions.Builder> options, BusBridge bridge) {
         this.options = options;
         this.bridge = bridge;
-    }
-
-    /**
-     * Joins the bus as the tester of the interface.
-     *
-     * @throws IllegalArgumentException if the interface's channels cannot travel on the bus
-     * @throws io.dtron.api.DtronException if the bus cannot be joined
-     */
-    static BusSession open(TestInterface testInterface, String cluster, InetAddress bind) {
-        return open(testInterface, () -> DtronOptions.builder().clusterName(cluster).bindAddress(bind), false);
     }
 
     /**

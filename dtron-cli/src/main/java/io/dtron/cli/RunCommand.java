@@ -41,6 +41,7 @@ import java.util.Optional;
 import java.util.Set;
 import java.util.concurrent.Callable;
 import java.util.concurrent.TimeUnit;
+import java.util.function.Supplier;
 import java.util.regex.Pattern;
 import picocli.CommandLine.Command;
 import picocli.CommandLine.Model.CommandSpec;
@@ -66,6 +67,8 @@ import picocli.CommandLine.Spec;
                         + " of the messages (t2 - t1, receive minus publish time) and the bus counters.",
                 "Exit code 0 PASSED, 2 FAILED, 3 INCONCLUSIVE, 1 usage or model error."})
 final class RunCommand implements Callable<Integer> {
+    private static final Pattern NATS_BUS_NAME = Pattern.compile("[A-Za-z0-9_-]{1,64}");
+
     @Spec
     private CommandSpec spec;
 
@@ -122,6 +125,41 @@ final class RunCommand implements Callable<Integer> {
             description = "Bus mode: take part in the run another tester (with --testers) starts on this bus, judging"
                     + " this model's channels on that tester's clock.")
     private boolean join;
+
+    @Option(names = "--bus", paramLabel = "nats://HOST:PORT[,...]",
+            description = "Bus mode: use the NATS JetStream bus on these servers (comma-separated, servers of one"
+                    + " NATS cluster) instead of the embedded JGroups bus; adapters in Java, Python and C join it."
+                    + " The cluster name names the bus's stream.")
+    private String bus;
+
+    @Option(names = "--nats-user", paramLabel = "USER",
+            description = "With --bus: authenticate as USER, with the password in --nats-password-file.")
+    private String natsUser;
+
+    @Option(names = "--nats-password-file", paramLabel = "FILE",
+            description = "With --bus and --nats-user: the file holding the password.")
+    private Path natsPasswordFile;
+
+    @Option(names = "--nats-token-file", paramLabel = "FILE",
+            description = "With --bus: authenticate with the token held in FILE.")
+    private Path natsTokenFile;
+
+    @Option(names = "--nats-creds", paramLabel = "FILE",
+            description = "With --bus: authenticate with a NATS credentials file (user JWT and nkey seed).")
+    private Path natsCreds;
+
+    @Option(names = "--nats-nkey", paramLabel = "FILE",
+            description = "With --bus: authenticate with the nkey seed held in FILE.")
+    private Path natsNkey;
+
+    @Option(names = "--nats-tls-ca", paramLabel = "FILE",
+            description = "With --bus: talk TLS to the servers, trusting the certificate authorities in this PEM file.")
+    private Path natsTlsCa;
+
+    @Option(names = "--nats-replicas", paramLabel = "N",
+            description = "With --bus: the replicas of the bus's stream if this run creates it (default 1; 3 in a"
+                    + " cluster of three servers survives one failing).")
+    private Integer natsReplicas;
 
     @Option(names = "--wait-for-adapters", paramLabel = "channels|N",
             description = "Bus mode: start when every channel of the model is served by an adapter on the bus, as"
@@ -317,8 +355,8 @@ final class RunCommand implements Callable<Integer> {
         throw usage("--delta takes a number of microseconds (0 or more) or auto: " + delta);
     }
 
-    /** The bus options of this command's members (the tester's and its --adapter ones). */
-    private DtronOptions.Builder busOptions() {
+    /** The JGroups bus options of this command's members (the tester's and its --adapter ones). */
+    private DtronOptions.Builder jgroupsOptions() {
         DtronOptions.Builder options = DtronOptions.builder().clusterName(clusterName()).bindAddress(bindAddress());
         if (port != null) {
             options.port(port);
@@ -404,6 +442,33 @@ final class RunCommand implements Callable<Integer> {
         if (busMode) {
             initialMembers();
         }
+        boolean natsOptions = natsUser != null || natsPasswordFile != null || natsTokenFile != null || natsCreds != null
+                || natsNkey != null || natsTlsCa != null || natsReplicas != null;
+        if (!busMode && bus != null) {
+            throw usage("--bus is the bus of the adapters; with " + (sut != null ? "--sut" : "--tron-adapter")
+                    + " leave it out");
+        }
+        if (bus == null && natsOptions) {
+            throw usage("--nats-user, --nats-password-file, --nats-token-file, --nats-creds, --nats-nkey, --nats-tls-ca"
+                    + " and --nats-replicas are for a NATS bus: give its servers with --bus nats://HOST:PORT");
+        }
+        if (bus != null) {
+            if (bind != null) {
+                throw usage("--bind is the interface of the embedded JGroups bus; members of a NATS bus (--bus)"
+                        + " connect to its servers: leave it out");
+            }
+            if ((natsUser == null) != (natsPasswordFile == null)) {
+                throw usage("--nats-user and --nats-password-file go together");
+            }
+            if (!NATS_BUS_NAME.matcher(clusterName()).matches()) {
+                throw usage("--cluster: a NATS bus name is 1 to 64 letters, digits, '_' or '-': '" + clusterName()
+                        + "'");
+            }
+            if (natsReplicas != null && (natsReplicas < 1 || natsReplicas > 5)) {
+                throw usage("--nats-replicas must be in 1..5: " + natsReplicas);
+            }
+            natsServers();
+        }
         boolean tronListens = tronAdapter != null
                 && TronAddress.parse(tronAdapter).map(a -> a.host() == null).orElse(false);
         if (bind != null && !busMode && !tronListens) {
@@ -461,7 +526,8 @@ final class RunCommand implements Callable<Integer> {
         if (clusterName.isBlank()) {
             throw usage("--cluster: the cluster name is blank");
         }
-        InetAddress address = bindAddress();
+        Supplier<DtronOptions.Builder> busOptions = busOptions();
+        String where = busWhere();
         List<DtronAdapter> adapters = new ArrayList<>();
         try {
             List<Path> paths = classpath();
@@ -473,7 +539,7 @@ final class RunCommand implements Callable<Integer> {
         }
         BusSession session;
         try {
-            session = BusSession.open(testInterface, this::busOptions, join);
+            session = BusSession.open(testInterface, busOptions, join);
         } catch (IllegalArgumentException e) {
             err.println("dtron run: " + model + ": " + e.getMessage());
             return 1;
@@ -482,7 +548,7 @@ final class RunCommand implements Callable<Integer> {
             return 1;
         }
         try (session) {
-            out.println("dtron run: " + model + " on bus '" + clusterName + "' at " + address.getHostAddress()
+            out.println("dtron run: " + model + " on bus '" + clusterName + "' at " + where
                     + " as " + session.bridge().memberId() + ", seed " + options.seed() + ", " + options.timeout()
                     + " time units of " + options.timeUnitMicros() + " us in real time" + judge.by());
             out.flush();
@@ -514,7 +580,7 @@ final class RunCommand implements Callable<Integer> {
             try {
                 Set<String> others = join ? Set.of() : session.otherTesters();
                 if (!others.isEmpty()) {
-                    err.println("dtron run: bus '" + clusterName + "' at " + address.getHostAddress() + " has a run"
+                    err.println("dtron run: bus '" + clusterName + "' at " + where + " has a run"
                             + " in progress: tester " + String.join(", ", others) + " is on it, and its adapters"
                             + " would serve both runs. Give this run a bus of its own with --cluster NAME (and"
                             + " its adapters the same name), or wait until the other run is over");
@@ -599,7 +665,7 @@ final class RunCommand implements Callable<Integer> {
             long left = deadline - System.nanoTime();
             if (left <= 0) {
                 err.println("dtron run: within " + seconds + " s no adapter on bus '" + clusterName() + "' at "
-                        + bindAddress().getHostAddress() + " served " + String.join(", ", missing)
+                        + busWhere() + " served " + String.join(", ", missing)
                         + servedSummary(bridge) + ". Start the adapters with the same cluster name and address"
                         + " (adapters declare the channels they send with Dtron.declareOutputs), wait longer with"
                         + " --wait-timeout, or, for adapters that do not say which channels they serve, wait for a"
@@ -660,7 +726,7 @@ final class RunCommand implements Callable<Integer> {
         out.flush();
         if (!session.awaitAdapters(wanted, Duration.ofSeconds(seconds))) {
             err.println("dtron run: only " + (session.bridge().members().size() - 1) + " of " + wanted
-                    + " adapters joined bus '" + clusterName() + "' at " + bindAddress().getHostAddress()
+                    + " adapters joined bus '" + clusterName() + "' at " + busWhere()
                     + " within " + seconds + " s; start them with the same cluster name and address, or wait"
                     + " longer with --wait-timeout");
             return false;
@@ -847,6 +913,74 @@ final class RunCommand implements Callable<Integer> {
             }
         }
         return paths;
+    }
+
+    /** The servers of {@code --bus}. */
+    private List<String> natsServers() {
+        List<String> servers = List.of(bus.split(",", -1)).stream().map(String::trim).toList();
+        for (String server : servers) {
+            if (!server.matches("(nats|tls)://[^\\s/]+")) {
+                throw usage("--bus takes NATS server URLs, nats://HOST:PORT or tls://HOST:PORT, separated by commas: '"
+                        + server + "'");
+            }
+        }
+        return servers;
+    }
+
+    /** Where the bus is, for messages: the NATS servers or the JGroups interface. */
+    private String busWhere() {
+        return bus != null ? String.join(",", natsServers()) : bindAddress().getHostAddress();
+    }
+
+    /** Makes the options of the members of this JVM on the bus; reads the secret files once, now. */
+    private Supplier<DtronOptions.Builder> busOptions() {
+        String cluster = clusterName();
+        if (bus == null) {
+            return this::jgroupsOptions;
+        }
+        List<String> servers = natsServers();
+        String password = natsPasswordFile == null ? null : secret(natsPasswordFile, "--nats-password-file");
+        String token = natsTokenFile == null ? null : secret(natsTokenFile, "--nats-token-file");
+        for (Path file : new Path[] {natsCreds, natsNkey, natsTlsCa}) {
+            if (file != null && !Files.isReadable(file)) {
+                throw usage("cannot read " + file);
+            }
+        }
+        return () -> {
+            DtronOptions.Builder builder = DtronOptions.builder().clusterName(cluster).natsServers(servers);
+            if (natsUser != null) {
+                builder.natsUser(natsUser, password);
+            }
+            if (token != null) {
+                builder.natsToken(token);
+            }
+            if (natsCreds != null) {
+                builder.natsCredentialsFile(natsCreds);
+            }
+            if (natsNkey != null) {
+                builder.natsNkeyFile(natsNkey);
+            }
+            if (natsTlsCa != null) {
+                builder.natsTlsCaFile(natsTlsCa);
+            }
+            if (natsReplicas != null) {
+                builder.natsReplicas(natsReplicas);
+            }
+            return builder;
+        };
+    }
+
+    /** The first line of a file holding a password or token. */
+    private String secret(Path file, String option) {
+        try {
+            String value = Files.readString(file).lines().findFirst().orElse("").trim();
+            if (value.isEmpty()) {
+                throw usage(option + ": " + file + " is empty");
+            }
+            return value;
+        } catch (IOException e) {
+            throw usage(option + ": cannot read " + file);
+        }
     }
 
     /** {@code --bind}, else loopback: the bus's interface, or where {@code --tron-adapter PORT} listens. */

@@ -226,6 +226,31 @@ class RunCommandTest {
     }
 
     @Test
+    void theNatsOptionsAreCheckedBeforeAnythingConnects() throws IOException {
+        Path password = Files.writeString(dir.resolve("password"), "secret\n");
+        CommandRun badUrl = CommandRun.of(model.toString(), "--bus", "http://127.0.0.1:4222");
+        assertOneLineUsageError(badUrl);
+        assertTrue(badUrl.err().contains("--bus takes NATS server URLs"), badUrl.err());
+        CommandRun withBind = CommandRun.of(model.toString(), "--bus", "nats://127.0.0.1:4222", "--bind", "127.0.0.1");
+        assertOneLineUsageError(withBind);
+        assertTrue(withBind.err().contains("--bind is the interface of the embedded JGroups bus"), withBind.err());
+        CommandRun withoutBus = CommandRun.of(model.toString(), "--nats-user", "u", "--nats-password-file",
+                password.toString());
+        assertOneLineUsageError(withoutBus);
+        assertTrue(withoutBus.err().contains("are for a NATS bus"), withoutBus.err());
+        CommandRun userAlone = CommandRun.of(model.toString(), "--bus", "nats://127.0.0.1:4222", "--nats-user", "u");
+        assertOneLineUsageError(userAlone);
+        assertTrue(userAlone.err().contains("--nats-user and --nats-password-file go together"), userAlone.err());
+        CommandRun badName = CommandRun.of(model.toString(), "--bus", "nats://127.0.0.1:4222", "--cluster", "a.b");
+        assertOneLineUsageError(badName);
+        assertTrue(badName.err().contains("a NATS bus name is 1 to 64 letters"), badName.err());
+        CommandRun withSut = CommandRun.of(model.toString(), "--sut", TickerForTests.class.getName(), "--bus",
+                "nats://127.0.0.1:4222");
+        assertOneLineUsageError(withSut);
+        assertTrue(withSut.err().contains("--bus is the bus of the adapters"), withSut.err());
+    }
+
+    @Test
     void unknownOptionsAndBadValuesGetTheReasonAndWhereTheHelpIs() {
         CommandRun unknown = CommandRun.of(model.toString(), "--bogus");
         assertOneLineUsageError(unknown);
@@ -308,7 +333,8 @@ class RunCommandTest {
     void aSecondTesterOnABusWithARunRefusesToStartAndNamesTheOtherTester() throws Exception {
         TestInterface testInterface = TestInterface.fromNames(ModelLoader.load(model));
         String shared = cluster();
-        try (BusSession first = BusSession.open(testInterface, shared, InetAddress.getLoopbackAddress())) {
+        try (BusSession first = BusSession.open(testInterface,
+                () -> DtronOptions.builder().clusterName(shared).bindAddress(InetAddress.getLoopbackAddress()), false)) {
             String tester = first.bridge().memberId();
             CommandRun second = CommandRun.of(model.toString(), "--adapter", BusTicker.class.getName(), "--cluster", shared,
                     "--timeunit", "10000", "--timeout", "100");
@@ -359,7 +385,9 @@ class RunCommandTest {
     void outputsAfterTheEndAreCountedInTheSummary() throws Exception {
         TestInterface testInterface = TestInterface.fromNames(ModelLoader.load(model));
         List<Dtron> member = new ArrayList<>();
-        try (BusSession session = BusSession.open(testInterface, cluster(), InetAddress.getLoopbackAddress())) {
+        String cluster = cluster();
+        try (BusSession session = BusSession.open(testInterface,
+                () -> DtronOptions.builder().clusterName(cluster).bindAddress(InetAddress.getLoopbackAddress()), false)) {
             session.startAdapter(member::add);
             assertTrue(session.awaitAdapters(1, Duration.ofSeconds(30)), session.bridge().members().toString());
             session.bridge().start(new AdapterContext() {

@@ -37,7 +37,8 @@ import java.util.concurrent.TimeUnit;
  *
  * <p>Arguments (all optional): the time unit in microseconds (default 1000: a tick every 10 ms), the number
  * of ticks to measure (default 10,000), the ticker model (default
- * {@code ../models/src/main/resources/io/dtron/models/ticker.xml}, from {@code dtron-core}).
+ * {@code ../models/src/main/resources/io/dtron/models/ticker.xml}, from {@code dtron-core}), and the NATS server
+ * URLs of a NATS bus (default: none, the embedded JGroups bus), so that the two buses are measured alike.
  */
 public final class BusLatencyBench {
     private static final Duration WARM_UP = Duration.ofSeconds(20);
@@ -55,22 +56,28 @@ public final class BusLatencyBench {
         int ticks = args.length > 1 ? Integer.parseInt(args[1]) : 10_000;
         Path modelFile = Path.of(args.length > 2 ? args[2]
                 : "../models/src/main/resources/io/dtron/models/ticker.xml");
+        List<String> nats = args.length > 3 ? List.of(args[3].split(",")) : List.of();
         Network network = ModelLoader.load(modelFile);
         TestInterface testInterface = TestInterface.fromNames(network);
         String cluster = "bench-" + UUID.randomUUID().toString().substring(0, 8);
         Path adapterLog = Files.createTempFile("bench-adapter", ".log");
-        Process adapter = new ProcessBuilder(List.of(Path.of(System.getProperty("java.home"), "bin", "java")
-                .toString(), "-Xmx256m", "-cp", System.getProperty("java.class.path"),
-                TickerAdapterMain.class.getName(), cluster, "bench-adapter", "correct", "2"))
+        List<String> command = new java.util.ArrayList<>(List.of(Path.of(System.getProperty("java.home"), "bin",
+                "java").toString(), "-Xmx256m", "-cp", System.getProperty("java.class.path"),
+                TickerAdapterMain.class.getName(), cluster, "bench-adapter", "correct", "2"));
+        if (!nats.isEmpty()) {
+            command.add(String.join(",", nats));
+        }
+        Process adapter = new ProcessBuilder(command)
                 .redirectErrorStream(true).redirectOutput(adapterLog.toFile()).start();
         try {
-            System.out.println("ticker model, " + unit + " us per time unit (a tick every " + 10 * unit
+            System.out.println((nats.isEmpty() ? "JGroups bus" : "NATS bus " + nats) + ", ticker model, " + unit
+                    + " us per time unit (a tick every " + 10 * unit
                     + " us), adapter in another JVM; warming up for " + WARM_UP.toSeconds() + " s with a tick every "
                     + 10 * WARM_UP_UNIT + " us");
-            measure(warmUpModel(modelFile), testInterface, cluster, WARM_UP_UNIT, System.nanoTime() + WARM_UP.toNanos(),
-                    Integer.MAX_VALUE);
+            measure(warmUpModel(modelFile), testInterface, options(cluster, nats), WARM_UP_UNIT,
+                    System.nanoTime() + WARM_UP.toNanos(), Integer.MAX_VALUE);
             System.out.println("measuring " + ticks + " ticks");
-            measure(network, testInterface, cluster, unit, Long.MAX_VALUE, ticks);
+            measure(network, testInterface, options(cluster, nats), unit, Long.MAX_VALUE, ticks);
             if (!adapter.waitFor(30, TimeUnit.SECONDS)) {
                 System.out.println("the adapter did not leave; its output:\n" + Files.readString(adapterLog));
             }
@@ -78,6 +85,11 @@ public final class BusLatencyBench {
             adapter.destroyForcibly();
             Files.deleteIfExists(adapterLog);
         }
+    }
+
+    private static DtronOptions.Builder options(String cluster, List<String> nats) {
+        DtronOptions.Builder options = DtronOptions.builder().clusterName(cluster);
+        return nats.isEmpty() ? options : options.natsServers(nats);
     }
 
     /**
@@ -93,9 +105,9 @@ public final class BusLatencyBench {
     }
 
     /** Runs the model again and again on a bridge of its own until the deadline or until it has the ticks. */
-    private static void measure(Network network, TestInterface testInterface, String cluster, long unit,
+    private static void measure(Network network, TestInterface testInterface, DtronOptions.Builder options, long unit,
                                 long deadlineNanos, int ticks) throws InterruptedException {
-        try (BusBridge bridge = BusBridge.connect(testInterface, DtronOptions.builder().clusterName(cluster))) {
+        try (BusBridge bridge = BusBridge.connect(testInterface, options)) {
             if (!bridge.awaitAdapters(1, ADAPTERS)) {
                 throw new IllegalStateException("the adapter did not join within " + ADAPTERS);
             }

@@ -4,6 +4,8 @@ import io.dtron.api.DtronOptions;
 import io.dtron.bus.Transport;
 import io.dtron.bus.internal.JGroupsSettings;
 import io.dtron.bus.internal.JGroupsTransport;
+import io.dtron.bus.internal.NatsSettings;
+import io.dtron.bus.internal.NatsTransport;
 import java.util.HexFormat;
 import java.util.concurrent.ThreadLocalRandom;
 
@@ -26,13 +28,23 @@ public final class BusConnector {
                 options.isEncrypt(), options.isInJvm());
     }
 
+    /** Returns the NATS settings for the options, with the given member name. */
+    public static NatsSettings natsSettings(DtronOptions options, String memberName) {
+        return new NatsSettings(options.getClusterName(), memberName, options.getNatsServers(), options.getNatsUser(),
+                options.getNatsPassword(), options.getNatsToken(), options.getNatsCredentialsFile(),
+                options.getNatsNkeyFile(), options.getNatsTlsCaFile(), options.getNatsReplicas());
+    }
+
     /**
-     * Joins the bus.
+     * Joins the bus: NATS when the options name NATS servers, else JGroups.
      *
      * @throws Exception what the transport throws when it cannot join
      */
     public static Transport connect(DtronOptions options) throws Exception {
         String memberName = options.getMemberName().orElseGet(BusConnector::generateMemberName);
+        if (!options.getNatsServers().isEmpty()) {
+            return NatsTransport.connect(natsSettings(options, memberName));
+        }
         return JGroupsTransport.connect(settings(options, memberName));
     }
 }

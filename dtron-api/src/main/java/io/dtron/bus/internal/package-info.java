@@ -1,4 +1,4 @@
 /**
- * Not API: the JGroups transport and its helpers. May change without notice.
+ * Not API: the JGroups and NATS transports and their helpers. May change without notice.
  */
 package io.dtron.bus.internal;

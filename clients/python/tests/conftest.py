@@ -1,0 +1,59 @@
+"""A nats-server with JetStream on a free loopback port and a store in a temporary folder, for the tests that need
+one: skipped when nats-server is not installed, unless DTRON_REQUIRE_NATS=1 (as in CI) makes that a failure."""
+
+from __future__ import annotations
+
+import os
+import shutil
+import socket
+import subprocess
+import time
+from pathlib import Path
+from typing import Iterator
+
+import pytest
+
+
+def _nats_server() -> str | None:
+    return shutil.which("nats-server") or (
+        "/usr/sbin/nats-server" if os.access("/usr/sbin/nats-server", os.X_OK) else None)
+
+
+def free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+@pytest.fixture
+def nats_url(tmp_path: Path) -> Iterator[str]:
+    yield from _serve(tmp_path, [])
+
+
+@pytest.fixture
+def nats_url_with_user(tmp_path: Path) -> Iterator[str]:
+    """A server that takes only user "lab" with password "s3cret"."""
+    yield from _serve(tmp_path, ["--user", "lab", "--pass", "s3cret"])
+
+
+def _serve(tmp_path: Path, options: list[str]) -> Iterator[str]:
+    binary = _nats_server()
+    if binary is None:
+        if os.environ.get("DTRON_REQUIRE_NATS") == "1":
+            pytest.fail("nats-server is missing, and DTRON_REQUIRE_NATS=1 requires it")
+        pytest.skip("nats-server is not installed: skipped (CI installs it)")
+    port = free_port()
+    log = tmp_path / "nats.log"
+    with open(log, "w") as out:
+        server = subprocess.Popen([binary, "-a", "127.0.0.1", "-p", str(port), "-js", "-sd", str(tmp_path / "js"),
+                                   *options], stdout=out, stderr=subprocess.STDOUT)
+    try:
+        deadline = time.monotonic() + 30
+        while "Server is ready" not in log.read_text():
+            if server.poll() is not None or time.monotonic() > deadline:
+                pytest.fail("nats-server did not start:\n" + log.read_text())
+            time.sleep(0.02)
+        yield f"nats://127.0.0.1:{port}"
+    finally:
+        server.terminate()
+        server.wait(10)

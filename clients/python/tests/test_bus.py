@@ -1,0 +1,173 @@
+"""Python members on a real nats-server: order, membership, the handshake, clock offsets, acknowledgements and
+rejected input, against a tester played by the test with raw NATS messages."""
+
+from __future__ import annotations
+
+import asyncio
+import time
+from typing import Any, Callable, Coroutine
+
+import nats
+import pytest
+
+import dtron
+from dtron._proto import Sync_pb2
+
+ORDER = dtron.Channel("order", "n")
+RESET = dtron.Channel("reset")
+TICK = dtron.Channel("tick", "seq")
+
+
+def run(test: Callable[[], Coroutine[Any, Any, None]]) -> None:
+    asyncio.run(asyncio.wait_for(test(), timeout=60))
+
+
+async def until(condition: Callable[[], bool], seconds: float = 10) -> None:
+    deadline = time.monotonic() + seconds
+    while not condition():
+        assert time.monotonic() < deadline, "condition not met in time"
+        await asyncio.sleep(0.01)
+
+
+class FakeTester:
+    """A tester played with raw NATS: publishes Sync messages and records what the others publish."""
+
+    def __init__(self, nc: Any, bus: str, clock_shift_ns: int = 0) -> None:
+        self.nc = nc
+        self.js = nc.jetstream()
+        self.bus = bus
+        self.shift = clock_shift_ns
+        self.sequence = 0
+        self.seen: list[tuple[str, Any]] = []
+
+    async def start(self) -> None:
+        await self.js.subscribe(f"dtron.{self.bus}.c.>", cb=self.received, ordered_consumer=True,
+                                deliver_policy=nats.js.api.DeliverPolicy.NEW)
+
+    async def received(self, msg: Any) -> None:
+        channel = msg.subject.rsplit(".", 1)[1]
+        sync = Sync_pb2.Sync.FromString(msg.data)
+        self.seen.append((channel, sync))
+        if channel == "dtron_ping" and sync.sender != "tester":
+            await self.publish("dtron_pong", event_time_ns=time.time_ns() + self.shift, acked_sender=sync.sender,
+                               acked_sequence=sync.sequence)
+
+    async def publish(self, channel: str, variables: dict[str, int] | None = None, **fields: Any) -> Sync_pb2.Sync:
+        self.sequence += 1
+        sync = Sync_pb2.Sync(name=channel, sender="tester", sequence=self.sequence,
+                             publish_time_ns=time.time_ns() + self.shift, **fields)
+        for name, value in (variables or {}).items():
+            sync.variables.add(name=name, value=value)
+        await self.js.publish(f"dtron.{self.bus}.c.{channel}", sync.SerializeToString(),
+                              headers={"Dtron-Sender": "tester"})
+        return sync
+
+    def on(self, channel: str) -> list[Any]:
+        return [sync for name, sync in self.seen if name == channel]
+
+
+def test_members_see_one_order_and_each_other_join_and_leave(nats_url: str) -> None:
+    async def test() -> None:
+        a = await dtron.connect(nats_url, bus="order", member="a")
+        b = await dtron.connect(nats_url, bus="order", member="b")
+        seen: dict[str, list[str]] = {"a": [], "b": []}
+        a.add_listener(ORDER, lambda m: seen["a"].append(f"{m.sender}:{m.variables['n']}"))
+
+        @b.listener(ORDER)
+        async def record(m: dtron.Message) -> None:
+            seen["b"].append(f"{m.sender}:{m.variables['n']}")
+
+        await until(lambda: a.members == ["a", "b"] and b.members == ["a", "b"])
+
+        async def burst(bus: dtron.Bus) -> None:
+            for n in range(1, 101):
+                await bus.send(ORDER.value(n=n))
+
+        await asyncio.gather(burst(a), burst(b))
+        await until(lambda: len(seen["a"]) == 200 and len(seen["b"]) == 200)
+        assert seen["a"] == seen["b"]
+        assert len(set(seen["a"])) == 200
+        await b.close()
+        await until(lambda: a.members == ["a"])
+        assert a.stats.published == 100 and a.stats.accepted == 200
+        await a.close()
+
+    run(test)
+
+
+def test_the_handshake_the_clock_offset_and_acknowledgements(nats_url: str) -> None:
+    async def test() -> None:
+        nc = await nats.connect(nats_url)
+        adapter = await dtron.connect(nats_url, bus="hand", member="adapter")
+        tester = FakeTester(nc, "hand", clock_shift_ns=50_000_000)
+        await tester.start()
+        adapter.declare_outputs(TICK)
+        resets: list[dtron.Message] = []
+        adapter.add_listener(RESET, resets.append)
+        await tester.publish("dtron_hello")
+        await until(lambda: any(list(s.receives) == ["reset"] and list(s.sends) == ["tick"]
+                                for s in tester.on("dtron_serve")))
+        # the adapter pings the tester it learned from the hello; the tester's clock is 50 ms ahead
+        await until(lambda: adapter.clock_offset is not None and len(tester.on("dtron_ping")) >= 8)
+        offset = adapter.clock_offset
+        assert offset is not None and offset.tester == "tester"
+        assert abs(offset.offset_ns - 50_000_000) <= offset.error_ns, offset
+        start = await tester.publish("dtron_start", {"timeunit": 1000}, run_id="run-1")
+        await until(lambda: adapter.run_clock.running)
+        assert abs(adapter.run_clock.now_ns() - (time.time_ns() + 50_000_000 - start.publish_time_ns)) < 20_000_000
+        reset = await tester.publish("reset", run_id="run-1")
+        await until(lambda: len(tester.on("dtron_ack")) == 1)
+        ack = tester.on("dtron_ack")[0]
+        assert (ack.acked_sender, ack.acked_sequence, ack.run_id) == ("tester", reset.sequence, "run-1")
+        assert ack.clock_error_ns > 0 and abs(ack.clock_offset_ns - 50_000_000) <= ack.clock_error_ns
+        assert len(resets) == 1 and resets[0].sender == "tester"
+        await tester.publish("dtron_stop")
+        await until(lambda: not adapter.run_clock.running)
+        await adapter.close()
+        await nc.close()
+
+    run(test)
+
+
+def test_bad_input_is_rejected_and_counted_and_the_rest_delivered(nats_url: str) -> None:
+    async def test() -> None:
+        nc = await nats.connect(nats_url)
+        adapter = await dtron.connect(nats_url, bus="bad", member="adapter")
+        got: list[dtron.Message] = []
+        adapter.add_listener(ORDER, got.append)
+        tester = FakeTester(nc, "bad")
+        await tester.js.publish("dtron.bad.c.order", b"\xff\x01\x02")
+        await tester.publish("order", {"n": 1, "m": 2})
+        await tester.publish("order", {})
+        await tester.publish("order", {"n": 7})
+        await until(lambda: len(got) == 1)
+        assert got[0].variables == {"n": 7}
+        assert adapter.stats.rejected == {"MALFORMED": 1, "UNKNOWN_VARIABLES": 1, "MISSING_VARIABLES": 1}
+        assert adapter.stats.accepted == 1
+        await adapter.close()
+        await nc.close()
+
+    run(test)
+
+
+def test_unreachable_servers_and_bad_names_are_refused() -> None:
+    async def test() -> None:
+        with pytest.raises(ValueError):
+            await dtron.connect("nats://127.0.0.1:1", bus="no.dots")
+        with pytest.raises(ConnectionError):
+            await dtron.connect("nats://127.0.0.1:1", bus="none")
+
+    run(test)
+
+
+def test_a_server_with_a_user_takes_only_members_with_its_password(nats_url_with_user: str) -> None:
+    async def test() -> None:
+        with pytest.raises(ConnectionError):
+            await dtron.connect(nats_url_with_user, bus="auth")
+        with pytest.raises(ConnectionError):
+            await dtron.connect(nats_url_with_user, bus="auth", user="lab", password="guess")
+        async with await dtron.connect(nats_url_with_user, bus="auth", member="m", user="lab",
+                                       password="s3cret") as bus:
+            assert bus.members == ["m"]
+
+    run(test)

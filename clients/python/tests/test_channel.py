@@ -1,0 +1,34 @@
+"""Channel templates and the clock-offset estimator, without a bus."""
+
+import pytest
+
+import dtron
+
+
+def test_a_channel_checks_its_names_and_its_values() -> None:
+    tick = dtron.Channel("tick", "seq")
+    assert tick.value(seq=3).variables == {"seq": 3}
+    with pytest.raises(dtron.InvalidMessage) as unknown:
+        tick.value(seq=1, other=2)
+    assert unknown.value.reason == "UNKNOWN_VARIABLES"
+    with pytest.raises(dtron.InvalidMessage) as missing:
+        tick.value()
+    assert missing.value.reason == "MISSING_VARIABLES"
+    with pytest.raises(ValueError):
+        tick.value(seq=2**31)
+    with pytest.raises(ValueError):
+        dtron.Channel("1tick")
+    with pytest.raises(ValueError):
+        dtron.Channel("tick", "a b")
+    with pytest.raises(ValueError):
+        dtron.Channel("tick", "seq", "seq")
+
+
+def test_the_estimate_is_the_sample_with_the_shortest_round_trip() -> None:
+    estimator = dtron.OffsetEstimator()
+    assert estimator.estimate() is None
+    # tester 50 ms ahead; round trips of 10 ms and 2 ms
+    assert estimator.add(0, 55_000_000, 10_000_000) == (50_000_000, 5_000_000)
+    assert estimator.add(100_000_000, 151_000_000, 102_000_000) == (50_000_000, 1_000_000)
+    assert estimator.add(200_000_000, 262_000_000, 220_000_000) == (50_000_000, 1_000_000)
+    assert estimator.add(300_000_000, 0, 290_000_000) == (50_000_000, 1_000_000), "a negative round trip is ignored"

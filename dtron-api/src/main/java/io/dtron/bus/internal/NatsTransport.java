@@ -1,0 +1,614 @@
+package io.dtron.bus.internal;
+
+import io.dtron.bus.BusMessage;
+import io.dtron.bus.MembershipView;
+import io.dtron.bus.Subscription;
+import io.dtron.bus.Transport;
+import io.nats.client.Connection;
+import io.nats.client.Consumer;
+import io.nats.client.Dispatcher;
+import io.nats.client.ErrorListener;
+import io.nats.client.JetStream;
+import io.nats.client.JetStreamApiException;
+import io.nats.client.JetStreamManagement;
+import io.nats.client.JetStreamSubscription;
+import io.nats.client.Message;
+import io.nats.client.Nats;
+import io.nats.client.Options;
+import io.nats.client.PushSubscribeOptions;
+import io.nats.client.api.ConsumerConfiguration;
+import io.nats.client.api.DeliverPolicy;
+import io.nats.client.api.DiscardPolicy;
+import io.nats.client.api.StorageType;
+import io.nats.client.api.StreamConfiguration;
+import io.nats.client.impl.Headers;
+import io.nats.client.impl.NatsMessage;
+import java.io.IOException;
+import java.io.InputStream;
+import java.nio.charset.StandardCharsets;
+import java.nio.file.Files;
+import java.security.GeneralSecurityException;
+import java.security.KeyStore;
+import java.security.cert.Certificate;
+import java.security.cert.CertificateFactory;
+import java.time.Duration;
+import java.time.Instant;
+import java.util.ArrayList;
+import java.util.Comparator;
+import java.util.HashMap;
+import java.util.List;
+import java.util.Map;
+import java.util.Objects;
+import java.util.concurrent.ConcurrentHashMap;
+import java.util.concurrent.CopyOnWriteArrayList;
+import java.util.concurrent.CountDownLatch;
+import java.util.concurrent.ExecutorService;
+import java.util.concurrent.Executors;
+import java.util.concurrent.RejectedExecutionException;
+import java.util.concurrent.ScheduledExecutorService;
+import java.util.concurrent.TimeUnit;
+import java.util.concurrent.atomic.AtomicInteger;
+import java.util.concurrent.atomic.AtomicLong;
+import javax.net.ssl.SSLContext;
+import javax.net.ssl.TrustManagerFactory;
+import org.slf4j.Logger;
+import org.slf4j.LoggerFactory;
+
+/**
+ * Not API. A {@link Transport} on NATS JetStream: one stream per bus ({@link NatsSettings#streamName()}) takes every
+ * message of every member, and every member delivers the stream from an ordered consumer, so that all members, in
+ * any language, see one order: the stream's.
+ *
+ * <p>A channel message goes to subject {@code dtron.BUS.c.GROUP} with header {@value #SENDER} naming its member.
+ * Membership travels in the same stream, on subject {@code dtron.BUS.p}, with header {@value #PRESENCE}: a member
+ * says {@code join} when it connects, {@code alive} every {@link NatsSettings#HEARTBEAT} and at once when another
+ * member joins (with {@value #JOINED}, the stream sequence of its own join, so that newcomers order the members as
+ * the others do), and {@code leave} when it closes. Every member applies the same rule at every stream message, in
+ * stream order, so all compute the same views: a member whose last message in the stream is more than
+ * {@link NatsSettings#SILENCE} older (by the stream's timestamps) than the message at hand has left; a presence
+ * message of a member not in the view adds it. A view's id is the stream sequence of the message that changed it.
+ */
+public final class NatsTransport implements Transport {
+    /** Header naming the member that published a message. */
+    public static final String SENDER = "Dtron-Sender";
+    /** Header of a presence message: join, alive or leave. */
+    public static final String PRESENCE = "Dtron-Presence";
+    /** Header of an alive message: the stream sequence at which its member joined. */
+    public static final String JOINED = "Dtron-Joined";
+
+    private static final Logger LOG = LoggerFactory.getLogger(NatsTransport.class);
+    private static final long CONNECT_TIMEOUT_MILLIS = 10_000;
+    /** How long a message the stream did not acknowledge is tried again before it is dropped. */
+    private static final Duration RETRY_FOR = Duration.ofSeconds(30);
+    private static final long RETRY_PAUSE_MILLIS = 100;
+    private static final long CLOSE_WAIT_MILLIS = 3_000;
+
+    private final Connection connection;
+    private final NatsSettings settings;
+    private final JetStream jetStream;
+    private final String channelPrefix;
+    private final Map<String, List<java.util.function.Consumer<BusMessage>>> groupHandlers = new ConcurrentHashMap<>();
+    private final List<java.util.function.Consumer<BusMessage>> allHandlers = new CopyOnWriteArrayList<>();
+    private final List<java.util.function.Consumer<MembershipView>> viewListeners = new CopyOnWriteArrayList<>();
+    private final ScheduledExecutorService presence;
+    private final Object sendLock = new Object();
+    private final AtomicInteger inFlight = new AtomicInteger();
+    private final ExecutorService retries;
+    private final AtomicLong published = new AtomicLong();
+    private final CountDownLatch joined = new CountDownLatch(1);
+    /** Membership state, touched on the receive thread only: last stream time (ns) and join sequence per member. */
+    private final Map<String, Long> lastSeen = new HashMap<>();
+    private final Map<String, Long> joinedAt = new HashMap<>();
+    private volatile long ownJoin;
+    private volatile MembershipView view;
+    private volatile boolean closed;
+    private volatile boolean leaving;
+    private Dispatcher dispatcher;
+    private JetStreamSubscription subscription;
+
+    private NatsTransport(Connection connection, NatsSettings settings) throws IOException {
+        this.connection = connection;
+        this.settings = settings;
+        this.jetStream = connection.jetStream();
+        this.channelPrefix = "dtron." + settings.busName() + ".c.";
+        this.view = new MembershipView(0, List.of(settings.memberName()));
+        this.presence = Executors.newSingleThreadScheduledExecutor(task -> {
+            Thread thread = new Thread(task, "dtron-nats-presence-" + settings.memberName());
+            thread.setDaemon(true);
+            return thread;
+        });
+        this.retries = Executors.newSingleThreadExecutor(task -> {
+            Thread thread = new Thread(task, "dtron-nats-retry-" + settings.memberName());
+            thread.setDaemon(true);
+            return thread;
+        });
+    }
+
+    /**
+     * Connects to the servers, creates the bus's stream unless it exists, and joins the bus.
+     *
+     * @throws IOException          if no server can be reached, the servers refuse the credentials, JetStream is
+     *                              off, or this member's join does not come back within 10 s
+     * @throws InterruptedException if the thread was interrupted while connecting
+     */
+    public static NatsTransport connect(NatsSettings settings) throws IOException, InterruptedException {
+        Connection connection;
+        try {
+            connection = Nats.connect(options(settings));
+        } catch (GeneralSecurityException e) {
+            throw new IOException("cannot set up TLS with " + settings.tlsCaFile().orElseThrow() + ": "
+                    + e.getMessage(), e);
+        }
+        NatsTransport transport = null;
+        try {
+            ensureStream(connection, settings);
+            transport = new NatsTransport(connection, settings);
+            transport.join();
+        } catch (IOException | InterruptedException | RuntimeException | Error e) {
+            if (transport != null) {
+                transport.presence.shutdownNow();
+                transport.retries.shutdownNow();
+            }
+            connection.close();
+            throw e;
+        }
+        LOG.debug("Joined {}: {}", settings, transport.view);
+        return transport;
+    }
+
+    private static Options options(NatsSettings settings) throws IOException, GeneralSecurityException {
+        Options.Builder builder = new Options.Builder()
+                .servers(settings.servers().toArray(String[]::new))
+                .connectionName(settings.memberName())
+                .maxReconnects(-1)
+                .errorListener(new LoggingErrorListener(settings.memberName()));
+        if (settings.user().isPresent()) {
+            builder.userInfo(settings.user().get(), settings.password().orElseThrow());
+        }
+        settings.token().ifPresent(builder::token);
+        if (settings.credentialsFile().isPresent() || settings.nkeyFile().isPresent()) {
+            requireNkeySigning();
+        }
+        if (settings.credentialsFile().isPresent()) {
+            builder.authHandler(Nats.credentials(settings.credentialsFile().get().toString()));
+        }
+        if (settings.nkeyFile().isPresent()) {
+            char[] seed = Files.readString(settings.nkeyFile().get(), StandardCharsets.US_ASCII).trim().toCharArray();
+            builder.authHandler(Nats.staticCredentials(null, seed));
+        }
+        if (settings.tlsCaFile().isPresent()) {
+            builder.sslContext(trusting(settings.tlsCaFile().get()));
+        }
+        return builder.build();
+    }
+
+    /** Nkeys are signed with Bouncy Castle, which DTRON does not bring along (see the root pom). */
+    private static void requireNkeySigning() throws IOException {
+        try {
+            Class.forName("org.bouncycastle.crypto.signers.Ed25519Signer", false, NatsTransport.class.getClassLoader());
+        } catch (ClassNotFoundException e) {
+            throw new IOException("nkey and credentials-file authentication need Bouncy Castle on the classpath"
+                    + " (org.bouncycastle:bcprov-lts8on)", e);
+        }
+    }
+
+    /** An SSL context that trusts the certificates of a PEM file. */
+    private static SSLContext trusting(java.nio.file.Path caFile) throws IOException, GeneralSecurityException {
+        KeyStore store = KeyStore.getInstance(KeyStore.getDefaultType());
+        store.load(null, null);
+        try (InputStream in = Files.newInputStream(caFile)) {
+            int i = 0;
+            for (Certificate certificate : CertificateFactory.getInstance("X.509").generateCertificates(in)) {
+                store.setCertificateEntry("ca" + i++, certificate);
+            }
+            if (i == 0) {
+                throw new IOException("no certificate in " + caFile);
+            }
+        }
+        TrustManagerFactory trust = TrustManagerFactory.getInstance(TrustManagerFactory.getDefaultAlgorithm());
+        trust.init(store);
+        SSLContext context = SSLContext.getInstance("TLS");
+        context.init(null, trust.getTrustManagers(), null);
+        return context;
+    }
+
+    /**
+     * Creates the bus's stream unless it exists (created by another member, maybe with other limits); waits up to
+     * the connect timeout while JetStream is unavailable (a cluster electing its leader).
+     */
+    private static void ensureStream(Connection connection, NatsSettings settings)
+            throws IOException, InterruptedException {
+        JetStreamManagement management = connection.jetStreamManagement();
+        long deadline = System.nanoTime() + TimeUnit.MILLISECONDS.toNanos(CONNECT_TIMEOUT_MILLIS);
+        while (true) {
+            try {
+                ensureStream(management, settings);
+                return;
+            } catch (JetStreamApiException e) {
+                if (e.getErrorCode() != 503 || System.nanoTime() > deadline) {
+                    throw new IOException("JetStream refused stream " + settings.streamName() + ": " + e.getMessage(),
+                            e);
+                }
+                Thread.sleep(RETRY_PAUSE_MILLIS);
+            }
+        }
+    }
+
+    private static void ensureStream(JetStreamManagement management, NatsSettings settings)
+            throws IOException, JetStreamApiException {
+        try {
+            management.getStreamInfo(settings.streamName());
+            return;
+        } catch (JetStreamApiException e) {
+            if (e.getErrorCode() != 404) {
+                throw e;
+            }
+        }
+        StreamConfiguration config = StreamConfiguration.builder()
+                .name(settings.streamName())
+                .subjects(settings.streamSubjects())
+                .storageType(StorageType.File)
+                .replicas(settings.replicas())
+                .maxAge(NatsSettings.MAX_AGE)
+                .maxBytes(NatsSettings.MAX_BYTES)
+                .discardPolicy(DiscardPolicy.Old)
+                .duplicateWindow(NatsSettings.DUPLICATE_WINDOW)
+                .build();
+        try {
+            management.addStream(config);
+            LOG.info("Created stream {} for bus '{}'", settings.streamName(), settings.busName());
+        } catch (JetStreamApiException e) {
+            if (e.getErrorCode() == 503) {
+                throw e;
+            }
+            management.getStreamInfo(settings.streamName()); // another member created it meanwhile, or this throws
+        }
+    }
+
+    /** Subscribes from the stream's next message on, says join and waits until the join came back. */
+    private void join() throws IOException, InterruptedException {
+        dispatcher = connection.createDispatcher();
+        // heartbeats every second: a consumer whose server died is noticed and made anew (from the next stream
+        // sequence) within a few seconds instead of the default's fifteen
+        ConsumerConfiguration consumer = ConsumerConfiguration.builder().deliverPolicy(DeliverPolicy.New)
+                .idleHeartbeat(Duration.ofSeconds(1)).build();
+        try {
+            subscription = jetStream.subscribe(settings.streamSubjects(), dispatcher, this::received, false,
+                    PushSubscribeOptions.builder().ordered(true).configuration(consumer).build());
+        } catch (JetStreamApiException e) {
+            throw new IOException("JetStream refused a consumer on stream " + settings.streamName() + ": "
+                    + e.getMessage(), e);
+        }
+        publishPresence("join");
+        if (!joined.await(CONNECT_TIMEOUT_MILLIS, TimeUnit.MILLISECONDS)) {
+            throw new IOException("this member's join did not come back from stream " + settings.streamName()
+                    + " within " + CONNECT_TIMEOUT_MILLIS + " ms");
+        }
+        long period = NatsSettings.HEARTBEAT.toMillis();
+        presence.scheduleAtFixedRate(() -> presenceQuietly("alive"), period, period, TimeUnit.MILLISECONDS);
+    }
+
+    @Override
+    public String localMember() {
+        return settings.memberName();
+    }
+
+    @Override
+    public void publish(String group, byte[] payload) throws IOException {
+        Objects.requireNonNull(group, "group");
+        Objects.requireNonNull(payload, "payload");
+        if (closed) {
+            throw new IllegalStateException("transport closed");
+        }
+        if (group.isEmpty() || !group.chars().allMatch(c -> c > 0x20 && c < 0x7F && c != '.' && c != '*'
+                && c != '>')) {
+            throw new IllegalArgumentException("group '" + group + "' cannot be a NATS subject token");
+        }
+        Headers headers = new Headers().put(SENDER, settings.memberName());
+        send(settings.channelSubject(group), headers, payload);
+    }
+
+    /**
+     * Hands a message to the connection, which sends the messages in the order they were handed over, and does not
+     * wait for the stream's acknowledgement. A message the stream did not acknowledge (a server failing over) is
+     * published again by the retry thread, with the same {@code Nats-Msg-Id}, so that the stream stores it once;
+     * while a server fails over, a message published again may come after later ones of the same member.
+     */
+    private void send(String subject, Headers headers, byte[] payload) throws IOException {
+        synchronized (sendLock) { // the ids and the connection's order agree
+            headers.put("Nats-Msg-Id", settings.memberName() + "-" + published.incrementAndGet());
+            Message message = NatsMessage.builder().subject(subject).headers(headers).data(payload).build();
+            try {
+                inFlight.incrementAndGet();
+                jetStream.publishAsync(message).whenComplete((ack, failure) -> {
+                    if (failure == null) {
+                        inFlight.decrementAndGet();
+                    } else {
+                        retryLater(message, failure);
+                    }
+                });
+            } catch (IllegalStateException e) {
+                inFlight.decrementAndGet();
+                throw new IOException("cannot publish on " + subject + ": " + e.getMessage(), e);
+            }
+        }
+    }
+
+    private void retryLater(Message message, Throwable failure) {
+        LOG.debug("{}: the stream did not acknowledge a message on {}, again: {}", settings.memberName(),
+                message.getSubject(), failure.toString());
+        try {
+            retries.execute(() -> {
+                try {
+                    publishUntilStored(message);
+                } catch (InterruptedException e) {
+                    Thread.currentThread().interrupt();
+                } finally {
+                    inFlight.decrementAndGet();
+                }
+            });
+        } catch (RejectedExecutionException e) {
+            inFlight.decrementAndGet(); // closed
+        }
+    }
+
+    private void publishUntilStored(Message message) throws InterruptedException {
+        long deadline = System.nanoTime() + RETRY_FOR.toNanos();
+        while (true) {
+            try {
+                jetStream.publish(NatsMessage.builder().subject(message.getSubject()).headers(message.getHeaders())
+                        .data(message.getData()).build());
+                return;
+            } catch (JetStreamApiException e) {
+                if (e.getErrorCode() != 503) { // the stream refused it for good (limits, a bad subject)
+                    LOG.warn("{}: stream {} refused a message on {}: {}", settings.memberName(),
+                            settings.streamName(), message.getSubject(), e.getMessage());
+                    return;
+                }
+                LOG.debug("{}: JetStream unavailable for a moment: {}", settings.memberName(), e.getMessage());
+            } catch (IOException | RuntimeException e) {
+                LOG.debug("{}: publishing on {} failed, again: {}", settings.memberName(), message.getSubject(),
+                        e.toString());
+            }
+            if (System.nanoTime() > deadline || connection.getStatus() == Connection.Status.CLOSED) {
+                LOG.warn("{}: a message on {} was not stored within {}; dropped", settings.memberName(),
+                        message.getSubject(), RETRY_FOR);
+                return;
+            }
+            Thread.sleep(RETRY_PAUSE_MILLIS);
+        }
+    }
+
+    private void publishPresence(String what) throws IOException {
+        Headers headers = new Headers().put(SENDER, settings.memberName()).put(PRESENCE, what);
+        long joinedSequence = ownJoin;
+        if (what.equals("alive") && joinedSequence > 0) {
+            headers.put(JOINED, Long.toString(joinedSequence));
+        }
+        send(settings.presenceSubject(), headers, new byte[0]);
+    }
+
+    private void presenceQuietly(String what) {
+        if (closed) {
+            return;
+        }
+        try {
+            publishPresence(what);
+        } catch (IOException | RuntimeException e) {
+            LOG.debug("{} cannot say {}: {}", settings.memberName(), what, e.toString());
+        }
+    }
+
+    private void presenceSoon(String what) {
+        try {
+            presence.execute(() -> presenceQuietly(what));
+        } catch (RejectedExecutionException e) {
+            // closed
+        }
+    }
+
+    @Override
+    public Subscription subscribe(String group, java.util.function.Consumer<BusMessage> handler) {
+        Objects.requireNonNull(group, "group");
+        Objects.requireNonNull(handler, "handler");
+        groupHandlers.computeIfAbsent(group, g -> new CopyOnWriteArrayList<>()).add(handler);
+        return () -> groupHandlers.computeIfPresent(group, (g, handlers) -> {
+            handlers.remove(handler);
+            return handlers.isEmpty() ? null : handlers;
+        });
+    }
+
+    @Override
+    public Subscription subscribeAll(java.util.function.Consumer<BusMessage> handler) {
+        Objects.requireNonNull(handler, "handler");
+        allHandlers.add(handler);
+        return () -> allHandlers.remove(handler);
+    }
+
+    @Override
+    public MembershipView view() {
+        return view;
+    }
+
+    @Override
+    public Subscription addViewListener(java.util.function.Consumer<MembershipView> listener) {
+        Objects.requireNonNull(listener, "listener");
+        viewListeners.add(listener);
+        return () -> viewListeners.remove(listener);
+    }
+
+    @Override
+    public void close() {
+        if (closed) {
+            return;
+        }
+        presence.shutdownNow();
+        leaving = true;
+        try {
+            publishPresence("leave");
+        } catch (IOException | RuntimeException e) {
+            LOG.debug("{} cannot say leave: {}", settings.memberName(), e.toString());
+        }
+        // the messages handed over before, and the leave, are stored first
+        long deadline = System.nanoTime() + TimeUnit.MILLISECONDS.toNanos(CLOSE_WAIT_MILLIS);
+        try {
+            while (inFlight.get() > 0 && System.nanoTime() < deadline) {
+                Thread.sleep(5);
+            }
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+        }
+        retries.shutdownNow();
+        closed = true;
+        try {
+            if (dispatcher != null && subscription != null) {
+                dispatcher.unsubscribe(subscription);
+            }
+        } catch (RuntimeException e) {
+            LOG.debug("{} cannot unsubscribe: {}", settings.memberName(), e.toString());
+        }
+        try {
+            connection.close();
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+        }
+    }
+
+    /** Called on the dispatcher's thread, one stream message at a time in stream order. */
+    private void received(Message message) {
+        long receivedAt = EpochClock.nowNanos();
+        if (closed || !message.isJetStream()) {
+            return;
+        }
+        long sequence = message.metaData().streamSequence();
+        Instant stamp = message.metaData().timestamp().toInstant();
+        long streamTime = stamp.getEpochSecond() * 1_000_000_000L + stamp.getNano();
+        Headers headers = message.getHeaders();
+        String sender = headers == null ? null : headers.getFirst(SENDER);
+        String subject = message.getSubject();
+        boolean presenceMessage = subject.equals(settings.presenceSubject());
+        try {
+            membership(sequence, streamTime, sender, presenceMessage ? headers : null);
+        } catch (RuntimeException e) {
+            LOG.error("Membership update failed on {}", subject, e);
+        }
+        if (presenceMessage) {
+            return;
+        }
+        if (!subject.startsWith(channelPrefix) || subject.length() == channelPrefix.length()) {
+            LOG.debug("Ignored a message on subject {} of stream {}", subject, settings.streamName());
+            return;
+        }
+        String group = subject.substring(channelPrefix.length());
+        List<java.util.function.Consumer<BusMessage>> handlers = groupHandlers.getOrDefault(group, List.of());
+        if (handlers.isEmpty() && allHandlers.isEmpty()) {
+            return;
+        }
+        byte[] data = message.getData();
+        BusMessage busMessage = new BusMessage(group, data == null ? new byte[0] : data,
+                sender == null ? "" : sender, receivedAt);
+        allHandlers.forEach(handler -> deliver(handler, busMessage));
+        handlers.forEach(handler -> deliver(handler, busMessage));
+    }
+
+    /**
+     * Applies the membership rule at one stream message: members silent for longer than the silence are gone, a
+     * presence message adds its member or (leave) removes it, any message of a member counts as a sign of life.
+     */
+    private void membership(long sequence, long streamTime, String sender, Headers presenceHeaders) {
+        List<String> before = view.members();
+        List<String> members = new ArrayList<>(before);
+        long silence = NatsSettings.SILENCE.toNanos();
+        members.removeIf(member -> lastSeen.containsKey(member) && lastSeen.get(member) < streamTime - silence);
+        String me = settings.memberName();
+        if (sender != null && (members.contains(sender) || presenceHeaders != null)) {
+            lastSeen.put(sender, streamTime);
+        }
+        if (presenceHeaders != null && sender != null) {
+            String what = Objects.requireNonNullElse(presenceHeaders.getFirst(PRESENCE), "");
+            switch (what) {
+                case "join", "alive" -> {
+                    long joinedSequence = what.equals("join") ? sequence : parseOr(presenceHeaders.getFirst(JOINED),
+                            sequence);
+                    if (!members.contains(sender)) {
+                        members.add(sender);
+                        joinedAt.put(sender, joinedSequence);
+                    } else if (what.equals("join")) {
+                        joinedAt.put(sender, joinedSequence);
+                    }
+                    if (what.equals("join") && sender.equals(me)) {
+                        ownJoin = sequence;
+                        joined.countDown();
+                    } else if (what.equals("join")) {
+                        presenceSoon("alive"); // tell the newcomer who is here
+                    }
+                }
+                case "leave" -> {
+                    members.remove(sender);
+                    lastSeen.remove(sender);
+                }
+                default -> LOG.debug("Ignored presence '{}' of {}", what, sender);
+            }
+        }
+        if (!members.contains(me) && before.contains(me) && joined.getCount() == 0 && !leaving) {
+            LOG.warn("{} was silent in stream {} for longer than {}; joining again", me, settings.streamName(),
+                    NatsSettings.SILENCE);
+            presenceSoon("join");
+        }
+        lastSeen.keySet().retainAll(members);
+        joinedAt.keySet().retainAll(members);
+        members.sort(Comparator.comparingLong((String m) -> joinedAt.getOrDefault(m, Long.MAX_VALUE))
+                .thenComparing(Comparator.naturalOrder()));
+        if (!members.equals(before)) {
+            MembershipView previous = view;
+            MembershipView next = new MembershipView(sequence, members);
+            view = next;
+            LOG.debug("{}: view {} (joined {}, left {})", me, next, next.joinedSince(previous),
+                    next.leftSince(previous));
+            for (java.util.function.Consumer<MembershipView> listener : viewListeners) {
+                try {
+                    listener.accept(next);
+                } catch (RuntimeException e) {
+                    LOG.error("View listener failed on {}", next, e);
+                }
+            }
+        }
+    }
+
+    private static long parseOr(String value, long fallback) {
+        if (value == null) {
+            return fallback;
+        }
+        try {
+            return Long.parseLong(value.trim());
+        } catch (NumberFormatException e) {
+            return fallback;
+        }
+    }
+
+    private static void deliver(java.util.function.Consumer<BusMessage> handler, BusMessage message) {
+        try {
+            handler.accept(message);
+        } catch (RuntimeException e) {
+            LOG.error("Bus handler failed on {}", message, e);
+        }
+    }
+
+    /** Logs what the NATS client reports through slf4j. */
+    private record LoggingErrorListener(String member) implements ErrorListener {
+        @Override
+        public void errorOccurred(Connection conn, String error) {
+            LOG.warn("{}: NATS server error: {}", member, error);
+        }
+
+        @Override
+        public void exceptionOccurred(Connection conn, Exception exp) {
+            LOG.debug("{}: NATS client exception: {}", member, exp.toString());
+        }
+
+        @Override
+        public void slowConsumerDetected(Connection conn, Consumer consumer) {
+            LOG.warn("{}: NATS slow consumer: messages dropped", member);
+        }
+    }
+}

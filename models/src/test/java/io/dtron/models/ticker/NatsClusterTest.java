@@ -1,0 +1,128 @@
+package io.dtron.models.ticker;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+import io.dtron.api.ChildJvm;
+import io.dtron.testadapter.OrderMemberMain;
+import io.dtron.testsupport.NatsServer;
+import io.nats.client.Connection;
+import io.nats.client.JetStreamApiException;
+import io.nats.client.JetStreamManagement;
+import io.nats.client.Nats;
+import io.nats.client.api.StorageType;
+import io.nats.client.api.StreamConfiguration;
+import java.io.IOException;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.time.Duration;
+import java.util.ArrayList;
+import java.util.HashSet;
+import java.util.List;
+import java.util.concurrent.TimeUnit;
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.Timeout;
+import org.junit.jupiter.api.io.TempDir;
+
+/**
+ * A cluster of three nats-servers on loopback, the bus's stream replicated on all three: a Java, a Python and a C
+ * member, each attached to another server, publish 2,000 messages each; the server of the Python member is killed
+ * while they publish. The members that lost their server reconnect to another, and every member records every
+ * message once, all in the same order.
+ */
+@Timeout(value = 3, unit = TimeUnit.MINUTES)
+class NatsClusterTest {
+    private static final int MESSAGES = 2_000;
+
+    @TempDir
+    Path dir;
+
+    @Test
+    void aServerKilledMidRunLosesNoMessageAndTheOrderHolds() throws Exception {
+        String python = NatsClients.python();
+        Path c = NatsClients.cProgram("dtron-order-member");
+        int[] ports = {NatsServer.freePort(), NatsServer.freePort(), NatsServer.freePort()};
+        int[] routes = {NatsServer.freePort(), NatsServer.freePort(), NatsServer.freePort()};
+        List<NatsServer> servers = new ArrayList<>();
+        try {
+            for (int i = 0; i < 3; i++) {
+                List<Integer> others = new ArrayList<>();
+                for (int j = 0; j < 3; j++) {
+                    if (j != i) {
+                        others.add(routes[j]);
+                    }
+                }
+                servers.add(NatsServer.startClustered(dir, "s" + i, ports[i], routes[i], others));
+            }
+            String bus = NatsTickerTest.cluster("cluster");
+            try (Connection admin = Nats.connect(servers.get(0).url())) {
+                createReplicatedStream(admin.jetStreamManagement(), bus);
+                String count = Integer.toString(MESSAGES);
+                try (ChildJvm java = ChildJvm.start(OrderMemberMain.class, dir.resolve("java.log"), bus, "java",
+                        dir.resolve("java.txt").toString(), count, "3", servers.get(0).url())) {
+                    Process py = new ProcessBuilder(python,
+                            NatsClients.PYTHON.resolve("tests/order_member.py").toString(), servers.get(1).url(), bus,
+                            "python", dir.resolve("python.txt").toString(), count, "3")
+                            .redirectErrorStream(true).redirectOutput(dir.resolve("python.log").toFile()).start();
+                    Process cMember = new ProcessBuilder(c.toString(), servers.get(2).url(), bus, "c",
+                            dir.resolve("c.txt").toString(), count, "3")
+                            .redirectErrorStream(true).redirectOutput(dir.resolve("c.log").toFile()).start();
+                    try {
+                        // mid-run: once a quarter of the messages are in the stream
+                        long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(90);
+                        while (messages(admin, bus) < 3L * MESSAGES / 4) {
+                            assertTrue(System.nanoTime() < deadline, "the members did not publish");
+                            Thread.sleep(5);
+                        }
+                        servers.get(1).kill();
+                        assertTrue(py.waitFor(150, TimeUnit.SECONDS), "python still running");
+                        assertTrue(cMember.waitFor(60, TimeUnit.SECONDS), "c still running");
+                        assertEquals(0, py.exitValue(), Files.readString(dir.resolve("python.log")));
+                        assertEquals(0, cMember.exitValue(), Files.readString(dir.resolve("c.log")));
+                        assertEquals(0, java.waitFor(Duration.ofSeconds(60)), java.output());
+                    } finally {
+                        py.destroyForcibly();
+                        cMember.destroyForcibly();
+                    }
+                }
+            }
+            List<String> javaOrder = Files.readAllLines(dir.resolve("java.txt"));
+            assertEquals(3 * MESSAGES, javaOrder.size(), "every message once");
+            assertEquals(3 * MESSAGES, new HashSet<>(javaOrder).size(), "no message twice");
+            assertEquals(javaOrder, Files.readAllLines(dir.resolve("python.txt")), "Python's order is Java's");
+            assertEquals(javaOrder, Files.readAllLines(dir.resolve("c.txt")), "C's order is Java's");
+        } finally {
+            for (NatsServer server : servers) {
+                server.close();
+            }
+        }
+    }
+
+    /** Creates the bus's stream on all three servers, once JetStream's cluster has a leader. */
+    private static void createReplicatedStream(JetStreamManagement management, String bus) throws Exception {
+        StreamConfiguration config = StreamConfiguration.builder().name("DTRON_" + bus)
+                .subjects("dtron." + bus + ".>").storageType(StorageType.File).replicas(3)
+                .maxAge(Duration.ofMinutes(10)).maxBytes(64L * 1024 * 1024).duplicateWindow(Duration.ofMinutes(1))
+                .build();
+        long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(30);
+        while (true) {
+            try {
+                management.addStream(config);
+                return;
+            } catch (JetStreamApiException | IOException e) {
+                if (System.nanoTime() > deadline) {
+                    throw e;
+                }
+                Thread.sleep(200); // JetStream's cluster is still electing its leader
+            }
+        }
+    }
+
+    private static long messages(Connection admin, String bus) {
+        try {
+            return admin.jetStreamManagement().getStreamInfo("DTRON_" + bus).getStreamState().getMsgCount();
+        } catch (IOException | JetStreamApiException e) {
+            return 0;
+        }
+    }
+}
