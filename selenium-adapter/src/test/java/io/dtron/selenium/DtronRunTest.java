@@ -65,7 +65,8 @@ class DtronRunTest {
         try (LogCapture log = new LogCapture(AbstractSeleniumAdapter.class)) {
             Run run = run("press.xml", 300);
             assertEquals(2, run.exit(), run.out());
-            assertTrue(Pattern.compile("\nFAILED: output result\\(user=0, resCode=1\\) observed at t=[0-9.]+ carries"
+            assertTrue(Pattern.compile("\nFAILED: (?:[^\n]*?; then )?output result\\(user=0, resCode=1\\) observed at"
+                    + " t=[0-9.]+ carries"
                     + " values the model does not allow then: it allowed result\\(user=0, resCode=0\\)")
                     .matcher(run.out()).find(), run.out());
             assertTrue(run.millis() < 20_000, "the run took " + run.millis() + " ms");

@@ -80,8 +80,9 @@ class DistributedRunTest {
     void aLateResponseFailsAtPortTwoAndEndsPortOneWithTheReason(@TempDir Path dir) throws Exception {
         Relay r = relay(dir, "late");
         assertEquals(2, r.port2(), r.all());
-        assertTrue(r.port2Output().contains("FAILED: output resp() observed at")
-                || r.port2Output().contains("FAILED: no output came by"), r.all());
+        // the late response is seen late, or not by its deadline (after how the request was taken)
+        assertTrue(r.port2Output().matches("(?s).*FAILED: (output resp\\(\\) observed at|.*no output came by).*"),
+                r.all());
         assertTrue(r.port2Output().contains("resp between"), "the response was due: " + r.all());
         assertEquals(3, r.port1(), r.all());
         assertTrue(r.port1Output().matches("(?s).*INCONCLUSIVE: tester \\S+ of this run ended it FAILED.*"), r.all());
