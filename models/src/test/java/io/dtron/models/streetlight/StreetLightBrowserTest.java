@@ -41,11 +41,23 @@ class StreetLightBrowserTest {
         return new Run(exit, out + "\n" + err);
     }
 
+    /**
+     * A correct application never fails. With several operators the model lets the tester send one operator's next
+     * input while that operator's last result is still on its way; when the application applies the input after
+     * producing the result, and the model does not allow the input after that result, the true order makes the run
+     * INCONCLUSIVE (input executed too late), as TRON judges it: allowed, and nothing else.
+     */
     @ParameterizedTest(name = "{0} operators for {1} time units")
     @CsvSource({"1, 120", "2, 150", "4, 200"})
-    void operatorsAtOncePassAgainstTheCorrectApplication(int users, int timeout, @TempDir Path dir)
+    void operatorsAtOnceNeverFailTheCorrectApplication(int users, int timeout, @TempDir Path dir)
             throws Exception {
         Run run = run(dir, users, Integer.toString(users), timeout);
+        if (users > 1 && run.exit() == 3) {
+            assertTrue(Pattern.compile("\nINCONCLUSIVE: input \\w+\\(user=\\d\\) was executed at t=[0-9.]+, when the"
+                    + " environment no longer allowed it, after the events that happened before it \\(input executed"
+                    + " too late\\)").matcher(run.out()).find(), run.out());
+            return;
+        }
         assertEquals(0, run.exit(), run.out());
         Matcher passed = Pattern.compile("\nPASSED: the timeout of " + timeout + " time units was reached after"
                 + " (\\d+) inputs").matcher(run.out());
