@@ -53,7 +53,7 @@ class StreetLightBrowserTest {
             throws Exception {
         Run run = run(dir, users, Integer.toString(users), timeout);
         if (users > 1 && run.exit() == 3) {
-            assertTrue(Pattern.compile("\nINCONCLUSIVE: input \\w+\\(user=\\d\\) was executed at t=[0-9.]+, when the"
+            assertTrue(Pattern.compile("\nINCONCLUSIVE: input \\w+\\([^)]*\\) was executed at t=[0-9.]+, when the"
                     + " environment no longer allowed it, after the events that happened before it \\(input executed"
                     + " too late\\)").matcher(run.out()).find(), run.out());
             return;
