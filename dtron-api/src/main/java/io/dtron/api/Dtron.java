@@ -346,8 +346,9 @@ public final class Dtron implements AutoCloseable {
 
     /**
      * Returns what the other members on the bus said they serve, by member id in id order; members that said
-     * nothing (testers, and adapters built against an API without the handshake) are left out. A tester waits
-     * until its model's channels are all served before it starts a run.
+     * nothing (testers, and adapters built against an API without the handshake) are left out; an immutable
+     * snapshot, cheap to take on every message. A tester waits until its model's channels are all served before it
+     * starts a run.
      */
     public Map<String, ServedChannels> getMembersServedChannels() {
         return handshake.others();

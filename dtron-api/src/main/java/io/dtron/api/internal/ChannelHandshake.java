@@ -8,7 +8,6 @@ import java.util.Map;
 import java.util.Set;
 import java.util.TreeMap;
 import java.util.TreeSet;
-import java.util.concurrent.ConcurrentHashMap;
 import java.util.concurrent.Executor;
 import java.util.concurrent.atomic.AtomicBoolean;
 import java.util.function.Consumer;
@@ -29,7 +28,9 @@ public final class ChannelHandshake {
     private final Runnable othersChanged;
     private final Set<String> receives = new TreeSet<>();
     private final Set<String> sends = new TreeSet<>();
-    private final Map<String, ServedChannels> others = new ConcurrentHashMap<>();
+    /** The other members' last announcements, by member id: an immutable snapshot, replaced on every change. */
+    private volatile Map<String, ServedChannels> others = Map.of();
+    private final Object othersLock = new Object();
     private final AtomicBoolean queued = new AtomicBoolean();
     private boolean joinsRun;
 
@@ -98,22 +99,41 @@ public final class ChannelHandshake {
         if (served.member().equals(me)) {
             return;
         }
-        ServedChannels before = others.put(served.member(), served);
-        if (!served.equals(before)) {
+        boolean changed;
+        synchronized (othersLock) {
+            changed = !served.equals(others.get(served.member()));
+            if (changed) {
+                Map<String, ServedChannels> next = new TreeMap<>(others);
+                next.put(served.member(), served);
+                others = Collections.unmodifiableMap(next);
+            }
+        }
+        if (changed) {
             othersChanged.run();
         }
     }
 
     /** Forgets the members that left. */
     public void viewChanged(List<String> members) {
-        if (others.keySet().retainAll(members)) {
+        boolean changed;
+        synchronized (othersLock) {
+            Map<String, ServedChannels> next = new TreeMap<>(others);
+            changed = next.keySet().retainAll(members);
+            if (changed) {
+                others = Collections.unmodifiableMap(next);
+            }
+        }
+        if (changed) {
             othersChanged.run();
         }
     }
 
-    /** Returns what each other member on the bus said it serves, by member id (those that said nothing left out). */
+    /**
+     * Returns what each other member on the bus said it serves, by member id in id order (those that said nothing
+     * left out): an immutable snapshot, cheap to take (the handshake's messages replace it; reads do not copy).
+     */
     public Map<String, ServedChannels> others() {
-        return Collections.unmodifiableMap(new TreeMap<>(others));
+        return others;
     }
 
     /** Returns whether another member said it is a tester joining the next run another one starts. */
