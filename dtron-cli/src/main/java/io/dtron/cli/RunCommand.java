@@ -44,6 +44,7 @@ import java.util.concurrent.TimeUnit;
 import java.util.function.Supplier;
 import java.util.regex.Pattern;
 import picocli.CommandLine.Command;
+import picocli.CommandLine.Mixin;
 import picocli.CommandLine.Model.CommandSpec;
 import picocli.CommandLine.Option;
 import picocli.CommandLine.ParameterException;
@@ -67,8 +68,6 @@ import picocli.CommandLine.Spec;
                         + " of the messages (t2 - t1, receive minus publish time) and the bus counters.",
                 "Exit code 0 PASSED, 2 FAILED, 3 INCONCLUSIVE, 1 usage or model error."})
 final class RunCommand implements Callable<Integer> {
-    private static final Pattern NATS_BUS_NAME = Pattern.compile("[A-Za-z0-9_-]{1,64}");
-
     @Spec
     private CommandSpec spec;
 
@@ -126,40 +125,8 @@ final class RunCommand implements Callable<Integer> {
                     + " this model's channels on that tester's clock.")
     private boolean join;
 
-    @Option(names = "--bus", paramLabel = "nats://HOST:PORT[,...]",
-            description = "Bus mode: use the NATS JetStream bus on these servers (comma-separated, servers of one"
-                    + " NATS cluster) instead of the embedded JGroups bus; adapters in Java, Python and C join it."
-                    + " The cluster name names the bus's stream.")
-    private String bus;
-
-    @Option(names = "--nats-user", paramLabel = "USER",
-            description = "With --bus: authenticate as USER, with the password in --nats-password-file.")
-    private String natsUser;
-
-    @Option(names = "--nats-password-file", paramLabel = "FILE",
-            description = "With --bus and --nats-user: the file holding the password.")
-    private Path natsPasswordFile;
-
-    @Option(names = "--nats-token-file", paramLabel = "FILE",
-            description = "With --bus: authenticate with the token held in FILE.")
-    private Path natsTokenFile;
-
-    @Option(names = "--nats-creds", paramLabel = "FILE",
-            description = "With --bus: authenticate with a NATS credentials file (user JWT and nkey seed).")
-    private Path natsCreds;
-
-    @Option(names = "--nats-nkey", paramLabel = "FILE",
-            description = "With --bus: authenticate with the nkey seed held in FILE.")
-    private Path natsNkey;
-
-    @Option(names = "--nats-tls-ca", paramLabel = "FILE",
-            description = "With --bus: talk TLS to the servers, trusting the certificate authorities in this PEM file.")
-    private Path natsTlsCa;
-
-    @Option(names = "--nats-replicas", paramLabel = "N",
-            description = "With --bus: the replicas of the bus's stream if this run creates it (default 1; 3 in a"
-                    + " cluster of three servers survives one failing).")
-    private Integer natsReplicas;
+    @Mixin
+    private NatsBusOptions nats;
 
     @Option(names = "--wait-for-adapters", paramLabel = "channels|N",
             description = "Bus mode: start when every channel of the model is served by an adapter on the bus, as"
@@ -442,33 +409,15 @@ final class RunCommand implements Callable<Integer> {
         if (busMode) {
             initialMembers();
         }
-        boolean natsOptions = natsUser != null || natsPasswordFile != null || natsTokenFile != null || natsCreds != null
-                || natsNkey != null || natsTlsCa != null || natsReplicas != null;
-        if (!busMode && bus != null) {
+        if (!busMode && nats.given()) {
             throw usage("--bus is the bus of the adapters; with " + (sut != null ? "--sut" : "--tron-adapter")
                     + " leave it out");
         }
-        if (bus == null && natsOptions) {
-            throw usage("--nats-user, --nats-password-file, --nats-token-file, --nats-creds, --nats-nkey, --nats-tls-ca"
-                    + " and --nats-replicas are for a NATS bus: give its servers with --bus nats://HOST:PORT");
+        if (nats.given() && bind != null) {
+            throw usage("--bind is the interface of the embedded JGroups bus; members of a NATS bus (--bus)"
+                    + " connect to its servers: leave it out");
         }
-        if (bus != null) {
-            if (bind != null) {
-                throw usage("--bind is the interface of the embedded JGroups bus; members of a NATS bus (--bus)"
-                        + " connect to its servers: leave it out");
-            }
-            if ((natsUser == null) != (natsPasswordFile == null)) {
-                throw usage("--nats-user and --nats-password-file go together");
-            }
-            if (!NATS_BUS_NAME.matcher(clusterName()).matches()) {
-                throw usage("--cluster: a NATS bus name is 1 to 64 letters, digits, '_' or '-': '" + clusterName()
-                        + "'");
-            }
-            if (natsReplicas != null && (natsReplicas < 1 || natsReplicas > 5)) {
-                throw usage("--nats-replicas must be in 1..5: " + natsReplicas);
-            }
-            natsServers();
-        }
+        nats.check(clusterName(), this::usage);
         boolean tronListens = tronAdapter != null
                 && TronAddress.parse(tronAdapter).map(a -> a.host() == null).orElse(false);
         if (bind != null && !busMode && !tronListens) {
@@ -915,72 +864,18 @@ final class RunCommand implements Callable<Integer> {
         return paths;
     }
 
-    /** The servers of {@code --bus}. */
-    private List<String> natsServers() {
-        List<String> servers = List.of(bus.split(",", -1)).stream().map(String::trim).toList();
-        for (String server : servers) {
-            if (!server.matches("(nats|tls)://[^\\s/]+")) {
-                throw usage("--bus takes NATS server URLs, nats://HOST:PORT or tls://HOST:PORT, separated by commas: '"
-                        + server + "'");
-            }
-        }
-        return servers;
-    }
-
     /** Where the bus is, for messages: the NATS servers or the JGroups interface. */
     private String busWhere() {
-        return bus != null ? String.join(",", natsServers()) : bindAddress().getHostAddress();
+        return nats.given() ? String.join(",", nats.servers(this::usage)) : bindAddress().getHostAddress();
     }
 
     /** Makes the options of the members of this JVM on the bus; reads the secret files once, now. */
     private Supplier<DtronOptions.Builder> busOptions() {
         String cluster = clusterName();
-        if (bus == null) {
+        if (!nats.given()) {
             return this::jgroupsOptions;
         }
-        List<String> servers = natsServers();
-        String password = natsPasswordFile == null ? null : secret(natsPasswordFile, "--nats-password-file");
-        String token = natsTokenFile == null ? null : secret(natsTokenFile, "--nats-token-file");
-        for (Path file : new Path[] {natsCreds, natsNkey, natsTlsCa}) {
-            if (file != null && !Files.isReadable(file)) {
-                throw usage("cannot read " + file);
-            }
-        }
-        return () -> {
-            DtronOptions.Builder builder = DtronOptions.builder().clusterName(cluster).natsServers(servers);
-            if (natsUser != null) {
-                builder.natsUser(natsUser, password);
-            }
-            if (token != null) {
-                builder.natsToken(token);
-            }
-            if (natsCreds != null) {
-                builder.natsCredentialsFile(natsCreds);
-            }
-            if (natsNkey != null) {
-                builder.natsNkeyFile(natsNkey);
-            }
-            if (natsTlsCa != null) {
-                builder.natsTlsCaFile(natsTlsCa);
-            }
-            if (natsReplicas != null) {
-                builder.natsReplicas(natsReplicas);
-            }
-            return builder;
-        };
-    }
-
-    /** The first line of a file holding a password or token. */
-    private String secret(Path file, String option) {
-        try {
-            String value = Files.readString(file).lines().findFirst().orElse("").trim();
-            if (value.isEmpty()) {
-                throw usage(option + ": " + file + " is empty");
-            }
-            return value;
-        } catch (IOException e) {
-            throw usage(option + ": cannot read " + file);
-        }
+        return nats.memberOptions(cluster, this::usage);
     }
 
     /** {@code --bind}, else loopback: the bus's interface, or where {@code --tron-adapter PORT} listens. */
