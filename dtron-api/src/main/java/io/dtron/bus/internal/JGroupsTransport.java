@@ -6,10 +6,7 @@ import io.dtron.bus.Subscription;
 import io.dtron.bus.Transport;
 import java.io.IOException;
 import java.util.List;
-import java.util.Map;
 import java.util.Objects;
-import java.util.concurrent.ConcurrentHashMap;
-import java.util.concurrent.CopyOnWriteArrayList;
 import java.util.function.Consumer;
 import org.jgroups.Address;
 import org.jgroups.BytesMessage;
@@ -30,9 +27,7 @@ public final class JGroupsTransport implements Transport, Receiver {
     private static final Logger LOG = LoggerFactory.getLogger(JGroupsTransport.class);
 
     private final JChannel channel;
-    private final Map<String, List<Consumer<BusMessage>>> groupHandlers = new ConcurrentHashMap<>();
-    private final List<Consumer<BusMessage>> allHandlers = new CopyOnWriteArrayList<>();
-    private final List<Consumer<MembershipView>> viewListeners = new CopyOnWriteArrayList<>();
+    private final Subscribers subscribers = new Subscribers();
     private volatile MembershipView view;
     private volatile boolean closed;
 
@@ -86,20 +81,12 @@ public final class JGroupsTransport implements Transport, Receiver {
 
     @Override
     public Subscription subscribe(String group, Consumer<BusMessage> handler) {
-        Objects.requireNonNull(group, "group");
-        Objects.requireNonNull(handler, "handler");
-        groupHandlers.computeIfAbsent(group, g -> new CopyOnWriteArrayList<>()).add(handler);
-        return () -> groupHandlers.computeIfPresent(group, (g, handlers) -> {
-            handlers.remove(handler);
-            return handlers.isEmpty() ? null : handlers;
-        });
+        return subscribers.subscribe(group, handler);
     }
 
     @Override
     public Subscription subscribeAll(Consumer<BusMessage> handler) {
-        Objects.requireNonNull(handler, "handler");
-        allHandlers.add(handler);
-        return () -> allHandlers.remove(handler);
+        return subscribers.subscribeAll(handler);
     }
 
     @Override
@@ -109,9 +96,7 @@ public final class JGroupsTransport implements Transport, Receiver {
 
     @Override
     public Subscription addViewListener(Consumer<MembershipView> listener) {
-        Objects.requireNonNull(listener, "listener");
-        viewListeners.add(listener);
-        return () -> viewListeners.remove(listener);
+        return subscribers.addViewListener(listener);
     }
 
     @Override
@@ -140,20 +125,8 @@ public final class JGroupsTransport implements Transport, Receiver {
             LOG.warn("Dropped a message from {} that is no DTRON frame: {}", sender, e.getMessage());
             return;
         }
-        List<Consumer<BusMessage>> handlers = groupHandlers.getOrDefault(frame.group(), List.of());
-        if (handlers.isEmpty() && allHandlers.isEmpty()) {
-            return;
-        }
-        BusMessage message = new BusMessage(frame.group(), frame.payload(), sender, receivedAt);
-        allHandlers.forEach(handler -> deliver(handler, message));
-        handlers.forEach(handler -> deliver(handler, message));
-    }
-
-    private static void deliver(Consumer<BusMessage> handler, BusMessage message) {
-        try {
-            handler.accept(message);
-        } catch (RuntimeException e) {
-            LOG.error("Bus handler failed on {}", message, e);
+        if (subscribers.wants(frame.group())) {
+            subscribers.deliver(new BusMessage(frame.group(), frame.payload(), sender, receivedAt));
         }
     }
 
@@ -165,12 +138,6 @@ public final class JGroupsTransport implements Transport, Receiver {
         view = next;
         LOG.debug("{}: view {} (joined {}, left {})", channel.getName(), next, next.joinedSince(previous),
                 next.leftSince(previous));
-        for (Consumer<MembershipView> listener : viewListeners) {
-            try {
-                listener.accept(next);
-            } catch (RuntimeException e) {
-                LOG.error("View listener failed on {}", next, e);
-            }
-        }
+        subscribers.viewChanged(next);
     }
 }

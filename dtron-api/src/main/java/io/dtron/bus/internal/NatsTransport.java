@@ -39,8 +39,6 @@ import java.util.HashMap;
 import java.util.List;
 import java.util.Map;
 import java.util.Objects;
-import java.util.concurrent.ConcurrentHashMap;
-import java.util.concurrent.CopyOnWriteArrayList;
 import java.util.concurrent.CountDownLatch;
 import java.util.concurrent.ExecutorService;
 import java.util.concurrent.Executors;
@@ -87,9 +85,7 @@ public final class NatsTransport implements Transport {
     private final NatsSettings settings;
     private final JetStream jetStream;
     private final String channelPrefix;
-    private final Map<String, List<java.util.function.Consumer<BusMessage>>> groupHandlers = new ConcurrentHashMap<>();
-    private final List<java.util.function.Consumer<BusMessage>> allHandlers = new CopyOnWriteArrayList<>();
-    private final List<java.util.function.Consumer<MembershipView>> viewListeners = new CopyOnWriteArrayList<>();
+    private final Subscribers subscribers = new Subscribers();
     private final ScheduledExecutorService presence;
     private final Object sendLock = new Object();
     private final AtomicInteger inFlight = new AtomicInteger();
@@ -409,20 +405,12 @@ public final class NatsTransport implements Transport {
 
     @Override
     public Subscription subscribe(String group, java.util.function.Consumer<BusMessage> handler) {
-        Objects.requireNonNull(group, "group");
-        Objects.requireNonNull(handler, "handler");
-        groupHandlers.computeIfAbsent(group, g -> new CopyOnWriteArrayList<>()).add(handler);
-        return () -> groupHandlers.computeIfPresent(group, (g, handlers) -> {
-            handlers.remove(handler);
-            return handlers.isEmpty() ? null : handlers;
-        });
+        return subscribers.subscribe(group, handler);
     }
 
     @Override
     public Subscription subscribeAll(java.util.function.Consumer<BusMessage> handler) {
-        Objects.requireNonNull(handler, "handler");
-        allHandlers.add(handler);
-        return () -> allHandlers.remove(handler);
+        return subscribers.subscribeAll(handler);
     }
 
     @Override
@@ -432,9 +420,7 @@ public final class NatsTransport implements Transport {
 
     @Override
     public Subscription addViewListener(java.util.function.Consumer<MembershipView> listener) {
-        Objects.requireNonNull(listener, "listener");
-        viewListeners.add(listener);
-        return () -> viewListeners.remove(listener);
+        return subscribers.addViewListener(listener);
     }
 
     @Override
@@ -500,15 +486,12 @@ public final class NatsTransport implements Transport {
             return;
         }
         String group = subject.substring(channelPrefix.length());
-        List<java.util.function.Consumer<BusMessage>> handlers = groupHandlers.getOrDefault(group, List.of());
-        if (handlers.isEmpty() && allHandlers.isEmpty()) {
+        if (!subscribers.wants(group)) {
             return;
         }
         byte[] data = message.getData();
-        BusMessage busMessage = new BusMessage(group, data == null ? new byte[0] : data,
-                sender == null ? "" : sender, receivedAt);
-        allHandlers.forEach(handler -> deliver(handler, busMessage));
-        handlers.forEach(handler -> deliver(handler, busMessage));
+        subscribers.deliver(new BusMessage(group, data == null ? new byte[0] : data, sender == null ? "" : sender,
+                receivedAt));
     }
 
     /**
@@ -565,13 +548,7 @@ public final class NatsTransport implements Transport {
             view = next;
             LOG.debug("{}: view {} (joined {}, left {})", me, next, next.joinedSince(previous),
                     next.leftSince(previous));
-            for (java.util.function.Consumer<MembershipView> listener : viewListeners) {
-                try {
-                    listener.accept(next);
-                } catch (RuntimeException e) {
-                    LOG.error("View listener failed on {}", next, e);
-                }
-            }
+            subscribers.viewChanged(next);
         }
     }
 
@@ -583,14 +560,6 @@ public final class NatsTransport implements Transport {
             return Long.parseLong(value.trim());
         } catch (NumberFormatException e) {
             return fallback;
-        }
-    }
-
-    private static void deliver(java.util.function.Consumer<BusMessage> handler, BusMessage message) {
-        try {
-            handler.accept(message);
-        } catch (RuntimeException e) {
-            LOG.error("Bus handler failed on {}", message, e);
         }
     }
 
