@@ -128,6 +128,9 @@ final class RunCommand implements Callable<Integer> {
     @Mixin
     private NatsBusOptions nats;
 
+    @Mixin
+    private TronAdapterTimeouts tronTimeouts;
+
     @Option(names = "--wait-for-adapters", paramLabel = "channels|N",
             description = "Bus mode: start when every channel of the model is served by an adapter on the bus, as"
                     + " adapters say when they join (channels, the default), or when N members besides the tester"
@@ -426,6 +429,12 @@ final class RunCommand implements Callable<Integer> {
         }
         if (busMode && virtualTime) {
             throw usage("--virtual-time needs --sut or --tron-adapter: the adapters on a bus live in real time");
+        }
+        if (tronAdapter == null && tronTimeouts.given()) {
+            throw usage("--config-timeout and --reply-timeout are for the adapter of --tron-adapter");
+        }
+        if (tronTimeouts.problem() != null) {
+            throw usage(tronTimeouts.problem());
         }
         if (tronAdapter != null && (tronBackend || interfaceFile != null)) {
             throw usage("with --tron-adapter, DTRON's engine takes TRON's place and the adapter's configuration"
@@ -789,7 +798,8 @@ final class RunCommand implements Callable<Integer> {
             throws IOException {
         TronAddress address = TronAddress.parse(tronAdapter).orElseThrow(() -> usage("--tron-adapter "
                 + tronAdapter + ": give HOST:PORT to connect to the adapter, or PORT to listen for it"));
-        TronSocketAdapter.Settings settings = TronSocketAdapter.Settings.forRealTime().withVirtualTime(virtualTime);
+        TronSocketAdapter.Settings settings = tronTimeouts.applyTo(TronSocketAdapter.Settings.forRealTime()
+                .withVirtualTime(virtualTime));
         long runSeed = RunDefaults.seed(seed);
         TronSocketAdapter adapter;
         try {

@@ -29,6 +29,7 @@ import java.util.Locale;
 import java.util.concurrent.Callable;
 import picocli.CommandLine.Command;
 import picocli.CommandLine.Model.CommandSpec;
+import picocli.CommandLine.Mixin;
 import picocli.CommandLine.Option;
 import picocli.CommandLine.ParameterException;
 import picocli.CommandLine.Parameters;
@@ -114,13 +115,8 @@ final class TronCommand implements Callable<Integer> {
             description = "With -- PORT: the address to listen on (default 127.0.0.1; 0.0.0.0 for every interface).")
     private String bind;
 
-    @Option(names = "--reply-timeout", paramLabel = "SECONDS", defaultValue = "10",
-            description = "In virtual time: how long the adapter may take to acknowledge an input (default 10).")
-    private long replyTimeout;
-
-    @Option(names = "--config-timeout", paramLabel = "SECONDS", defaultValue = "10",
-            description = "How long the adapter may stay silent while it configures the test (default 10).")
-    private long configTimeout;
+    @Mixin
+    private TronAdapterTimeouts timeouts;
 
     @Option(names = "--trace", paramLabel = "FILE", description = "Write every event as one JSON line to FILE.")
     private Path trace;
@@ -223,12 +219,8 @@ final class TronCommand implements Callable<Integer> {
         if (future != null && future <= 0) {
             return "-F " + future + ": the test duration must be a positive number of model time units";
         }
-        if (replyTimeout <= 0 || replyTimeout > RunDefaults.MAX_WAIT_SECONDS) {
-            return "--reply-timeout must be a positive number of seconds, at most " + RunDefaults.MAX_WAIT_SECONDS
-                    + " (about 292 years)";
-        }
-        if (configTimeout <= 0 || configTimeout > Integer.MAX_VALUE / 1000) {
-            return "--config-timeout must be a positive number of seconds, at most " + Integer.MAX_VALUE / 1000;
+        if (timeouts.problem() != null) {
+            return timeouts.problem();
         }
         return null;
     }
@@ -288,9 +280,8 @@ final class TronCommand implements Callable<Integer> {
             printer.println("dtron tron: " + model + ", random seed " + runSeed + ", " + where
                     + (virtual ? ", virtual time" : ""));
         }
-        TronSocketAdapter.Settings settings = TronSocketAdapter.Settings.forRealTime().withVirtualTime(virtual)
-                .withReplyTimeout(Duration.ofSeconds(replyTimeout))
-                .withConfigurationTimeout(Duration.ofSeconds(configTimeout));
+        TronSocketAdapter.Settings settings = timeouts.applyTo(TronSocketAdapter.Settings.forRealTime()
+                .withVirtualTime(virtual));
         TronSocketAdapter adapter;
         try {
             if (listen) {

@@ -110,6 +110,39 @@ class RunWithTronTest {
     }
 
     @Test
+    void aSilentTronAdapterEndsTheConfigurationAfterConfigTimeout() throws Exception {
+        try (ServerSocket server = new ServerSocket(0, 1, InetAddress.getLoopbackAddress())) {
+            CompletableFuture<Void> peer = CompletableFuture.runAsync(() -> {
+                try (var socket = server.accept()) {
+                    socket.getInputStream().read(); // silent until the tester gives up
+                } catch (IOException e) {
+                    throw new IllegalStateException(e);
+                }
+            });
+            long start = System.nanoTime();
+            CommandRun r = CommandRun.of("run", lightContr.toString(), "--tron-adapter",
+                    "127.0.0.1:" + server.getLocalPort(), "--config-timeout", "1");
+            long took = (System.nanoTime() - start) / 1_000_000;
+            peer.get(10, TimeUnit.SECONDS);
+            assertEquals(1, r.exit(), r.out() + r.err());
+            assertTrue(r.err().contains("the adapter sent nothing for 1 s during configuration"), r.err());
+            assertTrue(took < 8000, "took " + took + " ms, more than the 1 s asked and the 10 s default is near");
+        }
+    }
+
+    @Test
+    void tronAdapterTimeoutsNeedATronAdapterAndPositiveValues() {
+        String model = lightContr.toString();
+        CommandRun withoutAdapter = CommandRun.of("run", model, "--config-timeout", "3");
+        assertEquals(1, withoutAdapter.exit());
+        assertTrue(withoutAdapter.err().contains("--config-timeout and --reply-timeout are for the adapter of"
+                + " --tron-adapter"), withoutAdapter.err());
+        CommandRun zero = CommandRun.of("run", model, "--tron-adapter", "9999", "--reply-timeout", "0");
+        assertEquals(1, zero.exit());
+        assertTrue(zero.err().contains("--reply-timeout must be a positive number of seconds"), zero.err());
+    }
+
+    @Test
     void tronAdapterOptionsThatCannotGoTogetherAreUsageErrors() throws Exception {
         String model = lightContr.toString();
         CommandRun withSut = CommandRun.of("run", model, "--tron-adapter", "9999", "--sut", LampSystem.class.getName());
