@@ -264,6 +264,10 @@ final class RunCommand implements Callable<Integer> {
         } catch (IllegalArgumentException e) {
             throw usage(e.getMessage());
         }
+        if (!virtualTime && !tronBackend && !busMode) {
+            // on a bus, adapters often start beside the tester: its margin starts at the default, widening in the run
+            options = withMeasuredInputMargin(options, network, testInterface, out, err);
+        }
         Judge judge;
         try {
             judge = tronBackend ? tronJudge(err) : engineJudge(network);
@@ -833,6 +837,9 @@ final class RunCommand implements Callable<Integer> {
             TestOptions options;
             try {
                 options = new TestOptions(runSeed, unit, units, policy, delayBound, virtualTime);
+                if (!virtualTime) {
+                    options = withMeasuredInputMargin(options, network, testInterface, out, err);
+                }
             } catch (IllegalArgumentException e) {
                 String reason = e.getMessage() + " (timeout from " + (timeout != null ? "--timeout"
                         : testInterface.timeout() != null ? "the adapter" : "the default") + ", time unit from "
@@ -854,6 +861,23 @@ final class RunCommand implements Callable<Integer> {
         } finally {
             adapter.close();
         }
+    }
+
+    /**
+     * In real time: measures how late the tester's thread wakes up while the engine warms up on the model, says so,
+     * warns when the model's narrowest input window is narrower than the margin that needs, and returns the options
+     * with that margin.
+     */
+    private static TestOptions withMeasuredInputMargin(TestOptions options, Network network,
+            TestInterface testInterface, PrintWriter out, PrintWriter err) {
+        SchedulingDelay delay = SchedulingDelay.measureWarmingUp(network, testInterface);
+        out.println("dtron run: " + delay.describe(options.timeUnitMicros()));
+        out.flush();
+        delay.narrowInputWindow(network, testInterface, options.timeUnitMicros(), "--virtual-time").ifPresent(w -> {
+            err.println("dtron run: warning: " + w);
+            err.flush();
+        });
+        return options.withInputMargin(delay.marginMicros());
     }
 
     /** The {@code --classpath} entries: every value split at the platform's path separator and at commas. */

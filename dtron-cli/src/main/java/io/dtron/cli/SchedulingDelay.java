@@ -5,6 +5,7 @@ import io.dtron.engine.TestOptions;
 import io.dtron.model.Network;
 import io.dtron.model.TestInterface;
 import java.util.List;
+import java.util.Locale;
 import java.util.Optional;
 import java.util.concurrent.LinkedBlockingQueue;
 import java.util.concurrent.TimeUnit;
@@ -41,6 +42,30 @@ record SchedulingDelay(long worstMicros, long marginMicros) {
         return of(worst);
     }
 
+    /**
+     * Measures while the engine warms up on {@code network} on another thread ({@link EngineWarmUp}), as a cold JVM
+     * compiles and collects when a run starts; returns when both are done (about 300 ms).
+     */
+    static SchedulingDelay measureWarmingUp(Network network, TestInterface testInterface) {
+        Thread warmUp = new Thread(() -> EngineWarmUp.run(network, testInterface), "dtron-warm-up");
+        warmUp.setDaemon(true);
+        warmUp.start();
+        SchedulingDelay delay = measure();
+        try {
+            warmUp.join();
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+        }
+        return delay;
+    }
+
+    /** What was measured and what inputs are aimed at, for a run at {@code unitMicros} per time unit. */
+    String describe(long unitMicros) {
+        return String.format(Locale.ROOT, "the tester's thread wakes up to %.3f ms late here; inputs are aimed at"
+                + " least %.3f ms (%.3f time units) inside the end of their windows", worstMicros / 1000.0,
+                marginMicros / 1000.0, marginMicros / (double) unitMicros);
+    }
+
     /** The margin for a measured worst lateness. */
     static SchedulingDelay of(long worstMicros) {
         long worst = Math.max(0, worstMicros);
@@ -49,9 +74,11 @@ record SchedulingDelay(long worstMicros, long marginMicros) {
 
     /**
      * A warning when the model's narrowest input window ({@link ObservableWindow#narrowest}) at {@code unitMicros} per
-     * time unit is narrower than this margin: inputs in it are aimed at its start and may still come late.
+     * time unit is narrower than this margin: inputs in it are aimed at its start and may still come late. {@code
+     * virtualTimeOption} is the option that runs in virtual time instead.
      */
-    Optional<String> narrowInputWindow(Network network, TestInterface testInterface, long unitMicros) {
+    Optional<String> narrowInputWindow(Network network, TestInterface testInterface, long unitMicros,
+            String virtualTimeOption) {
         TestInterface inputs = new TestInterface(testInterface.inputs(), List.of(), testInterface.timeUnitMicros(),
                 testInterface.timeout());
         return ObservableWindow.narrowest(network, inputs).filter(w -> w.width() * unitMicros < marginMicros)
@@ -59,7 +86,7 @@ record SchedulingDelay(long worstMicros, long marginMicros) {
                         + " narrower than the margin of " + marginMicros + " us that inputs need here: they are aimed"
                         + " at the window's start and may still come late (INCONCLUSIVE, input executed too late)"
                         + (w.width() == 0 ? "; a single instant cannot be met in real time: run the model in virtual"
-                        + " time (-Q PORT)" : "; a time unit of at least " + ceilDiv(marginMicros, w.width())
+                        + " time (" + virtualTimeOption + ")" : "; a time unit of at least " + ceilDiv(marginMicros, w.width())
                         + " us leaves room"));
     }
 

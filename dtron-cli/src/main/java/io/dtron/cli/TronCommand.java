@@ -365,22 +365,11 @@ final class TronCommand implements Callable<Integer> {
      * (unless quiet), and warns when the model's narrowest input window is narrower than the margin.
      */
     private long inputMargin(Network network, TestInterface ti, long unit, Printer printer, PrintWriter err) {
-        // measured while the engine warms up on another thread, as a cold JVM compiles and collects
-        Thread warmUp = new Thread(() -> EngineWarmUp.run(network, ti), "dtron-warm-up");
-        warmUp.setDaemon(true);
-        warmUp.start();
-        SchedulingDelay delay = SchedulingDelay.measure();
-        try {
-            warmUp.join();
-        } catch (InterruptedException e) {
-            Thread.currentThread().interrupt();
-        }
+        SchedulingDelay delay = SchedulingDelay.measureWarmingUp(network, ti);
         if (!quiet) {
-            printer.println(String.format(Locale.ROOT, "dtron tron: the tester's thread wakes up to %.3f ms late"
-                    + " here; inputs are aimed at least %.3f ms (%.3f time units) inside the end of their windows",
-                    delay.worstMicros() / 1000.0, delay.marginMicros() / 1000.0, delay.marginMicros() / (double) unit));
+            printer.println("dtron tron: " + delay.describe(unit));
         }
-        delay.narrowInputWindow(network, ti, unit).ifPresent(warning -> {
+        delay.narrowInputWindow(network, ti, unit, "-Q PORT").ifPresent(warning -> {
             err.println("dtron tron: warning: " + warning);
             err.flush();
         });

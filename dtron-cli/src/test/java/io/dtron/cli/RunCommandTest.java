@@ -104,6 +104,13 @@ class RunCommandTest {
         assertTrue(progress.find(), r.out());
         assertTrue(Integer.parseInt(progress.group(1)) <= 12, "the test time while waiting: " + r.out());
         assertTrue(progress.start() < r.out().indexOf("FAILED: no output came by t=12.000"), r.out());
+        // in real time the tester measures how late its thread wakes up before the run, and aims inputs inside that
+        Matcher margin = Pattern.compile("dtron run: the tester's thread wakes up to [0-9.]+ ms late here; inputs are"
+                + " aimed at least ([0-9.]+) ms \\(([0-9.]+) time units\\) inside the end of their windows")
+                .matcher(r.out());
+        assertTrue(margin.find(), r.out());
+        assertTrue(Double.parseDouble(margin.group(1)) >= 2.0, "at least the default 2 ms: " + r.out());
+        assertEquals(Double.parseDouble(margin.group(1)) / 600, Double.parseDouble(margin.group(2)), 0.001, r.out());
     }
 
     @Test

@@ -30,9 +30,9 @@ class SchedulingDelayTest {
         Network lightContr = ModelLoader.load(TRON.resolve("LightContr.xml"));
         TestInterface ti = TestInterface.fromFile(lightContr, TRON.resolve("LightContr.trn"));
         // LightContr's narrowest input window is tens of units wide: ample at 1 ms per unit with a 2 ms margin
-        assertEquals(Optional.empty(), SchedulingDelay.of(1000).narrowInputWindow(lightContr, ti, 1000));
+        assertEquals(Optional.empty(), SchedulingDelay.of(1000).narrowInputWindow(lightContr, ti, 1000, "--virtual-time"));
         // a loaded machine that wakes the tester up to a second late needs windows of 2 s
-        String warning = SchedulingDelay.of(1_000_000).narrowInputWindow(lightContr, ti, 1000).orElseThrow();
+        String warning = SchedulingDelay.of(1_000_000).narrowInputWindow(lightContr, ti, 1000, "--virtual-time").orElseThrow();
         assertTrue(warning.startsWith("the window of input "), warning);
         assertTrue(warning.contains("narrower than the margin of 2000000 us that inputs need here: they are aimed at"
                 + " the window's start and may still come late (INCONCLUSIVE, input executed too late); a time unit of"
