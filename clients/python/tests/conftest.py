@@ -36,6 +36,39 @@ def nats_url_with_user(tmp_path: Path) -> Iterator[str]:
     yield from _serve(tmp_path, ["--user", "lab", "--pass", "s3cret"])
 
 
+@pytest.fixture
+def nats_url_with_token(tmp_path: Path) -> Iterator[str]:
+    """A server that takes only clients with the token "t0ken-s3cret"."""
+    yield from _serve(tmp_path, ["--auth", "t0ken-s3cret"])
+
+
+@pytest.fixture
+def nats_tls(tmp_path: Path) -> Iterator[tuple[str, Path, Path]]:
+    """A server that talks TLS only, with a certificate for 127.0.0.1 signed by a test authority: its tls:// URL,
+    the authority's PEM file, and the PEM file of another authority that did not sign it."""
+    for name in ("ca", "other-ca"):
+        _openssl(tmp_path, "req", "-x509", "-newkey", "rsa:2048", "-nodes", "-keyout", f"{name}.key", "-out",
+                 f"{name}.pem", "-days", "1", "-subj", f"/CN=dtron-test-{name}")
+    _openssl(tmp_path, "req", "-newkey", "rsa:2048", "-nodes", "-keyout", "server.key", "-out", "server.csr",
+             "-subj", "/CN=127.0.0.1")
+    (tmp_path / "san.cnf").write_text("subjectAltName=IP:127.0.0.1\n")
+    _openssl(tmp_path, "x509", "-req", "-in", "server.csr", "-CA", "ca.pem", "-CAkey", "ca.key", "-CAcreateserial",
+             "-out", "server.pem", "-days", "1", "-extfile", "san.cnf")
+    for url in _serve(tmp_path, ["--tls", "--tlscert", str(tmp_path / "server.pem"), "--tlskey",
+                                 str(tmp_path / "server.key")]):
+        yield url.replace("nats://", "tls://"), tmp_path / "ca.pem", tmp_path / "other-ca.pem"
+
+
+def _openssl(folder: Path, *args: str) -> None:
+    if shutil.which("openssl") is None:
+        if os.environ.get("DTRON_REQUIRE_NATS") == "1":
+            pytest.fail("openssl is missing, and DTRON_REQUIRE_NATS=1 requires it")
+        pytest.skip("openssl is not installed: skipped (CI installs it)")
+    done = subprocess.run(["openssl", *args], cwd=folder, capture_output=True, text=True, timeout=60)
+    if done.returncode != 0:
+        pytest.fail(f"openssl {' '.join(args)}:\n{done.stderr}")
+
+
 def _serve(tmp_path: Path, options: list[str]) -> Iterator[str]:
     binary = _nats_server()
     if binary is None:

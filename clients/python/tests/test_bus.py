@@ -171,3 +171,32 @@ def test_a_server_with_a_user_takes_only_members_with_its_password(nats_url_with
             assert bus.members == ["m"]
 
     run(test)
+
+
+def test_a_server_with_a_token_takes_only_members_with_it(nats_url_with_token: str) -> None:
+    async def test() -> None:
+        with pytest.raises(ConnectionError):
+            await dtron.connect(nats_url_with_token, bus="auth")
+        with pytest.raises(ConnectionError):
+            await dtron.connect(nats_url_with_token, bus="auth", token="guess")
+        async with await dtron.connect(nats_url_with_token, bus="auth", member="m", token="t0ken-s3cret") as bus:
+            assert bus.members == ["m"]
+
+    run(test)
+
+
+def test_tls_to_the_servers_trusts_the_given_authority_only(nats_tls: tuple[str, Any, Any]) -> None:
+    url, ca, other_ca = nats_tls
+
+    async def test() -> None:
+        with pytest.raises(ConnectionError):
+            await dtron.connect(url, bus="tls", tls_ca=str(other_ca))
+        async with await dtron.connect(url, bus="tls", member="a", tls_ca=str(ca)) as a, \
+                await dtron.connect(url, bus="tls", member="b", tls_ca=str(ca)) as b:
+            got: list[int] = []
+            b.add_listener(ORDER, lambda m: got.append(m.variables["n"]))
+            await until(lambda: a.members == ["a", "b"])
+            await a.send(ORDER.value(n=7))
+            await until(lambda: got == [7])
+
+    run(test)

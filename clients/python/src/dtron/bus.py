@@ -15,6 +15,7 @@ import logging
 import secrets
 import os
 import re
+import ssl
 from dataclasses import dataclass, field, replace
 from typing import Any, Awaitable, Callable, Optional, Sequence, Union
 
@@ -588,16 +589,28 @@ async def connect(servers: Union[str, Sequence[str]] = "nats://127.0.0.1:4222", 
     if nkey_seed_file is not None:
         options["nkeys_seed"] = nkey_seed_file
     if tls_ca is not None:
-        import ssl
-
         options["tls"] = ssl.create_default_context(cafile=tls_ca)
+
+    # nats-py reports a failed TLS handshake to error_cb and then never returns from connect: such an error ends
+    # the first connection at once, and a deadline bounds it in any case
+    tls_failed: asyncio.Future[Exception] = asyncio.get_running_loop().create_future()
 
     async def quiet(e: Exception) -> None:
         LOG.debug("NATS: %s", e)
+        if isinstance(e, ssl.SSLError) and not tls_failed.done():
+            tls_failed.set_result(e)
 
     options["error_cb"] = quiet
+    connecting = asyncio.ensure_future(nats.connect(**options))
+    deadline = len(urls) * 2 * (options["connect_timeout"] + options["reconnect_time_wait"]) + 5
+    await asyncio.wait({connecting, tls_failed}, timeout=deadline, return_when=asyncio.FIRST_COMPLETED)
+    if not connecting.done():
+        connecting.cancel()
+        reason = tls_failed.result() if tls_failed.done() else f"no connection within {deadline:g} s"
+        raise ConnectionError(f"cannot connect to NATS servers {urls}: {reason}")
+    tls_failed.cancel()
     try:
-        nc = await nats.connect(**options)
+        nc = connecting.result()
     except Exception as e:
         raise ConnectionError(f"cannot connect to NATS servers {urls}: {e}") from e
     nc.options["max_reconnect_attempts"] = -1
