@@ -742,7 +742,11 @@ int dtron_connect(const dtron_options *options, dtron_bus **out, char *err, size
     natsOptions_Destroy(opts);
     free(list);
     if (s != NATS_OK) {
-        fail(err, errlen, "cannot connect to NATS servers %s", servers);
+        if (err && errlen) {
+            const char *last = nats_GetLastError(NULL);
+            snprintf(err, errlen, "cannot connect to NATS servers %s: %s", servers,
+                     last && *last ? last : natsStatus_GetText(s));
+        }
         free_bus(bus);
         return DTRON_ERR_BUS;
     }

@@ -29,8 +29,15 @@
 
 static int failures;
 static char url[64];
-static char store[64] = "/tmp/dtron-c-test-XXXXXX";
-static pid_t server;
+
+/* A nats-server of the test: its process, its URL and its JetStream store. */
+typedef struct {
+    pid_t pid;
+    char url[64];
+    char store[64];
+} nats_server_process;
+
+static nats_server_process plain;
 
 static void pause_ms(long ms) {
     struct timespec step = {ms / 1000, (ms % 1000) * 1000000L};
@@ -45,6 +52,11 @@ static void pause_ms(long ms) {
         }                                                                    \
     } while (0)
 
+static int required(void) {
+    const char *value = getenv("DTRON_REQUIRE_NATS");
+    return value && strcmp(value, "1") == 0;
+}
+
 static const char *nats_server(void) {
     static const char *const candidates[] = {"/usr/bin/nats-server", "/usr/sbin/nats-server",
                                              "/usr/local/bin/nats-server"};
@@ -56,13 +68,23 @@ static const char *nats_server(void) {
     return NULL;
 }
 
-static int start_server(void) {
+/* Whether something accepts TCP connections on 127.0.0.1:port. */
+static int listening(int port) {
+    int probe = socket(AF_INET, SOCK_STREAM, 0);
+    struct sockaddr_in address = {.sin_family = AF_INET, .sin_port = htons(port),
+                                  .sin_addr.s_addr = htonl(INADDR_LOOPBACK)};
+    int ok = connect(probe, (struct sockaddr *)&address, sizeof address) == 0;
+    close(probe);
+    return ok;
+}
+
+/* Starts nats-server with JetStream on a free loopback port and the extra options (NULL-terminated, at most 8). */
+static int start_server(nats_server_process *p, const char *scheme, const char *const *extra) {
     const char *binary = nats_server();
     if (binary == NULL) {
-        const char *required = getenv("DTRON_REQUIRE_NATS");
-        fprintf(stderr, "nats-server is not installed%s\n", required && strcmp(required, "1") == 0
-                                                              ? ", and DTRON_REQUIRE_NATS=1 requires it" : ": skipped");
-        exit(required && strcmp(required, "1") == 0 ? 1 : 77);
+        fprintf(stderr, "nats-server is not installed%s\n", required() ? ", and DTRON_REQUIRE_NATS=1 requires it"
+                                                                         : ": skipped");
+        exit(required() ? 1 : 77);
     }
     int probe = socket(AF_INET, SOCK_STREAM, 0);
     struct sockaddr_in address = {.sin_family = AF_INET, .sin_addr.s_addr = htonl(INADDR_LOOPBACK)};
@@ -71,22 +93,28 @@ static int start_server(void) {
     getsockname(probe, (struct sockaddr *)&address, &length);
     int port = ntohs(address.sin_port);
     close(probe);
-    if (mkdtemp(store) == NULL) {
+    snprintf(p->store, sizeof p->store, "/tmp/dtron-c-test-XXXXXX");
+    if (mkdtemp(p->store) == NULL) {
         return -1;
     }
     char port_text[16];
     snprintf(port_text, sizeof port_text, "%d", port);
-    snprintf(url, sizeof url, "nats://127.0.0.1:%d", port);
-    server = fork();
-    if (server == 0) {
+    snprintf(p->url, sizeof p->url, "%s://127.0.0.1:%d", scheme, port);
+    const char *argv[20] = {binary, "-a", "127.0.0.1", "-p", port_text, "-js", "-sd", p->store};
+    int argc = 8;
+    for (int i = 0; extra && extra[i] && argc < 19; i++) {
+        argv[argc++] = extra[i];
+    }
+    argv[argc] = NULL;
+    p->pid = fork();
+    if (p->pid == 0) {
         freopen("/dev/null", "w", stderr);
-        execl(binary, binary, "-a", "127.0.0.1", "-p", port_text, "-js", "-sd", store, (char *)NULL);
+        execv(binary, (char *const *)argv);
         _exit(127);
     }
     for (int i = 0; i < 300; i++) { /* until it accepts connections */
-        natsConnection *nc = NULL;
-        if (natsConnection_ConnectTo(&nc, url) == NATS_OK) {
-            natsConnection_Destroy(nc);
+        if (listening(port)) {
+            pause_ms(100); /* and JetStream is up */
             return 0;
         }
         pause_ms(20);
@@ -94,13 +122,13 @@ static int start_server(void) {
     return -1;
 }
 
-static void stop_server(void) {
+static void stop_server(nats_server_process *p) {
     char command[128];
-    kill(server, SIGTERM);
-    waitpid(server, NULL, 0);
-    snprintf(command, sizeof command, "rm -rf %s", store);
+    kill(p->pid, SIGTERM);
+    waitpid(p->pid, NULL, 0);
+    snprintf(command, sizeof command, "rm -rf %s", p->store);
     if (system(command) != 0) {
-        fprintf(stderr, "cannot remove %s\n", store);
+        fprintf(stderr, "cannot remove %s\n", p->store);
     }
 }
 
@@ -328,14 +356,99 @@ static void test_handshake_clock_and_acknowledgements(void) {
     natsConnection_Destroy(t.nc);
 }
 
+/* ---- authentication: a token; TLS trusting a given authority ---- */
+
+static void test_token(void) {
+    static const char *const extra[] = {"--auth", "t0ken-s3cret", NULL};
+    nats_server_process p;
+    CHECK(start_server(&p, "nats", extra) == 0);
+    char err[256] = "";
+    dtron_bus *bus = NULL;
+    dtron_options none = {.servers = p.url, .bus = "auth", .member = "m"};
+    CHECK(dtron_connect(&none, &bus, err, sizeof err) == DTRON_ERR_BUS && bus == NULL);
+    CHECK(strstr(err, "cannot connect to NATS servers") != NULL);
+    dtron_options wrong = {.servers = p.url, .bus = "auth", .member = "m", .token = "guess"};
+    CHECK(dtron_connect(&wrong, &bus, err, sizeof err) == DTRON_ERR_BUS && bus == NULL);
+    dtron_options right = {.servers = p.url, .bus = "auth", .member = "m", .token = "t0ken-s3cret"};
+    CHECK(dtron_connect(&right, &bus, err, sizeof err) == DTRON_OK && bus != NULL);
+    if (bus != NULL) {
+        CHECK(dtron_member_count(bus) == 1);
+        dtron_close(bus);
+    }
+    stop_server(&p);
+}
+
+/* Runs openssl in folder; exits (skipped, or failed under DTRON_REQUIRE_NATS=1) without it. */
+static void openssl(const char *folder, const char *arguments) {
+    char command[1024];
+    snprintf(command, sizeof command, "cd %s && openssl %s >openssl.log 2>&1", folder, arguments);
+    if (system(command) != 0) {
+        if (system("command -v openssl >/dev/null 2>&1") != 0) {
+            fprintf(stderr, "openssl is not installed%s\n", required() ? ", and DTRON_REQUIRE_NATS=1 requires it"
+                                                                        : ": skipped");
+            exit(required() ? 1 : 77);
+        }
+        fprintf(stderr, "openssl %s failed (see %s/openssl.log)\n", arguments, folder);
+        failures++;
+    }
+}
+
+static void test_tls(void) {
+    char folder[64] = "/tmp/dtron-c-tls-XXXXXX";
+    if (mkdtemp(folder) == NULL) {
+        failures++;
+        return;
+    }
+    openssl(folder, "req -x509 -newkey rsa:2048 -nodes -keyout ca.key -out ca.pem -days 1 -subj /CN=dtron-test-ca");
+    openssl(folder, "req -x509 -newkey rsa:2048 -nodes -keyout other.key -out other.pem -days 1 -subj /CN=other-ca");
+    openssl(folder, "req -newkey rsa:2048 -nodes -keyout server.key -out server.csr -subj /CN=127.0.0.1");
+    char san[128], cert[128], key[128], ca[128], other[128];
+    snprintf(san, sizeof san, "%s/san.cnf", folder);
+    FILE *f = fopen(san, "w");
+    if (f != NULL) {
+        fputs("subjectAltName=IP:127.0.0.1\n", f);
+        fclose(f);
+    }
+    openssl(folder, "x509 -req -in server.csr -CA ca.pem -CAkey ca.key -CAcreateserial -out server.pem -days 1"
+                    " -extfile san.cnf");
+    snprintf(cert, sizeof cert, "%s/server.pem", folder);
+    snprintf(key, sizeof key, "%s/server.key", folder);
+    snprintf(ca, sizeof ca, "%s/ca.pem", folder);
+    snprintf(other, sizeof other, "%s/other.pem", folder);
+    const char *const extra[] = {"--tls", "--tlscert", cert, "--tlskey", key, NULL};
+    nats_server_process p;
+    CHECK(start_server(&p, "tls", extra) == 0);
+    char err[256] = "";
+    dtron_bus *bus = NULL;
+    dtron_options untrusted = {.servers = p.url, .bus = "tls", .member = "m", .tls_ca_file = other};
+    CHECK(dtron_connect(&untrusted, &bus, err, sizeof err) == DTRON_ERR_BUS && bus == NULL);
+    dtron_options trusted = {.servers = p.url, .bus = "tls", .member = "m", .tls_ca_file = ca};
+    CHECK(dtron_connect(&trusted, &bus, err, sizeof err) == DTRON_OK && bus != NULL);
+    if (bus != NULL) {
+        CHECK(dtron_member_count(bus) == 1);
+        dtron_close(bus);
+    } else {
+        fprintf(stderr, "tls: %s\n", err);
+    }
+    stop_server(&p);
+    char command[128];
+    snprintf(command, sizeof command, "rm -rf %s", folder);
+    if (system(command) != 0) {
+        fprintf(stderr, "cannot remove %s\n", folder);
+    }
+}
+
 int main(void) {
-    if (start_server() != 0) {
+    if (start_server(&plain, "nats", NULL) != 0) {
         fprintf(stderr, "nats-server did not start\n");
         return 1;
     }
+    snprintf(url, sizeof url, "%s", plain.url);
     test_order_and_membership();
     test_handshake_clock_and_acknowledgements();
-    stop_server();
+    stop_server(&plain);
+    test_token();
+    test_tls();
     dtron_shutdown();
     if (failures) {
         fprintf(stderr, "%d checks failed\n", failures);
