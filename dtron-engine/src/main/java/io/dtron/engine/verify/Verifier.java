@@ -3,6 +3,7 @@ package io.dtron.engine.verify;
 import io.dtron.engine.UnsupportedModelException;
 import io.dtron.engine.internal.verify.Checker;
 import io.dtron.engine.internal.verify.QueryParser;
+import io.dtron.engine.internal.verify.TestabilityChecker;
 import io.dtron.model.Network;
 import java.util.ArrayList;
 import java.util.List;
@@ -57,6 +58,6 @@ public final class Verifier {
      * @throws UnsupportedModelException on a model error met during the exploration
      */
     public TestabilityReport testability(io.dtron.model.TestInterface testInterface) {
-        return checker.testability(testInterface);
+        return new TestabilityChecker(checker).testability(testInterface);
     }
 }
