@@ -7,20 +7,44 @@ import io.dtron.engine.internal.sem.PartitionException;
 import io.dtron.engine.internal.sem.Semantics;
 import io.dtron.engine.internal.sem.SymState;
 import io.dtron.engine.verify.TestabilityReport;
+import io.dtron.engine.verify.TestabilityReport.Check;
+import io.dtron.engine.verify.TestabilityReport.Problem;
 import io.dtron.engine.verify.VerificationResult.Statistics;
 import io.dtron.engine.verify.VerifierOptions;
 import io.dtron.engine.zone.Dbm;
+import io.dtron.model.Edge;
 import io.dtron.model.Network;
 import io.dtron.model.Process;
 import io.dtron.model.TestInterface;
 import java.util.ArrayList;
+import java.util.Arrays;
+import java.util.HashMap;
+import java.util.HashSet;
 import java.util.List;
+import java.util.Map;
+import java.util.Set;
 
 /**
  * The testability checks of a model with its test interface (see {@link io.dtron.engine.verify.Verifier#testability}),
- * on the searches and traces of a {@link Checker}.
+ * each a search DTRON builds itself on the zone graph (Extra+_M), with the searches and traces of a {@link Checker}:
+ * <ul>
+ * <li>on the implementation closed by a generated {@link CanonicalTester}: input enabledness (the target's
+ * invariant included), connectedness (no deadlock, every location of the implementation reachable) and strong
+ * responsiveness (no reachable cycle of internal moves);</li>
+ * <li>on the model as written, with its own environment: time-lock freedom and the coverage of the
+ * implementation's locations by that environment;</li>
+ * <li>on the processes' structure: output observability and Zeno freedom.</li>
+ * </ul>
  */
 public final class TestabilityChecker {
+    private static final int MAX_PROBLEMS = 3;
+    private static final String OBSERVABILITY = "output observability";
+    private static final String INPUTS = "input enabledness";
+    private static final String CONNECTEDNESS = "connectedness";
+    private static final String COVERAGE = "environment coverage";
+    private static final String RESPONSIVENESS = "strong responsiveness";
+    private static final String TIMELOCK = "time-lock freedom";
+
     private final Checker checker;
     private final Network network;
     private final VerifierOptions options;
@@ -34,99 +58,347 @@ public final class TestabilityChecker {
         this.semantics = checker.semantics();
     }
 
-    private static final int MAX_PROBLEMS = 3;
-
     /** The testability checks; see {@link io.dtron.engine.verify.Verifier#testability}. */
     public TestabilityReport testability(TestInterface testInterface) {
-        Budget budget = new Budget("testability", options.timeLimit(), options.memoryLimitBytes(),
-                options.progressInterval());
-        List<TestabilityReport.Problem> observability = new ArrayList<>();
+        List<Problem> observability = new ArrayList<>();
         Partition partition;
         try {
             partition = Partition.of(network, testInterface);
         } catch (PartitionException e) {
-            observability.add(new TestabilityReport.Problem(e.getMessage(), null));
+            observability.add(new Problem(e.getMessage(), null));
             String notRun = "not checked: the model does not split into environment and implementation";
-            return new TestabilityReport(List.of(
-                    new TestabilityReport.Check("output observability", observability, null),
-                    new TestabilityReport.Check("input enabledness", List.of(), notRun),
-                    new TestabilityReport.Check("connectedness", List.of(), notRun),
-                    new TestabilityReport.Check("time-lock freedom", List.of(), notRun),
-                    new TestabilityReport.Check("Zeno freedom", List.of(), notRun)), Statistics.NONE);
+            List<Check> checks = new ArrayList<>(List.of(new Check(OBSERVABILITY, observability, null)));
+            for (String name : List.of(INPUTS, CONNECTEDNESS, COVERAGE, RESPONSIVENESS, TIMELOCK, "Zeno freedom")) {
+                checks.add(new Check(name, List.of(), notRun));
+            }
+            return new TestabilityReport(checks, Statistics.NONE);
         }
         boolean[] sends = channelsSentByImplementation(partition);
         for (TestInterface.ObservableChannel o : testInterface.outputs()) {
             if (!sends[o.channel()]) {
-                observability.add(new TestabilityReport.Problem("the implementation never sends the output "
+                observability.add(new Problem("the implementation never sends the output "
                         + o.name() + " (" + network.channelName(o.channel()) + ")", null));
             }
         }
-        ZoneGraph graph = checker.graph(true, List.of());
-        List<TestabilityReport.Problem> inputs = new ArrayList<>();
-        List<TestabilityReport.Problem> timelocks = new ArrayList<>();
-        boolean[][] reached = new boolean[network.processes().size()][];
-        for (Process p : network.processes()) {
-            reached[p.index()] = new boolean[p.locations().size()];
-        }
+        Budget budget = new Budget("testability", options.timeLimit(), options.memoryLimitBytes(),
+                options.progressInterval());
         try {
-            checker.search(graph, null, graph::deadlocked, budget, (n, s) -> {
-                for (Process p : network.processes()) {
-                    if (s.location(p.index()) >= 0) {
-                        reached[p.index()][s.location(p.index())] = true;
-                    }
-                }
-                if (inputs.size() < MAX_PROBLEMS && semantics.mayDelay(s)) {
-                    for (TestInterface.ObservableChannel i : testInterface.inputs()) {
-                        List<Dbm> refused = refused(s, i.channel(), partition);
-                        if (!refused.isEmpty() && inputs.size() < MAX_PROBLEMS) {
-                            inputs.add(new TestabilityReport.Problem("the implementation does not accept the input "
-                                    + i.name() + " in " + describeLocations(s, partition, false) + " when "
-                                    + refused.get(0).toString(checker.clockNames()), checker.trace(graph, Checker.path(n), s.zone(), -1, null,
-                                    null)));
-                        }
-                    }
-                }
-                if (timelocks.size() < MAX_PROBLEMS) {
-                    List<Dbm> dead = graph.deadlocked(s);
-                    if (!dead.isEmpty() && !graph.timeDiverges(s)) {
-                        timelocks.add(new TestabilityReport.Problem("time cannot pass and nothing can happen in "
-                                + describeLocations(s, partition, true) + " when " + dead.get(0).toString(checker.clockNames()),
-                                checker.trace(graph, Checker.path(n), dead.get(0), -1, null, null)));
-                    }
-                }
-                return null;
-            });
-        } catch (Budget.LimitReached e) {
-            String unknown = "unknown: " + e.getMessage();
+            CanonicalTester tester = CanonicalTester.of(network, partition, testInterface);
+            WithTester withTester = new WithTester(tester, testInterface);
+            String unknown = withTester.explore(budget);
+            long stored = budget.stored;
+            WithEnvironment withEnvironment = new WithEnvironment(partition, withTester.reached);
+            String unknownClosed = unknown != null ? unknown : withEnvironment.explore(budget);
+            budget.stored += stored;
+            String partly = tester.notes().isEmpty() ? null : "partly: " + String.join("; ", tester.notes());
             return new TestabilityReport(List.of(
-                    new TestabilityReport.Check("output observability", observability, null),
-                    new TestabilityReport.Check("input enabledness", inputs, unknown),
-                    new TestabilityReport.Check("connectedness", List.of(), unknown),
-                    new TestabilityReport.Check("time-lock freedom", timelocks, unknown),
+                    new Check(OBSERVABILITY, observability, null),
+                    new Check(INPUTS, withTester.refusals, note(unknown, partly, "in every reachable state where"
+                            + " time may pass, for every valuation and every value of its variables, the"
+                            + " implementation takes each input to a state whose invariant holds")),
+                    new Check(CONNECTEDNESS, withTester.connectedness(), note(unknown, partly, "with a canonical"
+                            + " tester that offers every input at any time and takes every output at once: no"
+                            + " deadlock, and every location of the implementation reachable")),
+                    new Check(COVERAGE, withEnvironment.uncovered(), note(unknownClosed, null, "the model's own"
+                            + " environment, which chooses the inputs of a test run, leads the implementation to every"
+                            + " location a canonical tester reaches")),
+                    new Check(RESPONSIVENESS, withTester.cycles, note(unknown, partly, "with a canonical tester: no"
+                            + " reachable cycle of internal moves of the implementation, which could run for ever"
+                            + " without an input or an output")),
+                    new Check(TIMELOCK, withEnvironment.timelocks, note(unknownClosed, null, null)),
                     zenoCheck()), checker.statistics(budget));
         } catch (ModelRuntimeException e) {
             throw new UnsupportedModelException("model error while checking testability: " + e.format());
         }
-        List<TestabilityReport.Problem> unreached = new ArrayList<>();
-        for (Process p : network.processes()) {
-            if (partition.isEnvironment(p.index())) {
-                continue;
-            }
-            for (int l = 0; l < reached[p.index()].length; l++) {
-                if (!reached[p.index()][l]) {
-                    unreached.add(new TestabilityReport.Problem("the environment never leads the implementation to "
-                            + p.name() + "." + p.locations().get(l).name(), null));
+    }
+
+    private static String note(String unknown, String partly, String meaning) {
+        return unknown != null ? "unknown: " + unknown : partly != null ? partly : meaning;
+    }
+
+    /** The exploration of the implementation with a canonical tester. */
+    private final class WithTester {
+        final CanonicalTester tester;
+        final Checker composed;
+        final ZoneGraph graph;
+        final Semantics sem;
+        final List<TestInterface.ObservableChannel> inputs;
+        final boolean[] isInput;
+        /** Per process of the model (environment processes: null), the locations reached. */
+        final boolean[][] reached = new boolean[network.processes().size()][];
+        /** Per process of the composition, the model's process number. */
+        final int[] original;
+        final List<Problem> refusals = new ArrayList<>();
+        final List<Problem> deadlocks = new ArrayList<>();
+        final List<Problem> cycles = new ArrayList<>();
+        final Set<Checker.Exact> noCycle = new HashSet<>();
+
+        WithTester(CanonicalTester tester, TestInterface testInterface) {
+            this.tester = tester;
+            this.composed = new Checker(tester.network(), options);
+            this.graph = composed.graph(true, List.of());
+            this.sem = composed.semantics();
+            this.inputs = testInterface.inputs();
+            this.isInput = new boolean[network.channelCount()];
+            inputs.forEach(i -> isInput[i.channel()] = true);
+            this.original = new int[tester.network().processes().size()];
+            for (Process p : tester.network().processes()) {
+                if (p.index() != tester.tester()) {
+                    original[p.index()] = network.process(p.name()).orElseThrow().index();
+                    reached[original[p.index()]] = new boolean[p.locations().size()];
                 }
             }
         }
-        return new TestabilityReport(List.of(
-                new TestabilityReport.Check("output observability", observability, null),
-                new TestabilityReport.Check("input enabledness", inputs, "in every reachable state where time may"
-                        + " pass, for every valuation, some receiving edge of the implementation has its guard true"
-                        + " (the target's invariant is not checked)"),
-                new TestabilityReport.Check("connectedness", unreached, "with the model's own environment"),
-                new TestabilityReport.Check("time-lock freedom", timelocks, null),
-                zenoCheck()), checker.statistics(budget));
+
+        /** Explores; null, or why it stopped before the end. */
+        String explore(Budget budget) {
+            try {
+                composed.search(graph, null, graph::deadlocked, budget, (n, s) -> {
+                    for (int p = 0; p < original.length; p++) {
+                        if (p != tester.tester() && s.location(p) >= 0) {
+                            reached[original[p]][s.location(p)] = true;
+                        }
+                    }
+                    if (refusals.size() < MAX_PROBLEMS && sem.mayDelay(s)) {
+                        refusals(n, s);
+                    }
+                    if (deadlocks.size() < MAX_PROBLEMS) {
+                        List<Dbm> dead = graph.deadlocked(s);
+                        if (!dead.isEmpty()) {
+                            String message = "deadlock with the canonical tester in " + locations(s)
+                                    + when(dead.get(0), composed) + ": the implementation takes no input and does"
+                                    + " nothing, now or after any delay";
+                            if (deadlocks.stream().noneMatch(p -> p.message().equals(message))) {
+                                deadlocks.add(new Problem(message, composed.trace(graph, Checker.path(n), dead.get(0),
+                                        -1, null, null)));
+                            }
+                        }
+                    }
+                    if (cycles.isEmpty()) {
+                        Checker.Lasso lasso = internalCycle(s, budget);
+                        if (lasso != null) {
+                            cycles.add(new Problem("the implementation can move for ever without an input or an"
+                                    + " output: a cycle of internal moves from " + locations(lasso.states().get(
+                                    lasso.loopStart())), composed.trace(graph, Checker.path(n), lasso)));
+                        }
+                    }
+                    return null;
+                });
+                return null;
+            } catch (Budget.LimitReached e) {
+                return e.getMessage();
+            }
+        }
+
+        /** Adds the inputs the implementation refuses somewhere in {@code s}, a state of node {@code n}. */
+        private void refusals(Checker.Node n, SymState s) {
+            int[] vars = graph.vars(s);
+            Map<String, List<Dbm>> accepted = new HashMap<>();
+            sem.moves(s, c -> c >= 0 && isInput[c], (move, next) -> {
+                int[] frame = null;
+                boolean implementation = false;
+                for (Semantics.Step step : move.steps()) {
+                    if (step.process() == tester.tester()) {
+                        frame = step.frame();
+                    } else {
+                        implementation = true;
+                    }
+                }
+                Dbm enabled = implementation && frame != null ? graph.enablingZone(s, vars, move, next.zone()) : null;
+                if (enabled != null) {
+                    accepted.computeIfAbsent(key(move.channel(), frame), k -> new ArrayList<>()).add(enabled);
+                }
+            });
+            Process testerProcess = tester.network().processes().get(tester.tester());
+            for (int i = 0; i < inputs.size() && refusals.size() < MAX_PROBLEMS; i++) {
+                Edge offer = testerProcess.edges().get(i);
+                for (int[] frame : frames(offer)) {
+                    List<Dbm> refused = new ArrayList<>(List.of(s.zone()));
+                    for (Dbm z : accepted.getOrDefault(key(inputs.get(i).channel(), frame), List.of())) {
+                        refused = Zones.subtract(refused, z);
+                    }
+                    if (!refused.isEmpty()) {
+                        String message = "the implementation does not accept the input " + inputs.get(i).name()
+                                + values(offer, frame) + " in " + locations(s) + when(refused.get(0), composed);
+                        if (refusals.stream().noneMatch(p -> p.message().equals(message))) {
+                            refusals.add(new Problem(message, composed.trace(graph, Checker.path(n), refused.get(0),
+                                    -1, null, null)));
+                        }
+                        break;
+                    }
+                }
+            }
+        }
+
+        private static String key(int channel, int[] frame) {
+            return channel + Arrays.toString(frame);
+        }
+
+        /** A cycle of internal moves (none of the tester's) reachable from {@code start}, or null. */
+        private Checker.Lasso internalCycle(SymState start, Budget budget) {
+            if (noCycle.contains(new Checker.Exact(start))) {
+                return null;
+            }
+            List<Frame> stack = new ArrayList<>();
+            Map<Checker.Exact, Integer> onStack = new HashMap<>();
+            push(start, null, stack, onStack, budget);
+            while (!stack.isEmpty()) {
+                Frame top = stack.get(stack.size() - 1);
+                if (top.next == top.successors.size()) {
+                    stack.remove(stack.size() - 1);
+                    Checker.Exact key = new Checker.Exact(top.state);
+                    onStack.remove(key);
+                    noCycle.add(key);
+                    continue;
+                }
+                int i = top.next++;
+                SymState child = top.successors.get(i);
+                Checker.Exact key = new Checker.Exact(child);
+                if (noCycle.contains(key)) {
+                    continue;
+                }
+                Integer loop = onStack.get(key);
+                if (loop != null) {
+                    List<SymState> states = new ArrayList<>();
+                    List<Semantics.Move> moves = new ArrayList<>();
+                    for (int k = 0; k < stack.size(); k++) {
+                        states.add(stack.get(k).state);
+                        if (k > 0) {
+                            moves.add(stack.get(k).move);
+                        }
+                    }
+                    states.add(child);
+                    moves.add(top.moves.get(i));
+                    return new Checker.Lasso(states, moves, loop, "a cycle back to state ");
+                }
+                push(child, top.moves.get(i), stack, onStack, budget);
+            }
+            return null;
+        }
+
+        private void push(SymState s, Semantics.Move move, List<Frame> stack, Map<Checker.Exact, Integer> onStack,
+                          Budget budget) {
+            budget.explore();
+            Frame f = new Frame(s, move);
+            stack.add(f);
+            onStack.put(new Checker.Exact(s), stack.size() - 1);
+            graph.successors(s, (m, next) -> {
+                if (m.steps().stream().noneMatch(step -> step.process() == tester.tester())) {
+                    f.moves.add(m);
+                    f.successors.add(next);
+                }
+            });
+        }
+
+        /** The implementation's locations in {@code s}. */
+        private String locations(SymState s) {
+            List<String> out = new ArrayList<>();
+            for (Process p : tester.network().processes()) {
+                if (p.index() != tester.tester() && s.location(p.index()) >= 0) {
+                    out.add(p.name() + "." + p.locations().get(s.location(p.index())).name());
+                }
+            }
+            return String.join(", ", out);
+        }
+
+        /** Deadlocks, then the implementation's locations no tester leads to. */
+        List<Problem> connectedness() {
+            List<Problem> out = new ArrayList<>(deadlocks);
+            for (Process p : network.processes()) {
+                for (int l = 0; reached[p.index()] != null && l < reached[p.index()].length; l++) {
+                    if (!reached[p.index()][l]) {
+                        out.add(new Problem(p.name() + "." + p.locations().get(l).name() + " is unreachable, even"
+                                + " with a tester that offers every input at any time", null));
+                    }
+                }
+            }
+            return out;
+        }
+    }
+
+    /** " when x>3" for a zone part, "" for the whole of the clock space. */
+    private static String when(Dbm part, Checker on) {
+        String zone = part.toString(on.clockNames());
+        return zone.equals("true") ? "" : " when " + zone;
+    }
+
+    /** " with amount=3" for an offer with select values, "" for one without. */
+    private static String values(Edge offer, int[] frame) {
+        List<String> out = new ArrayList<>();
+        for (Edge.Select sel : offer.selects()) {
+            out.add(sel.name() + "=" + frame[sel.slot()]);
+        }
+        return out.isEmpty() ? "" : " with " + String.join(", ", out);
+    }
+
+    /** A search frame: a state on the stack, its internal successors, the next one to look at. */
+    private static final class Frame {
+        final SymState state;
+        final Semantics.Move move;
+        final List<Semantics.Move> moves = new ArrayList<>();
+        final List<SymState> successors = new ArrayList<>();
+        int next;
+
+        Frame(SymState state, Semantics.Move move) {
+            this.state = state;
+            this.move = move;
+        }
+    }
+
+    /** The exploration of the model as written, with its own environment. */
+    private final class WithEnvironment {
+        final Partition partition;
+        final boolean[][] reachable;
+        final boolean[][] reached = new boolean[network.processes().size()][];
+        final List<Problem> timelocks = new ArrayList<>();
+
+        WithEnvironment(Partition partition, boolean[][] reachable) {
+            this.partition = partition;
+            this.reachable = reachable;
+            for (Process p : network.processes()) {
+                reached[p.index()] = new boolean[p.locations().size()];
+            }
+        }
+
+        /** Explores; null, or why it stopped before the end. */
+        String explore(Budget budget) {
+            ZoneGraph graph = checker.graph(true, List.of());
+            try {
+                checker.search(graph, null, graph::deadlocked, budget, (n, s) -> {
+                    for (Process p : network.processes()) {
+                        if (s.location(p.index()) >= 0) {
+                            reached[p.index()][s.location(p.index())] = true;
+                        }
+                    }
+                    if (timelocks.size() < MAX_PROBLEMS) {
+                        List<Dbm> dead = graph.deadlocked(s);
+                        if (!dead.isEmpty() && !graph.timeDiverges(s)) {
+                            timelocks.add(new Problem("time cannot pass and nothing can happen in "
+                                    + describeLocations(s, partition, true) + when(dead.get(0), checker),
+                                    checker.trace(graph, Checker.path(n), dead.get(0), -1, null, null)));
+                        }
+                    }
+                    return null;
+                });
+                return null;
+            } catch (Budget.LimitReached e) {
+                return e.getMessage();
+            }
+        }
+
+        /** The implementation's locations a canonical tester reaches but the model's environment does not. */
+        List<Problem> uncovered() {
+            List<Problem> out = new ArrayList<>();
+            for (Process p : network.processes()) {
+                for (int l = 0; reachable[p.index()] != null && l < reachable[p.index()].length; l++) {
+                    if (reachable[p.index()][l] && !reached[p.index()][l]) {
+                        out.add(new Problem("the model's environment never leads the implementation to " + p.name()
+                                + "." + p.locations().get(l).name(), null));
+                    }
+                }
+            }
+            return out;
+        }
     }
 
     private TestabilityReport.Check zenoCheck() {
@@ -149,8 +421,8 @@ public final class TestabilityChecker {
             if (partition.isEnvironment(p.index())) {
                 continue;
             }
-            for (io.dtron.model.Edge e : p.edges()) {
-                if (e.sync() == null || e.sync().direction() != io.dtron.model.Edge.Direction.SEND) {
+            for (Edge e : p.edges()) {
+                if (e.sync() == null || e.sync().direction() != Edge.Direction.SEND) {
                     continue;
                 }
                 io.dtron.model.Expression c = e.sync().channel();
@@ -168,47 +440,12 @@ public final class TestabilityChecker {
         return sends;
     }
 
-    /** The valuations of {@code s}'s zone where no receiving edge of the implementation takes {@code channel}. */
-    private List<Dbm> refused(SymState s, int channel, Partition partition) {
-        List<Dbm> refused = new ArrayList<>(List.of(s.zone()));
-        int[] vars = new int[network.stateSize()];
-        for (int i = 0; i < vars.length; i++) {
-            vars[i] = s.var(i);
-        }
-        for (Process p : network.processes()) {
-            int l = s.location(p.index());
-            if (partition.isEnvironment(p.index()) || l < 0) {
-                continue;
-            }
-            for (io.dtron.model.Edge e : p.edges()) {
-                if (e.source() != l || e.sync() == null
-                        || e.sync().direction() != io.dtron.model.Edge.Direction.RECEIVE) {
-                    continue;
-                }
-                for (int[] frame : frames(e)) {
-                    if (semantics.evaluator().channel(e.sync().channel(), vars, frame) != channel
-                            || e.guard() != null && !semantics.evaluator().dataHolds(e.guard(), vars, frame)) {
-                        continue;
-                    }
-                    Dbm accepted = s.zone().copy();
-                    if (e.guard() == null || semantics.evaluator().constrain(e.guard(), vars, frame, accepted, 1)) {
-                        refused = Zones.subtract(refused, accepted);
-                        if (refused.isEmpty()) {
-                            return refused;
-                        }
-                    }
-                }
-            }
-        }
-        return refused;
-    }
-
     /** Every binding of an edge's selects, as frames. */
-    private static List<int[]> frames(io.dtron.model.Edge e) {
+    private static List<int[]> frames(Edge e) {
         List<int[]> out = new ArrayList<>();
         int[] frame = new int[e.frameSize()];
-        List<io.dtron.model.Edge.Select> selects = e.selects();
-        for (io.dtron.model.Edge.Select sel : selects) {
+        List<Edge.Select> selects = e.selects();
+        for (Edge.Select sel : selects) {
             frame[sel.slot()] = sel.lower();
         }
         while (true) {
