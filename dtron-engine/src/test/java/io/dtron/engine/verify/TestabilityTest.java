@@ -158,8 +158,23 @@ class TestabilityTest {
     void aLampThatFlickersWithoutTimePassingMayBeZeno() throws Exception {
         Map<String, TestabilityReport.Check> c = checks("lamp-flicker.xta");
         List<TestabilityReport.Problem> p = onlyFails(c, "Zeno freedom", "strong responsiveness");
-        assertEquals("the cycle on -> on of Lamp may take no time: no clock is both reset and bounded from below on it",
-                p.get(0).message());
+        assertEquals(List.of("a cycle of moves can run for ever with no time passing, from User.idle, Lamp.on",
+                "the cycle on -> on of Lamp may take no time: no clock is both reset and bounded from below on it"),
+                p.stream().map(TestabilityReport.Problem::message).toList());
+        Trace t = p.get(0).trace();
+        assertEquals(List.of("User.idle", "Lamp.on"), t.states().get(t.loopStart()).locations());
+        assertEquals(List.of("Lamp: on -> on"), t.transitions().get(t.transitions().size() - 1).edges());
+        for (Trace.ConcreteStep step : t.concrete().subList(t.loopStart() + 1, t.concrete().size())) {
+            assertEquals(0, step.delay().signum(), "no time passes on the cycle: " + t.toText());
+        }
+        assertNull(p.get(1).trace(), "the structural finding has no trace");
+    }
+
+    @Test
+    void aCycleThatOnlyItsPartnerMakesTakeTimeIsFlaggedStructurallyOnly() throws Exception {
+        List<TestabilityReport.Problem> p = onlyFails(checks("lamp-waiting.xta"), "Zeno freedom");
+        assertEquals(List.of("the cycle idle -> waiting -> idle of User may take no time: no clock is both reset and"
+                + " bounded from below on it"), p.stream().map(TestabilityReport.Problem::message).toList());
     }
 
     @Test

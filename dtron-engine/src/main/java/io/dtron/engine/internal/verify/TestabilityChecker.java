@@ -19,10 +19,8 @@ import io.dtron.model.TestInterface;
 import java.util.ArrayList;
 import java.util.Arrays;
 import java.util.HashMap;
-import java.util.HashSet;
 import java.util.List;
 import java.util.Map;
-import java.util.Set;
 
 /**
  * The testability checks of a model with its test interface (see {@link io.dtron.engine.verify.Verifier#testability}),
@@ -106,7 +104,7 @@ public final class TestabilityChecker {
                             + " reachable cycle of internal moves of the implementation, which could run for ever"
                             + " without an input or an output")),
                     new Check(TIMELOCK, withEnvironment.timelocks, note(unknownClosed, null, null)),
-                    zenoCheck()), checker.statistics(budget));
+                    zenoCheck(withEnvironment.zeroTime, unknownClosed)), checker.statistics(budget));
         } catch (ModelRuntimeException e) {
             throw new UnsupportedModelException("model error while checking testability: " + e.format());
         }
@@ -131,7 +129,6 @@ public final class TestabilityChecker {
         final List<Problem> refusals = new ArrayList<>();
         final List<Problem> deadlocks = new ArrayList<>();
         final List<Problem> cycles = new ArrayList<>();
-        final Set<Checker.Exact> noCycle = new HashSet<>();
 
         WithTester(CanonicalTester tester, TestInterface testInterface) {
             this.tester = tester;
@@ -153,6 +150,11 @@ public final class TestabilityChecker {
         /** Explores; null, or why it stopped before the end. */
         String explore(Budget budget) {
             try {
+                CycleSearch internal = new CycleSearch((s, sink) -> graph.successors(s, (m, next) -> {
+                    if (m.steps().stream().noneMatch(step -> step.process() == tester.tester())) {
+                        sink.accept(m, next);
+                    }
+                }), budget);
                 composed.search(graph, null, graph::deadlocked, budget, (n, s) -> {
                     for (int p = 0; p < original.length; p++) {
                         if (p != tester.tester() && s.location(p) >= 0) {
@@ -175,7 +177,7 @@ public final class TestabilityChecker {
                         }
                     }
                     if (cycles.isEmpty()) {
-                        Checker.Lasso lasso = internalCycle(s, budget);
+                        Checker.Lasso lasso = internal.from(s);
                         if (lasso != null) {
                             cycles.add(new Problem("the implementation can move for ever without an input or an"
                                     + " output: a cycle of internal moves from " + locations(lasso.states().get(
@@ -234,62 +236,6 @@ public final class TestabilityChecker {
             return channel + Arrays.toString(frame);
         }
 
-        /** A cycle of internal moves (none of the tester's) reachable from {@code start}, or null. */
-        private Checker.Lasso internalCycle(SymState start, Budget budget) {
-            if (noCycle.contains(new Checker.Exact(start))) {
-                return null;
-            }
-            List<Frame> stack = new ArrayList<>();
-            Map<Checker.Exact, Integer> onStack = new HashMap<>();
-            push(start, null, stack, onStack, budget);
-            while (!stack.isEmpty()) {
-                Frame top = stack.get(stack.size() - 1);
-                if (top.next == top.successors.size()) {
-                    stack.remove(stack.size() - 1);
-                    Checker.Exact key = new Checker.Exact(top.state);
-                    onStack.remove(key);
-                    noCycle.add(key);
-                    continue;
-                }
-                int i = top.next++;
-                SymState child = top.successors.get(i);
-                Checker.Exact key = new Checker.Exact(child);
-                if (noCycle.contains(key)) {
-                    continue;
-                }
-                Integer loop = onStack.get(key);
-                if (loop != null) {
-                    List<SymState> states = new ArrayList<>();
-                    List<Semantics.Move> moves = new ArrayList<>();
-                    for (int k = 0; k < stack.size(); k++) {
-                        states.add(stack.get(k).state);
-                        if (k > 0) {
-                            moves.add(stack.get(k).move);
-                        }
-                    }
-                    states.add(child);
-                    moves.add(top.moves.get(i));
-                    return new Checker.Lasso(states, moves, loop, "a cycle back to state ");
-                }
-                push(child, top.moves.get(i), stack, onStack, budget);
-            }
-            return null;
-        }
-
-        private void push(SymState s, Semantics.Move move, List<Frame> stack, Map<Checker.Exact, Integer> onStack,
-                          Budget budget) {
-            budget.explore();
-            Frame f = new Frame(s, move);
-            stack.add(f);
-            onStack.put(new Checker.Exact(s), stack.size() - 1);
-            graph.successors(s, (m, next) -> {
-                if (m.steps().stream().noneMatch(step -> step.process() == tester.tester())) {
-                    f.moves.add(m);
-                    f.successors.add(next);
-                }
-            });
-        }
-
         /** The implementation's locations in {@code s}. */
         private String locations(SymState s) {
             List<String> out = new ArrayList<>();
@@ -331,26 +277,13 @@ public final class TestabilityChecker {
         return out.isEmpty() ? "" : " with " + String.join(", ", out);
     }
 
-    /** A search frame: a state on the stack, its internal successors, the next one to look at. */
-    private static final class Frame {
-        final SymState state;
-        final Semantics.Move move;
-        final List<Semantics.Move> moves = new ArrayList<>();
-        final List<SymState> successors = new ArrayList<>();
-        int next;
-
-        Frame(SymState state, Semantics.Move move) {
-            this.state = state;
-            this.move = move;
-        }
-    }
-
     /** The exploration of the model as written, with its own environment. */
     private final class WithEnvironment {
         final Partition partition;
         final boolean[][] reachable;
         final boolean[][] reached = new boolean[network.processes().size()][];
         final List<Problem> timelocks = new ArrayList<>();
+        final List<Problem> zeroTime = new ArrayList<>();
 
         WithEnvironment(Partition partition, boolean[][] reachable) {
             this.partition = partition;
@@ -364,6 +297,7 @@ public final class TestabilityChecker {
         String explore(Budget budget) {
             ZoneGraph graph = checker.graph(true, List.of());
             try {
+                CycleSearch instant = new CycleSearch((s, sink) -> semantics.moves(s, sink::accept), budget);
                 checker.search(graph, null, graph::deadlocked, budget, (n, s) -> {
                     for (Process p : network.processes()) {
                         if (s.location(p.index()) >= 0) {
@@ -376,6 +310,14 @@ public final class TestabilityChecker {
                             timelocks.add(new Problem("time cannot pass and nothing can happen in "
                                     + describeLocations(s, partition, true) + when(dead.get(0), checker),
                                     checker.trace(graph, Checker.path(n), dead.get(0), -1, null, null)));
+                        }
+                    }
+                    if (zeroTime.isEmpty()) {
+                        Checker.Lasso lasso = instant.from(s);
+                        if (lasso != null) {
+                            zeroTime.add(new Problem("a cycle of moves can run for ever with no time passing, from "
+                                    + describeLocations(lasso.states().get(lasso.loopStart()), partition, true),
+                                    checker.trace(graph, Checker.path(n), lasso)));
                         }
                     }
                     return null;
@@ -401,17 +343,22 @@ public final class TestabilityChecker {
         }
     }
 
-    private TestabilityReport.Check zenoCheck() {
-        List<TestabilityReport.Problem> zeno = new ArrayList<>();
+    /**
+     * Zeno freedom: the cycles of the model's zone graph that take no time (found, with a trace), then the cycles
+     * of the processes that are not strongly non-Zeno (which may take no time, or ever less time).
+     */
+    private Check zenoCheck(List<Problem> zeroTime, String unknown) {
+        List<Problem> zeno = new ArrayList<>(zeroTime);
         for (Process p : network.processes()) {
             List<String> cycle = ZenoCycles.possiblyZeno(p, semantics.dimension());
             if (cycle != null) {
-                zeno.add(new TestabilityReport.Problem("the cycle " + String.join(" -> ", cycle) + " of " + p.name()
+                zeno.add(new Problem("the cycle " + String.join(" -> ", cycle) + " of " + p.name()
                         + " may take no time: no clock is both reset and bounded from below on it", null));
             }
         }
-        return new TestabilityReport.Check("Zeno freedom", zeno, "structural: a cycle passes when a clock is reset"
-                + " on it and compared with x > c or x >= c, c > 0, on it");
+        return new Check("Zeno freedom", zeno, note(unknown, null, "no reachable cycle of the zone graph runs"
+                + " without time passing, and, structurally, on every cycle of every process a clock is reset and"
+                + " compared with x > c or x >= c, c > 0"));
     }
 
     /** The channels the implementation's edges may send on (all elements of a channel array indexed by data). */
