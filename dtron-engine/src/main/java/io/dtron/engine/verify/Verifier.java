@@ -56,7 +56,7 @@ public final class Verifier {
      * its variables, every output taken at once), input enabledness (the target's invariant included),
      * connectedness (no deadlock, every location reachable) and strong responsiveness (no reachable cycle of
      * internal moves); on the model as written, the coverage of the implementation by the model's own environment
-     * and time-lock freedom; structurally, Zeno freedom. See "Is the model testable?" in the site's verify page.
+     * and time-lock freedom; Zeno freedom by a search for cycles that take no time and structurally. See "Is the model testable?" in the site's verify page.
      *
      * @throws UnsupportedModelException on a model error met during the exploration
      */

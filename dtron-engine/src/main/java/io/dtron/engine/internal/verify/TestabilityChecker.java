@@ -29,9 +29,9 @@ import java.util.Map;
  * <li>on the implementation closed by a generated {@link CanonicalTester}: input enabledness (the target's
  * invariant included), connectedness (no deadlock, every location of the implementation reachable) and strong
  * responsiveness (no reachable cycle of internal moves);</li>
- * <li>on the model as written, with its own environment: time-lock freedom and the coverage of the
- * implementation's locations by that environment;</li>
- * <li>on the processes' structure: output observability and Zeno freedom.</li>
+ * <li>on the model as written, with its own environment: time-lock freedom, the coverage of the
+ * implementation's locations by that environment, and cycles of moves that take no time (Zeno);</li>
+ * <li>on the processes' structure: output observability, and cycles that are not strongly non-Zeno.</li>
  * </ul>
  */
 public final class TestabilityChecker {
@@ -94,10 +94,10 @@ public final class TestabilityChecker {
                     new Check(INPUTS, withTester.refusals, note(unknown, partly, "in every reachable state where"
                             + " time may pass, for every valuation and every value of its variables, the"
                             + " implementation takes each input to a state whose invariant holds")),
-                    new Check(CONNECTEDNESS, withTester.connectedness(), note(unknown, partly, "with a canonical"
+                    new Check(CONNECTEDNESS, withTester.connectedness(unknown == null), note(unknown, partly, "with a canonical"
                             + " tester that offers every input at any time and takes every output at once: no"
                             + " deadlock, and every location of the implementation reachable")),
-                    new Check(COVERAGE, withEnvironment.uncovered(), note(unknownClosed, null, "the model's own"
+                    new Check(COVERAGE, unknownClosed == null ? withEnvironment.uncovered() : List.of(), note(unknownClosed, null, "the model's own"
                             + " environment, which chooses the inputs of a test run, leads the implementation to every"
                             + " location a canonical tester reaches")),
                     new Check(RESPONSIVENESS, withTester.cycles, note(unknown, partly, "with a canonical tester: no"
@@ -247,10 +247,10 @@ public final class TestabilityChecker {
             return String.join(", ", out);
         }
 
-        /** Deadlocks, then the implementation's locations no tester leads to. */
-        List<Problem> connectedness() {
+        /** Deadlocks, then, when the exploration was {@code complete}, the locations no tester leads to. */
+        List<Problem> connectedness(boolean complete) {
             List<Problem> out = new ArrayList<>(deadlocks);
-            for (Process p : network.processes()) {
+            for (Process p : complete ? network.processes() : List.<Process>of()) {
                 for (int l = 0; reached[p.index()] != null && l < reached[p.index()].length; l++) {
                     if (!reached[p.index()][l]) {
                         out.add(new Problem(p.name() + "." + p.locations().get(l).name() + " is unreachable, even"
