@@ -85,7 +85,7 @@ public final class TestabilityChecker {
             WithTester withTester = new WithTester(tester, testInterface);
             String unknown = withTester.explore(budget);
             long stored = budget.stored;
-            WithEnvironment withEnvironment = new WithEnvironment(partition, withTester.reached);
+            WithEnvironment withEnvironment = new WithEnvironment(withTester.reached);
             String unknownClosed = unknown != null ? unknown : withEnvironment.explore(budget);
             budget.stored += stored;
             String partly = tester.notes().isEmpty() ? null : "partly: " + String.join("; ", tester.notes());
@@ -279,14 +279,12 @@ public final class TestabilityChecker {
 
     /** The exploration of the model as written, with its own environment. */
     private final class WithEnvironment {
-        final Partition partition;
         final boolean[][] reachable;
         final boolean[][] reached = new boolean[network.processes().size()][];
         final List<Problem> timelocks = new ArrayList<>();
         final List<Problem> zeroTime = new ArrayList<>();
 
-        WithEnvironment(Partition partition, boolean[][] reachable) {
-            this.partition = partition;
+        WithEnvironment(boolean[][] reachable) {
             this.reachable = reachable;
             for (Process p : network.processes()) {
                 reached[p.index()] = new boolean[p.locations().size()];
@@ -308,7 +306,7 @@ public final class TestabilityChecker {
                         List<Dbm> dead = graph.deadlocked(s);
                         if (!dead.isEmpty() && !graph.timeDiverges(s)) {
                             timelocks.add(new Problem("time cannot pass and nothing can happen in "
-                                    + describeLocations(s, partition, true) + when(dead.get(0), checker),
+                                    + describeLocations(s) + when(dead.get(0), checker),
                                     checker.trace(graph, Checker.path(n), dead.get(0), -1, null, null)));
                         }
                     }
@@ -316,7 +314,7 @@ public final class TestabilityChecker {
                         Checker.Lasso lasso = instant.from(s);
                         if (lasso != null) {
                             zeroTime.add(new Problem("a cycle of moves can run for ever with no time passing, from "
-                                    + describeLocations(lasso.states().get(lasso.loopStart()), partition, true),
+                                    + describeLocations(lasso.states().get(lasso.loopStart())),
                                     checker.trace(graph, Checker.path(n), lasso)));
                         }
                     }
@@ -409,11 +407,12 @@ public final class TestabilityChecker {
         }
     }
 
-    private String describeLocations(SymState s, Partition partition, boolean all) {
+    /** Every process's location in {@code s}, for messages. */
+    private String describeLocations(SymState s) {
         List<String> out = new ArrayList<>();
         for (Process p : network.processes()) {
             int l = s.location(p.index());
-            if (l >= 0 && (all || !partition.isEnvironment(p.index()))) {
+            if (l >= 0) {
                 out.add(p.name() + "." + p.locations().get(l).name());
             }
         }
