@@ -75,6 +75,16 @@ class TestabilityTest {
     }
 
     @Test
+    void theCanonicalTesterOffersEachElementOfAChannelArray() throws Exception {
+        List<TestabilityReport.Problem> p = onlyFails(checks("lamps.xta"), "input enabledness");
+        assertEquals("the implementation does not accept the input press[0] in L0.on, L1.off when L0.x<=5",
+                p.get(0).message());
+        assertEquals("the implementation does not accept the input press[1] in L0.off, L1.on when L1.x<=5",
+                p.get(1).message());
+        assertEquals("i_press[1]", p.get(1).trace().transitions().get(0).channel());
+    }
+
+    @Test
     void aPressThatLeadsToAViolatedInvariantIsRefused() throws Exception {
         // a press while on goes to dim { x <= 3 } without resetting x: the guard holds, the target invariant not
         List<TestabilityReport.Problem> p = onlyFails(checks("lamp-dim.xta"), "input enabledness");
