@@ -51,7 +51,8 @@ final class CheckCommand implements Callable<Integer> {
     private boolean quiet;
 
     @Option(names = "--testability", description = "Also check that the model can serve as a test specification:"
-            + " output observability, input enabledness, connectedness, time-lock and Zeno freedom (exit code 2 when"
+            + " output observability, input enabledness, connectedness and strong responsiveness (with a generated"
+            + " canonical tester), coverage by the model's environment, time-lock and Zeno freedom (exit code 2 when"
             + " a check fails).")
     private boolean testability;
 
@@ -105,8 +106,8 @@ final class CheckCommand implements Callable<Integer> {
         for (TestabilityReport.Check c : report.checks()) {
             out.printf("    %-22s %s%n", c.name(), c.passed() ? "ok" : c.problems().size() + " problem"
                     + (c.problems().size() == 1 ? "" : "s"));
-            if (c.note() != null && (!c.passed() || c.note().startsWith("not checked") || c.note().startsWith(
-                    "unknown"))) {
+            if (c.note() != null && (!c.passed() || c.note().startsWith("not checked")
+                    || c.note().startsWith("unknown") || c.note().startsWith("partly"))) {
                 out.println("      (" + c.note() + ")");
             }
             for (TestabilityReport.Problem p : c.problems()) {

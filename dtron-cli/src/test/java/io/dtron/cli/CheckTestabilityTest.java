@@ -29,7 +29,7 @@ class CheckTestabilityTest {
         assertEquals(0, r.exit(), r.out() + r.err());
         assertTrue(r.out().contains("testability ("), r.out());
         for (String check : new String[] {"output observability", "input enabledness", "connectedness",
-                "time-lock freedom", "Zeno freedom"}) {
+                "environment coverage", "strong responsiveness", "time-lock freedom", "Zeno freedom"}) {
             assertTrue(r.out().matches("(?s).*\\n    " + check + " +ok\\n.*"), check + ": " + r.out());
         }
     }
@@ -42,8 +42,35 @@ class CheckTestabilityTest {
         assertEquals(2, r.exit(), r.out() + r.err());
         assertTrue(r.out().matches("(?s).*\\n    input enabledness +1 problem\\n.*"), r.out());
         assertTrue(r.out().contains("- the implementation does not accept the input press in Lamp.on"), r.out());
-        assertTrue(r.out().contains("state 1: User.idle, Lamp.on"), "the trace: " + r.out());
+        assertTrue(r.out().contains("- the implementation does not accept the input press in Lamp.on when x<=5\n"),
+                r.out());
+        assertTrue(r.out().contains("state 1: Lamp.on, CanonicalTester.offering; x<=5"), "the trace: " + r.out());
         assertFalse(r.err().contains("Exception"), r.err());
+    }
+
+    @Test
+    void aCycleOfInternalMovesIsPrintedAsALasso(@TempDir Path dir) throws IOException {
+        Path lamp = dir.resolve("lamp.xta");
+        Files.writeString(lamp, LAMP.formatted(
+                ", on -> on { sync i_press?; }, on -> on { guard x >= 1; assign x = 0; }"));
+        CommandRun r = CommandRun.of("check", "--testability", lamp.toString());
+        assertEquals(2, r.exit(), r.out() + r.err());
+        assertTrue(r.out().matches("(?s).*\\n    strong responsiveness +1 problem\\n.*"), r.out());
+        assertTrue(r.out().contains("- the implementation can move for ever without an input or an output: a cycle of"
+                + " internal moves from Lamp.on"), r.out());
+        assertTrue(r.out().matches("(?s).*\\n +and then a cycle back to state \\d\\n.*"), r.out());
+        assertTrue(r.out().matches("(?s).*\\n    Zeno freedom +ok\\n.*"), "each round takes a unit: " + r.out());
+    }
+
+    @Test
+    void anInputVariableWithTooManyValuesIsNoted(@TempDir Path dir) throws IOException {
+        Path lamp = dir.resolve("lamp.xta");
+        Files.writeString(lamp, LAMP.formatted(", on -> on { sync i_press?; }").replace("chan i_press, o_light;",
+                "chan i_press, o_light; int i_press_level;"));
+        CommandRun r = CommandRun.of("check", "--testability", lamp.toString());
+        assertEquals(0, r.exit(), r.out() + r.err());
+        assertTrue(r.out().contains("(partly: input press is offered with i_press_level as it is (initially 0): its"
+                + " 65536 values are too many to offer each)"), r.out());
     }
 
     @Test

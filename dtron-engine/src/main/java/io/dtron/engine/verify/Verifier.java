@@ -3,6 +3,7 @@ package io.dtron.engine.verify;
 import io.dtron.engine.UnsupportedModelException;
 import io.dtron.engine.internal.verify.Checker;
 import io.dtron.engine.internal.verify.QueryParser;
+import io.dtron.engine.internal.verify.TestabilityChecker;
 import io.dtron.model.Network;
 import java.util.ArrayList;
 import java.util.List;
@@ -50,13 +51,16 @@ public final class Verifier {
 
     /**
      * Checks that the model can serve as a test specification with {@code testInterface}: output observability
-     * (the environment and the implementation interact only through inputs and outputs), input enabledness,
-     * connectedness with the model's environment (every location of the implementation is reachable), time-lock
-     * freedom and (structurally) Zeno freedom; see {@code testability} in the site's verify page.
+     * (the environment and the implementation interact only through inputs and outputs), then, on the
+     * implementation closed by a generated canonical tester (every input offered at any time, with every value of
+     * its variables, every output taken at once), input enabledness (the target's invariant included),
+     * connectedness (no deadlock, every location reachable) and strong responsiveness (no reachable cycle of
+     * internal moves); on the model as written, the coverage of the implementation by the model's own environment
+     * and time-lock freedom; Zeno freedom by a search for cycles that take no time and structurally. See "Is the model testable?" in the site's verify page.
      *
      * @throws UnsupportedModelException on a model error met during the exploration
      */
     public TestabilityReport testability(io.dtron.model.TestInterface testInterface) {
-        return checker.testability(testInterface);
+        return new TestabilityChecker(checker).testability(testInterface);
     }
 }
