@@ -23,6 +23,7 @@ import java.util.List;
 import java.util.Locale;
 import java.util.concurrent.Callable;
 import picocli.CommandLine.Command;
+import picocli.CommandLine.Mixin;
 import picocli.CommandLine.Model.CommandSpec;
 import picocli.CommandLine.Option;
 import picocli.CommandLine.Parameters;
@@ -71,6 +72,10 @@ final class VerifyCommand implements Callable<Integer> {
             + " passes this many MB: its answer is then unknown.")
     private Long memoryLimit;
 
+    /** With --delta or --delta-from: the Delta-extended model is checked (thesis 3.5, step 3). */
+    @Mixin
+    private DeltaDelays delays;
+
     @Override
     public Integer call() {
         PrintWriter out = spec.commandLine().getOut();
@@ -100,7 +105,18 @@ final class VerifyCommand implements Callable<Integer> {
             err.println("dtron verify: --time-limit must not be negative and --memory-limit must be positive");
             return 1;
         }
-        Network network = ModelLoader.load(model);
+        Network network;
+        if (delays.given()) {
+            network = deltaExtended(out, err);
+            if (network == null) {
+                return 1;
+            }
+        } else if (delays.strayOptions()) {
+            err.println("dtron verify: --interface and --timeunit go with the delays of --delta or --delta-from");
+            return 1;
+        } else {
+            network = ModelLoader.load(model);
+        }
         VerifierOptions options = VerifierOptions.defaults()
                 .withOrder(order == Order.dfs ? SearchOrder.DEPTH_FIRST : SearchOrder.BREADTH_FIRST)
                 .withTimeLimit(timeLimit == null ? null : Duration.ofNanos((long) (timeLimit * 1e9)))
@@ -158,6 +174,25 @@ final class VerifyCommand implements Callable<Integer> {
                 + " do not" : "") + (unknown > 0 ? ", " + unknown + " unknown" : "") + (skipped > 0 ? "; " + skipped
                 + " skipped" : ""));
         return violated > 0 ? 2 : unknown > 0 ? 3 : 0;
+    }
+
+    /** The Delta-extended model of the delays, loaded, or null after an error (printed). */
+    private Network deltaExtended(PrintWriter out, PrintWriter err) throws ModelException {
+        DeltaDelays.Extended extended;
+        try {
+            extended = delays.extend("verify", model, err);
+        } catch (DeltaDelays.Refusal r) {
+            err.println("dtron verify: " + r.getMessage());
+            return null;
+        }
+        if (extended == null) {
+            return null;
+        }
+        int widened = extended.result().changes().size();
+        out.println("dtron verify: the Delta-extended model: " + widened + " clock bound" + (widened == 1 ? "" : "s")
+                + " widened by " + extended.source() + " at " + extended.unitMicros() + " us per time unit"
+                + " (dtron delta writes the same model to a file)");
+        return extended.load(model);
     }
 
     private static String line(VerificationResult r) {
