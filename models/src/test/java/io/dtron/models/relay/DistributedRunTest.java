@@ -36,13 +36,11 @@ class DistributedRunTest {
 
     private static ChildJvm tester(Path dir, String name, String model, String cluster, String address,
             String... more) throws Exception {
-        String[] args = new String[] {"run", MODELS.resolve(model).toString(), "--cluster", cluster, "--bind",
-                address, "--members", MEMBERS, "--timeunit", "20000", "--timeout", "150", "--delay-policy", "eager",
-                "--seed", "7", "--wait-timeout", "90"};
-        String[] all = new String[args.length + more.length];
-        System.arraycopy(args, 0, all, 0, args.length);
-        System.arraycopy(more, 0, all, args.length, more.length);
-        return ChildJvm.start(DtronCommand.class, dir.resolve(name + ".log"), all);
+        List<String> args = new ArrayList<>(List.of("run", MODELS.resolve(model).toString(), "--cluster", cluster,
+                "--bind", address, "--members", MEMBERS, "--timeunit", "20000", "--timeout", "150", "--delay-policy",
+                "eager", "--seed", "7", "--wait-timeout", "90"));
+        args.addAll(List.of(more));
+        return ChildJvm.start(DtronCommand.class, dir.resolve(name + ".log"), args.toArray(String[]::new));
     }
 
     /** The exit codes and outputs of the relay's two testers, with the relay's output. */
