@@ -111,19 +111,12 @@ class RunWithTronTest {
 
     @Test
     void aSilentTronAdapterEndsTheConfigurationAfterConfigTimeout() throws Exception {
-        try (ServerSocket server = new ServerSocket(0, 1, InetAddress.getLoopbackAddress())) {
-            CompletableFuture<Void> peer = CompletableFuture.runAsync(() -> {
-                try (var socket = server.accept()) {
-                    socket.getInputStream().read(); // silent until the tester gives up
-                } catch (IOException e) {
-                    throw new IllegalStateException(e);
-                }
-            });
+        try (SilentPeer peer = new SilentPeer()) {
             long start = System.nanoTime();
             CommandRun r = CommandRun.of("run", lightContr.toString(), "--tron-adapter",
-                    "127.0.0.1:" + server.getLocalPort(), "--config-timeout", "1");
+                    "127.0.0.1:" + peer.port(), "--config-timeout", "1");
             long took = (System.nanoTime() - start) / 1_000_000;
-            peer.get(10, TimeUnit.SECONDS);
+            peer.awaitHangUp();
             assertEquals(1, r.exit(), r.out() + r.err());
             assertTrue(r.err().contains("the adapter sent nothing for 1 s during configuration"), r.err());
             assertTrue(took < 8000, "took " + took + " ms, more than the 1 s asked and the 10 s default is near");

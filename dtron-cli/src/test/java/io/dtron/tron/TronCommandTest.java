@@ -262,22 +262,15 @@ class TronCommandTest {
 
     @Test
     void aSilentPeerEndsTheConfigurationAfterConfigTimeoutAskingWhatListens() throws Exception {
-        try (ServerSocket server = new ServerSocket(0, 1, InetAddress.getLoopbackAddress())) {
-            CompletableFuture<Void> peer = CompletableFuture.runAsync(() -> {
-                try (var socket = server.accept()) {
-                    socket.getInputStream().read(); // silent until the tester gives up
-                } catch (IOException e) {
-                    throw new IllegalStateException(e);
-                }
-            });
+        try (SilentPeer peer = new SilentPeer()) {
             long start = System.nanoTime();
             CommandRun r = tron("--config-timeout", "1", lightContr.toString(), "--", "127.0.0.1",
-                    Integer.toString(server.getLocalPort()));
+                    Integer.toString(peer.port()));
             long took = (System.nanoTime() - start) / 1_000_000;
-            peer.get(10, TimeUnit.SECONDS);
+            peer.awaitHangUp();
             assertEquals(1, r.exit(), r.out() + r.err());
             assertTrue(r.err().contains("the adapter sent nothing for 1 s during configuration"), r.err());
-            assertTrue(r.err().contains("is something else listening on port " + server.getLocalPort() + "?"),
+            assertTrue(r.err().contains("is something else listening on port " + peer.port() + "?"),
                     r.err());
             assertTrue(took < 8000, "took " + took + " ms");
         }
