@@ -251,12 +251,13 @@ abstract class Property {
         }
     }
 
-    static final class And extends Property {
-        private final Property[] parts;
+    /** A conjunction or disjunction of properties: what its parts have in common. */
+    abstract static class Junction extends Property {
+        final Property[] parts;
         private final boolean dependsOnZone;
         private final boolean mentionsDeadlock;
 
-        And(List<Property> parts) {
+        Junction(List<Property> parts) {
             this.parts = parts.toArray(new Property[0]);
             this.dependsOnZone = parts.stream().anyMatch(Property::dependsOnZone);
             this.mentionsDeadlock = parts.stream().anyMatch(Property::mentionsDeadlock);
@@ -279,6 +280,12 @@ abstract class Property {
                 all &= p.clockAtoms(atoms);
             }
             return all;
+        }
+    }
+
+    static final class And extends Junction {
+        And(List<Property> parts) {
+            super(parts);
         }
 
         @Override
@@ -316,34 +323,9 @@ abstract class Property {
         }
     }
 
-    static final class Or extends Property {
-        private final Property[] parts;
-        private final boolean dependsOnZone;
-        private final boolean mentionsDeadlock;
-
+    static final class Or extends Junction {
         Or(List<Property> parts) {
-            this.parts = parts.toArray(new Property[0]);
-            this.dependsOnZone = parts.stream().anyMatch(Property::dependsOnZone);
-            this.mentionsDeadlock = parts.stream().anyMatch(Property::mentionsDeadlock);
-        }
-
-        @Override
-        boolean dependsOnZone() {
-            return dependsOnZone;
-        }
-
-        @Override
-        boolean mentionsDeadlock() {
-            return mentionsDeadlock;
-        }
-
-        @Override
-        boolean clockAtoms(List<int[]> atoms) {
-            boolean all = true;
-            for (Property p : parts) {
-                all &= p.clockAtoms(atoms);
-            }
-            return all;
+            super(parts);
         }
 
         @Override
