@@ -14,6 +14,7 @@ import io.dtron.engine.verify.VerificationResult;
 import io.dtron.engine.verify.VerificationResult.Outcome;
 import io.dtron.engine.verify.VerificationResult.Statistics;
 import io.dtron.engine.verify.VerifierOptions;
+import io.dtron.engine.zone.Bound;
 import io.dtron.engine.zone.Dbm;
 import io.dtron.model.Network;
 import io.dtron.model.Process;
@@ -318,15 +319,16 @@ public final class Checker {
 
     private VerificationResult liveness(Query query, Property p, Property q, Budget budget) {
         Property inside = q == null ? p : q;
-        if (p.dependsOnZone() || inside.dependsOnZone()) {
-            return new VerificationResult(query, Outcome.SKIPPED, "clock constraints and deadlock in the properties"
-                    + " of E[], A<> and --> queries are not supported yet", Statistics.NONE, null);
-        }
         ZoneGraph graph = graph(true, List.of(p, inside));
         Set<Exact> done = new HashSet<>();
         if (q == null) {
-            SymState init = graph.initial();
-            Lasso lasso = inside.holds(init) ? maximalPath(graph, init, inside, done, budget) : null;
+            Lasso lasso = null;
+            for (SymState start : insideParts(graph, graph.semantics().initial(), inside)) {
+                lasso = maximalPath(graph, start, inside, done, budget);
+                if (lasso != null) {
+                    break;
+                }
+            }
             budget.stored = done.size();
             boolean found = lasso != null;
             boolean holds = query.kind() == Query.Kind.EXISTS_GLOBALLY ? found : !found;
@@ -334,14 +336,16 @@ public final class Checker {
             return new VerificationResult(query, holds ? Outcome.SATISFIED : Outcome.VIOLATED, null,
                     statistics(budget), trace);
         }
-        // p --> q: from every reachable p-state that is not a q-state, no maximal path avoiding q
+        // p --> q: from every valuation of a reachable state where p holds, no maximal path avoiding q
         Lasso[] witness = new Lasso[1];
         Found found = search(graph, null, graph::deadlocked, budget, (n, s) -> {
-            if (p.holds(s) && inside.holds(s)) {
-                Lasso lasso = maximalPath(graph, s, inside, done, budget);
-                if (lasso != null) {
-                    witness[0] = lasso;
-                    return new Found(n, s.zone());
+            for (Dbm premise : parts(graph, p, s)) {
+                for (SymState start : insideParts(graph, s.withZone(premise), inside)) {
+                    Lasso lasso = maximalPath(graph, start, inside, done, budget);
+                    if (lasso != null) {
+                        witness[0] = lasso;
+                        return new Found(n, s.zone());
+                    }
                 }
             }
             return null;
@@ -353,6 +357,86 @@ public final class Checker {
         List<Node> prefix = path(found.node);
         return new VerificationResult(query, Outcome.VIOLATED, null, statistics(budget),
                 trace(graph, prefix, witness[0]));
+    }
+
+    /** The part of {@code s}'s zone where {@code p} holds, as zones (copies). */
+    private static List<Dbm> parts(ZoneGraph graph, Property p, SymState s) {
+        if (!p.dependsOnZone()) {
+            return p.holds(s) ? List.of(s.zone().copy()) : List.of();
+        }
+        List<Dbm> out = new ArrayList<>();
+        p.restrict(s, s.zone(), graph::deadlocked, out);
+        out.replaceAll(Dbm::copy);
+        return out;
+    }
+
+    /**
+     * The states a path inside {@code inside} reaches from the valuations of {@code entry} (a state just entered,
+     * not yet delayed) by letting time pass without leaving {@code inside} at any instant, each extrapolated: one
+     * state per zone of that union of zones (empty when {@code inside} does not hold at entry).
+     */
+    private List<SymState> insideParts(ZoneGraph graph, SymState entry, Property inside) {
+        SymState closure = entry.copy();
+        if (!graph.semantics().delay(closure)) {
+            return List.of();
+        }
+        List<Dbm> in = parts(graph, inside, closure);
+        if (inside.dependsOnZone() && !in.isEmpty() && graph.semantics().mayDelay(closure)) {
+            in = delayInside(entry.zone(), closure.zone(), in);
+        }
+        List<SymState> out = new ArrayList<>(in.size());
+        for (Dbm z : in) {
+            SymState part = closure.withZone(z);
+            graph.extrapolate(part);
+            out.add(part);
+        }
+        return out;
+    }
+
+    /**
+     * The valuations {@code v + d} of {@code closure} (the delay closure of {@code entry} within the invariants)
+     * with {@code v} in {@code entry} and every {@code v + d'}, {@code 0 <= d' <= d}, in {@code in} (a union of
+     * zones within {@code closure}). With {@code B_j} the zones of {@code closure} outside {@code in}, a delay
+     * avoids {@code B_j} when no point of {@code B_j} lies before {@code v + d} on its line ({@code closure}
+     * minus {@code B_j}'s future), or when {@code v} itself lies after {@code B_j} (the future of the part of
+     * {@code entry} in {@code B_j}'s future but not in {@code B_j}); as the shortest delay into a point avoids
+     * every {@code B_j} as soon as some delay avoids each, the answer is the intersection over {@code j}.
+     */
+    private static List<Dbm> delayInside(Dbm entry, Dbm closure, List<Dbm> in) {
+        List<Dbm> outside = new ArrayList<>(List.of(closure));
+        for (Dbm z : in) {
+            outside = Zones.subtract(outside, z);
+        }
+        List<Dbm> result = List.of(closure);
+        for (Dbm bad : outside) {
+            Dbm future = bad.copy();
+            future.up();
+            List<Dbm> avoiding = new ArrayList<>(Zones.subtract(List.of(closure), future));
+            Dbm after = entry.copy();
+            if (after.intersect(future)) {
+                for (Dbm z : Zones.subtract(List.of(after), bad)) {
+                    Dbm later = z.copy();
+                    later.up();
+                    if (later.intersect(closure)) {
+                        avoiding.add(later);
+                    }
+                }
+            }
+            List<Dbm> next = new ArrayList<>();
+            for (Dbm r : result) {
+                for (Dbm a : avoiding) {
+                    Dbm both = r.copy();
+                    if (both.intersect(a)) {
+                        next.add(both);
+                    }
+                }
+            }
+            if (next.isEmpty()) {
+                return next;
+            }
+            result = next;
+        }
+        return result;
     }
 
     /** A search frame: a state on the stack, its successors, the next one to look at. */
@@ -370,8 +454,8 @@ public final class Checker {
     }
 
     /**
-     * A maximal path from {@code start} through states satisfying {@code inside} (which {@code start} does), or
-     * null. {@code done} holds states from which there is none; the search adds the states it finishes.
+     * A maximal path from {@code start} inside {@code inside} (a state {@link #insideParts} gave), or null.
+     * {@code done} holds states from which there is none; the search adds the states it finishes.
      */
     private Lasso maximalPath(ZoneGraph graph, SymState start, Property inside, Set<Exact> done, Budget budget) {
         if (done.contains(new Exact(start))) {
@@ -379,7 +463,7 @@ public final class Checker {
         }
         List<Frame> stack = new ArrayList<>();
         Map<Exact, Integer> onStack = new HashMap<>();
-        Lasso end = open(graph, start, null, stack, onStack, budget);
+        Lasso end = open(graph, start, null, inside, stack, onStack, budget);
         if (end != null) {
             return end;
         }
@@ -395,9 +479,6 @@ public final class Checker {
             int i = top.next++;
             SymState child = top.successors.get(i);
             Semantics.Move move = top.moves.get(i);
-            if (!inside.holds(child)) {
-                continue;
-            }
             Exact key = new Exact(child);
             if (done.contains(key)) {
                 continue;
@@ -411,7 +492,7 @@ public final class Checker {
                 moves.add(move);
                 return new Lasso(states, moves, loop, "a cycle back to state ");
             }
-            end = open(graph, child, move, stack, onStack, budget);
+            end = open(graph, child, move, inside, stack, onStack, budget);
             if (end != null) {
                 return end;
             }
@@ -419,26 +500,63 @@ public final class Checker {
         return null;
     }
 
-    /** Pushes a frame for {@code s}; returns the path if {@code s} ends one (time diverges, or a deadlock). */
-    private Lasso open(ZoneGraph graph, SymState s, Semantics.Move move, List<Frame> stack, Map<Exact, Integer> onStack,
-                       Budget budget) {
+    /**
+     * Pushes a frame for {@code s}, with its successors inside {@code inside}; returns the path if {@code s} ends
+     * one: time can pass for ever inside its zone, or a valuation of it can neither move nor let time pass.
+     */
+    private Lasso open(ZoneGraph graph, SymState s, Semantics.Move move, Property inside, List<Frame> stack,
+                       Map<Exact, Integer> onStack, Budget budget) {
         budget.explore();
         Frame f = new Frame(s, move);
         stack.add(f);
         onStack.put(new Exact(s), stack.size() - 1);
-        String ending = graph.timeDiverges(s) ? "time passing forever" : !graph.deadlocked(s).isEmpty()
-                ? "a deadlock" : null;
+        String ending = graph.timeDiverges(s) ? "time passing forever" : stops(graph, s) ? "a deadlock" : null;
         if (ending != null) {
             List<SymState> states = new ArrayList<>();
             List<Semantics.Move> moves = new ArrayList<>();
             lassoOf(stack, states, moves);
             return new Lasso(states, moves, -1, ending);
         }
-        graph.successors(s, (m, next) -> {
-            f.moves.add(m);
-            f.successors.add(next);
+        graph.semantics().moves(s, (m, next) -> {
+            for (SymState part : insideParts(graph, next, inside)) {
+                f.moves.add(m);
+                f.successors.add(part);
+            }
         });
         return null;
+    }
+
+    /**
+     * Whether a path can end in {@code s}: some valuation of its zone is deadlocked and cannot let time pass
+     * either (it is at an invariant's bound {@code x <= c}, or time may not pass in {@code s}). Computed on the
+     * zone's delay closure, since the part of a state inside a property may stop short of the moves and of the
+     * bound that time would reach.
+     */
+    private static boolean stops(ZoneGraph graph, SymState s) {
+        SymState closure = s.copy();
+        graph.semantics().delay(closure);
+        Dbm zone = closure.zone();
+        List<Dbm> atBound = new ArrayList<>();
+        if (!graph.semantics().mayDelay(closure)) {
+            atBound.add(s.zone());
+        } else {
+            for (int x = 1; x < graph.dimension(); x++) {
+                int bound = zone.upperBound(x, 0);
+                Dbm at = s.zone().copy();
+                if (bound != Bound.INFINITY && !Bound.isStrict(bound)
+                        && at.constrain(0, x, Bound.le(-Bound.value(bound)))) {
+                    atBound.add(at);
+                }
+            }
+        }
+        for (Dbm dead : graph.deadlocked(closure)) {
+            for (Dbm at : atBound) {
+                if (dead.copy().intersect(at)) {
+                    return true;
+                }
+            }
+        }
+        return false;
     }
 
     private static void lassoOf(List<Frame> stack, List<SymState> states, List<Semantics.Move> moves) {
