@@ -76,7 +76,12 @@ class LivenessTest {
         // true at every instant only if x never equals 4: but x runs through 4 on every path
         assertEquals(Outcome.VIOLATED, answer(GROW, "E[] x < 4 or x > 4"));
         // wait in a until x > 7, then b: x stays above 7 from then on; any path starts at x == 0, where x > 7 fails
-        assertEquals(Outcome.SATISFIED, answer(GROW, "E[] P.a or x > 7"));
+        VerificationResult late = check(GROW, "E[] P.a or x > 7");
+        assertEquals(Outcome.SATISFIED, late.outcome());
+        // the concrete witness keeps to the property too: it moves to b after x == 7
+        assertTrue(late.trace().concrete().get(0).time().compareTo(java.math.BigDecimal.valueOf(7)) > 0,
+                late.trace().toText());
+        EngineCrossCheckTest.replay(ModelLoader.load("model.xta", GROW), late.trace());
         assertEquals(Outcome.VIOLATED, answer(GROW, "E[] x > 7"));
         // entering b with x <= 7 leaves the property at that instant
         assertEquals(Outcome.VIOLATED, answer(GROW, "E[] P.a or x > 7 and x < 12"));

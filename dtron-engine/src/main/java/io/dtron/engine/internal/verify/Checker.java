@@ -782,7 +782,7 @@ public final class Checker {
         SymState last = states.get(states.size() - 1).copy();
         last.zone().copyFrom(lastPart);
         states.set(states.size() - 1, last);
-        return build(graph, states, moves, loopStart, end, target);
+        return build(graph, states, moves, loopStart, end, target, null);
     }
 
     /** A liveness trace: the reachability prefix up to the lasso's start, then the lasso. */
@@ -796,9 +796,14 @@ public final class Checker {
         int offset = states.size();
         states.addAll(lasso.states);
         moves.addAll(lasso.moves);
+        // the concrete path keeps to the lasso's states, which lie inside the property
+        List<Dbm> within = new ArrayList<>(Collections.nCopies(offset, (Dbm) null));
+        for (SymState s : lasso.states) {
+            within.add(s.zone());
+        }
         int loop = lasso.loopStart < 0 ? -1 : lasso.loopStart + offset;
         String end = loop < 0 ? lasso.end : lasso.end + loop;
-        return build(graph, states, moves, loop, end, null);
+        return build(graph, states, moves, loop, end, null, within);
     }
 
     /**
@@ -826,7 +831,7 @@ public final class Checker {
     }
 
     private Trace build(ZoneGraph graph, List<SymState> states, List<Semantics.Move> moves, int loopStart,
-                        String end, Function<SymState, Dbm> target) {
+                        String end, Function<SymState, Dbm> target, List<Dbm> within) {
         List<Trace.State> symbolic = new ArrayList<>();
         for (SymState s : states) {
             symbolic.add(describe(s));
@@ -836,7 +841,11 @@ public final class Checker {
             transitions.add(describe(m));
         }
         List<Trace.ConcreteStep> concrete = new ArrayList<>();
-        List<Concretizer.Step> steps = new Concretizer(graph).concretize(moves, target);
+        List<Concretizer.Step> steps = new Concretizer(graph).concretize(moves, target, within);
+        if (steps.isEmpty() && within != null) {
+            // the states' zones are extrapolated: the exact path may lie beside them, then only the moves count
+            steps = new Concretizer(graph).concretize(moves, target, null);
+        }
         BigDecimal time = BigDecimal.ZERO;
         for (int i = 0; i < steps.size(); i++) {
             Concretizer.Step step = steps.get(i);
