@@ -25,11 +25,11 @@ public record Query(String text, Kind kind, String property, String target, Stri
         EXISTS_EVENTUALLY,
         /** {@code A[] p}: every reachable state satisfies p. */
         ALWAYS_GLOBALLY,
-        /** {@code E[] p}: p holds on every state of some maximal path. */
+        /** {@code E[] p}: p holds at every instant of some maximal path. */
         EXISTS_GLOBALLY,
-        /** {@code A<> p}: every maximal path reaches a state satisfying p. */
+        /** {@code A<> p}: every maximal path reaches an instant where p holds. */
         ALWAYS_EVENTUALLY,
-        /** {@code p --> q}: every reachable p-state is followed by a q-state on every maximal path. */
+        /** {@code p --> q}: from every reachable valuation where p holds, every maximal path reaches q. */
         LEADS_TO,
         /** A query the checker does not check; see {@link Query#reason()}. */
         UNSUPPORTED,
