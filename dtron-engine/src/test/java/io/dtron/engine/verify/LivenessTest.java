@@ -88,6 +88,28 @@ class LivenessTest {
     }
 
     @Test
+    void aDelayMayPassFromOneZoneOfThePropertyToAnother() throws Exception {
+        // s is left at x == 2 with x reset: in a, y == x + 2 for ever, and time passes for ever
+        String shifted = """
+                clock x, y;
+                process P() {
+                    state s { x <= 2 }, a;
+                    init s;
+                    trans s -> a { guard x == 2; assign x := 0; };
+                }
+                system P;
+                """;
+        // in a, x < 2 or y > 3 is x < 2 or x > 1: always true, though neither zone holds the whole delay
+        VerificationResult across = check(shifted, "E[] P.s or x < 2 or y > 3");
+        assertEquals(Outcome.SATISFIED, across.outcome());
+        assertEquals("time passing forever", across.trace().end(), across.trace().toText());
+        // x < 1 or y > 3 is x < 1 or x > 1: the instant x == 1 is outside
+        assertEquals(Outcome.VIOLATED, answer(shifted, "E[] P.s or x < 1 or y > 3"));
+        assertEquals(Outcome.SATISFIED, answer(shifted, "P.a --> x == 1 or x > 5"));
+        assertEquals(Outcome.SATISFIED, answer(shifted, "A<> P.a and x >= 1 and y <= 3"));
+    }
+
+    @Test
     void aZenoLoopOrADeadlockKeepsAPathBelowABound() throws Exception {
         String zeno = """
                 clock x;
