@@ -140,7 +140,11 @@ class LivenessTest {
         // through c the path stops in a deadlock with x < 1, and time cannot pass 2 there
         violated(STOP, "P.a --> x > 2", "a deadlock");
         // in b, x is reset each time it reaches 5 (or more): from x == 6 in b, x > 7 may never happen
-        violated(STOP, "P.b and x > 5 --> x > 7", "a cycle back to state");
+        Trace loop = violated(STOP, "P.b and x > 5 --> x > 7", "a cycle back to state");
+        // the concrete counterexample starts where the premise holds: the loop is first taken with 5 < x <= 7
+        java.math.BigDecimal x = loop.concrete().get(1).clocks().get("x");
+        assertTrue(x.compareTo(java.math.BigDecimal.valueOf(5)) > 0 && x.compareTo(java.math.BigDecimal.valueOf(7))
+                <= 0, loop.toText());
         // b has no invariant: time may pass there for ever without taking the loop, so x == 0 is not forced
         violated(STOP, "P.b and x > 5 --> x == 0", "time passing forever");
     }

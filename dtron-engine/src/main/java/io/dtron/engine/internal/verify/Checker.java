@@ -782,7 +782,7 @@ public final class Checker {
         SymState last = states.get(states.size() - 1).copy();
         last.zone().copyFrom(lastPart);
         states.set(states.size() - 1, last);
-        return build(graph, states, moves, loopStart, end, target, null);
+        return build(graph, states, moves, loopStart, end, target, null, null);
     }
 
     /** A liveness trace: the reachability prefix up to the lasso's start, then the lasso. */
@@ -796,14 +796,19 @@ public final class Checker {
         int offset = states.size();
         states.addAll(lasso.states);
         moves.addAll(lasso.moves);
-        // the concrete path keeps to the lasso's states, which lie inside the property
+        // the concrete path keeps to the lasso's states, which lie inside the property; the first one is entered
+        // before the premise of --> holds, at the end of the prefix
         List<Dbm> within = new ArrayList<>(Collections.nCopies(offset, (Dbm) null));
         for (SymState s : lasso.states) {
             within.add(s.zone());
         }
+        List<Dbm> entering = new ArrayList<>(within);
+        if (!prefix.isEmpty()) {
+            entering.set(offset, null);
+        }
         int loop = lasso.loopStart < 0 ? -1 : lasso.loopStart + offset;
         String end = loop < 0 ? lasso.end : lasso.end + loop;
-        return build(graph, states, moves, loop, end, null, within);
+        return build(graph, states, moves, loop, end, null, within, entering);
     }
 
     /**
@@ -831,7 +836,7 @@ public final class Checker {
     }
 
     private Trace build(ZoneGraph graph, List<SymState> states, List<Semantics.Move> moves, int loopStart,
-                        String end, Function<SymState, Dbm> target, List<Dbm> within) {
+                        String end, Function<SymState, Dbm> target, List<Dbm> within, List<Dbm> entering) {
         List<Trace.State> symbolic = new ArrayList<>();
         for (SymState s : states) {
             symbolic.add(describe(s));
@@ -841,10 +846,10 @@ public final class Checker {
             transitions.add(describe(m));
         }
         List<Trace.ConcreteStep> concrete = new ArrayList<>();
-        List<Concretizer.Step> steps = new Concretizer(graph).concretize(moves, target, within);
+        List<Concretizer.Step> steps = new Concretizer(graph).concretize(moves, target, within, entering);
         if (steps.isEmpty() && within != null) {
             // the states' zones are extrapolated: the exact path may lie beside them, then only the moves count
-            steps = new Concretizer(graph).concretize(moves, target, null);
+            steps = new Concretizer(graph).concretize(moves, target, null, null);
         }
         BigDecimal time = BigDecimal.ZERO;
         for (int i = 0; i < steps.size(); i++) {

@@ -34,15 +34,16 @@ final class Concretizer {
      * target} gives (from the exact last state; null for all of it); empty if the path cannot be replayed.
      */
     List<Step> concretize(List<Semantics.Move> moves, Function<SymState, Dbm> target) {
-        return concretize(moves, target, null);
+        return concretize(moves, target, null, null);
     }
 
     /**
-     * As {@link #concretize(List, Function)}, with the valuations at the start and at the end of each state's
-     * delay kept within {@code within}'s zone for that state where it has one (not null): as zones are convex,
-     * the whole delay then stays in it.
+     * As {@link #concretize(List, Function)}, with the valuations at the end of each state's delay kept within
+     * {@code within}'s zone for that state, and those at its start within {@code entering}'s, where they have one
+     * (not null): as zones are convex, a delay that starts and ends in a zone stays in it.
      */
-    List<Step> concretize(List<Semantics.Move> moves, Function<SymState, Dbm> target, List<Dbm> within) {
+    List<Step> concretize(List<Semantics.Move> moves, Function<SymState, Dbm> target, List<Dbm> within,
+                          List<Dbm> entering) {
         Semantics sem = graph.semantics();
         int n = moves.size();
         List<SymState> before = new ArrayList<>(n + 1);
@@ -82,7 +83,7 @@ final class Concretizer {
             if (sem.mayDelay(before.get(i))) {
                 x.down();
             }
-            if (!x.intersect(afterMove.get(i)) || !constrain(x, within, i)) {
+            if (!x.intersect(afterMove.get(i)) || !constrain(x, entering, i)) {
                 return List.of();
             }
             SymState from = before.get(i - 1);
@@ -90,7 +91,8 @@ final class Concretizer {
             for (int[] reset : graph.resets(vars, moves.get(i - 1))) {
                 x.free(reset[0]);
             }
-            if (!x.intersect(from.zone()) || !graph.guards(from, moves.get(i - 1), x) || !constrain(x, within, i - 1)) {
+            if (!x.intersect(from.zone()) || !graph.guards(from, moves.get(i - 1), x)
+                    || !constrain(x, within, i - 1)) {
                 return List.of();
             }
             reach[i - 1] = x;
@@ -117,8 +119,8 @@ final class Concretizer {
         return out;
     }
 
-    private static boolean constrain(Dbm zone, List<Dbm> within, int state) {
-        return within == null || within.get(state) == null || zone.intersect(within.get(state));
+    private static boolean constrain(Dbm zone, List<Dbm> zones, int state) {
+        return zones == null || zones.get(state) == null || zone.intersect(zones.get(state));
     }
 
     /** The earliest delay {@code d} (or, if it is excluded, one just after) with {@code v + d} in {@code zone}. */
