@@ -517,6 +517,16 @@ public final class Checker {
             lassoOf(stack, states, moves);
             return new Lasso(states, moves, -1, ending);
         }
+        if (!inside.dependsOnZone()) {
+            // the property does not change while time passes: a successor is inside it or not at all
+            graph.successors(s, (m, next) -> {
+                if (inside.holds(next)) {
+                    f.moves.add(m);
+                    f.successors.add(next);
+                }
+            });
+            return null;
+        }
         graph.semantics().moves(s, (m, next) -> {
             for (SymState part : insideParts(graph, next, inside)) {
                 f.moves.add(m);
