@@ -64,6 +64,20 @@ class VerifyCommandTest {
     }
 
     @Test
+    void livenessQueriesWithClocksAreAnswered(@TempDir Path dir) throws IOException {
+        Path f = fischer(dir, 2);
+        // wait is entered with x reset: x == 0 at that instant
+        CommandRun holds = CommandRun.of("verify", f.toString(), "--query", "P(1).req --> P(1).wait and P(1).x == 0",
+                "--trace", "none");
+        assertEquals(0, holds.exit(), holds.out() + holds.err());
+        assertTrue(holds.out().contains("1 of 1 checked hold"), holds.out());
+        // P(1) alone may go round idle, req, wait, cs for ever (P(2) stays idle): x never passes 3
+        CommandRun round = CommandRun.of("verify", f.toString(), "--query", "A<> P(1).x > 100");
+        assertEquals(2, round.exit(), round.out() + round.err());
+        assertTrue(round.out().contains("and then a cycle back to state"), round.out());
+    }
+
+    @Test
     void queriesFromAFileAndSkippedOnesAreListed(@TempDir Path dir) throws IOException {
         Path q = dir.resolve("q.q");
         Files.writeString(q, "// mutual exclusion\nA[] not (P(1).cs and P(2).cs)\nPr[<=10](<> P(1).cs)\n");
