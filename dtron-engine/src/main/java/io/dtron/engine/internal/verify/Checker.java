@@ -402,7 +402,7 @@ public final class Checker {
      * {@code entry} in {@code B_j}'s future but not in {@code B_j}); as the shortest delay into a point avoids
      * every {@code B_j} as soon as some delay avoids each, the answer is the intersection over {@code j}.
      */
-    private static List<Dbm> delayInside(Dbm entry, Dbm closure, List<Dbm> in) {
+    static List<Dbm> delayInside(Dbm entry, Dbm closure, List<Dbm> in) {
         List<Dbm> outside = new ArrayList<>(List.of(closure));
         for (Dbm z : in) {
             outside = Zones.subtract(outside, z);
