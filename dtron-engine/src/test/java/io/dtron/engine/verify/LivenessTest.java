@@ -184,6 +184,9 @@ class LivenessTest {
         VerificationResult whole = check(timeLock, "E[] x <= 10");
         assertEquals(Outcome.SATISFIED, whole.outcome());
         assertEquals("a deadlock", whole.trace().end());
+        // the concrete witness lets time pass up to where the path stops
+        assertEquals(0, whole.trace().concrete().get(0).time().compareTo(java.math.BigDecimal.TEN),
+                whole.trace().toText());
         // GROW's b is a deadlock too (no edge), but time passes there for ever: it is no end before x >= 5
         assertEquals(Outcome.VIOLATED, answer(GROW, "E[] x < 5"));
     }

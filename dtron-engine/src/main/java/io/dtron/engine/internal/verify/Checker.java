@@ -313,6 +313,8 @@ public final class Checker {
 
     // ================================================================ liveness
 
+    private static final String DEADLOCK_END = "a deadlock";
+
     /** A maximal path inside a property: the states, the moves between them, and how it ends. */
     private record Lasso(List<SymState> states, List<Semantics.Move> moves, int loopStart, String end) {
     }
@@ -510,7 +512,7 @@ public final class Checker {
         Frame f = new Frame(s, move);
         stack.add(f);
         onStack.put(new Exact(s), stack.size() - 1);
-        String ending = graph.timeDiverges(s) ? "time passing forever" : stops(graph, s) ? "a deadlock" : null;
+        String ending = graph.timeDiverges(s) ? "time passing forever" : stops(graph, s) ? DEADLOCK_END : null;
         if (ending != null) {
             List<SymState> states = new ArrayList<>();
             List<Semantics.Move> moves = new ArrayList<>();
@@ -536,13 +538,18 @@ public final class Checker {
         return null;
     }
 
-    /**
-     * Whether a path can end in {@code s}: some valuation of its zone is deadlocked and cannot let time pass
-     * either (it is at an invariant's bound {@code x <= c}, or time may not pass in {@code s}). Computed on the
-     * zone's delay closure, since the part of a state inside a property may stop short of the moves and of the
-     * bound that time would reach.
-     */
+    /** Whether a path can end in {@code s}: see {@link #stopping}. */
     private static boolean stops(ZoneGraph graph, SymState s) {
+        return !stopping(graph, s).isEmpty();
+    }
+
+    /**
+     * The valuations of {@code s}'s zone where a path can end: deadlocked, and time cannot pass either (at an
+     * invariant's bound {@code x <= c}, or time may not pass in {@code s}). Computed on the zone's delay closure,
+     * since the part of a state inside a property may stop short of the moves and of the bound that time would
+     * reach.
+     */
+    private static List<Dbm> stopping(ZoneGraph graph, SymState s) {
         SymState closure = s.copy();
         graph.semantics().delay(closure);
         Dbm zone = closure.zone();
@@ -559,14 +566,16 @@ public final class Checker {
                 }
             }
         }
+        List<Dbm> out = new ArrayList<>();
         for (Dbm dead : graph.deadlocked(closure)) {
             for (Dbm at : atBound) {
-                if (dead.copy().intersect(at)) {
-                    return true;
+                Dbm both = dead.copy();
+                if (both.intersect(at)) {
+                    out.add(both);
                 }
             }
         }
-        return false;
+        return out;
     }
 
     private static void lassoOf(List<Frame> stack, List<SymState> states, List<Semantics.Move> moves) {
@@ -818,7 +827,17 @@ public final class Checker {
         }
         int loop = lasso.loopStart < 0 ? -1 : lasso.loopStart + offset;
         String end = loop < 0 ? lasso.end : lasso.end + loop;
-        return build(graph, states, moves, loop, end, null, within, entering);
+        Function<SymState, Dbm> target = null;
+        if (lasso.end.equals(DEADLOCK_END)) {
+            // the concrete path goes on to where it stops
+            Dbm last = lasso.states.get(lasso.states.size() - 1).zone();
+            target = exact -> {
+                Dbm part = exact.zone().copy();
+                List<Dbm> stop = part.intersect(last) ? stopping(graph, exact.withZone(part)) : List.of();
+                return stop.isEmpty() ? null : stop.get(0);
+            };
+        }
+        return build(graph, states, moves, loop, end, target, within, entering);
     }
 
     /**
@@ -860,6 +879,9 @@ public final class Checker {
         if (steps.isEmpty() && within != null) {
             // the states' zones are extrapolated: the exact path may lie beside them, then only the moves count
             steps = new Concretizer(graph).concretize(moves, target, null, null);
+            if (steps.isEmpty() && target != null) {
+                steps = new Concretizer(graph).concretize(moves, null, null, null);
+            }
         }
         BigDecimal time = BigDecimal.ZERO;
         for (int i = 0; i < steps.size(); i++) {
