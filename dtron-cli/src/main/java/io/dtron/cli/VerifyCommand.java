@@ -34,8 +34,9 @@ import picocli.CommandLine.Spec;
         description = {"Check queries on a model by symbolic model checking: E<> p, A[] p, E[] p, A<> p, p --> q.",
                 "The queries come from the model's <queries>, from --queries FILE.q, or from --query; queries that"
                         + " are not symbolic (Pr[...], simulate, sup:, control:, ...) are listed as skipped.",
-                "Exit code 0 when every query checked holds, 2 when some does not, 3 when none fails but some could"
-                        + " not be decided within the limits, 1 for an error."})
+                "Exit code 0 when every query checked holds, 2 when some does not, else 1 when a query is in error"
+                        + " (each is reported, the others checked) or for any other error, else 3 when some could"
+                        + " not be decided within the limits (inconclusive)."})
 final class VerifyCommand implements Callable<Integer> {
 
     enum Order { bfs, dfs }
@@ -124,15 +125,14 @@ final class VerifyCommand implements Callable<Integer> {
         Verifier verifier = new Verifier(network, options);
         List<Query> toCheck = new ArrayList<>();
         for (String q : queries) {
-            toCheck.add(Query.parse(q));
+            try {
+                toCheck.add(Query.parse(q));
+            } catch (QueryException e) {
+                toCheck.add(new Query(q.strip(), Query.Kind.INVALID, null, null, e.getMessage(), 0, 0));
+            }
         }
         if (queryFile != null) {
-            try {
-                toCheck.addAll(Query.parseFile(Files.readString(queryFile, StandardCharsets.UTF_8)));
-            } catch (QueryException e) {
-                err.println("dtron verify: " + queryFile + ": " + e.getMessage());
-                return 1;
-            }
+            toCheck.addAll(Query.parseFile(Files.readString(queryFile, StandardCharsets.UTF_8)));
         }
         String source = "--query";
         if (queryFile != null) {
@@ -150,10 +150,20 @@ final class VerifyCommand implements Callable<Integer> {
         int violated = 0;
         int unknown = 0;
         int skipped = 0;
+        int errors = 0;
         for (int i = 0; i < toCheck.size(); i++) {
             Query q = toCheck.get(i);
-            VerificationResult r = verifier.verify(q);
             out.println("[" + (i + 1) + "] " + q.text());
+            VerificationResult r;
+            try {
+                r = verifier.verify(q);
+            } catch (QueryException e) {
+                Path where = q.line() > 0 ? queryFile : model;
+                out.println("    error: " + e.getMessage());
+                err.println("dtron verify: " + where + ": " + e.getMessage());
+                errors++;
+                continue;
+            }
             out.println("    " + line(r));
             switch (r.outcome()) {
                 case VIOLATED -> violated++;
@@ -169,11 +179,12 @@ final class VerifyCommand implements Callable<Integer> {
             }
             out.flush();
         }
-        int checked = toCheck.size() - skipped;
+        int checked = toCheck.size() - skipped - errors;
         out.println(checked - violated - unknown + " of " + checked + " checked hold" + (violated > 0 ? ", " + violated
                 + " do not" : "") + (unknown > 0 ? ", " + unknown + " unknown" : "") + (skipped > 0 ? "; " + skipped
-                + " skipped" : ""));
-        return violated > 0 ? 2 : unknown > 0 ? 3 : 0;
+                + " skipped" : "") + (errors > 0 ? "; " + errors + " in error" : ""));
+        // a counterexample outranks an error, an error (to fix) an unknown answer (to retry with larger limits)
+        return violated > 0 ? 2 : errors > 0 ? 1 : unknown > 0 ? 3 : 0;
     }
 
     /** The Delta-extended model of the delays, loaded, or null after an error (printed). */

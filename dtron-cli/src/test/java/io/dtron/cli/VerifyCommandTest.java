@@ -64,6 +64,20 @@ class VerifyCommandTest {
     }
 
     @Test
+    void livenessQueriesWithClocksAreAnswered(@TempDir Path dir) throws IOException {
+        Path f = fischer(dir, 2);
+        // wait is entered with x reset: x == 0 at that instant
+        CommandRun holds = CommandRun.of("verify", f.toString(), "--query", "P(1).req --> P(1).wait and P(1).x == 0",
+                "--trace", "none");
+        assertEquals(0, holds.exit(), holds.out() + holds.err());
+        assertTrue(holds.out().contains("1 of 1 checked hold"), holds.out());
+        // P(1) alone may go round idle, req, wait, cs for ever (P(2) stays idle): x never passes 3
+        CommandRun round = CommandRun.of("verify", f.toString(), "--query", "A<> P(1).x > 100");
+        assertEquals(2, round.exit(), round.out() + round.err());
+        assertTrue(round.out().contains("and then a cycle back to state"), round.out());
+    }
+
+    @Test
     void queriesFromAFileAndSkippedOnesAreListed(@TempDir Path dir) throws IOException {
         Path q = dir.resolve("q.q");
         Files.writeString(q, "// mutual exclusion\nA[] not (P(1).cs and P(2).cs)\nPr[<=10](<> P(1).cs)\n");
@@ -82,7 +96,7 @@ class VerifyCommandTest {
     }
 
     @Test
-    void aLimitGivesUnknownAndExitCodeThree(@TempDir Path dir) throws IOException {
+    void aLimitGivesUnknownAndExitCodeThreeUnlessSomethingWorseHappened(@TempDir Path dir) throws IOException {
         Path grows = dir.resolve("grows.xta");
         Files.writeString(grows, """
                 int[0,30000] i = 0;
@@ -99,6 +113,47 @@ class VerifyCommandTest {
         assertTrue(memory.out().contains("unknown: the memory limit was reached after 1024 explored states"),
                 memory.out());
         assertTrue(memory.out().contains("0 of 1 checked hold, 1 unknown"), memory.out());
+        // a query that does not hold outweighs an unknown one: exit code 2
+        CommandRun both = CommandRun.of("verify", grows.toString(), "--query", "A[] i < 30000", "--query",
+                "A[] P.a and i > 0", "--time-limit", "0");
+        assertTrue(both.out().contains("unknown: the time limit was reached"), both.out());
+        assertTrue(both.out().contains("NOT satisfied"), both.out());
+        assertEquals(2, both.exit(), both.out() + both.err());
+        // an error (a query to fix) outweighs an unknown one (to retry with larger limits): exit code 1
+        CommandRun error = CommandRun.of("verify", grows.toString(), "--query", "A[] i < 30000", "--query",
+                "A[] j > 0", "--time-limit", "0");
+        assertTrue(error.out().contains("unknown: the time limit was reached"), error.out());
+        assertTrue(error.out().contains("error: query 'A[] j > 0', column 5: unknown name 'j'"), error.out());
+        assertEquals(1, error.exit(), error.out() + error.err());
+    }
+
+    @Test
+    void eachBadQueryOfAFileIsAnErrorAndTheOthersAreChecked(@TempDir Path dir) throws IOException {
+        Path q = dir.resolve("q.q");
+        Files.writeString(q, """
+                // mutual exclusion, then two mistakes
+                A[] not (P(1).cs and P(2).cs)
+                E<> P(1).cs &&
+                P(1).wait -->
+                E<> P(2).cs
+                """);
+        CommandRun r = CommandRun.of("verify", fischer(dir, 2).toString(), "--queries", q.toString(), "--trace",
+                "none");
+        assertEquals(1, r.exit(), r.out() + r.err());
+        assertTrue(r.out().contains("[1] A[] not (P(1).cs and P(2).cs)\n    satisfied"), r.out());
+        assertTrue(r.out().contains("[2] E<> P(1).cs &&\n    error: line 3: query 'E<> P(1).cs &&', column "),
+                r.out());
+        assertTrue(r.out().contains("[3] P(1).wait -->\n    error: line 4: query 'P(1).wait -->', column "),
+                r.out());
+        assertTrue(r.out().contains("[4] E<> P(2).cs\n    satisfied"), r.out());
+        assertTrue(r.out().contains("2 of 2 checked hold; 2 in error"), r.out());
+        assertTrue(r.err().contains("dtron verify: " + q + ": line 3: query 'E<> P(1).cs &&', column "), r.err());
+        assertFalse(r.err().contains("Exception") || r.err().contains("\tat "), "no stack trace: " + r.err());
+        // a query that does not hold comes first: exit code 2 even with errors
+        Files.writeString(q, "E<> P(1).cs and P(2).cs\noops\n");
+        CommandRun violated = CommandRun.of("verify", fischer(dir, 2).toString(), "--queries", q.toString());
+        assertEquals(2, violated.exit(), violated.out() + violated.err());
+        assertTrue(violated.out().contains("0 of 1 checked hold, 1 do not; 1 in error"), violated.out());
     }
 
     @Test

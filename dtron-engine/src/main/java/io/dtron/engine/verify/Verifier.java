@@ -27,14 +27,13 @@ public final class Verifier {
     }
 
     /**
-     * The queries written in the model ({@code <queries>} of an XML model), in order.
-     *
-     * @throws QueryException naming the first one that does not parse
+     * The queries written in the model ({@code <queries>} of an XML model), in order; one that does not parse
+     * is {@link Query.Kind#INVALID}.
      */
     public List<Query> modelQueries() {
         List<Query> out = new ArrayList<>();
         for (io.dtron.xta.ast.Query q : network.queries()) {
-            out.add(QueryParser.parse(q.pos().text()));
+            out.add(QueryParser.onLine(q.pos().text(), 0));
         }
         return out;
     }
@@ -42,11 +41,23 @@ public final class Verifier {
     /**
      * Checks one query.
      *
-     * @throws QueryException when its properties do not compile against the model (unknown names, type errors)
+     * @throws QueryException when it is {@link Query.Kind#INVALID} or its properties do not compile against the
+     *                        model (unknown names, type errors); the message names the query, its column, and its
+     *                        line when it comes from a file
      * @throws UnsupportedModelException on a model error met during the search (an index out of range, ...)
      */
     public VerificationResult verify(Query query) {
-        return checker.verify(query);
+        if (query.kind() == Query.Kind.INVALID) {
+            throw new QueryException(query.reason());
+        }
+        try {
+            return checker.verify(query);
+        } catch (QueryException e) {
+            if (query.line() > 0) {
+                throw new QueryException("line " + query.line() + ": " + e.getMessage());
+            }
+            throw e;
+        }
     }
 
     /**

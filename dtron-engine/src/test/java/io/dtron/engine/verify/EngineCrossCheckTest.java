@@ -92,7 +92,7 @@ class EngineCrossCheckTest {
     }
 
     /** Runs the trace's concrete steps in the engine, in ticks fine enough for its times. */
-    private static void replay(Network n, Trace trace) {
+    static void replay(Network n, Trace trace) {
         assertNotNull(trace);
         assertTrue(!trace.concrete().isEmpty(), "a concrete trace: " + trace.toText());
         int scale = 0;

@@ -203,13 +203,25 @@ class VerifierTest {
         QueryException noLocation = assertThrows(QueryException.class, () -> check(n, "E<> P(1).nowhere"));
         assertTrue(noLocation.getMessage().contains("'P(1)' has no location or variable 'nowhere'"),
                 noLocation.getMessage());
-        QueryException fileLine = assertThrows(QueryException.class, () -> Query.parseFile("""
-                // two queries
+        // in a file, a bad query is its own INVALID entry, with its line; the others are kept and can be checked
+        List<Query> file = Query.parseFile("""
+                // three queries
                 E<> P(1).cs
 
                 oops
-                """));
-        assertTrue(fileLine.getMessage().startsWith("line 4: query 'oops'"), fileLine.getMessage());
+                E<> P(1).cs and foo > 1
+                """);
+        assertEquals(List.of(Query.Kind.EXISTS_EVENTUALLY, Query.Kind.INVALID, Query.Kind.EXISTS_EVENTUALLY),
+                file.stream().map(Query::kind).toList());
+        assertEquals(List.of(2, 4, 5), file.stream().map(Query::line).toList());
+        assertEquals(Outcome.SATISFIED, new Verifier(n, VerifierOptions.defaults()).verify(file.get(0)).outcome());
+        QueryException fileLine = assertThrows(QueryException.class,
+                () -> new Verifier(n, VerifierOptions.defaults()).verify(file.get(1)));
+        assertTrue(fileLine.getMessage().startsWith("line 4: query 'oops', column 1: not a query"),
+                fileLine.getMessage());
+        QueryException fileName = assertThrows(QueryException.class,
+                () -> new Verifier(n, VerifierOptions.defaults()).verify(file.get(2)));
+        assertEquals("line 5: query 'E<> P(1).cs and foo > 1', column 17: unknown name 'foo'", fileName.getMessage());
         assertEquals(2, Query.parseFile("E<> a\n/* x\n y */ A[] b // c\n").size());
         assertFalse(Query.parseFile("").iterator().hasNext());
     }

@@ -11,6 +11,7 @@ import io.dtron.engine.verify.VerificationResult;
 import io.dtron.engine.verify.VerificationResult.Outcome;
 import io.dtron.engine.verify.VerificationResult.Statistics;
 import io.dtron.engine.verify.VerifierOptions;
+import io.dtron.engine.zone.Bound;
 import io.dtron.engine.zone.Dbm;
 import io.dtron.model.Network;
 import io.dtron.model.Process;
@@ -328,21 +329,24 @@ public final class Checker {
 
     // ================================================================ liveness
 
+    private static final String DEADLOCK_END = "a deadlock";
+
     /** A maximal path inside a property: the states, the moves between them, and how it ends. */
     record Lasso(List<SymState> states, List<Semantics.Move> moves, int loopStart, String end) {
     }
 
     private VerificationResult liveness(Query query, Property p, Property q, Budget budget) {
         Property inside = q == null ? p : q;
-        if (p.dependsOnZone() || inside.dependsOnZone()) {
-            return new VerificationResult(query, Outcome.SKIPPED, "clock constraints and deadlock in the properties"
-                    + " of E[], A<> and --> queries are not supported yet", Statistics.NONE, null);
-        }
         ZoneGraph graph = graph(true, List.of(p, inside));
         Set<Exact> done = new HashSet<>();
         if (q == null) {
-            SymState init = graph.initial();
-            Lasso lasso = inside.holds(init) ? maximalPath(graph, init, inside, done, budget) : null;
+            Lasso lasso = null;
+            for (SymState start : insideParts(graph, graph.semantics().initial(), inside)) {
+                lasso = maximalPath(graph, start, inside, done, budget);
+                if (lasso != null) {
+                    break;
+                }
+            }
             budget.stored = done.size();
             boolean found = lasso != null;
             boolean holds = query.kind() == Query.Kind.EXISTS_GLOBALLY ? found : !found;
@@ -350,14 +354,16 @@ public final class Checker {
             return new VerificationResult(query, holds ? Outcome.SATISFIED : Outcome.VIOLATED, null,
                     statistics(budget), trace);
         }
-        // p --> q: from every reachable p-state that is not a q-state, no maximal path avoiding q
+        // p --> q: from every valuation of a reachable state where p holds, no maximal path avoiding q
         Lasso[] witness = new Lasso[1];
         Found found = search(graph, null, graph::deadlocked, budget, (n, s) -> {
-            if (p.holds(s) && inside.holds(s)) {
-                Lasso lasso = maximalPath(graph, s, inside, done, budget);
-                if (lasso != null) {
-                    witness[0] = lasso;
-                    return new Found(n, s.zone());
+            for (Dbm premise : parts(graph, p, s)) {
+                for (SymState start : insideParts(graph, s.withZone(premise), inside)) {
+                    Lasso lasso = maximalPath(graph, start, inside, done, budget);
+                    if (lasso != null) {
+                        witness[0] = lasso;
+                        return new Found(n, s.zone());
+                    }
                 }
             }
             return null;
@@ -369,6 +375,86 @@ public final class Checker {
         List<Node> prefix = path(found.node);
         return new VerificationResult(query, Outcome.VIOLATED, null, statistics(budget),
                 trace(graph, prefix, witness[0]));
+    }
+
+    /** The part of {@code s}'s zone where {@code p} holds, as zones (copies). */
+    private static List<Dbm> parts(ZoneGraph graph, Property p, SymState s) {
+        if (!p.dependsOnZone()) {
+            return p.holds(s) ? List.of(s.zone().copy()) : List.of();
+        }
+        List<Dbm> out = new ArrayList<>();
+        p.restrict(s, s.zone(), graph::deadlocked, out);
+        out.replaceAll(Dbm::copy);
+        return out;
+    }
+
+    /**
+     * The states a path inside {@code inside} reaches from the valuations of {@code entry} (a state just entered,
+     * not yet delayed) by letting time pass without leaving {@code inside} at any instant, each extrapolated: one
+     * state per zone of that union of zones (empty when {@code inside} does not hold at entry).
+     */
+    private List<SymState> insideParts(ZoneGraph graph, SymState entry, Property inside) {
+        SymState closure = entry.copy();
+        if (!graph.semantics().delay(closure)) {
+            return List.of();
+        }
+        List<Dbm> in = parts(graph, inside, closure);
+        if (inside.dependsOnZone() && !in.isEmpty() && graph.semantics().mayDelay(closure)) {
+            in = delayInside(entry.zone(), closure.zone(), in);
+        }
+        List<SymState> out = new ArrayList<>(in.size());
+        for (Dbm z : in) {
+            SymState part = closure.withZone(z);
+            graph.extrapolate(part);
+            out.add(part);
+        }
+        return out;
+    }
+
+    /**
+     * The valuations {@code v + d} of {@code closure} (the delay closure of {@code entry} within the invariants)
+     * with {@code v} in {@code entry} and every {@code v + d'}, {@code 0 <= d' <= d}, in {@code in} (a union of
+     * zones within {@code closure}). With {@code B_j} the zones of {@code closure} outside {@code in}, a delay
+     * avoids {@code B_j} when no point of {@code B_j} lies before {@code v + d} on its line ({@code closure}
+     * minus {@code B_j}'s future), or when {@code v} itself lies after {@code B_j} (the future of the part of
+     * {@code entry} in {@code B_j}'s future but not in {@code B_j}); as the shortest delay into a point avoids
+     * every {@code B_j} as soon as some delay avoids each, the answer is the intersection over {@code j}.
+     */
+    static List<Dbm> delayInside(Dbm entry, Dbm closure, List<Dbm> in) {
+        List<Dbm> outside = new ArrayList<>(List.of(closure));
+        for (Dbm z : in) {
+            outside = Zones.subtract(outside, z);
+        }
+        List<Dbm> result = List.of(closure);
+        for (Dbm bad : outside) {
+            Dbm future = bad.copy();
+            future.up();
+            List<Dbm> avoiding = new ArrayList<>(Zones.subtract(List.of(closure), future));
+            Dbm after = entry.copy();
+            if (after.intersect(future)) {
+                for (Dbm z : Zones.subtract(List.of(after), bad)) {
+                    Dbm later = z.copy();
+                    later.up();
+                    if (later.intersect(closure)) {
+                        avoiding.add(later);
+                    }
+                }
+            }
+            List<Dbm> next = new ArrayList<>();
+            for (Dbm r : result) {
+                for (Dbm a : avoiding) {
+                    Dbm both = r.copy();
+                    if (both.intersect(a)) {
+                        next.add(both);
+                    }
+                }
+            }
+            if (next.isEmpty()) {
+                return next;
+            }
+            result = next;
+        }
+        return result;
     }
 
     /** A search frame: a state on the stack, its successors, the next one to look at. */
@@ -386,8 +472,8 @@ public final class Checker {
     }
 
     /**
-     * A maximal path from {@code start} through states satisfying {@code inside} (which {@code start} does), or
-     * null. {@code done} holds states from which there is none; the search adds the states it finishes.
+     * A maximal path from {@code start} inside {@code inside} (a state {@link #insideParts} gave), or null.
+     * {@code done} holds states from which there is none; the search adds the states it finishes.
      */
     private Lasso maximalPath(ZoneGraph graph, SymState start, Property inside, Set<Exact> done, Budget budget) {
         if (done.contains(new Exact(start))) {
@@ -395,7 +481,7 @@ public final class Checker {
         }
         List<Frame> stack = new ArrayList<>();
         Map<Exact, Integer> onStack = new HashMap<>();
-        Lasso end = open(graph, start, null, stack, onStack, budget);
+        Lasso end = open(graph, start, null, inside, stack, onStack, budget);
         if (end != null) {
             return end;
         }
@@ -411,9 +497,6 @@ public final class Checker {
             int i = top.next++;
             SymState child = top.successors.get(i);
             Semantics.Move move = top.moves.get(i);
-            if (!inside.holds(child)) {
-                continue;
-            }
             Exact key = new Exact(child);
             if (done.contains(key)) {
                 continue;
@@ -427,7 +510,7 @@ public final class Checker {
                 moves.add(move);
                 return new Lasso(states, moves, loop, "a cycle back to state ");
             }
-            end = open(graph, child, move, stack, onStack, budget);
+            end = open(graph, child, move, inside, stack, onStack, budget);
             if (end != null) {
                 return end;
             }
@@ -435,26 +518,80 @@ public final class Checker {
         return null;
     }
 
-    /** Pushes a frame for {@code s}; returns the path if {@code s} ends one (time diverges, or a deadlock). */
-    private Lasso open(ZoneGraph graph, SymState s, Semantics.Move move, List<Frame> stack, Map<Exact, Integer> onStack,
-                       Budget budget) {
+    /**
+     * Pushes a frame for {@code s}, with its successors inside {@code inside}; returns the path if {@code s} ends
+     * one: time can pass for ever inside its zone, or a valuation of it can neither move nor let time pass.
+     */
+    private Lasso open(ZoneGraph graph, SymState s, Semantics.Move move, Property inside, List<Frame> stack,
+                       Map<Exact, Integer> onStack, Budget budget) {
         budget.explore();
         Frame f = new Frame(s, move);
         stack.add(f);
         onStack.put(new Exact(s), stack.size() - 1);
-        String ending = graph.timeDiverges(s) ? "time passing forever" : !graph.deadlocked(s).isEmpty()
-                ? "a deadlock" : null;
+        String ending = graph.timeDiverges(s) ? "time passing forever" : stops(graph, s) ? DEADLOCK_END : null;
         if (ending != null) {
             List<SymState> states = new ArrayList<>();
             List<Semantics.Move> moves = new ArrayList<>();
             lassoOf(stack, states, moves);
             return new Lasso(states, moves, -1, ending);
         }
-        graph.successors(s, (m, next) -> {
-            f.moves.add(m);
-            f.successors.add(next);
+        if (!inside.dependsOnZone()) {
+            // the property does not change while time passes: a successor is inside it or not at all
+            graph.successors(s, (m, next) -> {
+                if (inside.holds(next)) {
+                    f.moves.add(m);
+                    f.successors.add(next);
+                }
+            });
+            return null;
+        }
+        graph.semantics().moves(s, (m, next) -> {
+            for (SymState part : insideParts(graph, next, inside)) {
+                f.moves.add(m);
+                f.successors.add(part);
+            }
         });
         return null;
+    }
+
+    /** Whether a path can end in {@code s}: see {@link #stopping}. */
+    private static boolean stops(ZoneGraph graph, SymState s) {
+        return !stopping(graph, s).isEmpty();
+    }
+
+    /**
+     * The valuations of {@code s}'s zone where a path can end: deadlocked, and time cannot pass either (at an
+     * invariant's bound {@code x <= c}, or time may not pass in {@code s}). Computed on the zone's delay closure,
+     * since the part of a state inside a property may stop short of the moves and of the bound that time would
+     * reach.
+     */
+    private static List<Dbm> stopping(ZoneGraph graph, SymState s) {
+        SymState closure = s.copy();
+        graph.semantics().delay(closure);
+        Dbm zone = closure.zone();
+        List<Dbm> atBound = new ArrayList<>();
+        if (!graph.semantics().mayDelay(closure)) {
+            atBound.add(s.zone());
+        } else {
+            for (int x = 1; x < graph.dimension(); x++) {
+                int bound = zone.upperBound(x, 0);
+                Dbm at = s.zone().copy();
+                if (bound != Bound.INFINITY && !Bound.isStrict(bound)
+                        && at.constrain(0, x, Bound.le(-Bound.value(bound)))) {
+                    atBound.add(at);
+                }
+            }
+        }
+        List<Dbm> out = new ArrayList<>();
+        for (Dbm dead : graph.deadlocked(closure)) {
+            for (Dbm at : atBound) {
+                Dbm both = dead.copy();
+                if (both.intersect(at)) {
+                    out.add(both);
+                }
+            }
+        }
+        return out;
     }
 
     private static void lassoOf(List<Frame> stack, List<SymState> states, List<Semantics.Move> moves) {
@@ -476,7 +613,7 @@ public final class Checker {
         SymState last = states.get(states.size() - 1).copy();
         last.zone().copyFrom(lastPart);
         states.set(states.size() - 1, last);
-        return build(graph, states, moves, loopStart, end, target);
+        return build(graph, states, moves, loopStart, end, target, null, null);
     }
 
     /** A liveness trace: the reachability prefix up to the lasso's start, then the lasso. */
@@ -490,9 +627,29 @@ public final class Checker {
         int offset = states.size();
         states.addAll(lasso.states);
         moves.addAll(lasso.moves);
+        // the concrete path keeps to the lasso's states, which lie inside the property; the first one is entered
+        // before the premise of --> holds, at the end of the prefix
+        List<Dbm> within = new ArrayList<>(Collections.nCopies(offset, (Dbm) null));
+        for (SymState s : lasso.states) {
+            within.add(s.zone());
+        }
+        List<Dbm> entering = new ArrayList<>(within);
+        if (!prefix.isEmpty()) {
+            entering.set(offset, null);
+        }
         int loop = lasso.loopStart < 0 ? -1 : lasso.loopStart + offset;
         String end = loop < 0 ? lasso.end : lasso.end + loop;
-        return build(graph, states, moves, loop, end, null);
+        Function<SymState, Dbm> target = null;
+        if (lasso.end.equals(DEADLOCK_END)) {
+            // the concrete path goes on to where it stops
+            Dbm last = lasso.states.get(lasso.states.size() - 1).zone();
+            target = exact -> {
+                Dbm part = exact.zone().copy();
+                List<Dbm> stop = part.intersect(last) ? stopping(graph, exact.withZone(part)) : List.of();
+                return stop.isEmpty() ? null : stop.get(0);
+            };
+        }
+        return build(graph, states, moves, loop, end, target, within, entering);
     }
 
     /**
@@ -520,7 +677,7 @@ public final class Checker {
     }
 
     private Trace build(ZoneGraph graph, List<SymState> states, List<Semantics.Move> moves, int loopStart,
-                        String end, Function<SymState, Dbm> target) {
+                        String end, Function<SymState, Dbm> target, List<Dbm> within, List<Dbm> entering) {
         List<Trace.State> symbolic = new ArrayList<>();
         for (SymState s : states) {
             symbolic.add(describe(s));
@@ -530,7 +687,14 @@ public final class Checker {
             transitions.add(describe(m));
         }
         List<Trace.ConcreteStep> concrete = new ArrayList<>();
-        List<Concretizer.Step> steps = new Concretizer(graph).concretize(moves, target);
+        List<Concretizer.Step> steps = new Concretizer(graph).concretize(moves, target, within, entering);
+        if (steps.isEmpty() && within != null) {
+            // the states' zones are extrapolated: the exact path may lie beside them, then only the moves count
+            steps = new Concretizer(graph).concretize(moves, target, null, null);
+            if (steps.isEmpty() && target != null) {
+                steps = new Concretizer(graph).concretize(moves, null, null, null);
+            }
+        }
         BigDecimal time = BigDecimal.ZERO;
         for (int i = 0; i < steps.size(); i++) {
             Concretizer.Step step = steps.get(i);

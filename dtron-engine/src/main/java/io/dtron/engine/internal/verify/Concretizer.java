@@ -34,6 +34,16 @@ final class Concretizer {
      * target} gives (from the exact last state; null for all of it); empty if the path cannot be replayed.
      */
     List<Step> concretize(List<Semantics.Move> moves, Function<SymState, Dbm> target) {
+        return concretize(moves, target, null, null);
+    }
+
+    /**
+     * As {@link #concretize(List, Function)}, with the valuations at the end of each state's delay kept within
+     * {@code within}'s zone for that state, and those at its start within {@code entering}'s, where they have one
+     * (not null): as zones are convex, a delay that starts and ends in a zone stays in it.
+     */
+    List<Step> concretize(List<Semantics.Move> moves, Function<SymState, Dbm> target, List<Dbm> within,
+                          List<Dbm> entering) {
         Semantics sem = graph.semantics();
         int n = moves.size();
         List<SymState> before = new ArrayList<>(n + 1);
@@ -64,13 +74,16 @@ final class Concretizer {
         if (last == null || last.isEmpty()) {
             return List.of();
         }
+        if (!constrain(last, within, n)) {
+            return List.of();
+        }
         reach[n] = last;
         for (int i = n; i >= 1; i--) {
             Dbm x = reach[i].copy();
             if (sem.mayDelay(before.get(i))) {
                 x.down();
             }
-            if (!x.intersect(afterMove.get(i))) {
+            if (!x.intersect(afterMove.get(i)) || !constrain(x, entering, i)) {
                 return List.of();
             }
             SymState from = before.get(i - 1);
@@ -78,7 +91,8 @@ final class Concretizer {
             for (int[] reset : graph.resets(vars, moves.get(i - 1))) {
                 x.free(reset[0]);
             }
-            if (!x.intersect(from.zone()) || !graph.guards(from, moves.get(i - 1), x)) {
+            if (!x.intersect(from.zone()) || !graph.guards(from, moves.get(i - 1), x)
+                    || !constrain(x, within, i - 1)) {
                 return List.of();
             }
             reach[i - 1] = x;
@@ -103,6 +117,10 @@ final class Concretizer {
             }
         }
         return out;
+    }
+
+    private static boolean constrain(Dbm zone, List<Dbm> zones, int state) {
+        return zones == null || zones.get(state) == null || zone.intersect(zones.get(state));
     }
 
     /** The earliest delay {@code d} (or, if it is excluded, one just after) with {@code v + d} in {@code zone}. */

@@ -42,11 +42,12 @@ public final class QueryParser {
         }
         for (Object[] skipped : SKIPPED) {
             if (((Pattern) skipped[0]).matcher(text).find()) {
-                return new Query(text, Query.Kind.UNSUPPORTED, null, null, (String) skipped[1], 0);
+                return new Query(text, Query.Kind.UNSUPPORTED, null, null, (String) skipped[1], 0, 0);
             }
         }
         if (UNDER_STRATEGY.matcher(text).find()) {
-            return new Query(text, Query.Kind.UNSUPPORTED, null, null, "queries under a strategy are not checked", 0);
+            return new Query(text, Query.Kind.UNSUPPORTED, null, null, "queries under a strategy are not checked", 0,
+                    0);
         }
         Matcher m = QUANTIFIER.matcher(text);
         if (m.find()) {
@@ -63,7 +64,7 @@ public final class QueryParser {
                 throw new QueryException("query '" + text + "', column " + (start + 1) + ": a state property is"
                         + " missing after " + q);
             }
-            return new Query(text, kind, property, null, null, start + 1);
+            return new Query(text, kind, property, null, null, start + 1, 0);
         }
         int arrow = topLevelArrow(text);
         if (arrow >= 0) {
@@ -74,7 +75,7 @@ public final class QueryParser {
                 throw new QueryException("query '" + text + "', column " + (premise.isEmpty() ? 1 : targetStart + 1)
                         + ": a leads-to query needs a state property on each side of -->");
             }
-            return new Query(text, Query.Kind.LEADS_TO, premise, target, null, 1);
+            return new Query(text, Query.Kind.LEADS_TO, premise, target, null, 1, 0);
         }
         throw new QueryException("query '" + text + "', column 1: not a query: expected E<> p, A[] p, E[] p, A<> p"
                 + " or p --> q");
@@ -89,13 +90,23 @@ public final class QueryParser {
             if (lines[i].isBlank()) {
                 continue;
             }
-            try {
-                out.add(parse(lines[i]));
-            } catch (QueryException e) {
-                throw new QueryException("line " + (i + 1) + ": " + e.getMessage());
-            }
+            out.add(onLine(lines[i], i + 1));
         }
         return out;
+    }
+
+    /**
+     * Parses the query {@code written} on line {@code line} of a file (0: not from a file); one that does not
+     * parse is an {@link Query.Kind#INVALID} query with the error.
+     */
+    public static Query onLine(String written, int line) {
+        String where = line > 0 ? "line " + line + ": " : "";
+        try {
+            Query q = parse(written);
+            return new Query(q.text(), q.kind(), q.property(), q.target(), q.reason(), q.column(), line);
+        } catch (QueryException e) {
+            return new Query(written.strip(), Query.Kind.INVALID, null, null, where + e.getMessage(), 0, line);
+        }
     }
 
     /** The index of the first {@code -->} outside parentheses and brackets, or -1. */

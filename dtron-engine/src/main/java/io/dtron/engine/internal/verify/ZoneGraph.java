@@ -171,7 +171,8 @@ final class ZoneGraph {
         return v;
     }
 
-    private void extrapolate(SymState s) {
+    /** Extrapolates {@code s}'s zone in place, as the successors are. */
+    void extrapolate(SymState s) {
         Dbm zone = s.zone();
         if (abstraction == Abstraction.NONE) {
             return;
