@@ -163,6 +163,12 @@ final class VerifyCommand implements Callable<Integer> {
                 err.println("dtron verify: " + where + ": " + e.getMessage());
                 errors++;
                 continue;
+            } catch (UnsupportedModelException e) {
+                // a model error met on this query's search (an index out of range, ...): the others are checked
+                out.println("    error: " + e.getMessage());
+                err.println("dtron verify: " + model + ": " + e.getMessage());
+                errors++;
+                continue;
             }
             out.println("    " + line(r));
             switch (r.outcome()) {

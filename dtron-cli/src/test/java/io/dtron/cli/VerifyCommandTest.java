@@ -177,4 +177,21 @@ class VerifyCommandTest {
             assertFalse(r.err().contains("Exception") || r.err().contains("\tat "), "no stack trace: " + r.err());
         }
     }
+
+    @Test
+    void aModelErrorOnOneQuerysSearchIsThatQuerysErrorAndTheOthersAreChecked(@TempDir Path dir) throws IOException {
+        // the index goes out of range only once i reaches 3: a search that gets there meets a model error
+        Path model = dir.resolve("range.xta");
+        Files.writeString(model, "int a[3];\nint i;\nprocess P() { state s, t; init s;\n"
+                + "  trans s -> s { guard i < 3; assign i = i + 1; }, s -> t { assign a[i] = 1; }; }\nsystem P;\n");
+        CommandRun r = CommandRun.of("verify", model.toString(), "--query", "E<> P.t and i == 3", "--query",
+                "E<> P.t and i == 1");
+        assertEquals(1, r.exit(), r.out() + r.err());
+        assertTrue(r.out().contains("[1] E<> P.t and i == 3\n    error: "), r.out());
+        assertTrue(r.err().contains("dtron verify: " + model + ": model error while checking 'E<> P.t and i == 3'"),
+                r.err());
+        assertTrue(r.out().contains("[2] E<> P.t and i == 1\n    satisfied"), r.out());
+        assertTrue(r.out().contains("1 of 1 checked hold; 1 in error"), r.out());
+        assertFalse(r.err().contains("\tat "), "no stack trace: " + r.err());
+    }
 }
