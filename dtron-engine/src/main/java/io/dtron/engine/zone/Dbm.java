@@ -330,16 +330,22 @@ public final class Dbm {
         // The old matrix was closed and the new edge closes no negative cycle, so a shortest path
         // uses the new edge at most once: relax every pair k, l through k -> i -> j -> l.
         int rowJ = j * dim;
+        int[] d = m;
         for (int k = 0; k < dim; k++) {
             int rowK = k * dim;
-            int toJ = Bound.add(m[rowK + i], bound);
+            int toJ = Bound.add(d[rowK + i], bound);
             if (toJ == INFINITY) {
                 continue;
             }
             for (int l = 0; l < dim; l++) {
-                int b = Bound.add(toJ, m[rowJ + l]);
-                if (b < m[rowK + l]) {
-                    m[rowK + l] = b;
+                int jl = d[rowJ + l];
+                if (jl == INFINITY) {
+                    continue;
+                }
+                // Bound.add inlined: both finite, so only the lower clamp can apply to a tighter sum
+                long sum = (long) toJ + jl - ((toJ | jl) & 1);
+                if (sum < d[rowK + l]) {
+                    d[rowK + l] = sum < MIN_RAW ? MIN_RAW : (int) sum;
                 }
             }
         }

@@ -1,6 +1,7 @@
 package io.dtron.engine.internal.tester;
 
 import io.dtron.engine.DelayPolicy;
+import io.dtron.engine.internal.sem.DiscreteCache;
 import io.dtron.engine.internal.sem.Partition;
 import io.dtron.engine.internal.sem.Semantics;
 import io.dtron.engine.internal.sem.SymState;
@@ -69,9 +70,10 @@ public final class Plan {
         Map<Integer, List<Window>> windows = new LinkedHashMap<>();
         long deadline = 0;
         List<SymState> reach = set.reach(horizon);
+        DiscreteCache cache = new DiscreteCache(semantics, c -> c >= 0 && partition.observable(c) != Partition.INTERNAL);
         for (SymState s : reach) {
             deadline = Math.max(deadline, upper(s, elapsed, horizon));
-            semantics.moves(s, c -> c >= 0 && partition.observable(c) != Partition.INTERNAL, (move, next) ->
+            cache.moves(s, (move, next) ->
                     windows.computeIfAbsent(move.channel(), k -> new ArrayList<>()).add(new Window(lower(next, elapsed),
                             upper(next, elapsed, horizon), move.steps().get(0))));
         }

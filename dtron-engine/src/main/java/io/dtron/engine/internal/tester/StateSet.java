@@ -1,5 +1,6 @@
 package io.dtron.engine.internal.tester;
 
+import io.dtron.engine.internal.sem.DiscreteCache;
 import io.dtron.engine.internal.sem.Partition;
 import io.dtron.engine.internal.sem.Semantics;
 import io.dtron.engine.internal.sem.SymState;
@@ -56,6 +57,7 @@ public final class StateSet {
         int elapsed = semantics.elapsedClock();
         int horizon = (int) Math.min(horizonTicks, Bound.MAX_VALUE);
         Passed passed = new Passed();
+        DiscreteCache cache = new DiscreteCache(semantics, c -> c < 0 || partition.observable(c) == Partition.INTERNAL);
         Deque<SymState> waiting = new ArrayDeque<>();
         for (SymState s : states) {
             waiting.add(copy(s));
@@ -63,7 +65,7 @@ public final class StateSet {
         int visited = 0;
         while (!waiting.isEmpty()) {
             SymState s = waiting.poll();
-            if (!semantics.delay(s) || !s.zone().constrain(elapsed, 0, Bound.le(horizon))) {
+            if (!cache.delay(s) || !s.zone().constrain(elapsed, 0, Bound.le(horizon))) {
                 continue;
             }
             if (!passed.add(s)) {
@@ -73,8 +75,7 @@ public final class StateSet {
                 throw new IllegalStateException("more than " + MAX_STATES + " symbolic states within one step:"
                         + " the model is too nondeterministic to follow online");
             }
-            semantics.moves(s, c -> c < 0 || partition.observable(c) == Partition.INTERNAL,
-                    (move, next) -> waiting.add(next));
+            cache.moves(s, (move, next) -> waiting.add(next));
         }
         return passed.states();
     }
@@ -107,8 +108,9 @@ public final class StateSet {
     /** The successors of this set by the moves on channel number {@code channel} (no delay before them). */
     public List<Successor> successors(int channel) {
         List<Successor> out = new ArrayList<>();
+        DiscreteCache cache = new DiscreteCache(semantics, c -> c == channel);
         for (SymState s : states) {
-            semantics.moves(s, c -> c == channel, (move, next) -> out.add(new Successor(move, s, next)));
+            cache.moves(s, (move, next) -> out.add(new Successor(move, s, next)));
         }
         return out;
     }

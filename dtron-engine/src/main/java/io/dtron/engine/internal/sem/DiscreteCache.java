@@ -1,0 +1,265 @@
+package io.dtron.engine.internal.sem;
+
+import io.dtron.engine.internal.eval.ClockBounds;
+import io.dtron.engine.internal.eval.ClockResets;
+import io.dtron.engine.internal.eval.Evaluator;
+import io.dtron.engine.internal.eval.ModelRuntimeException;
+import io.dtron.engine.zone.Dbm;
+import java.util.ArrayList;
+import java.util.Arrays;
+import java.util.HashMap;
+import java.util.List;
+import java.util.Map;
+import java.util.function.IntPredicate;
+
+/**
+ * Delays and successors of many states of one {@link Semantics}, with the work that depends only on a state's
+ * discrete part (locations and variables) done once per discrete part: which moves are possible (data guards,
+ * channels, committed locations), the updates of each move, and the clock bounds of its guards and of the
+ * invariants, which are then applied to each zone as plain constraints. Each state gets exactly what
+ * {@link Semantics#delay} and {@link Semantics#moves} give it, in the same order; where listing the bounds
+ * ahead could report a model error that applying them one by one would not (or the other way round), that
+ * move or location is handled by {@link Semantics} itself, state by state.
+ *
+ * <p>For one computation over a set of states: it keeps what it learned until it is dropped. Not thread-safe.
+ */
+public final class DiscreteCache {
+    private static final byte UNKNOWN = 0;
+    private static final byte LISTED = 1;
+    /** Handled state by state by {@link Semantics}. */
+    private static final byte SLOW = 2;
+
+    private final Semantics semantics;
+    private final Evaluator evaluator;
+    private final int ticksPerUnit;
+    private final IntPredicate channels;
+    private final Map<Key, Entry> entries = new HashMap<>();
+    private final ClockBounds bounds = new ClockBounds();
+    private final ClockResets resets = new ClockResets();
+    private Entry last;
+
+    /** A cache for the moves on the channels {@code channels} accepts (-1 for an edge without synchronisation). */
+    public DiscreteCache(Semantics semantics, IntPredicate channels) {
+        this.semantics = semantics;
+        this.evaluator = semantics.evaluator();
+        this.ticksPerUnit = semantics.ticksPerUnit();
+        this.channels = channels;
+    }
+
+    /** What is known of one discrete part. */
+    private static final class Entry {
+        final int[] locations;
+        final int[] vars;
+        /** 0 unknown, 1 time may pass, 2 it may not. */
+        byte mayDelay;
+        byte invariantState = UNKNOWN;
+        int[] invariant;
+        List<Template> templates;
+
+        Entry(int[] locations, int[] vars) {
+            this.locations = locations;
+            this.vars = vars;
+        }
+    }
+
+    /** One move of a discrete part. */
+    private static final class Template {
+        final List<Semantics.Candidate> participants;
+        final int channel;
+        byte guardState = UNKNOWN;
+        int[] guard;
+        /** Set once the updates have run. */
+        Semantics.Move move;
+        int[] locations;
+        int[] vars;
+        int hash;
+        int[] resetClocks;
+        int[] resetTicks;
+        Entry target;
+
+        Template(List<Semantics.Candidate> participants, int channel) {
+            this.participants = participants;
+            this.channel = channel;
+        }
+    }
+
+    private record Key(int[] locations, int[] vars, int hash) {
+        @Override
+        public boolean equals(Object o) {
+            return o instanceof Key k && hash == k.hash && Arrays.equals(locations, k.locations)
+                    && Arrays.equals(vars, k.vars);
+        }
+
+        @Override
+        public int hashCode() {
+            return hash;
+        }
+    }
+
+    /** {@link Semantics#delay(SymState)}. */
+    public boolean delay(SymState s) {
+        Entry e = entry(s.locations, s.vars, s.discreteHash());
+        if (e.mayDelay == 0) {
+            e.mayDelay = semantics.mayDelay(s) ? (byte) 1 : (byte) 2;
+        }
+        if (e.mayDelay == 1) {
+            s.zone.up();
+        }
+        return invariants(e, s.zone);
+    }
+
+    /** {@link Semantics#moves(SymState, IntPredicate, Semantics.MoveSink)} with this cache's channels. */
+    public void moves(SymState s, Semantics.MoveSink sink) {
+        Entry e = entry(s.locations, s.vars, s.discreteHash());
+        if (e.templates == null) {
+            List<Template> templates = new ArrayList<>();
+            semantics.enumerate(s, channels, (participants, channel) ->
+                    templates.add(new Template(participants, channel)));
+            e.templates = templates;
+        }
+        for (Template t : e.templates) {
+            fire(s, t, sink);
+        }
+    }
+
+    private void fire(SymState s, Template t, Semantics.MoveSink sink) {
+        if (t.guardState == UNKNOWN) {
+            listGuards(s, t);
+        }
+        if (t.guardState == SLOW) {
+            semantics.fire(s, t.participants, t.channel, sink);
+            return;
+        }
+        if (t.guard == null) {
+            return;
+        }
+        Dbm zone = s.zone.copy();
+        if (!constrain(zone, t.guard) || zone.isEmpty()) {
+            return;
+        }
+        if (t.move == null) {
+            prepare(s, t);
+        }
+        for (int i = 0; i < t.resetClocks.length; i++) {
+            zone.reset(t.resetClocks[i], t.resetTicks[i]);
+        }
+        if (!invariants(t.target, zone)) {
+            return;
+        }
+        sink.accept(t.move, new SymState(t.locations, t.vars, zone, t.hash));
+    }
+
+    /** The clock bounds of the participants' guards (null when a data conjunct is false), or SLOW. */
+    private void listGuards(SymState s, Template t) {
+        bounds.clear();
+        try {
+            for (Semantics.Candidate c : t.participants) {
+                if (c.guard() != null && !evaluator.clockBounds(c.guard(), s.vars, c.frame(), ticksPerUnit, bounds)) {
+                    t.guardState = LISTED;
+                    return;
+                }
+            }
+        } catch (ModelRuntimeException e) {
+            t.guardState = SLOW;
+            return;
+        }
+        t.guard = toArray(bounds);
+        t.guardState = LISTED;
+    }
+
+    /** Runs the updates of {@code t} on the variables of {@code s}: its target discrete part and resets. */
+    private void prepare(SymState s, Template t) {
+        int[] vars = s.vars.clone();
+        int[] clocks;
+        int[] ticks;
+        resets.clear();
+        try {
+            for (Semantics.Candidate c : t.participants) {
+                for (Evaluator.Handle update : c.updates()) {
+                    evaluator.execute(update, vars, c.frame(), resets);
+                }
+            }
+            clocks = new int[resets.size()];
+            ticks = new int[resets.size()];
+            for (int i = 0; i < clocks.length; i++) {
+                clocks[i] = resets.clock(i);
+                ticks[i] = resets.ticks(i, ticksPerUnit);
+            }
+        } finally {
+            resets.clear();
+        }
+        int[] locations = s.locations.clone();
+        Semantics.Step[] steps = new Semantics.Step[t.participants.size()];
+        for (int i = 0; i < steps.length; i++) {
+            Semantics.Candidate c = t.participants.get(i);
+            locations[c.process()] = c.edge().target();
+            steps[i] = new Semantics.Step(c.process(), c.edge(), c.frame());
+        }
+        t.locations = locations;
+        t.vars = vars;
+        t.hash = 31 * Arrays.hashCode(locations) + Arrays.hashCode(vars);
+        t.resetClocks = clocks;
+        t.resetTicks = ticks;
+        t.target = entry(locations, vars, t.hash);
+        t.move = new Semantics.Move(t.channel, List.of(steps));
+    }
+
+    /** {@link Semantics#invariants} of the discrete part {@code e} on {@code zone}. */
+    private boolean invariants(Entry e, Dbm zone) {
+        if (e.invariantState == UNKNOWN) {
+            listInvariants(e);
+        }
+        if (e.invariantState == SLOW) {
+            return semantics.invariants(e.locations, e.vars, zone);
+        }
+        return constrain(zone, e.invariant) && !zone.isEmpty();
+    }
+
+    private void listInvariants(Entry e) {
+        bounds.clear();
+        try {
+            for (int p = 0; p < e.locations.length; p++) {
+                Evaluator.Handle inv = semantics.invariantOf(p, e.locations[p]);
+                if (inv != null && !evaluator.clockBounds(inv, e.vars, null, ticksPerUnit, bounds)) {
+                    // false whatever the zone; the zone is then left as Semantics leaves it
+                    e.invariantState = SLOW;
+                    return;
+                }
+            }
+        } catch (ModelRuntimeException ex) {
+            e.invariantState = SLOW;
+            return;
+        }
+        e.invariant = toArray(bounds);
+        e.invariantState = LISTED;
+    }
+
+    private static boolean constrain(Dbm zone, int[] triples) {
+        for (int k = 0; k < triples.length; k += 3) {
+            if (!zone.constrain(triples[k], triples[k + 1], triples[k + 2])) {
+                return false;
+            }
+        }
+        return true;
+    }
+
+    private static int[] toArray(ClockBounds b) {
+        int[] out = new int[3 * b.size()];
+        for (int k = 0; k < b.size(); k++) {
+            out[3 * k] = b.i(k);
+            out[3 * k + 1] = b.j(k);
+            out[3 * k + 2] = b.bound(k);
+        }
+        return out;
+    }
+
+    private Entry entry(int[] locations, int[] vars, int hash) {
+        Entry e = last;
+        if (e != null && e.locations == locations && e.vars == vars) {
+            return e;
+        }
+        e = entries.computeIfAbsent(new Key(locations, vars, hash), k -> new Entry(k.locations, k.vars));
+        last = e;
+        return e;
+    }
+}
