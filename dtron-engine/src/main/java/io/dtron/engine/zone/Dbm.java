@@ -461,11 +461,10 @@ public final class Dbm {
         if (isEmpty()) {
             return;
         }
-        boolean changed = false;
+        Weakened changed = new Weakened();
         for (int j = 1; j < dim; j++) {
             int b = clampLower(m[j], max[j]);
-            changed |= b != m[j];
-            m[j] = b;
+            changed.set(0, j, b);
         }
         for (int i = 1; i < dim; i++) {
             int rowI = i * dim;
@@ -476,13 +475,10 @@ public final class Dbm {
                     continue;
                 }
                 int weaker = b > above ? INFINITY : j == 0 ? b : clampDifference(b, max[j]);
-                changed |= weaker != b;
-                m[rowI + j] = weaker;
+                changed.set(rowI, j, weaker);
             }
         }
-        if (changed) {
-            close();
-        }
+        changed.close();
     }
 
 
@@ -503,7 +499,7 @@ public final class Dbm {
         if (isEmpty()) {
             return;
         }
-        boolean changed = false;
+        Weakened changed = new Weakened();
         // Rows 1.. first: their conditions read row 0 before it is rewritten.
         for (int i = 1; i < dim; i++) {
             int rowI = i * dim;
@@ -515,18 +511,71 @@ public final class Dbm {
                     continue;
                 }
                 if (aboveLower || b > above || j != 0 && (upper[j] < 0 || m[j] < Bound.le(-upper[j]))) {
-                    m[rowI + j] = INFINITY;
-                    changed = true;
+                    changed.set(rowI, j, INFINITY);
                 }
             }
         }
         for (int j = 1; j < dim; j++) {
             int b = clampLower(m[j], upper[j]);
-            changed |= b != m[j];
-            m[j] = b;
+            changed.set(0, j, b);
         }
-        if (changed) {
-            close();
+        changed.close();
+    }
+
+    /**
+      * The entries an extrapolation raised (weakened) in this closed, non-empty matrix, and the closure after
+      * them. Every other entry is still the shortest path between its clocks (paths only got longer), so
+      * Floyd-Warshall need only update the raised entries: O(n) per raised entry instead of O(n^3) in all.
+      */
+    private final class Weakened {
+        /** Row offset and column of each raised entry; allocated at the first. */
+        private int[] rows;
+        private int[] columns;
+        private int count;
+
+        /** Sets entry (row offset {@code rowI}, column {@code j}) to {@code b}, no tighter than it was. */
+        void set(int rowI, int j, int b) {
+            if (b == m[rowI + j]) {
+                return;
+            }
+            if (rows == null) {
+                rows = new int[m.length];
+                columns = new int[m.length];
+            }
+            rows[count] = rowI;
+            columns[count] = j;
+            count++;
+            m[rowI + j] = b;
+        }
+
+        /** Restores the canonical form. */
+        void close() {
+            if (count == 0) {
+                return;
+            }
+            if (2 * count > m.length) {
+                Dbm.this.close();
+                return;
+            }
+            int[] d = m;
+            int n = dim;
+            for (int k = 0; k < n; k++) {
+                int rowK = k * n;
+                for (int c = 0; c < count; c++) {
+                    int rowI = rows[c];
+                    int j = columns[c];
+                    int ik = d[rowI + k];
+                    int kj = d[rowK + j];
+                    if (ik == INFINITY || kj == INFINITY) {
+                        continue;
+                    }
+                    // Bound.add inlined: both finite, so only the lower clamp can apply to a tighter sum
+                    long sum = (long) ik + kj - ((ik | kj) & 1);
+                    if (sum < d[rowI + j]) {
+                        d[rowI + j] = sum < MIN_RAW ? MIN_RAW : (int) sum;
+                    }
+                }
+            }
         }
     }
 

@@ -4,6 +4,7 @@ import io.dtron.engine.internal.eval.ClockBounds;
 import io.dtron.engine.internal.eval.ClockResets;
 import io.dtron.engine.internal.eval.Evaluator;
 import io.dtron.engine.internal.eval.ModelRuntimeException;
+import io.dtron.engine.zone.Bound;
 import io.dtron.engine.zone.Dbm;
 import java.util.ArrayList;
 import java.util.Arrays;
@@ -120,6 +121,125 @@ public final class DiscreteCache {
         for (Template t : e.templates) {
             fire(s, t, sink);
         }
+    }
+
+    /** Receives the bounds of one clock in a successor: the move, the raw bounds of the clock and of minus it. */
+    public interface ClockSink {
+        /** {@code upper} is the successor zone's raw bound of {@code x - 0}, {@code lowerNeg} that of {@code 0 - x}. */
+        void accept(Semantics.Move move, int upper, int lowerNeg);
+    }
+
+    /**
+     * For every successor {@link #moves} gives {@code s}, in the same order, the bounds of {@code clock} in its
+     * zone; {@code clock} must be one no update assigns (the tester's clock). Where at most one clock bound of
+     * the guards constrains the zone and the invariants after the move constrain nothing, the bounds are read
+     * off the zone of {@code s} without building the successor.
+     */
+    public void clockBounds(SymState s, int clock, ClockSink sink) {
+        Entry e = entry(s.locations, s.vars, s.discreteHash());
+        if (e.templates == null) {
+            List<Template> templates = new ArrayList<>();
+            semantics.enumerate(s, channels, (participants, channel) ->
+                    templates.add(new Template(participants, channel)));
+            e.templates = templates;
+        }
+        for (Template t : e.templates) {
+            if (!quickBounds(s, t, clock, sink)) {
+                fire(s, t, (move, next) -> sink.accept(move, next.zone.upperBound(clock, 0),
+                        next.zone.upperBound(0, clock)));
+            }
+        }
+    }
+
+    /**
+     * The bounds of {@code clock} after {@code t} from {@code s} without building the successor (handed to
+     * {@code sink} unless the move is impossible); false when that cannot be done and the move must be fired.
+     */
+    private boolean quickBounds(SymState s, Template t, int clock, ClockSink sink) {
+        if (t.guardState == UNKNOWN) {
+            listGuards(s, t);
+        }
+        if (t.guardState == SLOW) {
+            return false;
+        }
+        if (t.guard == null) {
+            return true;
+        }
+        Dbm z = s.zone;
+        if (z.isEmpty()) {
+            return true;
+        }
+        // the zone and at most one constraint x_a - x_b <= c of the guards that it does not imply
+        int a = -1;
+        int b = -1;
+        int c = 0;
+        int[] g = t.guard;
+        for (int k = 0; k < g.length; k += 3) {
+            int i = g[k];
+            int j = g[k + 1];
+            if (entry(z, a, b, c, i, j) <= g[k + 2]) {
+                continue;
+            }
+            if (a >= 0) {
+                return false;
+            }
+            if (Bound.add(g[k + 2], entry(z, a, b, c, j, i)) < Bound.LE_ZERO) {
+                return true;
+            }
+            a = i;
+            b = j;
+            c = g[k + 2];
+        }
+        if (t.move == null) {
+            prepare(s, t);
+        }
+        Entry target = t.target;
+        if (target.invariantState == UNKNOWN) {
+            listInvariants(target);
+        }
+        if (target.invariantState == SLOW) {
+            return false;
+        }
+        int[] inv = target.invariant;
+        for (int k = 0; k < inv.length; k += 3) {
+            if (afterResets(z, a, b, c, t, inv[k], inv[k + 1]) > inv[k + 2]) {
+                return false;
+            }
+        }
+        sink.accept(t.move, entry(z, a, b, c, clock, 0), entry(z, a, b, c, 0, clock));
+        return true;
+    }
+
+    /** Entry (i, j) of the closure of {@code z} and x_a - x_b <= c (of {@code z} alone when a is -1). */
+    private static int entry(Dbm z, int a, int b, int c, int i, int j) {
+        int old = z.upperBound(i, j);
+        if (a < 0) {
+            return old;
+        }
+        int via = Bound.add(Bound.add(z.upperBound(i, a), c), z.upperBound(b, j));
+        return Math.min(old, via);
+    }
+
+    /** Entry (i, j) of that zone after the resets of {@code t}, as {@link Dbm#reset} computes it. */
+    private static int afterResets(Dbm z, int a, int b, int c, Template t, int i, int j) {
+        if (i == j) {
+            return Bound.LE_ZERO;
+        }
+        int vi = lastReset(t, i);
+        int vj = lastReset(t, j);
+        int base = entry(z, a, b, c, vi < 0 ? i : 0, vj < 0 ? j : 0);
+        int out = vi < 0 ? base : Bound.add(Bound.le(vi), base);
+        return vj < 0 ? out : Bound.add(out, Bound.le(-vj));
+    }
+
+    /** The value in ticks clock {@code x} is last assigned by {@code t}, or -1. */
+    private static int lastReset(Template t, int x) {
+        for (int k = t.resetClocks.length - 1; k >= 0; k--) {
+            if (t.resetClocks[k] == x) {
+                return t.resetTicks[k];
+            }
+        }
+        return -1;
     }
 
     private void fire(SymState s, Template t, Semantics.MoveSink sink) {

@@ -73,9 +73,9 @@ public final class Plan {
         DiscreteCache cache = new DiscreteCache(semantics, c -> c >= 0 && partition.observable(c) != Partition.INTERNAL);
         for (SymState s : reach) {
             deadline = Math.max(deadline, upper(s, elapsed, horizon));
-            cache.moves(s, (move, next) ->
-                    windows.computeIfAbsent(move.channel(), k -> new ArrayList<>()).add(new Window(lower(next, elapsed),
-                            upper(next, elapsed, horizon), move.steps().get(0))));
+            cache.clockBounds(s, elapsed, (move, upper, lowerNeg) ->
+                    windows.computeIfAbsent(move.channel(), k -> new ArrayList<>()).add(new Window(lower(lowerNeg),
+                            upper(upper, horizon), move.steps().get(0))));
         }
         boolean[] implementation = new boolean[semantics.network().processes().size()];
         for (int p = 0; p < implementation.length; p++) {
@@ -85,17 +85,21 @@ public final class Plan {
         return new Plan(semantics, unitMicros, horizon, Math.min(deadline, horizon), windows, inputs, names, state);
     }
 
-    private static long lower(SymState s, int clock) {
-        int raw = s.zone().lowerBound(clock);
-        if (Bound.isInfinite(raw)) {
-            return 0;
-        }
-        long v = Bound.value(raw);
-        return Bound.isStrict(raw) ? v + 1 : v;
+    private static long upper(SymState s, int clock, long horizon) {
+        return upper(s.zone().upperBound(clock), horizon);
     }
 
-    private static long upper(SymState s, int clock, long horizon) {
-        int raw = s.zone().upperBound(clock);
+    /** The earliest tick of a clock whose negation has the raw bound {@code lowerNeg}. */
+    private static long lower(int lowerNeg) {
+        if (Bound.isInfinite(lowerNeg)) {
+            return 0;
+        }
+        long v = -Bound.value(lowerNeg);
+        return Bound.isStrict(lowerNeg) ? v + 1 : v;
+    }
+
+    /** The latest tick (at most {@code horizon}) of a clock with the raw upper bound {@code raw}. */
+    private static long upper(int raw, long horizon) {
         if (Bound.isInfinite(raw)) {
             return horizon;
         }

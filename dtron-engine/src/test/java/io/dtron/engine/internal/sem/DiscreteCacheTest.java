@@ -14,8 +14,8 @@ import java.util.function.IntPredicate;
 import org.junit.jupiter.api.Test;
 
 /**
- * {@link DiscreteCache} gives every state exactly the delay and the successors {@link Semantics} gives it, in the
- * same order, over the first few hundred states of models with data, selects, binary, broadcast and urgent
+ * {@link DiscreteCache} gives every state exactly the delay, the successors and the bounds of the tester's clock in
+ * them that {@link Semantics} gives it, in the same order, over the first few hundred states of models with data, selects, binary, broadcast and urgent
  * channels, committed locations, data-dependent invariants and clock differences.
  */
 class DiscreteCacheTest {
@@ -40,7 +40,8 @@ class DiscreteCacheTest {
                 C -> A { assign g = 0; },
                 A -> A { guard count > 2; sync hurry!; assign count = 0; };
             }
-            process Q() { state I; init I; trans I -> I { sync hurry?; }, I -> I { sync go?; }; }
+            process Q() { state I, J { g <= 7 }; init I;
+              trans I -> I { sync hurry?; }, I -> J { sync go?; }, J -> I { guard g >= 1; }; }
             system P, Q;
             """;
 
@@ -84,6 +85,15 @@ class DiscreteCacheTest {
             assertEquals(expected, actual, "successors of " + s);
             successors += expected.size();
 
+            int clock = semantics.elapsedClock();
+            List<String> expectedBounds = new ArrayList<>();
+            semantics.moves(s, channels, (move, next) -> expectedBounds.add(describe(semantics, move)
+                    + next.zone().upperBound(clock, 0) + " " + next.zone().upperBound(0, clock)));
+            List<String> actualBounds = new ArrayList<>();
+            cache.clockBounds(s, clock, (move, upper, lowerNeg) -> actualBounds.add(describe(semantics, move)
+                    + upper + " " + lowerNeg));
+            assertEquals(expectedBounds, actualBounds, "bounds after " + s);
+
             SymState a = s.copy();
             SymState b = s.copy();
             assertEquals(semantics.delay(a), cache.delay(b), "delay of " + s);
@@ -116,11 +126,15 @@ class DiscreteCacheTest {
     }
 
     private static String describe(Semantics semantics, Semantics.Move move, SymState next) {
+        return describe(semantics, move) + next;
+    }
+
+    private static String describe(Semantics semantics, Semantics.Move move) {
         StringBuilder sb = new StringBuilder().append(move.channel());
         for (Semantics.Step step : move.steps()) {
             sb.append(' ').append(semantics.describe(step)).append('#').append(System.identityHashCode(step.edge()))
                     .append(Arrays.toString(step.frame()));
         }
-        return sb.append(" -> ").append(next).toString();
+        return sb.append(" -> ").toString();
     }
 }
