@@ -353,6 +353,84 @@ public final class Dbm {
     }
 
     /**
+      * Intersects the zone with every constraint {@code x_i - x_j ⋈ value(b)} listed as triples {@code i, j, b}
+      * in {@code constraints}: the same zone as {@link #constrain} of each in turn. The upper bounds of single
+      * clocks ({@code j} is 0), as invariants give them, are added together: a shortest path uses at most one of
+      * them (it passes the reference clock at most once), so one pass through the reference clock closes the
+      * matrix, in O(n^2) for all of them instead of O(n^2) each.
+      *
+      * @return whether the zone is non-empty afterwards
+      */
+    public boolean constrainAll(int[] constraints) {
+        if (isEmpty()) {
+            return false;
+        }
+        int[] d = m;
+        int n = dim;
+        boolean tighter = false;
+        for (int k = 0; k + 2 < constraints.length; k += 3) {
+            int i = constraints[k];
+            int b = constraints[k + 2];
+            if (constraints[k + 1] != 0 || i == 0 || b >= d[Objects.checkIndex(i, n) * n]) {
+                continue;
+            }
+            if (Bound.add(b, d[i]) < LE_ZERO) {
+                makeEmpty();
+                return false;
+            }
+            tighter = true;
+        }
+        if (tighter) {
+            // column 0: the shortest path from each clock p to the reference through one new bound x_k <= b
+            int[] toZero = new int[n];
+            for (int p = 0; p < n; p++) {
+                toZero[p] = d[p * n];
+            }
+            for (int k = 0; k + 2 < constraints.length; k += 3) {
+                int i = constraints[k];
+                int b = constraints[k + 2];
+                if (constraints[k + 1] != 0 || i == 0) {
+                    continue;
+                }
+                for (int p = 0; p < n; p++) {
+                    int via = Bound.add(d[p * n + i], b);
+                    if (via < toZero[p]) {
+                        toZero[p] = via;
+                    }
+                }
+            }
+            // Every new shortest path p -> q is p -> ... -> 0 -> ... -> q; row 0 itself is unchanged.
+            for (int p = 1; p < n; p++) {
+                int p0 = toZero[p];
+                int rowP = p * n;
+                if (p0 >= d[rowP]) {
+                    continue;
+                }
+                d[rowP] = p0;
+                for (int q = 1; q < n; q++) {
+                    int zq = d[q];
+                    if (q == p || zq == INFINITY) {
+                        continue;
+                    }
+                    // Bound.add inlined: both finite, so only the lower clamp can apply to a tighter sum
+                    long sum = (long) p0 + zq - ((p0 | zq) & 1);
+                    if (sum < d[rowP + q]) {
+                        d[rowP + q] = sum < MIN_RAW ? MIN_RAW : (int) sum;
+                    }
+                }
+            }
+        }
+        for (int k = 0; k + 2 < constraints.length; k += 3) {
+            int i = constraints[k];
+            int j = constraints[k + 1];
+            if ((j != 0 || i == 0) && !constrain(i, j, constraints[k + 2])) {
+                return false;
+            }
+        }
+        return true;
+    }
+
+    /**
       * Intersects this zone with {@code other}.
       *
       * @return whether this zone is non-empty afterwards
@@ -525,12 +603,11 @@ public final class Dbm {
     /**
       * The entries an extrapolation raised (weakened) in this closed, non-empty matrix, and the closure after
       * them. Every other entry is still the shortest path between its clocks (paths only got longer), so
-      * Floyd-Warshall need only update the raised entries: O(n) per raised entry instead of O(n^3) in all.
+      * Floyd-Warshall need only update the raised ones: O(n) per raised entry instead of O(n^3) in all.
       */
     private final class Weakened {
-        /** Row offset and column of each raised entry; allocated at the first. */
-        private int[] rows;
-        private int[] columns;
+        /** Per row, the columns of its raised entries as bits (dimensions up to 64); allocated at the first. */
+        private long[] columns;
         private int count;
 
         /** Sets entry (row offset {@code rowI}, column {@code j}) to {@code b}, no tighter than it was. */
@@ -538,14 +615,16 @@ public final class Dbm {
             if (b == m[rowI + j]) {
                 return;
             }
-            if (rows == null) {
-                rows = new int[m.length];
-                columns = new int[m.length];
-            }
-            rows[count] = rowI;
-            columns[count] = j;
-            count++;
             m[rowI + j] = b;
+            if (dim > Long.SIZE) {
+                count = m.length;
+                return;
+            }
+            if (columns == null) {
+                columns = new long[dim];
+            }
+            columns[rowI / dim] |= 1L << j;
+            count++;
         }
 
         /** Restores the canonical form. */
@@ -559,26 +638,36 @@ public final class Dbm {
             }
             int[] d = m;
             int n = dim;
+            long[] cols = columns;
             for (int k = 0; k < n; k++) {
                 int rowK = k * n;
-                for (int c = 0; c < count; c++) {
-                    int rowI = rows[c];
-                    int j = columns[c];
-                    int ik = d[rowI + k];
-                    int kj = d[rowK + j];
-                    if (ik == INFINITY || kj == INFINITY) {
+                for (int i = 0; i < n; i++) {
+                    long bits = cols[i];
+                    if (bits == 0) {
                         continue;
                     }
-                    // Bound.add inlined: both finite, so only the lower clamp can apply to a tighter sum
-                    long sum = (long) ik + kj - ((ik | kj) & 1);
-                    if (sum < d[rowI + j]) {
-                        d[rowI + j] = sum < MIN_RAW ? MIN_RAW : (int) sum;
+                    int rowI = i * n;
+                    int ik = d[rowI + k];
+                    if (ik == INFINITY) {
+                        continue;
+                    }
+                    while (bits != 0) {
+                        int j = Long.numberOfTrailingZeros(bits);
+                        bits &= bits - 1;
+                        int kj = d[rowK + j];
+                        if (kj == INFINITY) {
+                            continue;
+                        }
+                        // Bound.add inlined: both finite, so only the lower clamp can apply to a tighter sum
+                        long sum = (long) ik + kj - ((ik | kj) & 1);
+                        if (sum < d[rowI + j]) {
+                            d[rowI + j] = sum < MIN_RAW ? MIN_RAW : (int) sum;
+                        }
                     }
                 }
             }
         }
     }
-
 
     /**
       * Returns true for a zone of the same dimension holding the same valuations.

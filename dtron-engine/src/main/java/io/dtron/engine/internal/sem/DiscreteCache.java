@@ -76,6 +76,8 @@ public final class DiscreteCache {
         int hash;
         int[] resetClocks;
         int[] resetTicks;
+        /** Per clock, the value in ticks the move last assigns it, or -1. */
+        int[] resetOf;
         Entry target;
 
         Template(List<Semantics.Candidate> participants, int channel) {
@@ -225,21 +227,11 @@ public final class DiscreteCache {
         if (i == j) {
             return Bound.LE_ZERO;
         }
-        int vi = lastReset(t, i);
-        int vj = lastReset(t, j);
+        int vi = t.resetOf[i];
+        int vj = t.resetOf[j];
         int base = entry(z, a, b, c, vi < 0 ? i : 0, vj < 0 ? j : 0);
         int out = vi < 0 ? base : Bound.add(Bound.le(vi), base);
         return vj < 0 ? out : Bound.add(out, Bound.le(-vj));
-    }
-
-    /** The value in ticks clock {@code x} is last assigned by {@code t}, or -1. */
-    private static int lastReset(Template t, int x) {
-        for (int k = t.resetClocks.length - 1; k >= 0; k--) {
-            if (t.resetClocks[k] == x) {
-                return t.resetTicks[k];
-            }
-        }
-        return -1;
     }
 
     private void fire(SymState s, Template t, Semantics.MoveSink sink) {
@@ -320,6 +312,11 @@ public final class DiscreteCache {
         t.hash = 31 * Arrays.hashCode(locations) + Arrays.hashCode(vars);
         t.resetClocks = clocks;
         t.resetTicks = ticks;
+        t.resetOf = new int[s.zone.dimension()];
+        Arrays.fill(t.resetOf, -1);
+        for (int i = 0; i < clocks.length; i++) {
+            t.resetOf[clocks[i]] = ticks[i];
+        }
         t.target = entry(locations, vars, t.hash);
         t.move = new Semantics.Move(t.channel, List.of(steps));
     }
@@ -355,12 +352,7 @@ public final class DiscreteCache {
     }
 
     private static boolean constrain(Dbm zone, int[] triples) {
-        for (int k = 0; k < triples.length; k += 3) {
-            if (!zone.constrain(triples[k], triples[k + 1], triples[k + 2])) {
-                return false;
-            }
-        }
-        return true;
+        return zone.constrainAll(triples);
     }
 
     private static int[] toArray(ClockBounds b) {

@@ -8,6 +8,7 @@ import io.dtron.engine.internal.sem.SymState;
 import io.dtron.engine.zone.Bound;
 import io.dtron.model.TestInterface;
 import java.util.ArrayList;
+import java.util.Collections;
 import java.util.LinkedHashMap;
 import java.util.List;
 import java.util.Map;
@@ -67,15 +68,27 @@ public final class Plan {
         for (TestInterface.ObservableChannel c : testInterface.outputs()) {
             names.put(c.channel(), c.name());
         }
-        Map<Integer, List<Window>> windows = new LinkedHashMap<>();
+        // per channel, in the order channels are first seen
+        List<List<Window>> byChannel = new ArrayList<>(Collections.nCopies(semantics.network().channelCount(), null));
+        List<Integer> seen = new ArrayList<>();
         long deadline = 0;
         List<SymState> reach = set.reach(horizon);
         DiscreteCache cache = new DiscreteCache(semantics, c -> c >= 0 && partition.observable(c) != Partition.INTERNAL);
         for (SymState s : reach) {
             deadline = Math.max(deadline, upper(s, elapsed, horizon));
-            cache.clockBounds(s, elapsed, (move, upper, lowerNeg) ->
-                    windows.computeIfAbsent(move.channel(), k -> new ArrayList<>()).add(new Window(lower(lowerNeg),
-                            upper(upper, horizon), move.steps().get(0))));
+            cache.clockBounds(s, elapsed, (move, upper, lowerNeg) -> {
+                List<Window> ws = byChannel.get(move.channel());
+                if (ws == null) {
+                    ws = new ArrayList<>();
+                    byChannel.set(move.channel(), ws);
+                    seen.add(move.channel());
+                }
+                ws.add(new Window(lower(lowerNeg), upper(upper, horizon), move.steps().get(0)));
+            });
+        }
+        Map<Integer, List<Window>> windows = new LinkedHashMap<>();
+        for (int channel : seen) {
+            windows.put(channel, byChannel.get(channel));
         }
         boolean[] implementation = new boolean[semantics.network().processes().size()];
         for (int p = 0; p < implementation.length; p++) {

@@ -92,8 +92,8 @@ public final class StateSet {
     public StateSet afterWindow(long fromTicks, long toTicks) {
         int elapsed = semantics.elapsedClock();
         Passed out = new Passed();
-        for (SymState s : reach(toTicks)) {
-            SymState t = copy(s);
+        // the states of reach are its own copies: changed in place
+        for (SymState t : reach(toTicks)) {
             Dbm z = t.zone();
             if (!z.constrain(0, elapsed, Bound.le((int) -Math.min(fromTicks, Bound.MAX_VALUE)))) {
                 continue;
