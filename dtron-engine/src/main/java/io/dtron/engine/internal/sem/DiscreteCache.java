@@ -22,7 +22,8 @@ import java.util.function.IntPredicate;
  * ahead could report a model error that applying them one by one would not (or the other way round), that
  * move or location is handled by {@link Semantics} itself, state by state.
  *
- * <p>For one computation over a set of states: it keeps what it learned until it is dropped. Not thread-safe.
+ * <p>It keeps what it learned until it holds more discrete parts than its limit, then starts again. Not
+ * thread-safe.
  */
 public final class DiscreteCache {
     private static final byte UNKNOWN = 0;
@@ -34,14 +35,19 @@ public final class DiscreteCache {
     private final Evaluator evaluator;
     private final int ticksPerUnit;
     private final IntPredicate channels;
+    private final int limit;
     private final Map<Key, Entry> entries = new HashMap<>();
     private final ClockBounds bounds = new ClockBounds();
     private final ClockResets resets = new ClockResets();
     private Entry last;
 
-    /** A cache for the moves on the channels {@code channels} accepts (-1 for an edge without synchronisation). */
-    public DiscreteCache(Semantics semantics, IntPredicate channels) {
+    /**
+     * A cache for the moves on the channels {@code channels} accepts (-1 for an edge without synchronisation),
+     * forgetting all when it holds more than {@code limit} discrete parts.
+     */
+    public DiscreteCache(Semantics semantics, IntPredicate channels, int limit) {
         this.semantics = semantics;
+        this.limit = limit;
         this.evaluator = semantics.evaluator();
         this.ticksPerUnit = semantics.ticksPerUnit();
         this.channels = channels;
@@ -79,6 +85,11 @@ public final class DiscreteCache {
         /** Per clock, the value in ticks the move last assigns it, or -1. */
         int[] resetOf;
         Entry target;
+        /**
+         * The target's invariant bounds that a zone satisfying the source's invariants may not satisfy after the
+         * move: those the source does not have and those on a clock the move assigns; null until needed.
+         */
+        int[] newInvariant;
 
         Template(List<Semantics.Candidate> participants, int channel) {
             this.participants = participants;
@@ -145,8 +156,9 @@ public final class DiscreteCache {
                     templates.add(new Template(participants, channel)));
             e.templates = templates;
         }
+        boolean invariantsHold = e.invariantState == LISTED && satisfies(s.zone, e.invariant);
         for (Template t : e.templates) {
-            if (!quickBounds(s, t, clock, sink)) {
+            if (!quickBounds(s, e, invariantsHold, t, clock, sink)) {
                 fire(s, t, (move, next) -> sink.accept(move, next.zone.upperBound(clock, 0),
                         next.zone.upperBound(0, clock)));
             }
@@ -157,7 +169,8 @@ public final class DiscreteCache {
      * The bounds of {@code clock} after {@code t} from {@code s} without building the successor (handed to
      * {@code sink} unless the move is impossible); false when that cannot be done and the move must be fired.
      */
-    private boolean quickBounds(SymState s, Template t, int clock, ClockSink sink) {
+    private boolean quickBounds(SymState s, Entry source, boolean invariantsHold, Template t, int clock,
+                                ClockSink sink) {
         if (t.guardState == UNKNOWN) {
             listGuards(s, t);
         }
@@ -202,7 +215,11 @@ public final class DiscreteCache {
         if (target.invariantState == SLOW) {
             return false;
         }
-        int[] inv = target.invariant;
+        if (invariantsHold && t.newInvariant == null) {
+            t.newInvariant = newBounds(source.invariant, target.invariant, t.resetOf);
+        }
+        // the zone after the guard is within that of s: bounds it satisfies hold there too
+        int[] inv = invariantsHold ? t.newInvariant : target.invariant;
         for (int k = 0; k < inv.length; k += 3) {
             if (afterResets(z, a, b, c, t, inv[k], inv[k + 1]) > inv[k + 2]) {
                 return false;
@@ -210,6 +227,41 @@ public final class DiscreteCache {
         }
         sink.accept(t.move, entry(z, a, b, c, clock, 0), entry(z, a, b, c, 0, clock));
         return true;
+    }
+
+    /** Whether {@code z} satisfies every bound of {@code triples}. */
+    private static boolean satisfies(Dbm z, int[] triples) {
+        for (int k = 0; k < triples.length; k += 3) {
+            if (z.upperBound(triples[k], triples[k + 1]) > triples[k + 2]) {
+                return false;
+            }
+        }
+        return true;
+    }
+
+    /** The bounds of {@code target} not in {@code source} or on a clock {@code resetOf} assigns. */
+    private static int[] newBounds(int[] source, int[] target, int[] resetOf) {
+        int[] out = new int[target.length];
+        int n = 0;
+        for (int k = 0; k < target.length; k += 3) {
+            boolean keep = resetOf[target[k]] >= 0 || resetOf[target[k + 1]] >= 0
+                    || !contains(source, target[k], target[k + 1], target[k + 2]);
+            if (keep) {
+                out[n++] = target[k];
+                out[n++] = target[k + 1];
+                out[n++] = target[k + 2];
+            }
+        }
+        return Arrays.copyOf(out, n);
+    }
+
+    private static boolean contains(int[] triples, int i, int j, int b) {
+        for (int k = 0; k < triples.length; k += 3) {
+            if (triples[k] == i && triples[k + 1] == j && triples[k + 2] == b) {
+                return true;
+            }
+        }
+        return false;
     }
 
     /** Entry (i, j) of the closure of {@code z} and x_a - x_b <= c (of {@code z} alone when a is -1). */
@@ -369,6 +421,9 @@ public final class DiscreteCache {
         Entry e = last;
         if (e != null && e.locations == locations && e.vars == vars) {
             return e;
+        }
+        if (entries.size() >= limit) {
+            entries.clear();
         }
         e = entries.computeIfAbsent(new Key(locations, vars, hash), k -> new Entry(k.locations, k.vars));
         last = e;

@@ -73,7 +73,7 @@ public final class Plan {
         List<Integer> seen = new ArrayList<>();
         long deadline = 0;
         List<SymState> reach = set.reach(horizon);
-        DiscreteCache cache = new DiscreteCache(semantics, c -> c >= 0 && partition.observable(c) != Partition.INTERNAL);
+        DiscreteCache cache = set.observableMoves();
         for (SymState s : reach) {
             deadline = Math.max(deadline, upper(s, elapsed, horizon));
             cache.clockBounds(s, elapsed, (move, upper, lowerNeg) -> {

@@ -10,7 +10,9 @@ import java.util.ArrayDeque;
 import java.util.ArrayList;
 import java.util.Collections;
 import java.util.Deque;
+import java.util.HashMap;
 import java.util.List;
+import java.util.Map;
 
 /**
  * The tester's knowledge: the symbolic states the closed network may be in at the time of the last
@@ -22,26 +24,58 @@ public final class StateSet {
 
     private final Semantics semantics;
     private final Partition partition;
+    private final Caches caches;
     private final List<SymState> states;
+
+    /**
+     * What the sets made from one initial set learn about discrete parts (see {@link DiscreteCache}), kept from
+     * step to step as a run comes back to the same locations and values; each cache starts again when it holds
+     * {@link #LIMIT} discrete parts. Not thread-safe, as the semantics they share is not.
+     */
+    static final class Caches {
+        static final int LIMIT = 2_000;
+        final DiscreteCache internal;
+        final DiscreteCache observable;
+        private final Semantics semantics;
+        private final Map<Integer, DiscreteCache> byChannel = new HashMap<>();
+
+        Caches(Semantics semantics, Partition partition) {
+            this.semantics = semantics;
+            this.internal = new DiscreteCache(semantics, c -> c < 0 || partition.observable(c) == Partition.INTERNAL,
+                    LIMIT);
+            this.observable = new DiscreteCache(semantics,
+                    c -> c >= 0 && partition.observable(c) != Partition.INTERNAL, LIMIT);
+        }
+
+        DiscreteCache channel(int channel) {
+            return byChannel.computeIfAbsent(channel, c -> new DiscreteCache(semantics, k -> k == c, LIMIT));
+        }
+    }
 
     /** A successor of the set by one move, with the move. */
     public record Successor(Semantics.Move move, SymState from, SymState state) {
     }
 
-    StateSet(Semantics semantics, Partition partition, List<SymState> states) {
+    private StateSet(Semantics semantics, Partition partition, Caches caches, List<SymState> states) {
         this.semantics = semantics;
         this.partition = partition;
+        this.caches = caches;
         this.states = Collections.unmodifiableList(states);
     }
 
     /** The set holding the initial state. */
     public static StateSet initial(Semantics semantics, Partition partition) {
-        return new StateSet(semantics, partition, List.of(semantics.initial()));
+        return new StateSet(semantics, partition, new Caches(semantics, partition), List.of(semantics.initial()));
     }
 
     /** The states (zones not to be changed). */
     public List<SymState> states() {
         return states;
+    }
+
+    /** The cache of the moves on observable channels, for plans. */
+    DiscreteCache observableMoves() {
+        return caches.observable;
     }
 
     /** Whether no state is left. */
@@ -57,7 +91,7 @@ public final class StateSet {
         int elapsed = semantics.elapsedClock();
         int horizon = (int) Math.min(horizonTicks, Bound.MAX_VALUE);
         Passed passed = new Passed();
-        DiscreteCache cache = new DiscreteCache(semantics, c -> c < 0 || partition.observable(c) == Partition.INTERNAL);
+        DiscreteCache cache = caches.internal;
         Deque<SymState> waiting = new ArrayDeque<>();
         for (SymState s : states) {
             waiting.add(copy(s));
@@ -102,13 +136,13 @@ public final class StateSet {
             semantics.extrapolate(z);
             out.add(t);
         }
-        return new StateSet(semantics, partition, out.states());
+        return new StateSet(semantics, partition, caches, out.states());
     }
 
     /** The successors of this set by the moves on channel number {@code channel} (no delay before them). */
     public List<Successor> successors(int channel) {
         List<Successor> out = new ArrayList<>();
-        DiscreteCache cache = new DiscreteCache(semantics, c -> c == channel);
+        DiscreteCache cache = caches.channel(channel);
         for (SymState s : states) {
             cache.moves(s, (move, next) -> out.add(new Successor(move, s, next)));
         }
@@ -121,7 +155,7 @@ public final class StateSet {
         for (SymState s : next) {
             out.add(s);
         }
-        return new StateSet(semantics, partition, out.states());
+        return new StateSet(semantics, partition, caches, out.states());
     }
 
     private static SymState copy(SymState s) {

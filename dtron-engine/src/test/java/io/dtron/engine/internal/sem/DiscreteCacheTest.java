@@ -57,25 +57,26 @@ class DiscreteCacheTest {
 
     @Test
     void mixedModelAllChannels() throws Exception {
-        compare(MIXED, c -> true);
+        compare(MIXED, c -> true, 1000);
     }
 
     @Test
     void mixedModelSomeChannels() throws Exception {
-        compare(MIXED, c -> c != 0);
+        compare(MIXED, c -> c != 0, 3);
     }
 
     @Test
     void timersAllChannels() throws Exception {
-        compare(TIMERS, c -> true);
+        compare(TIMERS, c -> true, 1000);
     }
 
-    private static void compare(String model, IntPredicate channels) throws Exception {
+    /** Compares over the first states of {@code model}, with a cache that starts again after {@code limit} parts. */
+    private static void compare(String model, IntPredicate channels, int limit) throws Exception {
         Network network = ModelLoader.load("m.xta", model);
         Semantics semantics = new Semantics(network, 1000);
         List<SymState> states = explore(semantics, 300);
         assertTrue(states.size() > 10, "explored " + states.size());
-        DiscreteCache cache = new DiscreteCache(semantics, channels);
+        DiscreteCache cache = new DiscreteCache(semantics, channels, limit);
         int successors = 0;
         for (SymState s : states) {
             List<String> expected = new ArrayList<>();
