@@ -339,14 +339,10 @@ public final class Dbm {
             }
             for (int l = 0; l < dim; l++) {
                 int jl = d[rowJ + l];
-                if (jl == INFINITY) {
-                    continue;
-                }
-                // Bound.add inlined: both finite, so only the lower clamp can apply to a tighter sum
-                long sum = (long) toJ + jl - ((toJ | jl) & 1);
-                if (sum < d[rowK + l]) {
-                    d[rowK + l] = sum < MIN_RAW ? MIN_RAW : (int) sum;
-                }
+                // Bound.add inlined (for finite bounds only the lower clamp can apply to a tighter sum), without
+                // branches: whether a sum is tighter is hard to predict
+                long sum = jl == INFINITY ? Long.MAX_VALUE : (long) toJ + jl - ((toJ | jl) & 1);
+                d[rowK + l] = (int) Math.min(d[rowK + l], Math.max(sum, MIN_RAW));
             }
         }
         return true;
@@ -362,13 +358,18 @@ public final class Dbm {
       * @return whether the zone is non-empty afterwards
       */
     public boolean constrainAll(int[] constraints) {
+        return constrainAll(constraints, constraints.length);
+    }
+
+    /** {@link #constrainAll(int[])} of the first {@code length} entries of {@code constraints}. */
+    public boolean constrainAll(int[] constraints, int length) {
         if (isEmpty()) {
             return false;
         }
         int[] d = m;
         int n = dim;
         boolean tighter = false;
-        for (int k = 0; k + 2 < constraints.length; k += 3) {
+        for (int k = 0; k + 2 < length; k += 3) {
             int i = constraints[k];
             int b = constraints[k + 2];
             if (constraints[k + 1] != 0 || i == 0 || b >= d[Objects.checkIndex(i, n) * n]) {
@@ -386,7 +387,7 @@ public final class Dbm {
             for (int p = 0; p < n; p++) {
                 toZero[p] = d[p * n];
             }
-            for (int k = 0; k + 2 < constraints.length; k += 3) {
+            for (int k = 0; k + 2 < length; k += 3) {
                 int i = constraints[k];
                 int b = constraints[k + 2];
                 if (constraints[k + 1] != 0 || i == 0) {
@@ -420,7 +421,7 @@ public final class Dbm {
                 }
             }
         }
-        for (int k = 0; k + 2 < constraints.length; k += 3) {
+        for (int k = 0; k + 2 < length; k += 3) {
             int i = constraints[k];
             int j = constraints[k + 1];
             if ((j != 0 || i == 0) && !constrain(i, j, constraints[k + 2])) {
@@ -655,14 +656,10 @@ public final class Dbm {
                         int j = Long.numberOfTrailingZeros(bits);
                         bits &= bits - 1;
                         int kj = d[rowK + j];
-                        if (kj == INFINITY) {
-                            continue;
-                        }
-                        // Bound.add inlined: both finite, so only the lower clamp can apply to a tighter sum
-                        long sum = (long) ik + kj - ((ik | kj) & 1);
-                        if (sum < d[rowI + j]) {
-                            d[rowI + j] = sum < MIN_RAW ? MIN_RAW : (int) sum;
-                        }
+                        // Bound.add inlined: for finite bounds only the lower clamp can apply to a tighter sum;
+                        // written without branches, as whether a sum is tighter is hard to predict
+                        long sum = kj == INFINITY ? Long.MAX_VALUE : (long) ik + kj - ((ik | kj) & 1);
+                        d[rowI + j] = (int) Math.min(d[rowI + j], Math.max(sum, MIN_RAW));
                     }
                 }
             }
@@ -781,14 +778,10 @@ public final class Dbm {
                 }
                 for (int j = 0; j < n; j++) {
                     int kj = d[rowK + j];
-                    if (kj == INFINITY) {
-                        continue;
-                    }
-                    // Bound.add inlined: both finite, so only the lower clamp can apply to a tighter sum
-                    long sum = (long) ik + kj - ((ik | kj) & 1);
-                    if (sum < d[rowI + j]) {
-                        d[rowI + j] = sum < MIN_RAW ? MIN_RAW : (int) sum;
-                    }
+                    // Bound.add inlined (for finite bounds only the lower clamp can apply to a tighter sum),
+                    // without branches: whether a sum is tighter is hard to predict
+                    long sum = kj == INFINITY ? Long.MAX_VALUE : (long) ik + kj - ((ik | kj) & 1);
+                    d[rowI + j] = (int) Math.min(d[rowI + j], Math.max(sum, MIN_RAW));
                 }
                 if (d[rowI + i] < LE_ZERO) {
                     makeEmpty();

@@ -1,8 +1,10 @@
 package io.dtron.engine.internal.sem;
 
 import io.dtron.engine.UnsupportedModelException;
+import io.dtron.engine.internal.eval.ClockBounds;
 import io.dtron.engine.internal.eval.ClockResets;
 import io.dtron.engine.internal.eval.Evaluator;
+import io.dtron.engine.internal.eval.ModelRuntimeException;
 import io.dtron.engine.zone.Bound;
 import io.dtron.engine.zone.Dbm;
 import io.dtron.model.ClockVariable;
@@ -50,6 +52,9 @@ public final class Semantics {
     private final boolean anyUrgentChannel;
     /** The clock assignments of the move being fired (cleared before its successor is handed on). */
     private final ClockResets resets = new ClockResets();
+    /** The clock bounds of the invariants being applied, and the same as triples for {@link Dbm#constrainAll}. */
+    private final ClockBounds bounds = new ClockBounds();
+    private int[] listed = new int[24];
 
     /** A move: the edges that take part, in the order their updates run, and the channel (-1 for none). */
     public record Move(int channel, List<Step> steps) {
@@ -207,6 +212,40 @@ public final class Semantics {
 
     /** Applies the invariants of {@code locations} to {@code zone}; false if the zone becomes empty. */
     public boolean invariants(int[] locations, int[] vars, Dbm zone) {
+        // their clock bounds listed first and added together (Dbm.constrainAll); when listing meets a model
+        // error, one invariant at a time, so that an error is raised exactly when it was before
+        bounds.clear();
+        try {
+            for (int p = 0; p < locations.length; p++) {
+                int l = locations[p];
+                Evaluator.Handle inv = l < 0 ? null : invariant[p][l];
+                if (inv != null && !evaluator.clockBounds(inv, vars, null, ticksPerUnit, bounds)) {
+                    // a data conjunct is false: the zone as applying them one at a time leaves it
+                    applyListed(zone);
+                    return false;
+                }
+            }
+        } catch (ModelRuntimeException e) {
+            return invariantsOneByOne(locations, vars, zone);
+        }
+        return applyListed(zone) && !zone.isEmpty();
+    }
+
+    /** Adds the bounds listed in {@link #bounds} to {@code zone}; false if it becomes empty. */
+    private boolean applyListed(Dbm zone) {
+        int n = bounds.size();
+        if (listed.length < 3 * n) {
+            listed = new int[3 * n];
+        }
+        for (int k = 0; k < n; k++) {
+            listed[3 * k] = bounds.i(k);
+            listed[3 * k + 1] = bounds.j(k);
+            listed[3 * k + 2] = bounds.bound(k);
+        }
+        return zone.constrainAll(listed, 3 * n);
+    }
+
+    private boolean invariantsOneByOne(int[] locations, int[] vars, Dbm zone) {
         for (int p = 0; p < locations.length; p++) {
             int l = locations[p];
             if (l < 0) {
