@@ -390,14 +390,15 @@ public final class Dbm {
             for (int k = 0; k + 2 < length; k += 3) {
                 int i = constraints[k];
                 int b = constraints[k + 2];
-                if (constraints[k + 1] != 0 || i == 0) {
+                if (constraints[k + 1] != 0 || i == 0 || b >= d[i * n]) {
+                    // a bound the zone already has shortens no path
                     continue;
                 }
-                for (int p = 0; p < n; p++) {
-                    int via = Bound.add(d[p * n + i], b);
-                    if (via < toZero[p]) {
-                        toZero[p] = via;
-                    }
+                for (int p = 1; p < n; p++) {
+                    int pi = d[p * n + i];
+                    // Bound.add inlined: b is finite; only the lower clamp can apply to a tighter sum
+                    long via = pi == INFINITY ? Long.MAX_VALUE : (long) pi + b - ((pi | b) & 1);
+                    toZero[p] = (int) Math.min(toZero[p], Math.max(via, MIN_RAW));
                 }
             }
             // Every new shortest path p -> q is p -> ... -> 0 -> ... -> q; row 0 itself is unchanged.

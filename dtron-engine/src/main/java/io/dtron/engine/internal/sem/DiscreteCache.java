@@ -61,6 +61,8 @@ public final class DiscreteCache {
         byte mayDelay;
         byte invariantState = UNKNOWN;
         int[] invariant;
+        /** {@link #invariant} and room for one more bound, for {@link #delay}. */
+        int[] invariantAndBound;
         List<Template> templates;
 
         Entry(int[] locations, int[] vars) {
@@ -110,8 +112,11 @@ public final class DiscreteCache {
         }
     }
 
-    /** {@link Semantics#delay(SymState)}. */
-    public boolean delay(SymState s) {
+    /**
+     * {@link Semantics#delay(SymState)}, then the upper bound {@code x_clock ⋈ value(bound)} (raw), added together
+     * with the invariants; false if nothing is left.
+     */
+    public boolean delay(SymState s, int clock, int bound) {
         Entry e = entry(s.locations, s.vars, s.discreteHash());
         if (e.mayDelay == 0) {
             e.mayDelay = semantics.mayDelay(s) ? (byte) 1 : (byte) 2;
@@ -119,7 +124,21 @@ public final class DiscreteCache {
         if (e.mayDelay == 1) {
             s.zone.up();
         }
-        return invariants(e, s.zone);
+        if (e.invariantState == UNKNOWN) {
+            listInvariants(e);
+        }
+        if (e.invariantState == SLOW) {
+            return semantics.invariants(e.locations, e.vars, s.zone) && s.zone.constrain(clock, 0, bound);
+        }
+        int[] triples = e.invariantAndBound;
+        if (triples == null) {
+            triples = Arrays.copyOf(e.invariant, e.invariant.length + 3);
+            e.invariantAndBound = triples;
+        }
+        triples[triples.length - 3] = clock;
+        triples[triples.length - 2] = 0;
+        triples[triples.length - 1] = bound;
+        return s.zone.constrainAll(triples) && !s.zone.isEmpty();
     }
 
     /** {@link Semantics#moves(SymState, IntPredicate, Semantics.MoveSink)} with this cache's channels. */

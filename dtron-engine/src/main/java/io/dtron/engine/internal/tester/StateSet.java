@@ -99,7 +99,7 @@ public final class StateSet {
         int visited = 0;
         while (!waiting.isEmpty()) {
             SymState s = waiting.poll();
-            if (!cache.delay(s) || !s.zone().constrain(elapsed, 0, Bound.le(horizon))) {
+            if (!cache.delay(s, elapsed, Bound.le(horizon))) {
                 continue;
             }
             if (!passed.add(s)) {
