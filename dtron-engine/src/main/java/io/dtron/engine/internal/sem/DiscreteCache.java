@@ -143,6 +143,24 @@ public final class DiscreteCache {
 
     /** {@link Semantics#moves(SymState, IntPredicate, Semantics.MoveSink)} with this cache's channels. */
     public void moves(SymState s, Semantics.MoveSink sink) {
+        for (Template t : templates(s)) {
+            fire(s, t, sink);
+        }
+    }
+
+    /**
+     * {@link #moves(SymState, Semantics.MoveSink)}, only those on channel {@code channel} (one this cache's
+     * channels include): the same as a cache for that channel alone gives.
+     */
+    public void moves(SymState s, int channel, Semantics.MoveSink sink) {
+        for (Template t : templates(s)) {
+            if (t.channel == channel) {
+                fire(s, t, sink);
+            }
+        }
+    }
+
+    private List<Template> templates(SymState s) {
         Entry e = entry(s.locations, s.vars, s.discreteHash());
         if (e.templates == null) {
             List<Template> templates = new ArrayList<>();
@@ -150,9 +168,7 @@ public final class DiscreteCache {
                     templates.add(new Template(participants, channel)));
             e.templates = templates;
         }
-        for (Template t : e.templates) {
-            fire(s, t, sink);
-        }
+        return e.templates;
     }
 
     /** Receives the bounds of one clock in a successor: the move, the raw bounds of the clock and of minus it. */
@@ -168,15 +184,10 @@ public final class DiscreteCache {
      * off the zone of {@code s} without building the successor.
      */
     public void clockBounds(SymState s, int clock, ClockSink sink) {
+        List<Template> templates = templates(s);
         Entry e = entry(s.locations, s.vars, s.discreteHash());
-        if (e.templates == null) {
-            List<Template> templates = new ArrayList<>();
-            semantics.enumerate(s, channels, (participants, channel) ->
-                    templates.add(new Template(participants, channel)));
-            e.templates = templates;
-        }
         boolean invariantsHold = e.invariantState == LISTED && satisfies(s.zone, e.invariant);
-        for (Template t : e.templates) {
+        for (Template t : templates) {
             if (!quickBounds(s, e, invariantsHold, t, clock, sink)) {
                 fire(s, t, (move, next) -> sink.accept(move, next.zone.upperBound(clock, 0),
                         next.zone.upperBound(0, clock)));

@@ -10,9 +10,7 @@ import java.util.ArrayDeque;
 import java.util.ArrayList;
 import java.util.Collections;
 import java.util.Deque;
-import java.util.HashMap;
 import java.util.List;
-import java.util.Map;
 
 /**
  * The tester's knowledge: the symbolic states the closed network may be in at the time of the last
@@ -28,27 +26,21 @@ public final class StateSet {
     private final List<SymState> states;
 
     /**
-     * What the sets made from one initial set learn about discrete parts (see {@link DiscreteCache}), kept from
-     * step to step as a run comes back to the same locations and values; each cache starts again when it holds
-     * {@link #LIMIT} discrete parts. Not thread-safe, as the semantics they share is not.
+     * What the sets made from one initial set learn about discrete parts (see {@link DiscreteCache}), for
+     * internal and for observable moves, kept from step to step as a run comes back to the same locations and
+     * values; each starts again when it holds {@link #LIMIT} discrete parts. Not thread-safe, as the semantics
+     * they share is not.
      */
     static final class Caches {
         static final int LIMIT = 2_000;
         final DiscreteCache internal;
         final DiscreteCache observable;
-        private final Semantics semantics;
-        private final Map<Integer, DiscreteCache> byChannel = new HashMap<>();
 
         Caches(Semantics semantics, Partition partition) {
-            this.semantics = semantics;
             this.internal = new DiscreteCache(semantics, c -> c < 0 || partition.observable(c) == Partition.INTERNAL,
                     LIMIT);
             this.observable = new DiscreteCache(semantics,
                     c -> c >= 0 && partition.observable(c) != Partition.INTERNAL, LIMIT);
-        }
-
-        DiscreteCache channel(int channel) {
-            return byChannel.computeIfAbsent(channel, c -> new DiscreteCache(semantics, k -> k == c, LIMIT));
         }
     }
 
@@ -142,9 +134,10 @@ public final class StateSet {
     /** The successors of this set by the moves on channel number {@code channel} (no delay before them). */
     public List<Successor> successors(int channel) {
         List<Successor> out = new ArrayList<>();
-        DiscreteCache cache = caches.channel(channel);
+        boolean observable = channel >= 0 && partition.observable(channel) != Partition.INTERNAL;
+        DiscreteCache cache = observable ? caches.observable : new DiscreteCache(semantics, c -> c == channel, Caches.LIMIT);
         for (SymState s : states) {
-            cache.moves(s, (move, next) -> out.add(new Successor(move, s, next)));
+            cache.moves(s, channel, (move, next) -> out.add(new Successor(move, s, next)));
         }
         return out;
     }

@@ -16,7 +16,7 @@ import org.junit.jupiter.api.Test;
 
 /**
  * {@link DiscreteCache} gives every state exactly the delay (up to a bound on the tester's clock), the successors
- * and the bounds of the tester's clock in them that {@link Semantics} gives it, in the same order, over the first
+ * (all, and those on each channel) and the bounds of the tester's clock in them that {@link Semantics} gives it, in the same order, over the first
  * few hundred states of models with data, selects, binary, broadcast and urgent channels, committed locations,
  * data-dependent invariants and clock differences.
  */
@@ -87,6 +87,18 @@ class DiscreteCacheTest {
             cache.moves(s, (move, next) -> actual.add(describe(semantics, move, next)));
             assertEquals(expected, actual, "successors of " + s);
             successors += expected.size();
+
+            for (int channel = 0; channel < semantics.network().channelCount(); channel++) {
+                int only = channel;
+                if (!channels.test(only)) {
+                    continue;
+                }
+                List<String> expectedOn = new ArrayList<>();
+                semantics.moves(s, c -> c == only, (move, next) -> expectedOn.add(describe(semantics, move, next)));
+                List<String> actualOn = new ArrayList<>();
+                cache.moves(s, only, (move, next) -> actualOn.add(describe(semantics, move, next)));
+                assertEquals(expectedOn, actualOn, "successors on channel " + only + " of " + s);
+            }
 
             int clock = semantics.elapsedClock();
             List<String> expectedBounds = new ArrayList<>();
