@@ -330,17 +330,103 @@ public final class Dbm {
         // The old matrix was closed and the new edge closes no negative cycle, so a shortest path
         // uses the new edge at most once: relax every pair k, l through k -> i -> j -> l.
         int rowJ = j * dim;
+        int[] d = m;
         for (int k = 0; k < dim; k++) {
             int rowK = k * dim;
-            int toJ = Bound.add(m[rowK + i], bound);
+            int toJ = Bound.add(d[rowK + i], bound);
             if (toJ == INFINITY) {
                 continue;
             }
             for (int l = 0; l < dim; l++) {
-                int b = Bound.add(toJ, m[rowJ + l]);
-                if (b < m[rowK + l]) {
-                    m[rowK + l] = b;
+                int jl = d[rowJ + l];
+                // Bound.add inlined (for finite bounds only the lower clamp can apply to a tighter sum), without
+                // branches: whether a sum is tighter is hard to predict
+                long sum = jl == INFINITY ? Long.MAX_VALUE : (long) toJ + jl - ((toJ | jl) & 1);
+                d[rowK + l] = (int) Math.min(d[rowK + l], Math.max(sum, MIN_RAW));
+            }
+        }
+        return true;
+    }
+
+    /**
+      * Intersects the zone with every constraint {@code x_i - x_j ⋈ value(b)} listed as triples {@code i, j, b}
+      * in {@code constraints}: the same zone as {@link #constrain} of each in turn. The upper bounds of single
+      * clocks ({@code j} is 0), as invariants give them, are added together: a shortest path uses at most one of
+      * them (it passes the reference clock at most once), so one pass through the reference clock closes the
+      * matrix, in O(n^2) for all of them instead of O(n^2) each.
+      *
+      * @return whether the zone is non-empty afterwards
+      */
+    public boolean constrainAll(int[] constraints) {
+        return constrainAll(constraints, constraints.length);
+    }
+
+    /** {@link #constrainAll(int[])} of the first {@code length} entries of {@code constraints}. */
+    public boolean constrainAll(int[] constraints, int length) {
+        if (isEmpty()) {
+            return false;
+        }
+        int[] d = m;
+        int n = dim;
+        boolean tighter = false;
+        for (int k = 0; k + 2 < length; k += 3) {
+            int i = constraints[k];
+            int b = constraints[k + 2];
+            if (constraints[k + 1] != 0 || i == 0 || b >= d[Objects.checkIndex(i, n) * n]) {
+                continue;
+            }
+            if (Bound.add(b, d[i]) < LE_ZERO) {
+                makeEmpty();
+                return false;
+            }
+            tighter = true;
+        }
+        if (tighter) {
+            // column 0: the shortest path from each clock p to the reference through one new bound x_k <= b
+            int[] toZero = new int[n];
+            for (int p = 0; p < n; p++) {
+                toZero[p] = d[p * n];
+            }
+            for (int k = 0; k + 2 < length; k += 3) {
+                int i = constraints[k];
+                int b = constraints[k + 2];
+                if (constraints[k + 1] != 0 || i == 0 || b >= d[i * n]) {
+                    // a bound the zone already has shortens no path
+                    continue;
                 }
+                for (int p = 1; p < n; p++) {
+                    int pi = d[p * n + i];
+                    // Bound.add inlined: b is finite; only the lower clamp can apply to a tighter sum
+                    long via = pi == INFINITY ? Long.MAX_VALUE : (long) pi + b - ((pi | b) & 1);
+                    toZero[p] = (int) Math.min(toZero[p], Math.max(via, MIN_RAW));
+                }
+            }
+            // Every new shortest path p -> q is p -> ... -> 0 -> ... -> q; row 0 itself is unchanged.
+            for (int p = 1; p < n; p++) {
+                int p0 = toZero[p];
+                int rowP = p * n;
+                if (p0 >= d[rowP]) {
+                    continue;
+                }
+                d[rowP] = p0;
+                for (int q = 1; q < n; q++) {
+                    int zq = d[q];
+                    if (q == p || zq == INFINITY) {
+                        continue;
+                    }
+                    // Bound.add inlined: both finite, so only the lower clamp can apply to a tighter sum
+                    long sum = (long) p0 + zq - ((p0 | zq) & 1);
+                    if (sum < d[rowP + q]) {
+                        d[rowP + q] = sum < MIN_RAW ? MIN_RAW : (int) sum;
+                    }
+                }
+            }
+        }
+        for (int k = 0; k + 2 < length; k += 3) {
+            int i = constraints[k];
+            int j = constraints[k + 1];
+            if ((j != 0 || i == 0) && !constrain(i, j, constraints[k + 2])) {
+                return false;
             }
         }
         return true;
@@ -455,11 +541,10 @@ public final class Dbm {
         if (isEmpty()) {
             return;
         }
-        boolean changed = false;
+        Weakened changed = new Weakened();
         for (int j = 1; j < dim; j++) {
             int b = clampLower(m[j], max[j]);
-            changed |= b != m[j];
-            m[j] = b;
+            changed.set(0, j, b);
         }
         for (int i = 1; i < dim; i++) {
             int rowI = i * dim;
@@ -470,13 +555,10 @@ public final class Dbm {
                     continue;
                 }
                 int weaker = b > above ? INFINITY : j == 0 ? b : clampDifference(b, max[j]);
-                changed |= weaker != b;
-                m[rowI + j] = weaker;
+                changed.set(rowI, j, weaker);
             }
         }
-        if (changed) {
-            close();
-        }
+        changed.close();
     }
 
 
@@ -497,7 +579,7 @@ public final class Dbm {
         if (isEmpty()) {
             return;
         }
-        boolean changed = false;
+        Weakened changed = new Weakened();
         // Rows 1.. first: their conditions read row 0 before it is rewritten.
         for (int i = 1; i < dim; i++) {
             int rowI = i * dim;
@@ -509,21 +591,81 @@ public final class Dbm {
                     continue;
                 }
                 if (aboveLower || b > above || j != 0 && (upper[j] < 0 || m[j] < Bound.le(-upper[j]))) {
-                    m[rowI + j] = INFINITY;
-                    changed = true;
+                    changed.set(rowI, j, INFINITY);
                 }
             }
         }
         for (int j = 1; j < dim; j++) {
             int b = clampLower(m[j], upper[j]);
-            changed |= b != m[j];
-            m[j] = b;
+            changed.set(0, j, b);
         }
-        if (changed) {
-            close();
-        }
+        changed.close();
     }
 
+    /**
+      * The entries an extrapolation raised (weakened) in this closed, non-empty matrix, and the closure after
+      * them. Every other entry is still the shortest path between its clocks (paths only got longer), so
+      * Floyd-Warshall need only update the raised ones: O(n) per raised entry instead of O(n^3) in all.
+      */
+    private final class Weakened {
+        /** Per row, the columns of its raised entries as bits (dimensions up to 64); allocated at the first. */
+        private long[] columns;
+        private int count;
+
+        /** Sets entry (row offset {@code rowI}, column {@code j}) to {@code b}, no tighter than it was. */
+        void set(int rowI, int j, int b) {
+            if (b == m[rowI + j]) {
+                return;
+            }
+            m[rowI + j] = b;
+            if (dim > Long.SIZE) {
+                count = m.length;
+                return;
+            }
+            if (columns == null) {
+                columns = new long[dim];
+            }
+            columns[rowI / dim] |= 1L << j;
+            count++;
+        }
+
+        /** Restores the canonical form. */
+        void close() {
+            if (count == 0) {
+                return;
+            }
+            if (2 * count > m.length) {
+                Dbm.this.close();
+                return;
+            }
+            int[] d = m;
+            int n = dim;
+            long[] cols = columns;
+            for (int k = 0; k < n; k++) {
+                int rowK = k * n;
+                for (int i = 0; i < n; i++) {
+                    long bits = cols[i];
+                    if (bits == 0) {
+                        continue;
+                    }
+                    int rowI = i * n;
+                    int ik = d[rowI + k];
+                    if (ik == INFINITY) {
+                        continue;
+                    }
+                    while (bits != 0) {
+                        int j = Long.numberOfTrailingZeros(bits);
+                        bits &= bits - 1;
+                        int kj = d[rowK + j];
+                        // Bound.add inlined: for finite bounds only the lower clamp can apply to a tighter sum;
+                        // written without branches, as whether a sum is tighter is hard to predict
+                        long sum = kj == INFINITY ? Long.MAX_VALUE : (long) ik + kj - ((ik | kj) & 1);
+                        d[rowI + j] = (int) Math.min(d[rowI + j], Math.max(sum, MIN_RAW));
+                    }
+                }
+            }
+        }
+    }
 
     /**
       * Returns true for a zone of the same dimension holding the same valuations.
@@ -637,14 +779,10 @@ public final class Dbm {
                 }
                 for (int j = 0; j < n; j++) {
                     int kj = d[rowK + j];
-                    if (kj == INFINITY) {
-                        continue;
-                    }
-                    // Bound.add inlined: both finite, so only the lower clamp can apply to a tighter sum
-                    long sum = (long) ik + kj - ((ik | kj) & 1);
-                    if (sum < d[rowI + j]) {
-                        d[rowI + j] = sum < MIN_RAW ? MIN_RAW : (int) sum;
-                    }
+                    // Bound.add inlined (for finite bounds only the lower clamp can apply to a tighter sum),
+                    // without branches: whether a sum is tighter is hard to predict
+                    long sum = kj == INFINITY ? Long.MAX_VALUE : (long) ik + kj - ((ik | kj) & 1);
+                    d[rowI + j] = (int) Math.min(d[rowI + j], Math.max(sum, MIN_RAW));
                 }
                 if (d[rowI + i] < LE_ZERO) {
                     makeEmpty();

@@ -101,6 +101,38 @@ class DbmPropertyTest {
     }
 
     @Test
+    void constrainAllEqualsConstrainingOneAtATime() {
+        int[] seen = new int[2];
+        forCases(17, ZONES, (r, dim) -> {
+            Dbm z = Zones.randomZone(r, dim, MAX_CONST);
+            if (r.nextBoolean()) {
+                z.up();
+            }
+            int count = 1 + r.nextInt(2 * dim);
+            int[] triples = new int[3 * count];
+            for (int k = 0; k < count; k++) {
+                // mostly upper bounds of one clock, as invariants give them
+                Constraint c = Zones.randomConstraint(r, dim, MAX_CONST);
+                boolean upper = r.nextInt(3) > 0;
+                triples[3 * k] = upper ? 1 + r.nextInt(dim - 1) : c.i();
+                triples[3 * k + 1] = upper ? 0 : c.j();
+                triples[3 * k + 2] = upper ? Bound.of(r.nextInt(MAX_CONST + 1), r.nextBoolean()) : c.raw();
+            }
+            Dbm one = z.copy();
+            boolean nonEmpty = true;
+            for (int k = 0; k < count && nonEmpty; k++) {
+                nonEmpty = one.constrain(triples[3 * k], triples[3 * k + 1], triples[3 * k + 2]);
+            }
+            Dbm all = z.copy();
+            assertEquals(nonEmpty, all.constrainAll(triples), () -> "emptiness of " + Arrays.toString(triples));
+            assertEquals(one, all, () -> Arrays.toString(triples) + " on " + z);
+            assertCanonical(all);
+            seen[nonEmpty ? 1 : 0]++;
+        });
+        assertTrue(seen[0] > 10 && seen[1] > 10, "empty/non-empty " + seen[0] + "/" + seen[1]);
+    }
+
+    @Test
     void emptinessAgreesWithExhaustiveSearch() {
         int[] seen = new int[2];
         forCases(2, ZONES, (r, dim) -> {

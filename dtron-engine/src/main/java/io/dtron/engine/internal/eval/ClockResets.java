@@ -56,14 +56,23 @@ public final class ClockResets {
      */
     public void applyTo(Dbm zone, int ticksPerUnit) {
         for (int i = 0; i < size; i++) {
-            long ticks = (long) values[i] * ticksPerUnit;
-            if (ticks > Bound.MAX_VALUE) {
-                throw new ModelRuntimeException(positions[i], "the clock value " + values[i]
-                        + " is too large for the engine's time resolution (at most "
-                        + Bound.MAX_VALUE / ticksPerUnit + " time units)");
-            }
-            zone.reset(clocks[i], (int) ticks);
+            zone.reset(clocks[i], ticks(i, ticksPerUnit));
         }
+    }
+
+    /**
+     * The value of reset {@code i} scaled to {@code ticksPerUnit}.
+     *
+     * @throws ModelRuntimeException if it is beyond a zone's range
+     */
+    public int ticks(int i, int ticksPerUnit) {
+        long ticks = (long) values[checkIndex(i)] * ticksPerUnit;
+        if (ticks > Bound.MAX_VALUE) {
+            throw new ModelRuntimeException(positions[i], "the clock value " + values[i]
+                    + " is too large for the engine's time resolution (at most "
+                    + Bound.MAX_VALUE / ticksPerUnit + " time units)");
+        }
+        return (int) ticks;
     }
 
     private int checkIndex(int i) {

@@ -23,14 +23,22 @@ import java.util.Objects;
 public final class Evaluator {
     private final Env env;
     private final Compiler compiler;
-    private final Map<Expression, Compiled> cache = new IdentityHashMap<>();
+    private final Map<Expression, Handle> cache = new IdentityHashMap<>();
 
-    /** The compiled forms of one expression, made as they are first needed. */
-    private static final class Compiled {
-        ValueNode value;
-        Conjunction conjunction;
-        PlaceNode channel;
-        int slots;
+    /**
+     * One expression of the network with its compiled forms, made as they are first needed: callers that keep
+     * it evaluate the expression without looking it up again. Valid only with the evaluator that gave it.
+     */
+    public static final class Handle {
+        private final Expression expression;
+        private ValueNode value;
+        private Conjunction conjunction;
+        private PlaceNode channel;
+        private int slots;
+
+        private Handle(Expression expression) {
+            this.expression = expression;
+        }
     }
 
     /** An evaluator for the expressions of {@code network}. */
@@ -47,7 +55,7 @@ public final class Evaluator {
      *     (see {@link #execute})
      */
     public int evaluate(Expression e, int[] vars, int[] frame) {
-        Compiled c = valueOf(e);
+        Handle c = valueOf(handle(e));
         env.begin(vars, frame, c.slots, null);
         try {
             return c.value.eval(env);
@@ -61,8 +69,13 @@ public final class Evaluator {
      * or in the functions it calls) are appended to {@code resets} in order, for the caller to apply.
      */
     public void execute(Expression update, int[] vars, int[] frame, ClockResets resets) {
+        execute(handle(update), vars, frame, resets);
+    }
+
+    /** {@link #execute(Expression, int[], int[], ClockResets)} of the expression of {@code update}. */
+    public void execute(Handle update, int[] vars, int[] frame, ClockResets resets) {
         Objects.requireNonNull(resets, "resets");
-        Compiled c = valueOf(update);
+        Handle c = valueOf(update);
         env.begin(vars, frame, c.slots, resets);
         try {
             c.value.eval(env);
@@ -73,14 +86,19 @@ public final class Evaluator {
 
     /** The channel number of a synchronisation's channel expression. */
     public int channel(Expression channel, int[] vars, int[] frame) {
-        Compiled c = cache.get(channel);
-        if (c == null || c.channel == null) {
-            if (!(channel.type() instanceof Type.Channel)) {
-                throw new IllegalArgumentException("'" + channel.pos().text() + "' is not a channel");
+        return channel(handle(channel), vars, frame);
+    }
+
+    /** {@link #channel(Expression, int[], int[])} of the expression of {@code channel}. */
+    public int channel(Handle channel, int[] vars, int[] frame) {
+        Handle c = channel;
+        if (c.channel == null) {
+            Expression e = c.expression;
+            if (!(e.type() instanceof Type.Channel)) {
+                throw new IllegalArgumentException("'" + e.pos().text() + "' is not a channel");
             }
-            c = compiled(channel);
             compiler.beginRoot();
-            c.channel = compiler.place(channel);
+            c.channel = compiler.place(e);
             c.slots = Math.max(c.slots, compiler.rootSlots());
         }
         env.begin(vars, frame, c.slots, null);
@@ -99,10 +117,15 @@ public final class Evaluator {
      * @return false when a data conjunct is false or the zone became empty
      */
     public boolean constrain(Expression guard, int[] vars, int[] frame, Dbm zone, int ticksPerUnit) {
+        return constrain(guard == null ? null : handle(guard), vars, frame, zone, ticksPerUnit);
+    }
+
+    /** {@link #constrain(Expression, int[], int[], Dbm, int)} of the expression of {@code guard} (null is true). */
+    public boolean constrain(Handle guard, int[] vars, int[] frame, Dbm zone, int ticksPerUnit) {
         if (guard == null) {
             return !zone.isEmpty();
         }
-        Compiled c = conjunctionOf(guard);
+        Handle c = conjunctionOf(guard);
         env.begin(vars, frame, c.slots, null);
         try {
             return c.conjunction.constrain(env, zone, checkTicks(ticksPerUnit));
@@ -113,10 +136,15 @@ public final class Evaluator {
 
     /** Whether the data conjuncts of a guard or invariant hold (null is true); clock bounds are ignored. */
     public boolean dataHolds(Expression guard, int[] vars, int[] frame) {
+        return dataHolds(guard == null ? null : handle(guard), vars, frame);
+    }
+
+    /** {@link #dataHolds(Expression, int[], int[])} of the expression of {@code guard} (null is true). */
+    public boolean dataHolds(Handle guard, int[] vars, int[] frame) {
         if (guard == null) {
             return true;
         }
-        Compiled c = conjunctionOf(guard);
+        Handle c = conjunctionOf(guard);
         env.begin(vars, frame, c.slots, null);
         try {
             return c.conjunction.dataHolds(env);
@@ -132,10 +160,15 @@ public final class Evaluator {
      * @return false (and nothing appended) when a data conjunct is false
      */
     public boolean clockBounds(Expression guard, int[] vars, int[] frame, int ticksPerUnit, ClockBounds out) {
+        return clockBounds(guard == null ? null : handle(guard), vars, frame, ticksPerUnit, out);
+    }
+
+    /** {@link #clockBounds(Expression, int[], int[], int, ClockBounds)} of the expression of {@code guard}. */
+    public boolean clockBounds(Handle guard, int[] vars, int[] frame, int ticksPerUnit, ClockBounds out) {
         if (guard == null) {
             return true;
         }
-        Compiled c = conjunctionOf(guard);
+        Handle c = conjunctionOf(guard);
         env.begin(vars, frame, c.slots, null);
         try {
             return c.conjunction.bounds(env, checkTicks(ticksPerUnit), out);
@@ -151,29 +184,34 @@ public final class Evaluator {
         return ticksPerUnit;
     }
 
-    private Compiled valueOf(Expression e) {
-        Compiled c = cache.get(e);
-        if (c == null || c.value == null) {
-            c = compiled(e);
+    /**
+     * The handle of {@code e}, to evaluate it without looking it up each time; nothing is compiled until the
+     * handle is first used (a model error in {@code e} is reported then, as by the methods taking expressions).
+     */
+    public Handle handle(Expression e) {
+        Handle c = cache.get(Objects.requireNonNull(e, "expression"));
+        if (c == null) {
+            c = new Handle(e);
+            cache.put(e, c);
+        }
+        return c;
+    }
+
+    private Handle valueOf(Handle c) {
+        if (c.value == null) {
             compiler.beginRoot();
-            c.value = compiler.value(e);
+            c.value = compiler.value(c.expression);
             c.slots = Math.max(c.slots, compiler.rootSlots());
         }
         return c;
     }
 
-    private Compiled conjunctionOf(Expression e) {
-        Compiled c = cache.get(e);
-        if (c == null || c.conjunction == null) {
-            c = compiled(e);
+    private Handle conjunctionOf(Handle c) {
+        if (c.conjunction == null) {
             compiler.beginRoot();
-            c.conjunction = compiler.conjunction(e);
+            c.conjunction = compiler.conjunction(c.expression);
             c.slots = Math.max(c.slots, compiler.rootSlots());
         }
         return c;
-    }
-
-    private Compiled compiled(Expression e) {
-        return cache.computeIfAbsent(e, k -> new Compiled());
     }
 }

@@ -1,8 +1,10 @@
 package io.dtron.engine.internal.sem;
 
 import io.dtron.engine.UnsupportedModelException;
+import io.dtron.engine.internal.eval.ClockBounds;
 import io.dtron.engine.internal.eval.ClockResets;
 import io.dtron.engine.internal.eval.Evaluator;
+import io.dtron.engine.internal.eval.ModelRuntimeException;
 import io.dtron.engine.zone.Bound;
 import io.dtron.engine.zone.Dbm;
 import io.dtron.model.ClockVariable;
@@ -36,6 +38,23 @@ public final class Semantics {
     private final Edge[][][] outgoing;
     /** Aligned with {@link #outgoing}: each edge's channel when it is fixed, -1 for none, -2 when computed. */
     private final int[][][] outgoingChannel;
+    /** Aligned with {@link #outgoing}: each edge's guard (null for none), channel expression and updates. */
+    private final Evaluator.Handle[][][] outgoingGuard;
+    private final Evaluator.Handle[][][] outgoingChannelCode;
+    private final Evaluator.Handle[][][][] outgoingUpdates;
+    /** Per process and location: its invariant (null for none), whether it is committed, urgent or committed. */
+    private final Evaluator.Handle[][] invariant;
+    private final boolean[][] committed;
+    private final boolean[][] urgentOrCommitted;
+    /** Per channel: whether it is broadcast, urgent; whether any channel is urgent. */
+    private final boolean[] broadcastChannel;
+    private final boolean[] urgentChannel;
+    private final boolean anyUrgentChannel;
+    /** The clock assignments of the move being fired (cleared before its successor is handed on). */
+    private final ClockResets resets = new ClockResets();
+    /** The clock bounds of the invariants being applied, and the same as triples for {@link Dbm#constrainAll}. */
+    private final ClockBounds bounds = new ClockBounds();
+    private int[] listed = new int[24];
 
     /** A move: the edges that take part, in the order their updates run, and the channel (-1 for none). */
     public record Move(int channel, List<Step> steps) {
@@ -73,23 +92,60 @@ public final class Semantics {
         this.maxBounds = testerClock ? maxBounds(network, ticksPerUnit, dimension) : null;
         this.outgoing = new Edge[processes.length][][];
         this.outgoingChannel = new int[processes.length][][];
+        this.outgoingGuard = new Evaluator.Handle[processes.length][][];
+        this.outgoingChannelCode = new Evaluator.Handle[processes.length][][];
+        this.outgoingUpdates = new Evaluator.Handle[processes.length][][][];
+        this.invariant = new Evaluator.Handle[processes.length][];
+        this.committed = new boolean[processes.length][];
+        this.urgentOrCommitted = new boolean[processes.length][];
         for (Process p : processes) {
+            int pi = p.index();
             int locations = p.locations().size();
-            outgoing[p.index()] = new Edge[locations][];
-            outgoingChannel[p.index()] = new int[locations][];
+            outgoing[pi] = new Edge[locations][];
+            outgoingChannel[pi] = new int[locations][];
+            outgoingGuard[pi] = new Evaluator.Handle[locations][];
+            outgoingChannelCode[pi] = new Evaluator.Handle[locations][];
+            outgoingUpdates[pi] = new Evaluator.Handle[locations][][];
+            invariant[pi] = new Evaluator.Handle[locations];
+            committed[pi] = new boolean[locations];
+            urgentOrCommitted[pi] = new boolean[locations];
             for (int l = 0; l < locations; l++) {
+                Location loc = p.locations().get(l);
+                invariant[pi][l] = loc.invariant() == null ? null : evaluator.handle(loc.invariant());
+                committed[pi][l] = loc.kind() == Location.Kind.COMMITTED;
+                urgentOrCommitted[pi][l] = loc.isUrgentOrCommitted();
                 int source = l;
                 Edge[] from = p.edges().stream().filter(e -> e.source() == source).toArray(Edge[]::new);
                 int[] channels = new int[from.length];
+                Evaluator.Handle[] guards = new Evaluator.Handle[from.length];
+                Evaluator.Handle[] channelCode = new Evaluator.Handle[from.length];
+                Evaluator.Handle[][] updates = new Evaluator.Handle[from.length][];
                 for (int i = 0; i < from.length; i++) {
                     Edge e = from[i];
                     channels[i] = e.sync() == null ? -1 : e.sync().channel() instanceof Expression.ChannelRef ref
                             && ref.type() instanceof Type.Channel ? ref.channel().index() : -2;
+                    guards[i] = e.guard() == null ? null : evaluator.handle(e.guard());
+                    channelCode[i] = channels[i] == -2 ? evaluator.handle(e.sync().channel()) : null;
+                    updates[i] = e.updates().stream().map(evaluator::handle).toArray(Evaluator.Handle[]::new);
                 }
-                outgoing[p.index()][l] = from;
-                outgoingChannel[p.index()][l] = channels;
+                outgoing[pi][l] = from;
+                outgoingChannel[pi][l] = channels;
+                outgoingGuard[pi][l] = guards;
+                outgoingChannelCode[pi][l] = channelCode;
+                outgoingUpdates[pi][l] = updates;
             }
         }
+        int channelCount = network.channelCount();
+        this.broadcastChannel = new boolean[channelCount];
+        this.urgentChannel = new boolean[channelCount];
+        boolean anyUrgent = false;
+        for (int c = 0; c < channelCount; c++) {
+            Type.Channel kind = network.channelVariableOf(c).kind();
+            broadcastChannel[c] = kind.broadcast();
+            urgentChannel[c] = kind.urgent();
+            anyUrgent |= kind.urgent();
+        }
+        this.anyUrgentChannel = anyUrgent;
     }
 
     /** The dimension of the zones: the model's clocks, the reference clock and the tester's clock if any. */
@@ -136,9 +192,10 @@ public final class Semantics {
 
     /** Whether time may pass in {@code s}: no process is in an urgent or committed location, no urgent move. */
     public boolean mayDelay(SymState s) {
-        for (Process p : processes) {
-            int l = s.locations[p.index()];
-            if (l >= 0 && p.locations().get(l).isUrgentOrCommitted()) {
+        int[] locations = s.locations;
+        for (int p = 0; p < locations.length; p++) {
+            int l = locations[p];
+            if (l >= 0 && urgentOrCommitted[p][l]) {
                 return false;
             }
         }
@@ -155,17 +212,56 @@ public final class Semantics {
 
     /** Applies the invariants of {@code locations} to {@code zone}; false if the zone becomes empty. */
     public boolean invariants(int[] locations, int[] vars, Dbm zone) {
-        for (Process p : processes) {
-            int l = locations[p.index()];
+        // their clock bounds listed first and added together (Dbm.constrainAll); when listing meets a model
+        // error, one invariant at a time, so that an error is raised exactly when it was before
+        bounds.clear();
+        try {
+            for (int p = 0; p < locations.length; p++) {
+                int l = locations[p];
+                Evaluator.Handle inv = l < 0 ? null : invariant[p][l];
+                if (inv != null && !evaluator.clockBounds(inv, vars, null, ticksPerUnit, bounds)) {
+                    // a data conjunct is false: the zone as applying them one at a time leaves it
+                    applyListed(zone);
+                    return false;
+                }
+            }
+        } catch (ModelRuntimeException e) {
+            return invariantsOneByOne(locations, vars, zone);
+        }
+        return applyListed(zone) && !zone.isEmpty();
+    }
+
+    /** Adds the bounds listed in {@link #bounds} to {@code zone}; false if it becomes empty. */
+    private boolean applyListed(Dbm zone) {
+        int n = bounds.size();
+        if (listed.length < 3 * n) {
+            listed = new int[3 * n];
+        }
+        for (int k = 0; k < n; k++) {
+            listed[3 * k] = bounds.i(k);
+            listed[3 * k + 1] = bounds.j(k);
+            listed[3 * k + 2] = bounds.bound(k);
+        }
+        return zone.constrainAll(listed, 3 * n);
+    }
+
+    private boolean invariantsOneByOne(int[] locations, int[] vars, Dbm zone) {
+        for (int p = 0; p < locations.length; p++) {
+            int l = locations[p];
             if (l < 0) {
                 continue;
             }
-            Location loc = p.locations().get(l);
-            if (loc.invariant() != null && !evaluator.constrain(loc.invariant(), vars, null, zone, ticksPerUnit)) {
+            Evaluator.Handle inv = invariant[p][l];
+            if (inv != null && !evaluator.constrain(inv, vars, null, zone, ticksPerUnit)) {
                 return false;
             }
         }
         return !zone.isEmpty();
+    }
+
+    /** The invariant of location {@code l} of process {@code p} (null for none; {@code l} may be -1). */
+    Evaluator.Handle invariantOf(int p, int l) {
+        return l < 0 ? null : invariant[p][l];
     }
 
     /** Extrapolates a zone (Extra_M over the model's clock constants; the elapsed clock is kept exact). */
@@ -181,7 +277,13 @@ public final class Semantics {
     private static final int[] NO_FRAME = new int[0];
 
     /** A process's edge that may take part in a move, its data guard true. */
-    private record Candidate(int process, Edge edge, int[] frame, int channel) {
+    record Candidate(int process, Edge edge, int[] frame, int channel, Evaluator.Handle guard,
+                     Evaluator.Handle[] updates) {
+    }
+
+    /** Receives the moves of a state as the edges that take part (in the order their updates run). */
+    interface MoveEnumerator {
+        void move(List<Candidate> participants, int channel);
     }
 
     /** Every discrete successor of {@code s}, without delay. */
@@ -194,28 +296,35 @@ public final class Semantics {
      * {@code channels} accepts; moves on other channels are not computed at all.
      */
     public void moves(SymState s, java.util.function.IntPredicate channels, MoveSink sink) {
+        enumerate(s, channels, (participants, channel) -> fire(s, participants, channel, sink));
+    }
+
+    /**
+     * The moves of {@code s} on the channels {@code channels} accepts, in the order {@link #moves} fires them,
+     * without firing them; they depend on the discrete part of {@code s} alone.
+     */
+    void enumerate(SymState s, java.util.function.IntPredicate channels, MoveEnumerator out) {
         List<Candidate> candidates = candidates(s);
         boolean committed = inCommitted(s);
         for (Candidate c : candidates) {
             Edge.Sync sync = c.edge.sync();
             if (sync == null) {
                 if ((!committed || isCommitted(s, c.process)) && channels.test(-1)) {
-                    fire(s, List.of(c), -1, sink);
+                    out.move(List.of(c), -1);
                 }
                 continue;
             }
             if (sync.direction() != Edge.Direction.SEND || !channels.test(c.channel)) {
                 continue;
             }
-            Type.Channel kind = channelKind(c.channel);
-            if (kind.broadcast()) {
-                broadcast(s, c, candidates, committed, sink);
+            if (broadcastChannel[c.channel]) {
+                broadcast(s, c, candidates, committed, out);
             } else {
                 for (Candidate r : candidates) {
                     if (r.process != c.process && r.channel == c.channel && r.edge.sync() != null
                             && r.edge.sync().direction() == Edge.Direction.RECEIVE
                             && (!committed || isCommitted(s, c.process) || isCommitted(s, r.process))) {
-                        fire(s, List.of(c, r), c.channel, sink);
+                        out.move(List.of(c, r), c.channel);
                     }
                 }
             }
@@ -223,7 +332,7 @@ public final class Semantics {
     }
 
     private void broadcast(SymState s, Candidate sender, List<Candidate> candidates, boolean committed,
-                           MoveSink sink) {
+                           MoveEnumerator out) {
         List<List<Candidate>> perProcess = new ArrayList<>();
         for (Process p : processes) {
             if (p.index() == sender.process) {
@@ -251,7 +360,7 @@ public final class Semantics {
                 anyCommitted |= isCommitted(s, r.process);
             }
             if (!committed || anyCommitted) {
-                fire(s, participants, sender.channel, sink);
+                out.move(participants, sender.channel);
             }
             int k = choice.length - 1;
             while (k >= 0 && choice[k] == perProcess.get(k).size() - 1) {
@@ -265,11 +374,10 @@ public final class Semantics {
         }
     }
 
-    private void fire(SymState s, List<Candidate> participants, int channel, MoveSink sink) {
+    void fire(SymState s, List<Candidate> participants, int channel, MoveSink sink) {
         Dbm zone = s.zone.copy();
         for (Candidate c : participants) {
-            Expression guard = c.edge.guard();
-            if (guard != null && !evaluator.constrain(guard, s.vars, c.frame, zone, ticksPerUnit)) {
+            if (c.guard != null && !evaluator.constrain(c.guard, s.vars, c.frame, zone, ticksPerUnit)) {
                 return;
             }
         }
@@ -277,44 +385,53 @@ public final class Semantics {
             return;
         }
         int[] vars = s.vars.clone();
-        ClockResets resets = new ClockResets();
-        for (Candidate c : participants) {
-            for (Expression update : c.edge.updates()) {
-                evaluator.execute(update, vars, c.frame, resets);
+        resets.clear();
+        try {
+            for (Candidate c : participants) {
+                for (Evaluator.Handle update : c.updates) {
+                    evaluator.execute(update, vars, c.frame, resets);
+                }
             }
+            resets.applyTo(zone, ticksPerUnit);
+        } finally {
+            resets.clear();
         }
-        resets.applyTo(zone, ticksPerUnit);
         int[] locations = s.locations.clone();
-        List<Step> steps = new ArrayList<>(participants.size());
-        for (Candidate c : participants) {
+        Step[] steps = new Step[participants.size()];
+        for (int i = 0; i < steps.length; i++) {
+            Candidate c = participants.get(i);
             locations[c.process] = c.edge.target();
-            steps.add(new Step(c.process, c.edge, c.frame));
+            steps[i] = new Step(c.process, c.edge, c.frame);
         }
         if (!invariants(locations, vars, zone)) {
             return;
         }
-        sink.accept(new Move(channel, steps), new SymState(locations, vars, zone));
+        sink.accept(new Move(channel, List.of(steps)), new SymState(locations, vars, zone));
     }
 
     /** The edges whose data guards hold in {@code s}, once per select binding. */
     private List<Candidate> candidates(SymState s) {
         List<Candidate> out = new ArrayList<>();
-        for (Process p : processes) {
-            int l = s.locations[p.index()];
+        for (int p = 0; p < processes.length; p++) {
+            int l = s.locations[p];
             if (l < 0) {
                 continue;
             }
-            Edge[] edges = outgoing[p.index()][l];
-            int[] channels = outgoingChannel[p.index()][l];
+            Edge[] edges = outgoing[p][l];
+            int[] channels = outgoingChannel[p][l];
+            Evaluator.Handle[] guards = outgoingGuard[p][l];
+            Evaluator.Handle[] channelCode = outgoingChannelCode[p][l];
+            Evaluator.Handle[][] updates = outgoingUpdates[p][l];
             for (int i = 0; i < edges.length; i++) {
                 Edge e = edges[i];
                 List<Edge.Select> selects = e.selects();
                 int fixed = channels[i];
+                Evaluator.Handle guard = guards[i];
                 if (selects.isEmpty()) {
                     int[] frame = e.frameSize() == 0 ? NO_FRAME : new int[e.frameSize()];
-                    if (e.guard() == null || evaluator.dataHolds(e.guard(), s.vars, frame)) {
-                        int channel = fixed != -2 ? fixed : evaluator.channel(e.sync().channel(), s.vars, frame);
-                        out.add(new Candidate(p.index(), e, frame, channel));
+                    if (guard == null || evaluator.dataHolds(guard, s.vars, frame)) {
+                        int channel = fixed != -2 ? fixed : evaluator.channel(channelCode[i], s.vars, frame);
+                        out.add(new Candidate(p, e, frame, channel, guard, updates[i]));
                     }
                     continue;
                 }
@@ -323,9 +440,9 @@ public final class Semantics {
                     frame[sel.slot()] = sel.lower();
                 }
                 while (true) {
-                    if (e.guard() == null || evaluator.dataHolds(e.guard(), s.vars, frame)) {
-                        int channel = fixed != -2 ? fixed : evaluator.channel(e.sync().channel(), s.vars, frame);
-                        out.add(new Candidate(p.index(), e, frame.clone(), channel));
+                    if (guard == null || evaluator.dataHolds(guard, s.vars, frame)) {
+                        int channel = fixed != -2 ? fixed : evaluator.channel(channelCode[i], s.vars, frame);
+                        out.add(new Candidate(p, e, frame.clone(), channel, guard, updates[i]));
                     }
                     int k = selects.size() - 1;
                     while (k >= 0 && frame[selects.get(k).slot()] == selects.get(k).upper()) {
@@ -343,22 +460,16 @@ public final class Semantics {
     }
 
     private boolean urgentSyncEnabled(SymState s) {
-        List<Candidate> candidates = null;
-        for (int c = 0; c < network.channelCount(); c++) {
-            if (channelKind(c).urgent()) {
-                candidates = candidates(s);
-                break;
-            }
-        }
-        if (candidates == null) {
+        if (!anyUrgentChannel) {
             return false;
         }
+        List<Candidate> candidates = candidates(s);
         for (Candidate send : candidates) {
             if (send.edge.sync() == null || send.edge.sync().direction() != Edge.Direction.SEND
-                    || !channelKind(send.channel).urgent()) {
+                    || !urgentChannel[send.channel]) {
                 continue;
             }
-            if (channelKind(send.channel).broadcast()) {
+            if (broadcastChannel[send.channel]) {
                 return true;
             }
             for (Candidate r : candidates) {
@@ -372,8 +483,8 @@ public final class Semantics {
     }
 
     private boolean inCommitted(SymState s) {
-        for (Process p : processes) {
-            if (isCommitted(s, p.index())) {
+        for (int p = 0; p < processes.length; p++) {
+            if (isCommitted(s, p)) {
                 return true;
             }
         }
@@ -382,11 +493,7 @@ public final class Semantics {
 
     private boolean isCommitted(SymState s, int p) {
         int l = s.locations[p];
-        return l >= 0 && processes[p].locations().get(l).kind() == Location.Kind.COMMITTED;
-    }
-
-    private Type.Channel channelKind(int channel) {
-        return network.channelVariableOf(channel).kind();
+        return l >= 0 && committed[p][l];
     }
 
     // ================================================================ checks and constants
@@ -527,7 +634,7 @@ public final class Semantics {
                 continue;
             }
             Dbm zone = s.zone.copy();
-            if (c.edge.guard() == null || evaluator.constrain(c.edge.guard(), s.vars, c.frame, zone, ticksPerUnit)) {
+            if (c.guard == null || evaluator.constrain(c.guard, s.vars, c.frame, zone, ticksPerUnit)) {
                 return new Step(c.process, c.edge, c.frame);
             }
         }

@@ -14,10 +14,14 @@ public final class SymState {
     private final int discreteHash;
 
     SymState(int[] locations, int[] vars, Dbm zone) {
+        this(locations, vars, zone, 31 * Arrays.hashCode(locations) + Arrays.hashCode(vars));
+    }
+
+    SymState(int[] locations, int[] vars, Dbm zone, int discreteHash) {
         this.locations = locations;
         this.vars = vars;
         this.zone = zone;
-        this.discreteHash = 31 * Arrays.hashCode(locations) + Arrays.hashCode(vars);
+        this.discreteHash = discreteHash;
     }
 
     /** The location of process {@code p} (-1 for a process without locations). */
@@ -37,12 +41,12 @@ public final class SymState {
 
     /** A state with the same discrete part and a copy of the zone. */
     public SymState copy() {
-        return new SymState(locations, vars, zone.copy());
+        return new SymState(locations, vars, zone.copy(), discreteHash);
     }
 
     /** A state with the same discrete part (shared, not copied) and {@code zone}. */
     public SymState withZone(Dbm zone) {
-        return new SymState(locations, vars, zone);
+        return new SymState(locations, vars, zone, discreteHash);
     }
 
     /** Whether the discrete parts (locations and variables) are equal. */
@@ -50,6 +54,7 @@ public final class SymState {
         return discreteHash == o.discreteHash && Arrays.equals(locations, o.locations) && Arrays.equals(vars, o.vars);
     }
 
+    /** A hash of the discrete part, equal for states with {@link #sameDiscrete the same discrete part}. */
     public int discreteHash() {
         return discreteHash;
     }

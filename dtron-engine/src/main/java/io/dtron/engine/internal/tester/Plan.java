@@ -1,12 +1,14 @@
 package io.dtron.engine.internal.tester;
 
 import io.dtron.engine.DelayPolicy;
+import io.dtron.engine.internal.sem.DiscreteCache;
 import io.dtron.engine.internal.sem.Partition;
 import io.dtron.engine.internal.sem.Semantics;
 import io.dtron.engine.internal.sem.SymState;
 import io.dtron.engine.zone.Bound;
 import io.dtron.model.TestInterface;
 import java.util.ArrayList;
+import java.util.Collections;
 import java.util.LinkedHashMap;
 import java.util.List;
 import java.util.Map;
@@ -66,14 +68,27 @@ public final class Plan {
         for (TestInterface.ObservableChannel c : testInterface.outputs()) {
             names.put(c.channel(), c.name());
         }
-        Map<Integer, List<Window>> windows = new LinkedHashMap<>();
+        // per channel, in the order channels are first seen
+        List<List<Window>> byChannel = new ArrayList<>(Collections.nCopies(semantics.network().channelCount(), null));
+        List<Integer> seen = new ArrayList<>();
         long deadline = 0;
         List<SymState> reach = set.reach(horizon);
+        DiscreteCache cache = set.observableMoves();
         for (SymState s : reach) {
             deadline = Math.max(deadline, upper(s, elapsed, horizon));
-            semantics.moves(s, c -> c >= 0 && partition.observable(c) != Partition.INTERNAL, (move, next) ->
-                    windows.computeIfAbsent(move.channel(), k -> new ArrayList<>()).add(new Window(lower(next, elapsed),
-                            upper(next, elapsed, horizon), move.steps().get(0))));
+            cache.clockBounds(s, elapsed, (move, upper, lowerNeg) -> {
+                List<Window> ws = byChannel.get(move.channel());
+                if (ws == null) {
+                    ws = new ArrayList<>();
+                    byChannel.set(move.channel(), ws);
+                    seen.add(move.channel());
+                }
+                ws.add(new Window(lower(lowerNeg), upper(upper, horizon), move.steps().get(0)));
+            });
+        }
+        Map<Integer, List<Window>> windows = new LinkedHashMap<>();
+        for (int channel : seen) {
+            windows.put(channel, byChannel.get(channel));
         }
         boolean[] implementation = new boolean[semantics.network().processes().size()];
         for (int p = 0; p < implementation.length; p++) {
@@ -83,17 +98,21 @@ public final class Plan {
         return new Plan(semantics, unitMicros, horizon, Math.min(deadline, horizon), windows, inputs, names, state);
     }
 
-    private static long lower(SymState s, int clock) {
-        int raw = s.zone().lowerBound(clock);
-        if (Bound.isInfinite(raw)) {
-            return 0;
-        }
-        long v = Bound.value(raw);
-        return Bound.isStrict(raw) ? v + 1 : v;
+    private static long upper(SymState s, int clock, long horizon) {
+        return upper(s.zone().upperBound(clock), horizon);
     }
 
-    private static long upper(SymState s, int clock, long horizon) {
-        int raw = s.zone().upperBound(clock);
+    /** The earliest tick of a clock whose negation has the raw bound {@code lowerNeg}. */
+    private static long lower(int lowerNeg) {
+        if (Bound.isInfinite(lowerNeg)) {
+            return 0;
+        }
+        long v = -Bound.value(lowerNeg);
+        return Bound.isStrict(lowerNeg) ? v + 1 : v;
+    }
+
+    /** The latest tick (at most {@code horizon}) of a clock with the raw upper bound {@code raw}. */
+    private static long upper(int raw, long horizon) {
         if (Bound.isInfinite(raw)) {
             return horizon;
         }

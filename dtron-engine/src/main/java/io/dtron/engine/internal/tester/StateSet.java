@@ -1,5 +1,6 @@
 package io.dtron.engine.internal.tester;
 
+import io.dtron.engine.internal.sem.DiscreteCache;
 import io.dtron.engine.internal.sem.Partition;
 import io.dtron.engine.internal.sem.Semantics;
 import io.dtron.engine.internal.sem.SymState;
@@ -21,26 +22,52 @@ public final class StateSet {
 
     private final Semantics semantics;
     private final Partition partition;
+    private final Caches caches;
     private final List<SymState> states;
+
+    /**
+     * What the sets made from one initial set learn about discrete parts (see {@link DiscreteCache}), for
+     * internal and for observable moves, kept from step to step as a run comes back to the same locations and
+     * values; each starts again when it holds {@link #LIMIT} discrete parts. Not thread-safe, as the semantics
+     * they share is not.
+     */
+    static final class Caches {
+        static final int LIMIT = 2_000;
+        final DiscreteCache internal;
+        final DiscreteCache observable;
+
+        Caches(Semantics semantics, Partition partition) {
+            this.internal = new DiscreteCache(semantics, c -> c < 0 || partition.observable(c) == Partition.INTERNAL,
+                    LIMIT);
+            this.observable = new DiscreteCache(semantics,
+                    c -> c >= 0 && partition.observable(c) != Partition.INTERNAL, LIMIT);
+        }
+    }
 
     /** A successor of the set by one move, with the move. */
     public record Successor(Semantics.Move move, SymState from, SymState state) {
     }
 
-    StateSet(Semantics semantics, Partition partition, List<SymState> states) {
+    private StateSet(Semantics semantics, Partition partition, Caches caches, List<SymState> states) {
         this.semantics = semantics;
         this.partition = partition;
+        this.caches = caches;
         this.states = Collections.unmodifiableList(states);
     }
 
     /** The set holding the initial state. */
     public static StateSet initial(Semantics semantics, Partition partition) {
-        return new StateSet(semantics, partition, List.of(semantics.initial()));
+        return new StateSet(semantics, partition, new Caches(semantics, partition), List.of(semantics.initial()));
     }
 
     /** The states (zones not to be changed). */
     public List<SymState> states() {
         return states;
+    }
+
+    /** The cache of the moves on observable channels, for plans. */
+    DiscreteCache observableMoves() {
+        return caches.observable;
     }
 
     /** Whether no state is left. */
@@ -56,6 +83,7 @@ public final class StateSet {
         int elapsed = semantics.elapsedClock();
         int horizon = (int) Math.min(horizonTicks, Bound.MAX_VALUE);
         Passed passed = new Passed();
+        DiscreteCache cache = caches.internal;
         Deque<SymState> waiting = new ArrayDeque<>();
         for (SymState s : states) {
             waiting.add(copy(s));
@@ -63,7 +91,7 @@ public final class StateSet {
         int visited = 0;
         while (!waiting.isEmpty()) {
             SymState s = waiting.poll();
-            if (!semantics.delay(s) || !s.zone().constrain(elapsed, 0, Bound.le(horizon))) {
+            if (!cache.delay(s, elapsed, Bound.le(horizon))) {
                 continue;
             }
             if (!passed.add(s)) {
@@ -73,8 +101,7 @@ public final class StateSet {
                 throw new IllegalStateException("more than " + MAX_STATES + " symbolic states within one step:"
                         + " the model is too nondeterministic to follow online");
             }
-            semantics.moves(s, c -> c < 0 || partition.observable(c) == Partition.INTERNAL,
-                    (move, next) -> waiting.add(next));
+            cache.moves(s, (move, next) -> waiting.add(next));
         }
         return passed.states();
     }
@@ -91,8 +118,8 @@ public final class StateSet {
     public StateSet afterWindow(long fromTicks, long toTicks) {
         int elapsed = semantics.elapsedClock();
         Passed out = new Passed();
-        for (SymState s : reach(toTicks)) {
-            SymState t = copy(s);
+        // the states of reach are its own copies: changed in place
+        for (SymState t : reach(toTicks)) {
             Dbm z = t.zone();
             if (!z.constrain(0, elapsed, Bound.le((int) -Math.min(fromTicks, Bound.MAX_VALUE)))) {
                 continue;
@@ -101,14 +128,16 @@ public final class StateSet {
             semantics.extrapolate(z);
             out.add(t);
         }
-        return new StateSet(semantics, partition, out.states());
+        return new StateSet(semantics, partition, caches, out.states());
     }
 
     /** The successors of this set by the moves on channel number {@code channel} (no delay before them). */
     public List<Successor> successors(int channel) {
         List<Successor> out = new ArrayList<>();
+        boolean observable = channel >= 0 && partition.observable(channel) != Partition.INTERNAL;
+        DiscreteCache cache = observable ? caches.observable : new DiscreteCache(semantics, c -> c == channel, Caches.LIMIT);
         for (SymState s : states) {
-            semantics.moves(s, c -> c == channel, (move, next) -> out.add(new Successor(move, s, next)));
+            cache.moves(s, channel, (move, next) -> out.add(new Successor(move, s, next)));
         }
         return out;
     }
@@ -119,7 +148,7 @@ public final class StateSet {
         for (SymState s : next) {
             out.add(s);
         }
-        return new StateSet(semantics, partition, out.states());
+        return new StateSet(semantics, partition, caches, out.states());
     }
 
     private static SymState copy(SymState s) {

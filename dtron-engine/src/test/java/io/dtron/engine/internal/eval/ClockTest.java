@@ -216,7 +216,7 @@ class ClockTest {
         Expression g = m.edge(0).guard();
         assertTrue(m.evaluator.dataHolds(g, m.vars, null));
         assertFalse(m.evaluator.dataHolds(m.edge(1).guard(), m.vars, null));
-        assertTrue(m.evaluator.dataHolds(null, m.vars, null));
+        assertTrue(m.evaluator.dataHolds((io.dtron.model.Expression) null, m.vars, null));
         ClockBounds out = new ClockBounds();
         assertTrue(m.evaluator.clockBounds(g, m.vars, null, 10, out));
         assertEquals(3, out.size());
