@@ -33,6 +33,11 @@ public final class Semantics {
     private final int ticksPerUnit;
     private final int dimension;
     private final int[] maxBounds;
+    /**
+     * The constants each clock is compared with from each location on, before it is reset (static guard analysis):
+     * the tester's extrapolation bounds per state; null where only {@link #maxBounds} applies.
+     */
+    private final ClockLimits localBounds;
     private final Process[] processes;
     /** Per process and location, its outgoing edges in the order of the process's edge list. */
     private final Edge[][][] outgoing;
@@ -90,6 +95,7 @@ public final class Semantics {
         checkSupported(network);
         this.evaluator = new Evaluator(network);
         this.maxBounds = testerClock ? maxBounds(network, ticksPerUnit, dimension) : null;
+        this.localBounds = maxBounds == null ? null : ClockLimits.of(network, dimension, List.of());
         this.outgoing = new Edge[processes.length][][];
         this.outgoingChannel = new int[processes.length][][];
         this.outgoingGuard = new Evaluator.Handle[processes.length][][];
@@ -264,11 +270,30 @@ public final class Semantics {
         return l < 0 ? null : invariant[p][l];
     }
 
-    /** Extrapolates a zone (Extra_M over the model's clock constants; the elapsed clock is kept exact). */
-    public void extrapolate(Dbm zone) {
-        if (maxBounds != null) {
-            zone.extrapolateMaxBounds(maxBounds);
+    /**
+     * Extrapolates a state's zone in place, the elapsed clock kept exact: Extra+_M with the bounds of the state's
+     * locations (a clock that no process compares with a constant before it resets it is free: its value can no
+     * longer matter), else Extra_M over the model's largest constants. Both keep the zone within its closure by
+     * regions of those bounds, whose valuations have the same future.
+     */
+    public void extrapolate(SymState s) {
+        Dbm zone = s.zone();
+        if (localBounds == null) {
+            if (maxBounds != null) {
+                zone.extrapolateMaxBounds(maxBounds);
+            }
+            return;
         }
+        int[] lower = new int[dimension];
+        int[] bounds = new int[dimension];
+        localBounds.fill(s, lower, bounds);
+        for (int x = 1; x < dimension - 1; x++) {
+            int m = Math.max(lower[x], bounds[x]);
+            // at most the model's largest constant, which maxBounds has checked fits in ticks
+            bounds[x] = m < 0 ? -1 : (int) Math.min((long) m * ticksPerUnit, maxBounds[x]);
+        }
+        bounds[dimension - 1] = maxBounds[dimension - 1];
+        zone.extrapolateLU(bounds, bounds);
     }
 
     // ================================================================ discrete moves

@@ -125,7 +125,7 @@ public final class StateSet {
                 continue;
             }
             z.reset(elapsed, 0);
-            semantics.extrapolate(z);
+            semantics.extrapolate(t);
             out.add(t);
         }
         return new StateSet(semantics, partition, caches, out.states());

@@ -2,6 +2,7 @@ package io.dtron.engine.internal.verify;
 
 import io.dtron.engine.UnsupportedModelException;
 import io.dtron.engine.internal.eval.ModelRuntimeException;
+import io.dtron.engine.internal.sem.ClockLimits;
 import io.dtron.engine.internal.sem.Semantics;
 import io.dtron.engine.internal.sem.SymState;
 import io.dtron.engine.verify.Query;

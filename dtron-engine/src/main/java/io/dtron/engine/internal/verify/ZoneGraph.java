@@ -1,6 +1,7 @@
 package io.dtron.engine.internal.verify;
 
 import io.dtron.engine.internal.eval.ClockResets;
+import io.dtron.engine.internal.sem.ClockLimits;
 import io.dtron.engine.internal.sem.Semantics;
 import io.dtron.engine.internal.sem.SymState;
 import io.dtron.engine.zone.Bound;

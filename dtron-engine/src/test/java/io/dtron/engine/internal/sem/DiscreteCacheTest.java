@@ -134,7 +134,7 @@ class DiscreteCacheTest {
             out.add(s);
             semantics.moves(s, (move, next) -> {
                 if (semantics.delay(next)) {
-                    semantics.extrapolate(next.zone());
+                    semantics.extrapolate(next);
                     waiting.add(next);
                 }
             });

@@ -1,4 +1,4 @@
-package io.dtron.engine.internal.verify;
+package io.dtron.engine.internal.sem;
 
 import io.dtron.model.ClockVariable;
 import io.dtron.model.Edge;
@@ -11,12 +11,12 @@ import java.util.ArrayList;
 import java.util.List;
 
 /**
- * The largest constants each clock is compared with, split into lower bounds ({@code x > c}, {@code x >= c})
+ * Not API. The largest constants each clock is compared with, split into lower bounds ({@code x > c}, {@code x >= c})
  * and upper bounds ({@code x < c}, {@code x <= c}, invariants), for Extra+_LU and Extra_M. Absent (null) when
  * a clock is compared with a non-constant expression or with another clock: those models are explored without
  * extrapolation.
  */
-final class ClockLimits {
+public final class ClockLimits {
     /** Per process, per location, per clock: the lower and upper limits from that location on. */
     private final int[][][] lower;
     private final int[][][] upper;
@@ -39,7 +39,7 @@ final class ClockLimits {
      * in a location when a guard or invariant compares a clock with it on a path from there before the process
      * resets that clock; a state's limit is the largest over its processes' locations.
      */
-    static ClockLimits of(Network network, int dimension, List<int[]> extra) {
+    public static ClockLimits of(Network network, int dimension, List<int[]> extra) {
         int[] globalLower = new int[dimension];
         int[] globalUpper = new int[dimension];
         java.util.Arrays.fill(globalLower, -1);
@@ -104,7 +104,7 @@ final class ClockLimits {
     }
 
     /** Fills the limits of the state {@code s} (its locations) into {@code lo} and {@code up}. */
-    void fill(io.dtron.engine.internal.sem.SymState s, int[] lo, int[] up) {
+    public void fill(SymState s, int[] lo, int[] up) {
         System.arraycopy(globalLower, 0, lo, 0, lo.length);
         System.arraycopy(globalUpper, 0, up, 0, up.length);
         for (int p = 0; p < lower.length; p++) {
