@@ -534,6 +534,7 @@ final class RunCommand implements Callable<Integer> {
                         out, err)) {
                     return 1;
                 }
+                session.bridge().expectAdapters();
             } catch (InterruptedException e) {
                 Thread.currentThread().interrupt();
                 err.println("dtron run: interrupted while waiting for the adapters");

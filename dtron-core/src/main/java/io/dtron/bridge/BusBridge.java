@@ -76,6 +76,8 @@ public final class BusBridge implements Adapter, AutoCloseable {
     private final LatencyRecorder outputLatency = new LatencyRecorder();
     private final LatencyRecorder inputLatency = new LatencyRecorder();
     private final Set<String> watched = ConcurrentHashMap.newKeySet();
+    /** The adapters the tester waited for ({@link #expectAdapters}): each must still be there at the start. */
+    private final Set<String> expected = ConcurrentHashMap.newKeySet();
     private final AtomicBoolean warnedBeforeStart = new AtomicBoolean();
     private final AtomicLong outputsAfterEnd = new AtomicLong();
     private volatile CountDownLatch ownStop = new CountDownLatch(1);
@@ -606,8 +608,33 @@ public final class BusBridge implements Adapter, AutoCloseable {
         return new TreeMap<>(runDelays).values().stream().toList();
     }
 
+    /**
+     * Remembers the adapters on the bus now (the members other than this bridge and other testers), once the
+     * tester has waited for them: one that has left by the start of the next run ends that run INCONCLUSIVE at once,
+     * naming it, as one that leaves during the run does (else the run would go on without it and fail when its
+     * first output does not come).
+     */
+    public void expectAdapters() {
+        Set<String> testers = dtron.getOtherTesters();
+        expected.clear();
+        dtron.getMembers().stream().filter(m -> !m.equals(dtron.getMemberId()) && !testers.contains(m))
+                .forEach(expected::add);
+    }
+
     @Override
     public void start(AdapterContext runContext) {
+        startRun(runContext);
+        // the awaited adapters that were no longer members at the start (those that leave later are watched)
+        List<String> goneBeforeStart = expected.stream().filter(m -> !watched.contains(m)).sorted().toList();
+        expected.clear();
+        if (!goneBeforeStart.isEmpty()) {
+            context.inconclusive("adapter member" + (goneBeforeStart.size() == 1 ? " " : "s ")
+                    + String.join(", ", goneBeforeStart) + " left the bus before the run started (members now "
+                    + dtron.getMembers() + "); the system under test may be gone");
+        }
+    }
+
+    private void startRun(AdapterContext runContext) {
         context = Objects.requireNonNull(runContext, "runContext");
         runDelays.clear();
         acknowledging = inputsReceivedByHandshakeMembers();
@@ -968,6 +995,7 @@ public final class BusBridge implements Adapter, AutoCloseable {
         LOG.info("Left the bus: {}; members now {}", left, members);
         List<String> gone = left.stream().filter(watched::remove).toList();
         if (running && !gone.isEmpty()) {
+            gone.forEach(expected::remove); // reported here, not again by the start
             context.inconclusive("adapter member" + (gone.size() == 1 ? " " : "s ") + String.join(", ", gone)
                     + " left the bus (members now " + members + "); the system under test may be gone");
         }

@@ -1,6 +1,7 @@
 package io.dtron.bridge;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertNotNull;
 import static org.junit.jupiter.api.Assertions.assertNull;
 import static org.junit.jupiter.api.Assertions.assertThrows;
@@ -385,6 +386,21 @@ class BusBridgeTest {
         adapter.close();
         awaitMembers(1);
         assertNull(context.inconclusive.poll(200, TimeUnit.MILLISECONDS));
+    }
+
+    @Test
+    void anAwaitedAdapterThatLeftBeforeTheStartEndsTheRunInconclusiveAtOnce() throws Exception {
+        try (Dtron early = Dtron.connect(DtronOptions.builder().clusterName(cluster).inJvm(true).build())) {
+            assertTrue(bridge.awaitAdapters(2, WAIT));
+            bridge.expectAdapters();
+        }
+        awaitMembers(2);
+        bridge.start(context);
+        String reason = context.inconclusive.poll(10, TimeUnit.SECONDS);
+        assertNotNull(reason, "no inconclusive verdict");
+        assertTrue(reason.matches("adapter member \\S+ left the bus before the run started \\(members now \\[.*]\\);"
+                + " the system under test may be gone"), reason);
+        assertFalse(reason.contains("member adapter "), "the adapter still on the bus is not named: " + reason);
     }
 
     private void awaitMembers(int count) throws InterruptedException {
