@@ -121,7 +121,7 @@ class DtronJarIT {
             String out = dtron.output();
             // it may leave before the run starts (the tester waited for it) or during the run: INCONCLUSIVE either way
             Matcher verdict = Pattern.compile("INCONCLUSIVE: adapter member ticker-adapter left the bus"
-                    + "( before the run started)? \\(members now"
+                    + "(?: before the run started)? \\(members now"
                     + " \\[[^]]+]\\); the system under test may be gone \\(at t=(\\d+)\\.\\d+\\)").matcher(out);
             assertTrue(verdict.find(), out);
             assertTrue(Integer.parseInt(verdict.group(1)) < 10, "noticed before the first tick was due: " + out);
