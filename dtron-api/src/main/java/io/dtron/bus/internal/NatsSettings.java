@@ -41,6 +41,11 @@ public record NatsSettings(
     public static final Duration HEARTBEAT = Duration.ofSeconds(1);
     /** How long a member may stay silent in the stream before the others take it as gone. */
     public static final Duration SILENCE = Duration.ofSeconds(4);
+    /**
+     * How long a member may receive nothing from the stream, its own heartbeats included, before it takes its
+     * consumer for stuck and makes it anew.
+     */
+    public static final Duration STALL = Duration.ofSeconds(5);
     /** How long the stream keeps a message. */
     public static final Duration MAX_AGE = Duration.ofMinutes(10);
     /** How many bytes the stream keeps at most; the oldest messages go first. */

@@ -45,6 +45,7 @@ import java.util.concurrent.Executors;
 import java.util.concurrent.RejectedExecutionException;
 import java.util.concurrent.ScheduledExecutorService;
 import java.util.concurrent.TimeUnit;
+import java.util.concurrent.atomic.AtomicBoolean;
 import java.util.concurrent.atomic.AtomicInteger;
 import java.util.concurrent.atomic.AtomicLong;
 import javax.net.ssl.SSLContext;
@@ -100,7 +101,17 @@ public final class NatsTransport implements Transport {
     private volatile boolean closed;
     private volatile boolean leaving;
     private Dispatcher dispatcher;
-    private JetStreamSubscription subscription;
+    private volatile JetStreamSubscription subscription;
+    /** The stream sequence of the last message delivered, and when (System.nanoTime) a message last came. */
+    private volatile long lastSequence;
+    private volatile long lastDeliveredNanos = System.nanoTime();
+    /** A gap was seen and its consumer is being made anew: later messages wait for it, and are not reported. */
+    private final AtomicBoolean gapReported = new AtomicBoolean();
+    /**
+     * The first message of a consumer made anew is taken whatever its sequence: the server starts from the first
+     * message it still holds.
+     */
+    private volatile boolean acceptAnySequence;
 
     private NatsTransport(Connection connection, NatsSettings settings) throws IOException {
         this.connection = connection;
@@ -264,13 +275,8 @@ public final class NatsTransport implements Transport {
     /** Subscribes from the stream's next message on, says join and waits until the join came back. */
     private void join() throws IOException, InterruptedException {
         dispatcher = connection.createDispatcher();
-        // heartbeats every second: a consumer whose server died is noticed and made anew (from the next stream
-        // sequence) within a few seconds instead of the default's fifteen
-        ConsumerConfiguration consumer = ConsumerConfiguration.builder().deliverPolicy(DeliverPolicy.New)
-                .idleHeartbeat(Duration.ofSeconds(1)).build();
         try {
-            subscription = jetStream.subscribe(settings.streamSubjects(), dispatcher, this::received, false,
-                    PushSubscribeOptions.builder().ordered(true).configuration(consumer).build());
+            subscription = subscribe(ConsumerConfiguration.builder().deliverPolicy(DeliverPolicy.New));
         } catch (JetStreamApiException e) {
             throw new IOException("JetStream refused a consumer on stream " + settings.streamName() + ": "
                     + e.getMessage(), e);
@@ -281,7 +287,68 @@ public final class NatsTransport implements Transport {
                     + " within " + CONNECT_TIMEOUT_MILLIS + " ms");
         }
         long period = NatsSettings.HEARTBEAT.toMillis();
-        presence.scheduleAtFixedRate(() -> presenceQuietly("alive"), period, period, TimeUnit.MILLISECONDS);
+        presence.scheduleAtFixedRate(() -> {
+            presenceQuietly("alive");
+            resubscribeIfStalled();
+        }, period, period, TimeUnit.MILLISECONDS);
+    }
+
+    /**
+     * An ordered consumer of the stream on the dispatcher, with heartbeats every second: a consumer whose server
+     * died is noticed and made anew by the client (from the next stream sequence) within a few seconds instead of
+     * the default's fifteen.
+     */
+    private JetStreamSubscription subscribe(ConsumerConfiguration.Builder consumer)
+            throws IOException, JetStreamApiException {
+        return jetStream.subscribe(settings.streamSubjects(), dispatcher, this::received, false,
+                PushSubscribeOptions.builder().ordered(true).configuration(consumer.idleHeartbeat(Duration.ofSeconds(1))
+                        .build()).build());
+    }
+
+    /**
+     * This member's own heartbeat comes back from the stream every second: when nothing at all came for {@link
+     * NatsSettings#STALL}, the consumer is stuck (its server died during a leader election, and the client did not
+     * make it anew), and it is made anew here, from the sequence after the last delivered.
+     */
+    private void resubscribeIfStalled() {
+        long silentNanos = System.nanoTime() - lastDeliveredNanos;
+        if (silentNanos >= NatsSettings.STALL.toNanos()) {
+            resubscribe("nothing for " + silentNanos / 1_000_000 + " ms, this member's heartbeats included");
+        }
+    }
+
+    /**
+     * Makes the consumer anew from the sequence after the last delivered (on the presence thread, one at a time);
+     * when it cannot yet (no server, no stream leader), the next heartbeat's check tries again.
+     */
+    private void resubscribe(String why) {
+        if (closed || leaving || connection.getStatus() != Connection.Status.CONNECTED) {
+            gapReported.set(false);
+            return;
+        }
+        long from = lastSequence + 1;
+        JetStreamSubscription stuck = subscription;
+        if (stuck != null) {
+            // first: the old consumer must deliver nothing after the new one's first messages
+            subscription = null;
+            try {
+                dispatcher.unsubscribe(stuck);
+            } catch (RuntimeException e) {
+                LOG.debug("{} cannot unsubscribe its old consumer: {}", settings.memberName(), e.toString());
+            }
+        }
+        try {
+            acceptAnySequence = true;
+            subscription = subscribe(ConsumerConfiguration.builder().deliverPolicy(DeliverPolicy.ByStartSequence)
+                    .startSequence(from));
+            lastDeliveredNanos = System.nanoTime();
+            LOG.warn("{}: consumer of stream {} made anew from sequence {} ({})", settings.memberName(),
+                    settings.streamName(), from, why);
+        } catch (IOException | JetStreamApiException | RuntimeException e) {
+            LOG.debug("{} cannot make its consumer anew yet: {}", settings.memberName(), e.toString());
+        } finally {
+            gapReported.set(false);
+        }
     }
 
     @Override
@@ -467,6 +534,26 @@ public final class NatsTransport implements Transport {
             return;
         }
         long sequence = message.metaData().streamSequence();
+        if (sequence <= lastSequence) {
+            return; // delivered already, by a consumer this one replaced
+        }
+        if (sequence > lastSequence + 1 && lastSequence > 0 && !acceptAnySequence) {
+            // every message of the stream is this consumer's: a gap is a message the client skipped (it happens
+            // to ordered consumers when a server fails over); the consumer is made anew from the missing one
+            if (gapReported.compareAndSet(false, true)) {
+                LOG.warn("{}: stream {} delivered sequence {} after {}; its consumer is made anew from {}",
+                        settings.memberName(), settings.streamName(), sequence, lastSequence, lastSequence + 1);
+                presence.execute(() -> resubscribe("a gap in the stream's sequence"));
+            }
+            return;
+        }
+        if (sequence > lastSequence + 1 && lastSequence > 0) {
+            LOG.warn("{}: stream {} no longer holds sequences {} to {} (older than its limits keep)",
+                    settings.memberName(), settings.streamName(), lastSequence + 1, sequence - 1);
+        }
+        acceptAnySequence = false;
+        lastSequence = sequence;
+        lastDeliveredNanos = System.nanoTime();
         Instant stamp = message.metaData().timestamp().toInstant();
         long streamTime = stamp.getEpochSecond() * 1_000_000_000L + stamp.getNano();
         Headers headers = message.getHeaders();
