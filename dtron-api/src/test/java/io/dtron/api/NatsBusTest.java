@@ -221,4 +221,38 @@ class NatsBusTest {
             }
         }
     }
+
+    /**
+     * The server loses a member's consumer (as when the server that held it dies): the member notices (the NATS
+     * client by its missed heartbeats, else the transport's own watchdog) and makes its consumer anew from the next
+     * message it has not delivered, so that nothing published meanwhile is lost.
+     */
+    @Test
+    void aMemberWhoseConsumerIsDeletedOnTheServerStillReceivesEveryMessageInOrder() throws Exception {
+        try (NatsServer server = NatsServer.start(dir)) {
+            String cluster = TestClusters.uniqueName("consumer");
+            Inbox inboxB = new Inbox(ORDER);
+            try (Dtron a = Dtron.connect(nats(server, cluster, "a").build());
+                    Dtron b = Dtron.connect(nats(server, cluster, "b").build())) {
+                b.addDtronListener(inboxB);
+                assertTrue(b.awaitMembers(2, Duration.ofSeconds(10)), "b sees a: " + b.getMembers());
+                a.send(ORDER.constructValued(Map.of("n", 1)));
+                assertEquals(1, inboxB.take().getVariables().get("n"));
+                try (io.nats.client.Connection admin = io.nats.client.Nats.connect(server.url())) {
+                    io.nats.client.JetStreamManagement management = admin.jetStreamManagement();
+                    for (String consumer : management.getConsumerNames("DTRON_" + cluster)) {
+                        management.deleteConsumer("DTRON_" + cluster, consumer);
+                    }
+                }
+                for (int n = 2; n <= 50; n++) {
+                    a.send(ORDER.constructValued(Map.of("n", n)));
+                }
+                for (int n = 2; n <= 50; n++) {
+                    IDtronChannelValued got = inboxB.poll(20_000);
+                    assertTrue(got != null, "message " + n + " never came");
+                    assertEquals(n, got.getVariables().get("n"), "in order, none lost or twice");
+                }
+            }
+        }
+    }
 }
