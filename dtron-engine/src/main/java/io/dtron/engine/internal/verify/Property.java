@@ -44,13 +44,8 @@ abstract class Property {
     /** Appends to {@code out} zones whose union is the part of {@code zone} (in state {@code s}) where it holds. */
     abstract void restrict(SymState s, Dbm zone, StateInfo info, List<Dbm> out);
 
-    static final class Constant extends Property {
-        private final boolean value;
-
-        Constant(boolean value) {
-            this.value = value;
-        }
-
+    /** A property of the locations and data only: the whole zone where it holds, none where it does not. */
+    abstract static class OnDiscretePart extends Property {
         @Override
         boolean dependsOnZone() {
             return false;
@@ -59,6 +54,22 @@ abstract class Property {
         @Override
         boolean mentionsDeadlock() {
             return false;
+        }
+
+        @Override
+        void restrict(SymState s, Dbm zone, StateInfo info, List<Dbm> out) {
+            if (holds(s)) {
+                out.add(zone);
+            }
+        }
+    }
+
+    /** {@code true} or {@code false}. */
+    static final class Constant extends OnDiscretePart {
+        private final boolean value;
+
+        Constant(boolean value) {
+            this.value = value;
         }
 
         @Override
@@ -75,7 +86,7 @@ abstract class Property {
     }
 
     /** A data condition: an integer expression, true when not 0 (false when {@code negated}). */
-    static final class Data extends Property {
+    static final class Data extends OnDiscretePart {
         private final IntTerm term;
         private final boolean negated;
 
@@ -85,30 +96,13 @@ abstract class Property {
         }
 
         @Override
-        boolean dependsOnZone() {
-            return false;
-        }
-
-        @Override
-        boolean mentionsDeadlock() {
-            return false;
-        }
-
-        @Override
         boolean holds(SymState s) {
             return (term.eval(s) != 0) != negated;
-        }
-
-        @Override
-        void restrict(SymState s, Dbm zone, StateInfo info, List<Dbm> out) {
-            if (holds(s)) {
-                out.add(zone);
-            }
         }
     }
 
     /** {@code P.loc} (or its negation). */
-    static final class AtLocation extends Property {
+    static final class AtLocation extends OnDiscretePart {
         private final int process;
         private final int location;
         private final boolean negated;
@@ -120,25 +114,8 @@ abstract class Property {
         }
 
         @Override
-        boolean dependsOnZone() {
-            return false;
-        }
-
-        @Override
-        boolean mentionsDeadlock() {
-            return false;
-        }
-
-        @Override
         boolean holds(SymState s) {
             return (s.location(process) == location) != negated;
-        }
-
-        @Override
-        void restrict(SymState s, Dbm zone, StateInfo info, List<Dbm> out) {
-            if (holds(s)) {
-                out.add(zone);
-            }
         }
     }
 
