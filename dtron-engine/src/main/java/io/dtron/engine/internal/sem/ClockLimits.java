@@ -195,7 +195,11 @@ public final class ClockLimits {
                 || e instanceof Expression.Binary b && (mentionsClock(b.left()) || mentionsClock(b.right()));
     }
 
-    private static boolean walk(Expression e, long[] constant, List<Integer> clocks) {
+    /**
+     * Walks one side of a clock constraint: adds the absolute values of its constants to {@code constant[0]} and its
+     * clocks (every element of a clock array) to {@code clocks}; false for anything else (a variable, a product).
+     */
+    static boolean walk(Expression e, long[] constant, List<Integer> clocks) {
         if (e instanceof Expression.Constant c) {
             constant[0] += Math.abs((long) c.value());
             return true;

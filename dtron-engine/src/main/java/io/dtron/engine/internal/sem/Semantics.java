@@ -7,7 +7,6 @@ import io.dtron.engine.internal.eval.Evaluator;
 import io.dtron.engine.internal.eval.ModelRuntimeException;
 import io.dtron.engine.zone.Bound;
 import io.dtron.engine.zone.Dbm;
-import io.dtron.model.ClockVariable;
 import io.dtron.model.Edge;
 import io.dtron.model.Expression;
 import io.dtron.model.Location;
@@ -616,36 +615,14 @@ public final class Semantics {
             return false;
         }
         long[] constant = {0};
-        List<int[]> clocks = new ArrayList<>();
-        if (!walk(b.left(), constant, clocks) || !walk(b.right(), constant, clocks)) {
+        List<Integer> clocks = new ArrayList<>();
+        if (!ClockLimits.walk(b.left(), constant, clocks) || !ClockLimits.walk(b.right(), constant, clocks)) {
             return false;
         }
-        for (int[] range : clocks) {
-            for (int i = range[0]; i < range[1]; i++) {
-                max[i] = Math.max(max[i], constant[0]);
-            }
+        for (int i : clocks) {
+            max[i] = Math.max(max[i], constant[0]);
         }
         return true;
-    }
-
-    private static boolean walk(Expression e, long[] constant, List<int[]> clocks) {
-        if (e instanceof Expression.Constant c) {
-            constant[0] += Math.abs((long) c.value());
-            return true;
-        }
-        if (e instanceof Expression.ClockRef c) {
-            ClockVariable v = c.clock();
-            clocks.add(new int[] {v.index(), v.index() + v.type().clocks()});
-            return true;
-        }
-        if (e instanceof Expression.Index i && i.type() instanceof Type.Clock) {
-            return walk(i.array(), constant, clocks);
-        }
-        if (e instanceof Expression.Binary b && (b.op() == Expression.Operator.ADD
-                || b.op() == Expression.Operator.SUB)) {
-            return walk(b.left(), constant, clocks) && walk(b.right(), constant, clocks);
-        }
-        return false;
     }
 
     /**
