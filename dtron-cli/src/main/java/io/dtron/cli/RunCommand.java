@@ -266,7 +266,7 @@ final class RunCommand implements Callable<Integer> {
         }
         if (!virtualTime && !tronBackend && !busMode) {
             // on a bus, adapters often start beside the tester: its margin starts at the default, widening in the run
-            options = withMeasuredInputMargin(options, network, testInterface, out, err);
+            options = options.withInputMargin(inputMargin(network, testInterface, options.timeUnitMicros(), out, err));
         }
         Judge judge;
         try {
@@ -839,7 +839,7 @@ final class RunCommand implements Callable<Integer> {
             try {
                 options = new TestOptions(runSeed, unit, units, policy, delayBound, virtualTime);
                 if (!virtualTime) {
-                    options = withMeasuredInputMargin(options, network, testInterface, out, err);
+                    options = options.withInputMargin(inputMargin(network, testInterface, unit, out, err));
                 }
             } catch (IllegalArgumentException e) {
                 String reason = e.getMessage() + " (timeout from " + (timeout != null ? "--timeout"
@@ -864,21 +864,13 @@ final class RunCommand implements Callable<Integer> {
         }
     }
 
-    /**
-     * In real time: measures how late the tester's thread wakes up while the engine warms up on the model, says so,
-     * warns when the model's narrowest input window is narrower than the margin that needs, and returns the options
-     * with that margin.
-     */
-    private static TestOptions withMeasuredInputMargin(TestOptions options, Network network,
-            TestInterface testInterface, PrintWriter out, PrintWriter err) {
-        SchedulingDelay delay = SchedulingDelay.measureWarmingUp(network, testInterface);
-        out.println("dtron run: " + delay.describe(options.timeUnitMicros()));
-        out.flush();
-        delay.narrowInputWindow(network, testInterface, options.timeUnitMicros(), "--virtual-time").ifPresent(w -> {
-            err.println("dtron run: warning: " + w);
-            err.flush();
-        });
-        return options.withInputMargin(delay.marginMicros());
+    /** The input margin of a real-time run, measured and said as {@link SchedulingDelay#inputMarginForRun} does. */
+    private static long inputMargin(Network network, TestInterface testInterface, long unitMicros, PrintWriter out,
+            PrintWriter err) {
+        return SchedulingDelay.inputMarginForRun("run", network, testInterface, unitMicros, "--virtual-time", line -> {
+            out.println(line);
+            out.flush();
+        }, err);
     }
 
     /** The {@code --classpath} entries: every value split at the platform's path separator and at commas. */

@@ -4,11 +4,13 @@ import io.dtron.engine.ObservableWindow;
 import io.dtron.engine.TestOptions;
 import io.dtron.model.Network;
 import io.dtron.model.TestInterface;
+import java.io.PrintWriter;
 import java.util.List;
 import java.util.Locale;
 import java.util.Optional;
 import java.util.concurrent.LinkedBlockingQueue;
 import java.util.concurrent.TimeUnit;
+import java.util.function.Consumer;
 
 /**
  * How late this machine wakes the tester's thread, measured before a real-time run the way the tester waits (a
@@ -46,7 +48,7 @@ record SchedulingDelay(long worstMicros, long marginMicros) {
      * Measures while the engine warms up on {@code network} on another thread ({@link EngineWarmUp}), as a cold JVM
      * compiles and collects when a run starts; returns when both are done (about 300 ms).
      */
-    static SchedulingDelay measureWarmingUp(Network network, TestInterface testInterface) {
+    private static SchedulingDelay measureWarmingUp(Network network, TestInterface testInterface) {
         Thread warmUp = new Thread(() -> EngineWarmUp.run(network, testInterface), "dtron-warm-up");
         warmUp.setDaemon(true);
         warmUp.start();
@@ -59,8 +61,27 @@ record SchedulingDelay(long worstMicros, long marginMicros) {
         return delay;
     }
 
+    /**
+     * Before a real-time run of {@code dtron COMMAND}: measures while the engine warms up ({@link
+     * #measureWarmingUp}), says what it measured to {@code said} (null: quiet), warns on {@code err} when the
+     * model's narrowest input window is narrower than the margin ({@link #narrowInputWindow}), and returns the input
+     * margin.
+     */
+    static long inputMarginForRun(String command, Network network, TestInterface testInterface, long unitMicros,
+            String virtualTimeOption, Consumer<String> said, PrintWriter err) {
+        SchedulingDelay delay = measureWarmingUp(network, testInterface);
+        if (said != null) {
+            said.accept("dtron " + command + ": " + delay.describe(unitMicros));
+        }
+        delay.narrowInputWindow(network, testInterface, unitMicros, virtualTimeOption).ifPresent(warning -> {
+            err.println("dtron " + command + ": warning: " + warning);
+            err.flush();
+        });
+        return delay.marginMicros();
+    }
+
     /** What was measured and what inputs are aimed at, for a run at {@code unitMicros} per time unit. */
-    String describe(long unitMicros) {
+    private String describe(long unitMicros) {
         return String.format(Locale.ROOT, "the tester's thread wakes up to %.3f ms late here; inputs are aimed at"
                 + " least %.3f ms (%.3f time units) inside the end of their windows", worstMicros / 1000.0,
                 marginMicros / 1000.0, marginMicros / (double) unitMicros);
@@ -86,8 +107,8 @@ record SchedulingDelay(long worstMicros, long marginMicros) {
                         + " narrower than the margin of " + marginMicros + " us that inputs need here: they are aimed"
                         + " at the window's start and may still come late (INCONCLUSIVE, input executed too late)"
                         + (w.width() == 0 ? "; a single instant cannot be met in real time: run the model in virtual"
-                        + " time (" + virtualTimeOption + ")" : "; a time unit of at least " + ceilDiv(marginMicros, w.width())
-                        + " us leaves room"));
+                        + " time (" + virtualTimeOption + ")" : "; a time unit of at least "
+                        + ceilDiv(marginMicros, w.width()) + " us leaves room"));
     }
 
     private static long ceilDiv(long a, long b) {

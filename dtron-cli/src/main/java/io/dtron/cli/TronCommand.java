@@ -321,7 +321,8 @@ final class TronCommand implements Callable<Integer> {
         try {
             options = new TestOptions(runSeed, unit, units, choice.policy(), choice.bound(), virtual);
             if (!virtual) {
-                options = options.withInputMargin(inputMargin(network, ti, unit, printer, err));
+                options = options.withInputMargin(SchedulingDelay.inputMarginForRun("tron", network, ti, unit,
+                        "-Q PORT", quiet ? null : printer::println, err));
             }
         } catch (IllegalArgumentException e) {
             String reason = e.getMessage() + " (timeout from " + (future != null ? "-F" : ti.timeout() != null
@@ -358,22 +359,6 @@ final class TronCommand implements Callable<Integer> {
             }
         }
         return result.verdict().exitCode();
-    }
-
-    /**
-     * In real time: measures how late the tester's thread wakes up and returns the input margin that needs; says so
-     * (unless quiet), and warns when the model's narrowest input window is narrower than the margin.
-     */
-    private long inputMargin(Network network, TestInterface ti, long unit, Printer printer, PrintWriter err) {
-        SchedulingDelay delay = SchedulingDelay.measureWarmingUp(network, ti);
-        if (!quiet) {
-            printer.println("dtron tron: " + delay.describe(unit));
-        }
-        delay.narrowInputWindow(network, ti, unit, "-Q PORT").ifPresent(warning -> {
-            err.println("dtron tron: warning: " + warning);
-            err.flush();
-        });
-        return delay.marginMicros();
     }
 
     private TronSocketAdapter acceptOne(Network network, TronSocketAdapter.Settings settings, Printer printer)
