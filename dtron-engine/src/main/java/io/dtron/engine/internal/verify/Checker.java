@@ -23,11 +23,9 @@ import java.util.ArrayDeque;
 import java.util.ArrayList;
 import java.util.Collections;
 import java.util.HashMap;
-import java.util.HashSet;
 import java.util.LinkedHashMap;
 import java.util.List;
 import java.util.Map;
-import java.util.Set;
 import java.util.function.BiFunction;
 import java.util.function.Function;
 import org.slf4j.Logger;
@@ -339,16 +337,18 @@ public final class Checker {
     private VerificationResult liveness(Query query, Property p, Property q, Budget budget) {
         Property inside = q == null ? p : q;
         ZoneGraph graph = graph(true, List.of(p, inside));
-        Set<Exact> done = new HashSet<>();
+        // maximal paths inside the property: into a cycle, or to a state where time passes forever or that stops
+        CycleSearch maximal = new CycleSearch((s, sink) -> successorsInside(graph, s, inside, sink),
+                s -> graph.timeDiverges(s) ? "time passing forever" : stops(graph, s) ? DEADLOCK_END : null, budget);
         if (q == null) {
             Lasso lasso = null;
             for (SymState start : insideParts(graph, graph.semantics().initial(), inside)) {
-                lasso = maximalPath(graph, start, inside, done, budget);
+                lasso = maximal.from(start);
                 if (lasso != null) {
                     break;
                 }
             }
-            budget.stored = done.size();
+            budget.stored = maximal.finished();
             boolean found = lasso != null;
             boolean holds = query.kind() == Query.Kind.EXISTS_GLOBALLY ? found : !found;
             Trace trace = found ? trace(graph, List.of(), lasso) : null;
@@ -360,7 +360,7 @@ public final class Checker {
         Found found = search(graph, null, graph::deadlocked, budget, (n, s) -> {
             for (Dbm premise : parts(graph, p, s)) {
                 for (SymState start : insideParts(graph, s.withZone(premise), inside)) {
-                    Lasso lasso = maximalPath(graph, start, inside, done, budget);
+                    Lasso lasso = maximal.from(start);
                     if (lasso != null) {
                         witness[0] = lasso;
                         return new Found(n, s.zone());
@@ -369,7 +369,7 @@ public final class Checker {
             }
             return null;
         });
-        budget.stored += done.size();
+        budget.stored += maximal.finished();
         if (found == null) {
             return new VerificationResult(query, Outcome.SATISFIED, null, statistics(budget), null);
         }
@@ -458,101 +458,22 @@ public final class Checker {
         return result;
     }
 
-    /** A search frame: a state on the stack, its successors, the next one to look at. */
-    private static final class Frame {
-        final SymState state;
-        final Semantics.Move move;
-        final List<Semantics.Move> moves = new ArrayList<>();
-        final List<SymState> successors = new ArrayList<>();
-        int next;
-
-        Frame(SymState state, Semantics.Move move) {
-            this.state = state;
-            this.move = move;
-        }
-    }
-
-    /**
-     * A maximal path from {@code start} inside {@code inside} (a state {@link #insideParts} gave), or null.
-     * {@code done} holds states from which there is none; the search adds the states it finishes.
-     */
-    private Lasso maximalPath(ZoneGraph graph, SymState start, Property inside, Set<Exact> done, Budget budget) {
-        if (done.contains(new Exact(start))) {
-            return null;
-        }
-        List<Frame> stack = new ArrayList<>();
-        Map<Exact, Integer> onStack = new HashMap<>();
-        Lasso end = open(graph, start, null, inside, stack, onStack, budget);
-        if (end != null) {
-            return end;
-        }
-        while (!stack.isEmpty()) {
-            Frame top = stack.get(stack.size() - 1);
-            if (top.next == top.successors.size()) {
-                stack.remove(stack.size() - 1);
-                Exact key = new Exact(top.state);
-                onStack.remove(key);
-                done.add(key);
-                continue;
-            }
-            int i = top.next++;
-            SymState child = top.successors.get(i);
-            Semantics.Move move = top.moves.get(i);
-            Exact key = new Exact(child);
-            if (done.contains(key)) {
-                continue;
-            }
-            Integer loop = onStack.get(key);
-            if (loop != null) {
-                List<SymState> states = new ArrayList<>();
-                List<Semantics.Move> moves = new ArrayList<>();
-                lassoOf(stack, states, moves);
-                states.add(child);
-                moves.add(move);
-                return new Lasso(states, moves, loop, "a cycle back to state ");
-            }
-            end = open(graph, child, move, inside, stack, onStack, budget);
-            if (end != null) {
-                return end;
-            }
-        }
-        return null;
-    }
-
-    /**
-     * Pushes a frame for {@code s}, with its successors inside {@code inside}; returns the path if {@code s} ends
-     * one: time can pass for ever inside its zone, or a valuation of it can neither move nor let time pass.
-     */
-    private Lasso open(ZoneGraph graph, SymState s, Semantics.Move move, Property inside, List<Frame> stack,
-                       Map<Exact, Integer> onStack, Budget budget) {
-        budget.explore();
-        Frame f = new Frame(s, move);
-        stack.add(f);
-        onStack.put(new Exact(s), stack.size() - 1);
-        String ending = graph.timeDiverges(s) ? "time passing forever" : stops(graph, s) ? DEADLOCK_END : null;
-        if (ending != null) {
-            List<SymState> states = new ArrayList<>();
-            List<Semantics.Move> moves = new ArrayList<>();
-            lassoOf(stack, states, moves);
-            return new Lasso(states, moves, -1, ending);
-        }
+    /** The successors of {@code s} inside {@code inside} (a state {@link #insideParts} gave): their parts inside it. */
+    private void successorsInside(ZoneGraph graph, SymState s, Property inside, ZoneGraph.Sink sink) {
         if (!inside.dependsOnZone()) {
             // the property does not change while time passes: a successor is inside it or not at all
             graph.successors(s, (m, next) -> {
                 if (inside.holds(next)) {
-                    f.moves.add(m);
-                    f.successors.add(next);
+                    sink.accept(m, next);
                 }
             });
-            return null;
+            return;
         }
         graph.semantics().moves(s, (m, next) -> {
             for (SymState part : insideParts(graph, next, inside)) {
-                f.moves.add(m);
-                f.successors.add(part);
+                sink.accept(m, part);
             }
         });
-        return null;
     }
 
     /** Whether a path can end in {@code s}: see {@link #stopping}. */
@@ -593,15 +514,6 @@ public final class Checker {
             }
         }
         return out;
-    }
-
-    private static void lassoOf(List<Frame> stack, List<SymState> states, List<Semantics.Move> moves) {
-        for (int i = 0; i < stack.size(); i++) {
-            states.add(stack.get(i).state);
-            if (i > 0) {
-                moves.add(stack.get(i).move);
-            }
-        }
     }
 
     // ================================================================ traces
