@@ -45,7 +45,7 @@ public final class NatsServer implements AutoCloseable {
      */
     public static void requireTool(boolean present, String what) {
         if (!present && "1".equals(System.getenv("DTRON_REQUIRE_NATS"))) {
-            fail(what + " is missing, and DTRON_REQUIRE_NATS=1 requires it (.ci/run installs it)");
+            fail(what + " is missing, and DTRON_REQUIRE_NATS=1 requires it (scripts/test installs it)");
         }
         Assumptions.assumeTrue(present, what + " is not installed: skipped (CI installs it and runs this test)");
     }

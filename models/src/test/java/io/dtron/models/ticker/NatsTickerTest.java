@@ -19,7 +19,7 @@ import org.junit.jupiter.api.io.TempDir;
  * The ticker through a NATS bus ({@code dtron run --bus nats://...} on a nats-server of the test's): the Java bus
  * adapter, the Python adapter ({@code clients/python/examples/ticker.py}) and the C adapter each pass, and their slow
  * variants fail. The Python adapter runs with {@code $DTRON_PYTHON} (a Python with the {@code dtron} package
- * installed; {@code .ci/run} makes one), else {@code python3} if it has the package.
+ * installed; {@code scripts/test} makes one), else {@code python3} if it has the package.
  */
 @Timeout(value = 2, unit = TimeUnit.MINUTES)
 class NatsTickerTest {
