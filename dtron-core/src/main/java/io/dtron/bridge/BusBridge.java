@@ -53,9 +53,10 @@ import org.slf4j.LoggerFactory;
  * (its publish time) and t2 (its receive time) are recorded: {@link #outputLatency()} and
  * {@link #inputLatency()} summarise t2 - t1.
  *
- * <p>When a member other than the bridge leaves the bus during the run (it closed, or its process died and
- * failure detection noticed), the run ends INCONCLUSIVE naming the member: the bridge cannot know which parts of
- * the system under test that member stood for, so it assumes the model may be waiting on it.
+ * <p>When a member other than the bridge that was on the bus when the run started leaves during the run (it closed,
+ * or its process died and failure detection noticed), the run ends INCONCLUSIVE naming the member: the bridge
+ * cannot know which parts of the system under test that member stood for, so it assumes the model may be waiting on
+ * it. A member that joined during the run never served it, and may leave.
  */
 public final class BusBridge implements Adapter, AutoCloseable {
     private static final Logger LOG = LoggerFactory.getLogger(BusBridge.class);
@@ -980,14 +981,13 @@ public final class BusBridge implements Adapter, AutoCloseable {
 
     /**
      * Called on the bus's listener thread, after the messages of members that left. Only members that were on
-     * the bus during the run count: this news may come after the start for a member that left before.
+     * the bus when the run started count: this news may come after the start for a member that left before, and a
+     * member that joined during the run never served it (a tester refused because this run is going on, its
+     * adapters, an observer), so its leaving does not end the run.
      */
     private void membershipChanged(List<String> members, List<String> joined, List<String> left) {
         if (!joined.isEmpty()) {
             LOG.info("Joined the bus: {}; members now {}", joined, members);
-            if (running) {
-                watched.addAll(joined);
-            }
         }
         if (left.isEmpty()) {
             return;

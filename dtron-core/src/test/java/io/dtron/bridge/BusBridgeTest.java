@@ -376,6 +376,22 @@ class BusBridgeTest {
     }
 
     @Test
+    void aMemberThatJoinedDuringTheRunAndLeftIsNoReason() throws Exception {
+        bridge.start(context);
+        // a member that never served the run: a tester refused because this run is going on, or its adapter
+        try (Dtron newcomer = Dtron.connect(DtronOptions.builder().clusterName(cluster).memberName("newcomer")
+                .inJvm(true).build())) {
+            awaitMembers(3);
+        }
+        awaitMembers(2);
+        // membership news comes in the bus's order: the first reason must be the served adapter's leaving
+        adapter.close();
+        String reason = context.inconclusive.poll(10, TimeUnit.SECONDS);
+        assertNotNull(reason, "no inconclusive verdict");
+        assertTrue(reason.startsWith("adapter member adapter left the bus"), reason);
+    }
+
+    @Test
     void membersLeavingBeforeTheStartOrAfterTheStopAreNoReason() throws Exception {
         try (Dtron early = Dtron.connect(DtronOptions.builder().clusterName(cluster).inJvm(true).build())) {
             assertTrue(bridge.awaitAdapters(2, WAIT));
