@@ -8,8 +8,9 @@ import ch.qos.logback.core.spi.FilterReply;
 /**
  * Not API. Drops the two events JGroups' TCP transport logs when a member leaves the bus while a connection of its
  * is busy, both about the member's own closing: "failed sending graceful close ... Socket closed" when two members
- * on one host close at the same time, and "failed handling message" with an {@code IOException: Stream closed} and
- * its stack trace, when the thread that read the member's last message (with direct message processing, the
+ * on one host close at the same time, and "failed handling message" (or, logged as JGRP000030 when a member leaves
+ * right after it joined, "failed handling incoming message") with an {@code IOException: Stream closed} and its
+ * stack trace, when the thread that read the member's last message (with direct message processing, the
  * thread that delivers it) reads again from the connection the member has just closed. The member is leaving
  * anyway, and the run's results are printed by then. No close order avoids the second: it comes from whichever
  * member leaves while another is still on the bus. Every other event passes, including other failures of the same
@@ -28,7 +29,8 @@ public final class ClosingNoiseFilter extends Filter<ILoggingEvent> {
             return FilterReply.DENY;
         }
         IThrowableProxy thrown = event.getThrowableProxy();
-        if (message.endsWith(": failed handling message") && thrown != null
+        if ((message.endsWith(": failed handling message") || message.endsWith(": failed handling incoming message"))
+                && thrown != null
                 && "java.io.IOException".equals(thrown.getClassName()) && "Stream closed".equals(thrown.getMessage())) {
             return FilterReply.DENY;
         }

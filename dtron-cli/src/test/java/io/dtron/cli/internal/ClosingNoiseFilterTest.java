@@ -45,4 +45,14 @@ class ClosingNoiseFilterTest {
         assertEquals(FilterReply.NEUTRAL, decide("io.dtron.api.Dtron", Level.WARN, message,
                 new IOException("Stream closed")));
     }
+
+    /** The same, as JGroups 5.5 logs it (JGRP000030) for a tester that was refused and left right after joining. */
+    @Test
+    void dropsTheStreamClosedFailureOfAnIncomingMessageToo() {
+        String message = "JGRP000030: dtron-12546-2e4dd23d: failed handling incoming message";
+        assertEquals(FilterReply.DENY, decide("org.jgroups.protocols.TCP", Level.ERROR, message,
+                new IOException("Stream closed")));
+        assertEquals(FilterReply.NEUTRAL, decide("org.jgroups.protocols.TCP", Level.ERROR, message,
+                new IOException("Connection reset")), "another failure of a connection is news");
+    }
 }
