@@ -20,6 +20,7 @@ import java.io.IOException;
 import java.time.Duration;
 import java.util.ArrayList;
 import java.util.Collection;
+import java.util.Collections;
 import java.util.LinkedHashMap;
 import java.util.LinkedHashSet;
 import java.util.List;
@@ -122,6 +123,8 @@ public final class Dtron implements AutoCloseable {
     private final long clockShiftNanos;
     private final ClockSync clockSync;
     private final ChannelHandshake handshake;
+    /** The other members that said they are testers while on the bus (see {@link #wasTester}); only grows. */
+    private final Set<String> testersSeen = ConcurrentHashMap.newKeySet();
     private final RunClock runClock;
     private final Map<AckKey, Boolean> acknowledged = new LinkedHashMap<>() {
         @Override
@@ -157,7 +160,7 @@ public final class Dtron implements AutoCloseable {
         this.clockSync = new ClockSync(transport.localMember(), options.isTester(), this::currentTimeNanos,
                 sequence::incrementAndGet, this::publishControl, this::offsetChanged);
         this.handshake = new ChannelHandshake(transport.localMember(), dispatcher::execute,
-                this::publishServed, this::wakeWaiters);
+                this::publishServed, this::wakeWaiters, options.isTester());
         this.runClock = new RunClock(transport.localMember(), this::currentTimeNanos, this::runClockOffset);
         this.lastView = transport.view();
         this.viewSubscription = transport.addViewListener(this::viewChanged);
@@ -337,16 +340,17 @@ public final class Dtron implements AutoCloseable {
     }
 
     /**
-     * Returns the channels this member serves: those it has listeners for and those it declared or sent on. A
-     * member that is not a tester tells the bus whenever they change, and each tester that greets the bus.
+     * Returns the channels this member serves: those it has listeners for and those it declared or sent on (for a
+     * tester, those it tests, and that it is a tester). It tells the bus whenever they change, and each tester that
+     * greets the bus.
      */
     public ServedChannels getServedChannels() {
         return handshake.own();
     }
 
     /**
-     * Returns what the other members on the bus said they serve, by member id in id order; members that said
-     * nothing (testers, and adapters built against an API without the handshake) are left out; an immutable
+     * Returns what the other members on the bus said they serve, by member id in id order (testers say that they
+     * are); members that said nothing (adapters built against an API without the handshake) are left out; an immutable
      * snapshot, cheap to take on every message. A tester waits until its model's channels are all served before it
      * starts a run.
      */
@@ -518,11 +522,24 @@ public final class Dtron implements AutoCloseable {
 
     /**
      * Returns the other members that announced themselves as a tester (connected with the {@linkplain
-     * DtronOptions.Builder#tester tester} option, or by publishing {@link #RUN_START}) and are on the bus now. A
-     * tester that finds another one here shares its bus with another run: its adapters would follow both.
+     * DtronOptions.Builder#tester tester} option, or by publishing {@link #RUN_START}), by a greeting or in the
+     * handshake, and are on the bus now. A tester that finds another one here shares its bus with another run: its
+     * adapters would follow both.
      */
     public Set<String> getOtherTesters() {
-        return clockSync.otherTesters();
+        Set<String> testers = new LinkedHashSet<>(clockSync.otherTesters());
+        handshake.others().values().stream().filter(ServedChannels::tester).map(ServedChannels::member)
+                .forEach(testers::add);
+        return Collections.unmodifiableSet(testers);
+    }
+
+    /**
+     * Returns whether another member said it is a tester (by a greeting, in the handshake or by starting a run)
+     * while it was on the bus; still true after it left. For a tester deciding whether a member that has just left
+     * stood for part of the system under test.
+     */
+    public boolean wasTester(String member) {
+        return testersSeen.contains(member);
     }
 
     /**
@@ -761,7 +778,7 @@ public final class Dtron implements AutoCloseable {
         long now = currentTimeNanos();
         try {
             transport.publish(ChannelHandshake.SERVE, SyncCodec.encodeServed(ChannelHandshake.SERVE,
-                    stamp(now, now, "", 0), served.receives(), served.sends(), served.joinsRun()));
+                    stamp(now, now, "", 0), served.receives(), served.sends(), served.joinsRun(), served.tester()));
         } catch (IOException | RuntimeException e) {
             LOG.debug("{} cannot publish the channels it serves: {}", getMemberId(), e.toString());
         }
@@ -851,12 +868,18 @@ public final class Dtron implements AutoCloseable {
         switch (message.group()) {
             case ClockSync.HELLO -> {
                 if (!stamp.sender().equals(getMemberId())) {
+                    testersSeen.add(stamp.sender());
                     clockSync.testerAnnounced(stamp.sender(), false);
                 }
                 handshake.helloReceived();
             }
-            case ChannelHandshake.SERVE -> handshake.servedReceived(new ServedChannels(stamp.sender(),
-                    Set.copyOf(sync.getReceivesList()), Set.copyOf(sync.getSendsList()), sync.getJoinsRun()));
+            case ChannelHandshake.SERVE -> {
+                if (sync.getTester()) {
+                    testersSeen.add(stamp.sender());
+                }
+                handshake.servedReceived(new ServedChannels(stamp.sender(), Set.copyOf(sync.getReceivesList()),
+                        Set.copyOf(sync.getSendsList()), sync.getJoinsRun(), sync.getTester()));
+            }
             case ClockSync.PING -> clockSync.pingReceived(stamp.sender(), stamp.sequence(), receiveTime,
                     isJoiningTester(stamp.sender()));
             case ClockSync.PONG -> clockSync.pongReceived(stamp.sender(), stamp.ackedSender(), stamp.ackedSequence(),
@@ -912,6 +935,11 @@ public final class Dtron implements AutoCloseable {
     /** Called on the transport's thread, in the bus's order. */
     private void runStarted(IDtronChannelValued start) {
         runTester = start.getSender();
+        if (runTester.equals(getMemberId())) {
+            handshake.testing();
+        } else {
+            testersSeen.add(runTester);
+        }
         runId = start.getRunId();
         clockSync.testerAnnounced(start.getSender(), true);
         runClock.start(start.getEventTimeNanos(), start.getVariables().get("timeunit"), start.getRunId());

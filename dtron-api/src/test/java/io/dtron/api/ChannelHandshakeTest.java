@@ -56,10 +56,15 @@ class ChannelHandshakeTest {
                 Map<String, ServedChannels> served = awaitServed(tester, m -> m.containsKey("adapter"));
                 assertEquals(Map.of("adapter", new ServedChannels("adapter", Set.of("reset"), Set.of("tick"))),
                         served);
-                // a tester takes part too: it serves what its listeners and its sends say (nothing here)
-                assertEquals(Map.of("tester", new ServedChannels("tester", Set.of(), Set.of())),
+                // a tester takes part too: it tests what its listeners and its sends say (nothing here), and says
+                // that it is a tester
+                assertEquals(Map.of("tester", new ServedChannels("tester", Set.of(), Set.of(), false, true)),
                         awaitServed(adapter, m -> m.containsKey("tester")));
+                assertEquals(Set.of("tester"), adapter.getOtherTesters());
             }
+            // known after it left, for a tester deciding whether a member that left served its run
+            assertTrue(adapter.wasTester("tester"));
+            assertFalse(adapter.wasTester("adapter"));
         }
     }
 

@@ -11,7 +11,6 @@ import java.time.Duration;
 import java.util.ArrayList;
 import java.util.List;
 import java.util.Locale;
-import java.util.Set;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
@@ -24,15 +23,13 @@ final class BusSession implements AutoCloseable {
     private static final Logger LOG = LoggerFactory.getLogger(BusSession.class);
     /** How long adapters that just joined get to add their listeners before the run starts. */
     private static final Duration SETTLE = Duration.ofMillis(250);
-    /** How long after joining a tester of another run has surely greeted this one (it does 100 ms after a join). */
-    private static final Duration GREETING = Duration.ofMillis(400);
+    /** How long this tester waits for every member on the bus to tell whether it is a tester. */
+    private static final Duration ROLL_CALL = Duration.ofSeconds(3);
 
     private final Supplier<DtronOptions.Builder> options;
     private final BusBridge bridge;
     private final List<DtronAdapter> adapters = new ArrayList<>();
     private final List<Dtron> adapterMembers = new ArrayList<>();
-
-    private final long openedNanos = System.nanoTime();
 
     private BusSession(Supplier<DtronOptions.Builder> options, BusBridge bridge) {
         this.options = options;
@@ -87,17 +84,14 @@ final class BusSession implements AutoCloseable {
     }
 
     /**
-     * Returns the testers of other runs on this bus, after giving them the time to greet this tester: a run here
-     * would share their adapters.
+     * Returns the testers of other runs on this bus that joined it before this one, once every member has told
+     * whether it is a tester (see {@link BusBridge#testersThatJoinedFirst}): a run here would share their adapters.
+     * Called before this JVM's adapters join, so that a tester that does not start leaves no adapter behind.
      *
      * @throws InterruptedException if the thread was interrupted while waiting
      */
-    Set<String> otherTesters() throws InterruptedException {
-        long waited = System.nanoTime() - openedNanos;
-        if (waited < GREETING.toNanos()) {
-            Thread.sleep((GREETING.toNanos() - waited) / 1_000_000);
-        }
-        return bridge.otherTesters();
+    List<String> testersThatJoinedFirst() throws InterruptedException {
+        return bridge.testersThatJoinedFirst(ROLL_CALL);
     }
 
     /**

@@ -514,6 +514,20 @@ final class RunCommand implements Callable<Integer> {
                     + " as " + session.bridge().memberId() + ", seed " + options.seed() + ", " + options.timeout()
                     + " time units of " + options.timeUnitMicros() + " us in real time" + judge.by());
             out.flush();
+            try {
+                List<String> others = join ? List.of() : session.testersThatJoinedFirst();
+                if (!others.isEmpty()) {
+                    err.println("dtron run: bus '" + clusterName + "' at " + where + " has a run"
+                            + " in progress: tester " + String.join(", ", others) + " is on it, and its adapters"
+                            + " would serve both runs. Give this run a bus of its own with --cluster NAME (and"
+                            + " its adapters the same name), or wait until the other run is over");
+                    return 1;
+                }
+            } catch (InterruptedException e) {
+                Thread.currentThread().interrupt();
+                err.println("dtron run: interrupted while joining the bus");
+                return 1;
+            }
             for (int i = 0; i < adapters.size(); i++) {
                 String member;
                 try {
@@ -538,20 +552,6 @@ final class RunCommand implements Callable<Integer> {
             } catch (InterruptedException e) {
                 Thread.currentThread().interrupt();
                 err.println("dtron run: interrupted while waiting for the adapters");
-                return 1;
-            }
-            try {
-                Set<String> others = join ? Set.of() : session.otherTesters();
-                if (!others.isEmpty()) {
-                    err.println("dtron run: bus '" + clusterName + "' at " + where + " has a run"
-                            + " in progress: tester " + String.join(", ", others) + " is on it, and its adapters"
-                            + " would serve both runs. Give this run a bus of its own with --cluster NAME (and"
-                            + " its adapters the same name), or wait until the other run is over");
-                    return 1;
-                }
-            } catch (InterruptedException e) {
-                Thread.currentThread().interrupt();
-                err.println("dtron run: interrupted while joining the bus");
                 return 1;
             }
             boolean auto = delta.equalsIgnoreCase("auto");

@@ -79,6 +79,8 @@ public final class BusBridge implements Adapter, AutoCloseable {
     private final Set<String> watched = ConcurrentHashMap.newKeySet();
     /** The adapters the tester waited for ({@link #expectAdapters}): each must still be there at the start. */
     private final Set<String> expected = ConcurrentHashMap.newKeySet();
+    /** Whether every channel of the model was served by the handshake when {@link #expectAdapters} was called. */
+    private volatile boolean expectedByHandshake;
     private final AtomicBoolean warnedBeforeStart = new AtomicBoolean();
     private final AtomicLong outputsAfterEnd = new AtomicLong();
     private volatile CountDownLatch ownStop = new CountDownLatch(1);
@@ -101,6 +103,8 @@ public final class BusBridge implements Adapter, AutoCloseable {
     private final Map<String, Integer> peerVerdicts = new ConcurrentHashMap<>();
     /** The testers that joined this bridge's run (it started it), as the run started. */
     private volatile Set<String> joiners = Set.of();
+    /** For a joining bridge, the tester that started the run it joined (null otherwise). */
+    private volatile String runLeader;
     /** On a joining bridge: the run start it waits for or joined. */
     private final java.util.concurrent.BlockingQueue<IDtronChannelValued> starts =
             new java.util.concurrent.LinkedBlockingQueue<>();
@@ -611,15 +615,18 @@ public final class BusBridge implements Adapter, AutoCloseable {
 
     /**
      * Remembers the adapters on the bus now (the members other than this bridge and other testers), once the
-     * tester has waited for them: one that has left by the start of the next run ends that run INCONCLUSIVE at once,
-     * naming it, as one that leaves during the run does (else the run would go on without it and fail when its
-     * first output does not come).
+     * tester has waited for them: when one has left by the start of the next run, that run ends INCONCLUSIVE at once,
+     * naming it, as when one leaves during the run (else the run would go on without it and fail when its first
+     * output does not come). When every channel of the model is served now by what the adapters said in the
+     * handshake, the handshake decides instead: the run ends so only if a channel is no longer served at its start
+     * (a member that left without serving one, such as a tester refused because of this run, changes nothing).
      */
     public void expectAdapters() {
         Set<String> testers = dtron.getOtherTesters();
         expected.clear();
         dtron.getMembers().stream().filter(m -> !m.equals(dtron.getMemberId()) && !testers.contains(m))
                 .forEach(expected::add);
+        expectedByHandshake = unservedChannels().isEmpty();
     }
 
     @Override
@@ -628,10 +635,12 @@ public final class BusBridge implements Adapter, AutoCloseable {
         // the awaited adapters that were no longer members at the start (those that leave later are watched)
         List<String> goneBeforeStart = expected.stream().filter(m -> !watched.contains(m)).sorted().toList();
         expected.clear();
-        if (!goneBeforeStart.isEmpty()) {
+        List<String> unserved = expectedByHandshake ? unservedChannels() : List.of();
+        if (!goneBeforeStart.isEmpty() && (!expectedByHandshake || !unserved.isEmpty())) {
             context.inconclusive("adapter member" + (goneBeforeStart.size() == 1 ? " " : "s ")
                     + String.join(", ", goneBeforeStart) + " left the bus before the run started (members now "
-                    + dtron.getMembers() + "); the system under test may be gone");
+                    + dtron.getMembers() + ")" + (unserved.isEmpty() ? "" : ", and no adapter serves "
+                    + String.join(", ", unserved) + " any more") + "; the system under test may be gone");
         }
     }
 
@@ -642,8 +651,11 @@ public final class BusBridge implements Adapter, AutoCloseable {
         inputSentMicros.clear();
         heldPeerInputs.clear();
         widenings.clear();
+        runLeader = joining ? dtron.getTester().orElse(null) : null;
         watched.addAll(dtron.getMembers());
         watched.remove(dtron.getMemberId());
+        watched.removeAll(testersOfOtherRuns()); // refused by this run, they leave
+
         synchronized (inputNumbers) {
             inputNumbers.clear();
             inputChannels.clear();
@@ -679,6 +691,40 @@ public final class BusBridge implements Adapter, AutoCloseable {
      */
     public Set<String> otherTesters() {
         return dtron.getOtherTesters();
+    }
+
+    /**
+     * Returns the testers of other runs (see {@link #otherTesters()}) that joined the bus before this bridge, once
+     * every other member has told whether it is a tester: it answered this tester's greeting in the
+     * channel-serving handshake (a tester says that it is one), or greeted the bus as a tester. Members that never
+     * tell (adapters built against an API without the handshake) are waited for until the timeout. Of two testers
+     * that meet on one bus, the one that joined first starts its run and the other, finding it here, does not: the
+     * members' order on the bus is the same for all of them.
+     *
+     * @throws InterruptedException if the thread was interrupted while waiting
+     */
+    public List<String> testersThatJoinedFirst(Duration timeout) throws InterruptedException {
+        long deadline = System.nanoTime() + timeout.toNanos();
+        while (!silentMembers().isEmpty() && System.nanoTime() < deadline) {
+            Thread.sleep(20);
+        }
+        List<String> members = dtron.getMembers();
+        Set<String> testers = testersOfOtherRuns();
+        List<String> first = members.subList(0, Math.max(0, members.indexOf(dtron.getMemberId()))).stream()
+                .filter(testers::contains).toList();
+        List<String> later = members.stream().filter(testers::contains).filter(m -> !first.contains(m)).toList();
+        if (!later.isEmpty()) {
+            LOG.info("Testers {} joined bus after this one; they leave this run to it", later);
+        }
+        return first;
+    }
+
+    /** The other members that have not told yet whether they are testers. */
+    private List<String> silentMembers() {
+        Set<String> told = new java.util.HashSet<>(dtron.getMembersServedChannels().keySet());
+        told.addAll(dtron.getOtherTesters());
+        told.add(dtron.getMemberId());
+        return dtron.getMembers().stream().filter(m -> !told.contains(m)).toList();
     }
 
     /** Returns the id of the current (or last) run, which its messages carry; "" before the first. */
@@ -993,7 +1039,9 @@ public final class BusBridge implements Adapter, AutoCloseable {
             return;
         }
         LOG.info("Left the bus: {}; members now {}", left, members);
-        List<String> gone = left.stream().filter(watched::remove).toList();
+        // a tester of another run (refused because of this one) never served it, even if it said so only now
+        List<String> gone = left.stream().filter(watched::remove)
+                .filter(m -> !dtron.wasTester(m) || m.equals(runLeader)).toList();
         if (running && !gone.isEmpty()) {
             gone.forEach(expected::remove); // reported here, not again by the start
             context.inconclusive("adapter member" + (gone.size() == 1 ? " " : "s ") + String.join(", ", gone)

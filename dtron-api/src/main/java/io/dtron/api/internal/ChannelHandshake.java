@@ -15,7 +15,8 @@ import java.util.function.Consumer;
 /**
  * Not API. One member's side of the channel-serving handshake: the channels it serves (receives, by listeners, and
  * sends), announced on {@link #SERVE} whenever they change and whenever a tester's hello arrives; and the last
- * announcement of every other member on the bus. A tester announces nothing: it serves no channel, it tests them.
+ * announcement of every other member on the bus. A tester announces its channels too, saying that it is a tester:
+ * it serves none of them, it tests them.
  * Thread-safe.
  */
 public final class ChannelHandshake {
@@ -33,6 +34,7 @@ public final class ChannelHandshake {
     private final Object othersLock = new Object();
     private final AtomicBoolean queued = new AtomicBoolean();
     private boolean joinsRun;
+    private boolean tester;
 
     /**
      * Creates a member's side.
@@ -41,10 +43,12 @@ public final class ChannelHandshake {
      * @param executor      where announcements are published, one at a time
      * @param publisher     publishes this member's channels on {@link #SERVE}; must not throw
      * @param othersChanged called (without locks held) when another member's announcement arrived or it left
+     * @param tester        whether this member is a tester from the start
      */
     public ChannelHandshake(String me, Executor executor, Consumer<ServedChannels> publisher,
-            Runnable othersChanged) {
+            Runnable othersChanged, boolean tester) {
         this.me = me;
+        this.tester = tester;
         this.executor = executor;
         this.publisher = publisher;
         this.othersChanged = othersChanged;
@@ -84,9 +88,21 @@ public final class ChannelHandshake {
         }
     }
 
+    /** This member became a tester (it started a run); announced if it was none. */
+    public void testing() {
+        boolean changed;
+        synchronized (this) {
+            changed = !tester;
+            tester = true;
+        }
+        if (changed) {
+            announce();
+        }
+    }
+
     /** Returns the channels this member serves. */
     public synchronized ServedChannels own() {
-        return new ServedChannels(me, receives, sends, joinsRun);
+        return new ServedChannels(me, receives, sends, joinsRun, tester);
     }
 
     /** A tester greeted the bus (this member too, if it is one): this member tells it what it serves. */

@@ -51,9 +51,9 @@ public final class SyncCodec {
      * receives and sends.
      */
     public static byte[] encodeServed(String channelName, Stamp stamp, Collection<String> receives,
-            Collection<String> sends, boolean joinsRun) {
+            Collection<String> sends, boolean joinsRun, boolean tester) {
         return builder(channelName, Map.of(), stamp).addAllReceives(receives).addAllSends(sends).setJoinsRun(joinsRun)
-                .build().toByteArray();
+                .setTester(tester).build().toByteArray();
     }
 
     /** Returns the stamp a parsed message carries, with {@code transportSender} when it names no sender. */
