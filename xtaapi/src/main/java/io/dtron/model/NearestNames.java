@@ -10,7 +10,7 @@ import java.util.Locale;
 /**
  * The names nearest to a misspelt one, for "did you mean" hints in error messages: by edit distance (insertions,
  * deletions, substitutions and swaps of two neighbouring characters, case ignored), at most a third of the name's
- * length (at least 1, and less than the whole name), the nearest first, {@value #MAX} at most.
+ * length (at least 1, and less than the whole name); of those, the nearest ones, {@value #MAX} at most.
  */
 public final class NearestNames {
     /** The most names a hint offers. */
@@ -19,7 +19,10 @@ public final class NearestNames {
     private NearestNames() {
     }
 
-    /** The names of {@code candidates} near {@code name}, the nearest first (then in alphabetical order). */
+    /**
+     * The names of {@code candidates} nearest to {@code name}, ordered by their distance with case, then
+     * alphabetically.
+     */
     public static List<String> of(String name, Collection<String> candidates) {
         String lower = name.toLowerCase(Locale.ROOT);
         int limit = Math.min(Math.max(1, name.length() / 3), name.length() - 1);
@@ -35,9 +38,9 @@ public final class NearestNames {
                 near.add(new Near(c, d, distance(name, c)));
             }
         }
-        return near.stream()
-                .sorted(Comparator.comparingInt(Near::distance).thenComparingInt(Near::exactDistance)
-                        .thenComparing(Near::name))
+        int nearest = near.stream().mapToInt(Near::distance).min().orElse(0);
+        return near.stream().filter(n -> n.distance() == nearest)
+                .sorted(Comparator.comparingInt(Near::exactDistance).thenComparing(Near::name))
                 .limit(MAX).map(Near::name).toList();
     }
 
@@ -46,7 +49,11 @@ public final class NearestNames {
      * mean 'a' or 'b'?)"}, or the empty string when no candidate is near.
      */
     public static String hint(String name, Collection<String> candidates) {
-        List<String> near = of(name, candidates);
+        return didYouMean(of(name, candidates));
+    }
+
+    /** {@code " (did you mean 'a', 'b' or 'c'?)"} for these names, or the empty string when there are none. */
+    public static String didYouMean(List<String> near) {
         if (near.isEmpty()) {
             return "";
         }

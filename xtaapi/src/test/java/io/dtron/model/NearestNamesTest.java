@@ -17,11 +17,15 @@ class NearestNamesTest {
     }
 
     @Test
-    void theNearestComeFirstAndAtMostThree() {
+    void onlyTheNearestAndAtMostThree() {
         List<String> processes = List.of("Train", "Gate", "Trains", "Tram");
         assertEquals(List.of("Train"), NearestNames.of("Trian", processes));
-        assertEquals(List.of("Train(1)", "Train(0)", "Train(2)"),
+        assertEquals(List.of("Train(1)"),
                 NearestNames.of("Trian(1)", List.of("Train(0)", "Train(1)", "Train(2)", "Train(3)", "Gate")));
+        assertEquals(List.of("Train(0)", "Train(1)", "Train(2)"),
+                NearestNames.of("Train(7)", List.of("Train(3)", "Train(2)", "Train(1)", "Train(0)", "Gate")));
+        assertEquals(List.of("Gate", "gate"), NearestNames.of("Gatee", List.of("gate", "Gate", "date1")),
+                "both one edit away, case ignored: the one nearer with case first");
         assertEquals(List.of("Gate"), NearestNames.of("gate", processes), "case is ignored");
         assertEquals(List.of(), NearestNames.of("Bridge", processes));
         // a one-letter name has no near names: any other letter would be a guess
