@@ -152,7 +152,7 @@ class NatsBusTest {
         }
     }
 
-    /** Runs openssl in the test's folder; skips the test without it (fails under DTRON_REQUIRE_NATS=1). */
+    /** Runs openssl in the test's folder; skips the test without it (fails under DTRON_REQUIRE_TOOLS=1). */
     private void openssl(String... args) throws Exception {
         List<String> command = new ArrayList<>(List.of("openssl"));
         command.addAll(List.of(args));

@@ -13,12 +13,11 @@ import java.util.ArrayList;
 import java.util.List;
 import java.util.Optional;
 import java.util.concurrent.TimeUnit;
-import org.junit.jupiter.api.Assumptions;
 
 /**
  * A {@code nats-server} with JetStream, started by a test on a free loopback port with a store in a folder of the
  * test's: alone, or as one of a cluster. A test that needs it is skipped when no {@code nats-server} is installed,
- * unless the environment says {@code DTRON_REQUIRE_NATS=1} (as CI does): then it fails.
+ * unless the environment says {@code DTRON_REQUIRE_TOOLS=1} (as scripts/test does): then it fails.
  */
 public final class NatsServer implements AutoCloseable {
     private final Process process;
@@ -39,15 +38,9 @@ public final class NatsServer implements AutoCloseable {
                 .findFirst();
     }
 
-    /**
-     * Skips the calling test when a tool is missing, or fails it when {@code DTRON_REQUIRE_NATS=1} says that every
-     * tool of the NATS tests must be there.
-     */
+    /** Skips the calling test when a tool is missing, or fails it under {@code DTRON_REQUIRE_TOOLS=1} ({@link Tools}). */
     public static void requireTool(boolean present, String what) {
-        if (!present && "1".equals(System.getenv("DTRON_REQUIRE_NATS"))) {
-            fail(what + " is missing, and DTRON_REQUIRE_NATS=1 requires it (scripts/test installs it)");
-        }
-        Assumptions.assumeTrue(present, what + " is not installed: skipped (CI installs it and runs this test)");
+        Tools.require(present, what);
     }
 
     /** Returns a port that was free on loopback a moment ago. */

@@ -62,7 +62,8 @@ final class VerifyCommand implements Callable<Integer> {
     private Order order;
 
     @Option(names = "--trace", paramLabel = "text|json|none", defaultValue = "text", description = "How to print the"
-            + " diagnostic trace of a query that has one (default: text).")
+            + " diagnostic trace of a query that has one (default: text). With json, standard output holds only the"
+            + " traces, one JSON object a line, and the rest goes to standard error.")
     private Format traceFormat;
 
     @Option(names = "--time-limit", paramLabel = "SECONDS", description = "Give up a query after this long: its"
@@ -102,13 +103,15 @@ final class VerifyCommand implements Callable<Integer> {
     }
 
     private int verify(PrintWriter out, PrintWriter err) throws ModelException, IOException {
+        // with JSON traces, standard output holds the JSON alone (one trace a line) and the text goes to stderr
+        PrintWriter text = traceFormat == Format.json ? err : out;
         if (timeLimit != null && timeLimit < 0 || memoryLimit != null && memoryLimit <= 0) {
             err.println("dtron verify: --time-limit must not be negative and --memory-limit must be positive");
             return 1;
         }
         Network network;
         if (delays.given()) {
-            network = deltaExtended(out, err);
+            network = deltaExtended(text, err);
             if (network == null) {
                 return 1;
             }
@@ -146,31 +149,35 @@ final class VerifyCommand implements Callable<Integer> {
             err.println("dtron verify: " + model + " has no queries: give --query Q or --queries FILE.q");
             return 1;
         }
-        out.println(model + ": " + toCheck.size() + " quer" + (toCheck.size() == 1 ? "y" : "ies") + " from " + source);
+        text.println(model + ": " + toCheck.size() + " quer" + (toCheck.size() == 1 ? "y" : "ies") + " from " + source);
         int violated = 0;
         int unknown = 0;
         int skipped = 0;
         int errors = 0;
         for (int i = 0; i < toCheck.size(); i++) {
             Query q = toCheck.get(i);
-            out.println("[" + (i + 1) + "] " + q.text());
+            text.println("[" + (i + 1) + "] " + q.text());
             VerificationResult r;
             try {
                 r = verifier.verify(q);
             } catch (QueryException e) {
                 Path where = q.line() > 0 ? queryFile : model;
-                out.println("    error: " + e.getMessage());
-                err.println("dtron verify: " + where + ": " + e.getMessage());
+                text.println("    error: " + e.getMessage());
+                if (text != err) {
+                    err.println("dtron verify: " + where + ": " + e.getMessage());
+                }
                 errors++;
                 continue;
             } catch (UnsupportedModelException e) {
                 // a model error met on this query's search (an index out of range, ...): the others are checked
-                out.println("    error: " + e.getMessage());
-                err.println("dtron verify: " + model + ": " + e.getMessage());
+                text.println("    error: " + e.getMessage());
+                if (text != err) {
+                    err.println("dtron verify: " + model + ": " + e.getMessage());
+                }
                 errors++;
                 continue;
             }
-            out.println("    " + line(r));
+            text.println("    " + line(r));
             switch (r.outcome()) {
                 case VIOLATED -> violated++;
                 case UNKNOWN -> unknown++;
@@ -178,15 +185,19 @@ final class VerifyCommand implements Callable<Integer> {
                 default -> {
                 }
             }
-            if (r.trace() != null && traceFormat != Format.none) {
-                out.println("    " + (r.outcome() == Outcome.SATISFIED ? "witness" : "counterexample") + ":");
-                out.print(traceFormat == Format.json ? "    " + r.trace().toJson() + System.lineSeparator()
-                        : r.trace().toText().replaceAll("(?m)^", "  "));
+            String kind = r.outcome() == Outcome.SATISFIED ? "witness" : "counterexample";
+            if (r.trace() != null && traceFormat == Format.json) {
+                text.println("    " + kind + ": on standard output, JSON");
+                out.println(r.trace().toJson());
+            } else if (r.trace() != null && traceFormat == Format.text) {
+                out.println("    " + kind + ":");
+                out.print(r.trace().toText().replaceAll("(?m)^", "  "));
             }
+            text.flush();
             out.flush();
         }
         int checked = toCheck.size() - skipped - errors;
-        out.println(checked - violated - unknown + " of " + checked + " checked hold" + (violated > 0 ? ", " + violated
+        text.println(checked - violated - unknown + " of " + checked + " checked hold" + (violated > 0 ? ", " + violated
                 + " do not" : "") + (unknown > 0 ? ", " + unknown + " unknown" : "") + (skipped > 0 ? "; " + skipped
                 + " skipped" : "") + (errors > 0 ? "; " + errors + " in error" : ""));
         // a counterexample outranks an error, an error (to fix) an unknown answer (to retry with larger limits)

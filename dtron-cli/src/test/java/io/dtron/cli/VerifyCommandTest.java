@@ -7,6 +7,9 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 import java.io.IOException;
 import java.nio.file.Files;
 import java.nio.file.Path;
+import java.util.ArrayList;
+import java.util.List;
+import java.util.Map;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
 
@@ -60,7 +63,82 @@ class VerifyCommandTest {
         CommandRun json = CommandRun.of("verify", wrong.toString(), "--query", "A[] not (P(1).cs and P(2).cs)",
                 "--trace", "json");
         assertEquals(2, json.exit());
-        assertTrue(json.out().contains("    {\"states\":[{\"locations\":[\"P(1).idle\",\"P(2).idle\"]"), json.out());
+        assertTrue(json.out().startsWith("{\"states\":[{\"locations\":[\"P(1).idle\",\"P(2).idle\"]"), json.out());
+    }
+
+    @Test
+    void withJsonTracesStandardOutputHoldsTheTracesAloneOneALineAndTheTextGoesToStandardError(@TempDir Path dir)
+            throws IOException {
+        Path wrong = fischer(dir, 1);
+        Path q = dir.resolve("q.q");
+        Files.writeString(q, """
+                E<> P(1).cs
+                A[] not (P(1).cs and P(2).cs)
+                A[] P(1).x >= 0
+                E<> P(1).css
+                Pr[<=10](<> P(1).cs)
+                """);
+        CommandRun r = CommandRun.of("verify", wrong.toString(), "--queries", q.toString(), "--trace", "json");
+        assertEquals(2, r.exit(), "a query does not hold, as with text: " + r.out() + r.err());
+        List<String> lines = r.out().lines().toList();
+        assertEquals(2, lines.size(), "one trace a line, for the witness of [1] and the counterexample of [2]: "
+                + r.out());
+        List<String> last = new ArrayList<>();
+        for (String line : lines) {
+            Map<?, ?> trace = (Map<?, ?>) Json.parse(line);
+            List<?> states = (List<?>) trace.get("states");
+            last.add(String.valueOf(((Map<?, ?>) states.get(states.size() - 1)).get("locations")));
+            assertEquals(states.size() - 1, ((List<?>) trace.get("transitions")).size(), line);
+        }
+        assertTrue(last.get(0).contains("P(1).cs"), "the witness of E<> P(1).cs ends in it: " + last);
+        assertTrue(last.get(1).contains("P(1).cs") && last.get(1).contains("P(2).cs"), "the counterexample: " + last);
+        String err = r.err();
+        assertTrue(err.startsWith(wrong + ": 5 queries from " + q + "\n[1] E<> P(1).cs\n    satisfied ("), err);
+        assertTrue(err.contains("    witness: on standard output, JSON\n[2] A[] not (P(1).cs and P(2).cs)\n"
+                + "    NOT satisfied ("), err);
+        assertTrue(err.contains("    counterexample: on standard output, JSON\n[3] A[] P(1).x >= 0\n    satisfied ("),
+                err);
+        String error = "line 4: query 'E<> P(1).css', column 10: process P(1) has no location 'css' (did you mean"
+                + " 'cs'?)";
+        assertTrue(err.contains("[4] E<> P(1).css\n    error: " + error + "\n[5] Pr"), err);
+        assertEquals(err.indexOf(error), err.lastIndexOf(error), "the error once: " + err);
+        assertTrue(err.endsWith("2 of 3 checked hold, 1 do not; 1 skipped; 1 in error\n"), err);
+        // a query without a trace writes nothing to standard output; an error, or none, keep their exit codes
+        CommandRun holds = CommandRun.of("verify", fischer(dir, 2).toString(), "--query", "A[] P(1).x >= 0",
+                "--trace", "json");
+        assertEquals(0, holds.exit(), holds.err());
+        assertEquals("", holds.out());
+        CommandRun bad = CommandRun.of("verify", fischer(dir, 2).toString(), "--query", "E<> Q(1).cs", "--trace",
+                "json");
+        assertEquals(1, bad.exit(), bad.err());
+        assertEquals("", bad.out());
+        assertTrue(bad.err().contains("    error: query 'E<> Q(1).cs', column 5: unknown process 'Q(1)' (did you mean"
+                + " 'P(1)'?)"),
+                bad.err());
+    }
+
+    @Test
+    void aWrongNameInAQueryIsReportedWithItsColumnAndTheNearestNames(@TempDir Path dir) throws IOException {
+        Path f = fischer(dir, 2);
+        CommandRun r = CommandRun.of("verify", f.toString(), "--query", "E<> P(1).wiat", "--query",
+                "A[] P(1) == cs imply id > 0", "--query", "A[] P(1).cs implies id == 1", "--trace", "none");
+        assertEquals(1, r.exit(), r.out() + r.err());
+        String[] errors = {
+            "query 'E<> P(1).wiat', column 10: process P(1) has no location 'wiat' (did you mean 'wait'?)",
+            "query 'A[] P(1) == cs imply id > 0', column 5: 'P(1)' is a process, not a value: P(1).cs tests whether it"
+                    + " is in location cs",
+            "query 'A[] P(1).cs implies id == 1', column 13: 'implies' is not an operator of queries: implication is"
+                    + " written imply, as in p imply q"};
+        for (String error : errors) {
+            assertTrue(r.out().contains("    error: " + error + "\n"), r.out());
+            assertTrue(r.err().contains("dtron verify: " + f + ": " + error + "\n"), r.err());
+        }
+        Path q = dir.resolve("q.q");
+        Files.writeString(q, "// a typo\nE<> PP(2).cs\n");
+        CommandRun file = CommandRun.of("verify", f.toString(), "--queries", q.toString());
+        assertEquals(1, file.exit(), file.out() + file.err());
+        assertTrue(file.err().contains("dtron verify: " + q + ": line 2: query 'E<> PP(2).cs', column 5: unknown"
+                + " process 'PP(2)' (did you mean 'P(2)'?)"), file.err());
     }
 
     @Test

@@ -201,7 +201,7 @@ class VerifierTest {
         QueryException unknown = assertThrows(QueryException.class, () -> check(n, "E<> P(1).cs and foo > 1"));
         assertEquals("query 'E<> P(1).cs and foo > 1', column 17: unknown name 'foo'", unknown.getMessage());
         QueryException noLocation = assertThrows(QueryException.class, () -> check(n, "E<> P(1).nowhere"));
-        assertTrue(noLocation.getMessage().contains("'P(1)' has no location or variable 'nowhere'"),
+        assertTrue(noLocation.getMessage().contains("process P(1) has no location or variable 'nowhere'"),
                 noLocation.getMessage());
         // in a file, a bad query is its own INVALID entry, with its line; the others are kept and can be checked
         List<Query> file = Query.parseFile("""

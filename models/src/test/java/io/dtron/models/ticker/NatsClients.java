@@ -9,7 +9,7 @@ import java.util.concurrent.TimeUnit;
  * The Python and C clients for the tests that run them: a Python with the {@code dtron} package ({@code
  * $DTRON_PYTHON}, which {@code scripts/test} makes, else {@code python3} if it has the package), and programs of the C
  * client built with CMake into {@code target/clients-c}. A test whose client cannot be had is skipped, or fails under
- * {@code DTRON_REQUIRE_NATS=1}.
+ * {@code DTRON_REQUIRE_TOOLS=1}.
  */
 final class NatsClients {
     /** The Python client's folder. */

@@ -97,8 +97,11 @@ public final class Checker {
         }
         boolean negate = query.kind() == Query.Kind.ALWAYS_GLOBALLY || query.kind() == Query.Kind.ALWAYS_EVENTUALLY;
         Property p = compiler.compile(query.text(), query.property(), query.column(), negate);
+        // the target ends the query: p --> p has its second p at the end, not where indexOf finds it
         Property q = query.target() == null ? null
-                : compiler.compile(query.text(), query.target(), query.text().indexOf(query.target()) + 1, true);
+                : compiler.compile(query.text(), query.target(), (query.text().endsWith(query.target())
+                        ? query.text().length() - query.target().length() : query.text().indexOf(query.target())) + 1,
+                        true);
         Budget budget = new Budget(query.text(), options.timeLimit(), options.memoryLimitBytes(),
                 options.progressInterval());
         try {

@@ -4,6 +4,7 @@ import io.dtron.engine.verify.QueryException;
 import io.dtron.model.ChannelVariable;
 import io.dtron.model.ClockVariable;
 import io.dtron.model.Location;
+import io.dtron.model.NearestNames;
 import io.dtron.model.Network;
 import io.dtron.model.Process;
 import io.dtron.model.Type;
@@ -55,7 +56,9 @@ public final class PropertyCompiler {
         Parsed<Expr> parsed = ModelSyntax.parseExpression("query", property);
         for (Diagnostic d : parsed.diagnostics()) {
             if (d.isError()) {
-                throw error(d.pos() == null ? 0 : d.pos().start(), d.message());
+                int at = d.pos() == null ? 0 : d.pos().start();
+                String implication = QueryParser.implicationMistake(property, at, false);
+                throw error(at, implication != null ? implication : d.message());
             }
         }
         bound.clear();
@@ -145,19 +148,23 @@ public final class PropertyCompiler {
 
     /** The process an expression names ({@code Gate}, {@code Train(1)}), or null. */
     private Process process(Expr e) {
-        String name;
+        String name = processName(e);
+        return name == null ? null : network.process(name).orElse(null);
+    }
+
+    /** The name of the process an expression would name ({@code Gate}, {@code Train(1)}), or null. */
+    private String processName(Expr e) {
         if (e instanceof Expr.Ident id && !bound.containsKey(id.name())) {
-            name = id.name();
-        } else if (e instanceof Expr.Call c && c.function() instanceof Expr.Ident f) {
+            return id.name();
+        }
+        if (e instanceof Expr.Call c && c.function() instanceof Expr.Ident f) {
             StringBuilder sb = new StringBuilder(f.name()).append('(');
             for (int i = 0; i < c.args().size(); i++) {
                 sb.append(i == 0 ? "" : ",").append(constant(c.args().get(i)));
             }
-            name = sb.append(')').toString();
-        } else {
-            return null;
+            return sb.append(')').toString();
         }
-        return network.process(name).orElse(null);
+        return null;
     }
 
     // ---------------------------------------------------------------- clock constraints
@@ -323,6 +330,13 @@ public final class PropertyCompiler {
             if (isClock(b.left()) || isClock(b.right())) {
                 throw error(e, "a clock constraint cannot be used as a number");
             }
+            if (b.op() == Expr.BinaryOp.EQ || b.op() == Expr.BinaryOp.NE) {
+                QueryException notAValue = processAsValue(b.left(), b.right());
+                notAValue = notAValue != null ? notAValue : processAsValue(b.right(), b.left());
+                if (notAValue != null) {
+                    throw notAValue;
+                }
+            }
             Property.IntTerm l = integer(b.left());
             Property.IntTerm r = integer(b.right());
             return switch (b.op()) {
@@ -426,6 +440,13 @@ public final class PropertyCompiler {
         }
         String name = variableName(e);
         if (name == null) {
+            QueryException notAValue = processAsValue(e, null);
+            if (notAValue != null) {
+                throw notAValue;
+            }
+            if (e instanceof Expr.Field f) {
+                throw unknownProcess(f);
+            }
             throw error(e, "'" + e.pos().text() + "' cannot be used in a query");
         }
         Optional<Variable> v = network.variable(name);
@@ -437,9 +458,25 @@ public final class PropertyCompiler {
                 throw error(e, "the channel '" + name + "' cannot be used in a query");
             }
             if (e instanceof Expr.Field f && process(f.value()) != null) {
-                throw error(e, "'" + process(f.value()).name() + "' has no location or variable '" + f.name() + "'");
+                throw noMember(process(f.value()), f);
             }
-            throw error(e, "unknown name '" + name + "'");
+            QueryException notAValue = processAsValue(e, null);
+            if (notAValue != null) {
+                throw notAValue;
+            }
+            List<String> names = new ArrayList<>(bound.keySet());
+            names.addAll(constants.keySet());
+            network.variables().stream().filter(g -> g.owner() == null).forEach(g -> names.add(g.name()));
+            network.clocks().stream().filter(g -> g.owner() == null).forEach(g -> names.add(g.name()));
+            String hint = NearestNames.hint(name, names);
+            if (hint.isEmpty()) {
+                // a process's own variable or clock, named without its process
+                List<String> local = Stream.concat(network.variables().stream().map(Variable::name),
+                                network.clocks().stream().map(ClockVariable::name))
+                        .filter(n -> n.endsWith("." + name)).limit(NearestNames.MAX).toList();
+                hint = NearestNames.didYouMean(local);
+            }
+            throw error(e, "unknown name '" + name + "'" + hint);
         }
         if (v.get().type().slots() != 1 || !v.get().type().isIntegral()) {
             throw error(e, "'" + name + "' is not an integer, boolean or scalar");
@@ -462,6 +499,96 @@ public final class PropertyCompiler {
             return p == null ? null : p.name() + "." + f.name();
         }
         return null;
+    }
+
+    // ---------------------------------------------------------------- names that are not what the query needs
+
+    /**
+     * The error for a process or template used as a value ({@code Train == Cross}, {@code x + Gate}), saying how
+     * to test a location instead, or null when {@code e} names neither. {@code other}, when it names a location of
+     * the process ({@code Cross}), is the location the example tests.
+     */
+    private QueryException processAsValue(Expr e, Expr other) {
+        String name = e instanceof Expr.Ident
+                || e instanceof Expr.Call c && c.function() instanceof Expr.Ident f && isTemplate(f.name())
+                ? processName(e) : null;
+        if (name == null) {
+            return null;
+        }
+        Optional<Process> p = network.process(name);
+        if (p.isPresent()) {
+            String location = other instanceof Expr.Ident id && p.get().location(id.name()) != null ? id.name()
+                    : exampleLocation(p.get());
+            return error(e, "'" + name + "' is a process, not a value: " + name + "." + location + " tests whether it"
+                    + " is in location " + location);
+        }
+        Optional<Process> instance = instanceOf(name);
+        if (instance.isPresent()) {
+            String example = instance.get().name() + "." + exampleLocation(instance.get());
+            return error(e, "'" + name + "' is a template, not a value: a query tests the location of one of its"
+                    + " processes, as " + example);
+        }
+        return null;
+    }
+
+    /** The error for {@code P.name} where {@code P} is no process: a template, or an unknown process. */
+    private QueryException unknownProcess(Expr.Field f) {
+        String name = processName(f.value());
+        if (name == null || f.value() instanceof Expr.Ident id
+                && (constants.containsKey(id.name()) || network.variable(id.name()).isPresent()
+                || network.clock(id.name()).isPresent() || network.channel(id.name()).isPresent())) {
+            return error(f, "'" + f.pos().text() + "' cannot be used in a query");
+        }
+        Optional<Process> instance = instanceOf(name);
+        if (instance.isPresent()) {
+            return error(f.value(), "'" + name + "' is a template, not a process: name one of its processes, as "
+                    + instance.get().name() + "." + f.name());
+        }
+        if (f.value() instanceof Expr.Call c && c.function() instanceof Expr.Ident template
+                && isTemplate(template.name())) {
+            List<String> processes = network.processes().stream().filter(p -> p.template().equals(template.name()))
+                    .map(Process::name).toList();
+            String list = processes.size() <= 4 ? String.join(", ", processes)
+                    : String.join(", ", processes.subList(0, 3)) + ", ..., " + processes.get(processes.size() - 1);
+            return error(f.value(), "unknown process '" + name + "': the processes of template " + template.name()
+                    + " are " + list);
+        }
+        List<String> names = new ArrayList<>(network.templates());
+        network.processes().forEach(p -> names.add(p.name()));
+        return error(f.value(), "unknown process '" + name + "'" + NearestNames.hint(name, names));
+    }
+
+    /** The error for {@code P.name} where process {@code P} has no location, variable or clock {@code name}. */
+    private QueryException noMember(Process p, Expr.Field f) {
+        Map<String, String> members = new HashMap<>();
+        String prefix = p.name() + ".";
+        network.clocks().stream().filter(c -> p.name().equals(c.owner()))
+                .forEach(c -> members.put(c.name().substring(prefix.length()), "clock"));
+        network.variables().stream().filter(v -> p.name().equals(v.owner()))
+                .forEach(v -> members.put(v.name().substring(prefix.length()), "variable"));
+        p.locations().forEach(l -> members.put(l.name(), "location"));
+        List<String> near = NearestNames.of(f.name(), members.keySet());
+        String kinds = near.isEmpty() ? "location or variable"
+                : String.join(" or ", near.stream().map(members::get).distinct().sorted().toList());
+        return error(f.pos().end() - f.name().length(), "process " + p.name() + " has no " + kinds + " '" + f.name()
+                + "'" + NearestNames.hint(f.name(), members.keySet()));
+    }
+
+    private boolean isTemplate(String name) {
+        return network.processes().stream().anyMatch(p -> p.template().equals(name));
+    }
+
+    /** The first process of template {@code name} when no process has that name, else empty. */
+    private Optional<Process> instanceOf(String name) {
+        return network.process(name).isPresent() ? Optional.empty()
+                : network.processes().stream().filter(p -> p.template().equals(name)).findFirst();
+    }
+
+    /** A location to show in an example: the initial one, unless Uppaal named it ({@code _id3}) and another has a name. */
+    private static String exampleLocation(Process p) {
+        String initial = p.locations().get(p.initial()).name();
+        return !initial.startsWith("_") ? initial : p.locations().stream().map(Location::name)
+                .filter(n -> !n.startsWith("_")).findFirst().orElse(initial);
     }
 
     // ---------------------------------------------------------------- constants and ranges

@@ -30,6 +30,8 @@ public final class QueryParser {
                     "strategy queries are not checked"},
             new Object[] {Pattern.compile("^bounds\\b"), "bounds queries are not checked"});
     private static final Pattern UNDER_STRATEGY = Pattern.compile("\\bunder\\s+\\w+\\s*$");
+    /** Implication as other logics write it: {@code ->} (not the end of {@code -->}) and {@code implies}. */
+    private static final Pattern IMPLICATION = Pattern.compile("(?<!-)->|\\bimplies\\b");
 
     private QueryParser() {
     }
@@ -77,8 +79,29 @@ public final class QueryParser {
             }
             return new Query(text, Query.Kind.LEADS_TO, premise, target, null, 1, 0);
         }
+        Matcher implication = IMPLICATION.matcher(text);
+        if (implication.find()) {
+            throw new QueryException("query '" + text + "', column " + (implication.start() + 1) + ": "
+                    + implicationMistake(text, implication.start(), true));
+        }
         throw new QueryException("query '" + text + "', column 1: not a query: expected E<> p, A[] p, E[] p, A<> p"
                 + " or p --> q");
+    }
+
+    /**
+     * The error for an implication written as other logics write it ({@code ->}, {@code implies}) at offset
+     * {@code at} of {@code text}, saying how queries write it, or null when there is none there.
+     *
+     * @param wholeQuery whether {@code text} is a whole query without a path quantifier, which may have meant
+     *                   leads-to ({@code p --> q}) too
+     */
+    static String implicationMistake(String text, int at, boolean wholeQuery) {
+        Matcher m = IMPLICATION.matcher(text).useTransparentBounds(true).region(at, text.length());
+        if (!m.lookingAt()) {
+            return null;
+        }
+        return "'" + m.group() + "' is not an operator of queries: implication is written imply"
+                + (wholeQuery ? " (A[] p imply q), and a leads-to query p --> q" : ", as in p imply q");
     }
 
     /** Parses a {@code .q} file; see {@link Query#parseFile}. */
