@@ -1,0 +1,63 @@
+package io.dtron.cli;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+import java.io.IOException;
+import java.io.InputStream;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.util.concurrent.TimeUnit;
+import java.util.regex.Matcher;
+import java.util.regex.Pattern;
+import org.junit.jupiter.api.BeforeAll;
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.Timeout;
+import org.junit.jupiter.api.io.TempDir;
+
+/**
+ * A model whose environment may give inputs with no time between them ({@code zeno-lamp.xta}): time still advances,
+ * and a lamp that misses its deadline fails, naming it, in virtual and in real time.
+ */
+@Timeout(value = 120, unit = TimeUnit.SECONDS, threadMode = Timeout.ThreadMode.SEPARATE_THREAD)
+class ZenoEnvironmentTest {
+    @TempDir
+    static Path dir;
+    static Path model;
+    static Path trn;
+
+    @BeforeAll
+    static void copyModel() throws IOException {
+        model = copy("zeno-lamp.xta");
+        trn = copy("zeno-lamp.trn");
+    }
+
+    private static Path copy(String name) throws IOException {
+        Path to = dir.resolve(name);
+        try (InputStream in = ZenoEnvironmentTest.class.getResourceAsStream(name)) {
+            Files.copy(in, to);
+        }
+        return to;
+    }
+
+    /** The model time (units) at which a FAILED verdict was given, from the run's statistics line. */
+    private static double verdictTime(CommandRun r, long unitMicros) {
+        Matcher m = Pattern.compile("statistics: \\d+ FAILED \\d+ \\d+ (\\d+)").matcher(r.out());
+        assertTrue(m.find(), r.out());
+        return Long.parseLong(m.group(1)) / (double) unitMicros;
+    }
+
+    @Test
+    void aSilentLampFailsAtItsDeadlineInVirtualTime() {
+        for (String policy : new String[] {"random", "eager"}) {
+            CommandRun r = CommandRun.of("run", model.toString(), "--interface", trn.toString(), "--sut",
+                    ZenoLamp.class.getName() + ":silent", "--virtual-time", "--seed", "3", "--delay-policy", policy);
+            assertEquals(2, r.exit(), policy + ": " + r.out() + r.err());
+            Matcher m = Pattern.compile("FAILED: no output came by t=(\\d+\\.\\d+): the model required").matcher(r.out());
+            assertTrue(m.find(), policy + ": " + r.out());
+            double deadline = Double.parseDouble(m.group(1));
+            assertTrue(r.out().contains("level between "), r.out());
+            assertTrue(verdictTime(r, 10000) - deadline < 1, policy + ": " + r.out());
+        }
+    }
+}
