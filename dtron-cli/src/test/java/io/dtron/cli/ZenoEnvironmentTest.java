@@ -60,4 +60,27 @@ class ZenoEnvironmentTest {
             assertTrue(verdictTime(r, 10000) - deadline < 1, policy + ": " + r.out());
         }
     }
+
+    @Test
+    void aSilentLampFailsAtItsDeadlineInRealTimeAndTheRunSaysTheEnvironmentIsZeno() {
+        CommandRun r = CommandRun.of("run", model.toString(), "--interface", trn.toString(), "--sut",
+                ZenoLamp.class.getName() + ":silent", "--seed", "3", "--timeout", "100");
+        assertEquals(2, r.exit(), r.out() + r.err());
+        assertTrue(r.out().contains("dtron run: the environment may give inputs with no time passing (Zeno): the"
+                + " cycle Ready -> Ready of User may take no time; the tester gives at most 100 inputs at one"
+                + " instant"), r.out());
+        Matcher m = Pattern.compile("FAILED: no output came by t=(\\d+\\.\\d+): the model required").matcher(r.out());
+        assertTrue(m.find(), r.out());
+        assertTrue(r.out().contains("level between "), r.out());
+        assertTrue(verdictTime(r, 10000) - Double.parseDouble(m.group(1)) < 1, r.out());
+    }
+
+    @Test
+    void theCorrectLampPassesInRealTimeWithShortAndLongDelayBounds() {
+        CommandRun r = CommandRun.of("run", model.toString(), "--interface", trn.toString(), "--sut",
+                ZenoLamp.class.getName(), "--seed", "3", "--timeout", "100", "--delay-policy", "random-bounded",
+                "--delay-bound", "1,5");
+        assertEquals(0, r.exit(), r.out() + r.err());
+        assertTrue(r.out().contains("PASSED: the timeout of 100 time units was reached"), r.out());
+    }
 }

@@ -11,7 +11,7 @@ import io.dtron.engine.Event;
 public final class ZenoLamp implements Adapter {
     private final boolean silent;
     private AdapterContext context;
-    private boolean busy;
+    private boolean grasped;
 
     /** The correct lamp. */
     public ZenoLamp() {
@@ -34,13 +34,10 @@ public final class ZenoLamp implements Adapter {
 
     @Override
     public void perform(Event input) {
-        if (silent || busy || !input.channel().equals("grasp")) {
+        if (silent || grasped || !input.channel().equals("grasp")) {
             return;
         }
-        busy = true;
-        context.clock().schedule(2 * context.timeUnitMicros(), () -> {
-            busy = false;
-            context.report(Event.of("level"));
-        });
+        grasped = true;
+        context.clock().schedule(2 * context.timeUnitMicros(), () -> context.report(Event.of("level")));
     }
 }

@@ -9,6 +9,7 @@ import io.dtron.engine.internal.sem.PartitionException;
 import io.dtron.engine.internal.sem.Semantics;
 import io.dtron.engine.internal.tester.Plan;
 import io.dtron.engine.internal.tester.StateSet;
+import io.dtron.engine.internal.verify.ZenoCycles;
 import io.dtron.model.Network;
 import io.dtron.model.TestInterface;
 import java.util.ArrayList;
@@ -56,6 +57,38 @@ public final class OnlineTester {
         this.testInterface = Objects.requireNonNull(testInterface, "testInterface");
         this.adapter = Objects.requireNonNull(adapter, "adapter");
         this.options = Objects.requireNonNull(options, "options");
+    }
+
+    /**
+     * Whether the environment of {@code network} may give inputs without end at one instant (Zeno), found as
+     * {@code dtron check --testability} finds Zeno cycles, structurally: a cycle of an environment process of sends
+     * and internal edges on which no clock is both reset and bounded from below. Returns one line saying which
+     * cycle and what the tester does about it, or empty when there is none, or the model cannot be run.
+     */
+    public static java.util.Optional<String> zenoEnvironment(Network network, TestInterface testInterface) {
+        Partition partition;
+        int dimension;
+        try {
+            partition = Partition.of(network, testInterface);
+            dimension = new Semantics(network, 1).dimension();
+        } catch (PartitionException | UnsupportedModelException e) {
+            return java.util.Optional.empty(); // the run says why
+        }
+        for (int p = 0; p < network.processes().size(); p++) {
+            if (!partition.isEnvironment(p)) {
+                continue;
+            }
+            io.dtron.model.Process process = network.processes().get(p);
+            List<String> cycle = ZenoCycles.possiblyZenoAlone(process, dimension);
+            if (cycle != null) {
+                return java.util.Optional.of("the environment may give inputs with no time passing (Zeno): the cycle "
+                        + String.join(" -> ", cycle) + " of " + process.name() + " may take no time; the tester gives"
+                        + " at most " + MAX_INPUTS_AT_ONE_INSTANT + " inputs at one instant, then lets time pass (its"
+                        + " next input at least a time unit later), so that a missed output deadline is reached and"
+                        + " judged");
+            }
+        }
+        return java.util.Optional.empty();
     }
 
     /** Adds a listener that follows the run. */
