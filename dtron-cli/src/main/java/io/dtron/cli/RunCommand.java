@@ -313,15 +313,19 @@ final class RunCommand implements Callable<Integer> {
     /** {@code options} with the delay bound of {@code --delay-bound}: N, or SHORT,LONG. */
     private TestOptions withDelayBound(TestOptions options) {
         String bound = delayBound.strip();
-        if (bound.matches("\\d{1,18}")) {
-            return options.withDelayPolicy(options.delayPolicy(), Long.parseLong(bound));
-        }
-        if (bound.matches("\\d{1,18},\\d{1,18}")) {
-            long shortBound = Long.parseLong(bound.substring(0, bound.indexOf(',')));
-            long longBound = Long.parseLong(bound.substring(bound.indexOf(',') + 1));
-            if (options.delayPolicy() == DelayPolicy.RANDOM_BOUNDED && shortBound <= longBound) {
-                return options.withShortOrLongDelays(shortBound, longBound);
+        try {
+            if (bound.matches("\\d+")) {
+                return options.withDelayPolicy(options.delayPolicy(), Long.parseLong(bound));
             }
+            if (bound.matches("\\d+,\\d+")) {
+                long shortBound = Long.parseLong(bound.substring(0, bound.indexOf(',')));
+                long longBound = Long.parseLong(bound.substring(bound.indexOf(',') + 1));
+                if (options.delayPolicy() == DelayPolicy.RANDOM_BOUNDED && shortBound <= longBound) {
+                    return options.withShortOrLongDelays(shortBound, longBound);
+                }
+            }
+        } catch (NumberFormatException e) {
+            // too large for a number: said below
         }
         throw new IllegalArgumentException("--delay-bound " + delayBound + ": give N or SHORT,LONG with SHORT <= LONG"
                 + " (model time units; SHORT,LONG with --delay-policy random-bounded)");
