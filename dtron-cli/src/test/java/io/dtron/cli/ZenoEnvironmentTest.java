@@ -72,7 +72,23 @@ class ZenoEnvironmentTest {
         Matcher m = Pattern.compile("FAILED: no output came by t=(\\d+\\.\\d+): the model required").matcher(r.out());
         assertTrue(m.find(), r.out());
         assertTrue(r.out().contains("level between "), r.out());
-        assertTrue(verdictTime(r, 10000) - Double.parseDouble(m.group(1)) < 1, r.out());
+        // within a second of the deadline (100 units of 10 ms), by the verdict's own time
+        assertTrue(verdictTime(r, 10000) - Double.parseDouble(m.group(1)) < 100, r.out());
+    }
+
+    @Test
+    void anEnvironmentThatAllowsNoTimeToPassIsInconclusiveNotFailed() throws IOException {
+        // the user must act by t=3 and its inputs do not let time pass: the tester cannot give inputs without end,
+        // and the system under test is not at fault
+        Path stuck = dir.resolve("stuck-user.xta");
+        Files.writeString(stuck, Files.readString(model).replace("process User() {\n    state Ready;",
+                "process User() {\n    clock z;\n    state Ready { z <= 3 };"));
+        CommandRun r = CommandRun.of("run", stuck.toString(), "--interface", trn.toString(), "--sut",
+                ZenoLamp.class.getName() + ":silent", "--virtual-time", "--seed", "3", "--delay-policy", "eager");
+        assertEquals(3, r.exit(), r.out() + r.err());
+        assertTrue(r.out().contains("INCONCLUSIVE: no input was applied by t=3.000: the environment allowed inputs"
+                + " until then but no time to pass without one, and the tester let time pass after 100 inputs at"
+                + " t=3.000"), r.out());
     }
 
     @Test

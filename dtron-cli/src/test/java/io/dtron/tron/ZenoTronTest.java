@@ -77,10 +77,10 @@ class ZenoTronTest {
         assertTrue(m.find(), r.out());
         assertTrue(r.out().contains("level between "), r.out());
         assertFalse(r.out().contains("frame"), r.out());
-        // the verdict's own time (microseconds, in the statistics line): within a time unit of the deadline
+        // the verdict's own time (microseconds, in the statistics line): within a second of the deadline
         String stats = Files.readString(dir.resolve("stats.txt"));
         Matcher at = Pattern.compile("5 FAILED \\d+ 0 (\\d+)").matcher(stats);
         assertTrue(at.find(), stats);
-        assertTrue(Long.parseLong(at.group(1)) / (double) UNIT - Double.parseDouble(m.group(1)) < 1, r.out() + stats);
+        assertTrue(Long.parseLong(at.group(1)) - Double.parseDouble(m.group(1)) * UNIT < 1_000_000, r.out() + stats);
     }
 }

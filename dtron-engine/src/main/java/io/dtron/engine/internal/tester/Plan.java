@@ -40,8 +40,8 @@ public final class Plan {
 
     /**
      * The tester's next move: an input after {@code ticks}, or (input null) waiting until {@code ticks}; {@code
-     * letsTimePass} when the tester waits although the environment still allowed an input before then (it lets time
-     * pass rather than give more inputs at one instant, or an input it could not aim a margin before a deadline).
+     * letsTimePass} when the tester waits past a deadline at which the environment allowed an input (it lets time
+     * pass rather than give more inputs at one instant, or an input it could not aim a margin before the deadline).
      */
     public record Choice(TestInterface.ObservableChannel input, long ticks, boolean letsTimePass) {
         /** Whether this applies an input. */
@@ -212,7 +212,7 @@ public final class Plan {
         List<long[]> options = new ArrayList<>();
         List<TestInterface.ObservableChannel> channels = new ArrayList<>();
         boolean mustAct = false;
-        boolean inputWasPossible = false;
+        boolean couldActAtDeadline = false;
         for (Map.Entry<Integer, List<Window>> e : windows.entrySet()) {
             TestInterface.ObservableChannel input = inputs.get(e.getKey());
             if (input == null) {
@@ -221,7 +221,7 @@ public final class Plan {
             for (Window w : e.getValue()) {
                 long lo = Math.max(w.lo(), elapsed);
                 long hi = hasDeadline() ? Math.min(w.hi(), deadline) : w.hi();
-                inputWasPossible |= lo <= hi;
+                couldActAtDeadline |= hasDeadline() && lo <= deadline && deadline <= w.hi();
                 lo = Math.max(lo, earliestTicks);
                 if (lo > hi || marginTicks > 0 && hi - marginTicks < lo && hasDeadline() && w.hi() >= deadline
                         && environmentLetsTimePass()) {
@@ -240,7 +240,8 @@ public final class Plan {
         int count = options.size() + (offerWait ? 1 : 0);
         int pick = options.isEmpty() ? 0 : random.nextInt(count);
         if (pick == options.size()) {
-            return new Choice(null, hasDeadline() ? deadline + 1 : horizon, options.isEmpty() && inputWasPossible);
+            // waiting past a deadline at which an input was possible, when the tester no longer offers it
+            return new Choice(null, hasDeadline() ? deadline + 1 : horizon, couldActAtDeadline && !mustAct);
         }
         long lo = options.get(pick)[0];
         long hi = options.get(pick)[1];
