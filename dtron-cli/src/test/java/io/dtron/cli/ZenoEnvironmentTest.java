@@ -53,7 +53,8 @@ class ZenoEnvironmentTest {
             CommandRun r = CommandRun.of("run", model.toString(), "--interface", trn.toString(), "--sut",
                     ZenoLamp.class.getName() + ":silent", "--virtual-time", "--seed", "3", "--delay-policy", policy);
             assertEquals(2, r.exit(), policy + ": " + r.out() + r.err());
-            Matcher m = Pattern.compile("FAILED: no output came by t=(\\d+\\.\\d+): the model required").matcher(r.out());
+            Matcher m = Pattern.compile("FAILED: no output came by t=(\\d+\\.\\d+): the model required")
+                    .matcher(r.out());
             assertTrue(m.find(), policy + ": " + r.out());
             double deadline = Double.parseDouble(m.group(1));
             assertTrue(r.out().contains("level between "), r.out());

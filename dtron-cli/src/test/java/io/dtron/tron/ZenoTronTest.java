@@ -73,7 +73,8 @@ class ZenoTronTest {
     void aLampThatNeverAnswersFailsAtItsDeadlineNotAsAnUnfinishedFrame() throws Exception {
         CommandRun r = againstLamp(false);
         assertEquals(2, r.exit(), r.out() + r.err());
-        Matcher m = Pattern.compile("TEST FAILED: no output came by t=(\\d+\\.\\d+): the model required").matcher(r.out());
+        Matcher m = Pattern.compile("TEST FAILED: no output came by t=(\\d+\\.\\d+): the model required")
+                .matcher(r.out());
         assertTrue(m.find(), r.out());
         assertTrue(r.out().contains("level between "), r.out());
         assertFalse(r.out().contains("frame"), r.out());

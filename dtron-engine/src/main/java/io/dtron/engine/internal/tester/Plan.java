@@ -188,7 +188,7 @@ public final class Plan {
         return environmentLetsTimePass;
     }
 
-    /** {@link #choose(long, Random, DelayPolicy, long, long, long, long) Chooses} without a short bound or earliest time. */
+    /** {@link #choose(long, Random, DelayPolicy, long, long, long, long) Chooses} with no short bound, no earliest. */
     public Choice choose(long elapsed, Random random, DelayPolicy policy, long boundTicks, long marginTicks) {
         return choose(elapsed, random, policy, boundTicks, 0, marginTicks, 0);
     }
