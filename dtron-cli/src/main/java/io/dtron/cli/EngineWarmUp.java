@@ -14,7 +14,8 @@ import io.dtron.model.TestInterface;
  * Runs the engine's code paths on the model for a moment in virtual time before a real-time run, so that the first
  * inputs of the run are not held up by a cold JVM (class loading and compiling take milliseconds, longer than many
  * windows at 1 ms per time unit). The system under test stands in silent: the warm-up runs end at their first output
- * deadline, which is all they are for.
+ * deadline, which is all they are for, or when the budget is spent (a run is ended at its next input then, and the
+ * tester lets time pass after a bounded number of inputs at one instant, so that no run can hold time still).
  */
 final class EngineWarmUp {
     private static final long BUDGET_NANOS = 300_000_000L;
@@ -26,12 +27,18 @@ final class EngineWarmUp {
     static void run(Network network, TestInterface testInterface) {
         long until = System.nanoTime() + BUDGET_NANOS;
         Adapter silent = new Adapter() {
+            private AdapterContext context;
+
             @Override
             public void start(AdapterContext context) {
+                this.context = context;
             }
 
             @Override
             public void perform(Event input) {
+                if (System.nanoTime() - until > 0) {
+                    context.inconclusive("the warm-up is over");
+                }
             }
         };
         for (long seed = 1; System.nanoTime() < until; seed++) {

@@ -180,9 +180,11 @@ final class RunCommand implements Callable<Integer> {
             description = "How input times are chosen: random, eager, lazy or random-bounded (default: random).")
     private String delayPolicy;
 
-    @Option(names = "--delay-bound", paramLabel = "N", defaultValue = "0",
-            description = "For random-bounded: the largest delay after an input's window opens, in time units.")
-    private long delayBound;
+    @Option(names = "--delay-bound", paramLabel = "N|SHORT,LONG", defaultValue = "0",
+            description = "For random-bounded: the largest delay after an input's window opens, in time units; or"
+                    + " SHORT,LONG: for each delay at most SHORT or at most LONG, one of the two at random (TRON's"
+                    + " -P SHORT,LONG).")
+    private String delayBound;
 
     @Option(names = "--delta", paramLabel = "US|auto", defaultValue = "auto",
             description = "On the bus: the reorder window, how long the tester holds its judgement for messages still"
@@ -260,9 +262,12 @@ final class RunCommand implements Callable<Integer> {
         long runSeed = RunDefaults.seed(seed);
         TestOptions options;
         try {
-            options = new TestOptions(runSeed, unit, units, policy, delayBound, virtualTime);
+            options = withDelayBound(new TestOptions(runSeed, unit, units, policy, 0, virtualTime));
         } catch (IllegalArgumentException e) {
             throw usage(e.getMessage());
+        }
+        if (!tronBackend) {
+            OnlineTester.zenoEnvironment(network, testInterface).ifPresent(zeno -> out.println("dtron run: " + zeno));
         }
         if (!virtualTime && !tronBackend && !busMode) {
             // on a bus, adapters often start beside the tester: its margin starts at the default, widening in the run
@@ -303,6 +308,27 @@ final class RunCommand implements Callable<Integer> {
             case "tron" -> true;
             default -> throw usage("unknown backend '" + backend + "' (use engine or tron)");
         };
+    }
+
+    /** {@code options} with the delay bound of {@code --delay-bound}: N, or SHORT,LONG. */
+    private TestOptions withDelayBound(TestOptions options) {
+        String bound = delayBound.strip();
+        try {
+            if (bound.matches("\\d+")) {
+                return options.withDelayPolicy(options.delayPolicy(), Long.parseLong(bound));
+            }
+            if (bound.matches("\\d+,\\d+")) {
+                long shortBound = Long.parseLong(bound.substring(0, bound.indexOf(',')));
+                long longBound = Long.parseLong(bound.substring(bound.indexOf(',') + 1));
+                if (options.delayPolicy() == DelayPolicy.RANDOM_BOUNDED && shortBound <= longBound) {
+                    return options.withShortOrLongDelays(shortBound, longBound);
+                }
+            }
+        } catch (NumberFormatException e) {
+            // too large for a number: said below
+        }
+        throw new IllegalArgumentException("--delay-bound " + delayBound + ": give N or SHORT,LONG with SHORT <= LONG"
+                + " (model time units; SHORT,LONG with --delay-policy random-bounded)");
     }
 
     private DelayPolicy parseDelayPolicy() {
@@ -837,7 +863,7 @@ final class RunCommand implements Callable<Integer> {
             long units = RunDefaults.timeout(timeout, testInterface.timeout());
             TestOptions options;
             try {
-                options = new TestOptions(runSeed, unit, units, policy, delayBound, virtualTime);
+                options = withDelayBound(new TestOptions(runSeed, unit, units, policy, 0, virtualTime));
                 if (!virtualTime) {
                     options = options.withInputMargin(inputMargin(network, testInterface, unit, out, err));
                 }
@@ -852,6 +878,7 @@ final class RunCommand implements Callable<Integer> {
             out.println("dtron run: " + model + " against the TRON adapter at " + adapter.remote() + ", seed "
                     + runSeed + ", " + units + " time units of " + unit + " us"
                     + (virtualTime ? " in virtual time" : ""));
+            OnlineTester.zenoEnvironment(network, testInterface).ifPresent(zeno -> out.println("dtron run: " + zeno));
             out.flush();
             return testWithEngine(network, testInterface, adapter, options, out).verdict().exitCode();
         } catch (UnsupportedModelException e) {

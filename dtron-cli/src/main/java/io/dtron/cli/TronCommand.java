@@ -68,8 +68,9 @@ final class TronCommand implements Callable<Integer> {
     private String adapterName;
 
     @Option(names = "-P", paramLabel = "DELAY", defaultValue = "random",
-            description = "Delay choice: random (default), eager, lazy, MAX or MIN,MAX (random, at most MAX units"
-                    + " after an input's window opens; MIN is not applied).")
+            description = "Delay choice: random (default), eager, lazy, MAX (random, at most MAX units after an"
+                    + " input's window opens) or SHORT,LONG (as TRON: for each delay, at most SHORT or at most LONG"
+                    + " units, one of the two at random).")
     private String delay;
 
     @Option(names = "-F", paramLabel = "UNITS",
@@ -177,7 +178,7 @@ final class TronCommand implements Callable<Integer> {
             return 1;
         }
         if (!quiet) {
-            notes(err, choice);
+            notes(err);
         }
         long runSeed = RunDefaults.seed(seed);
         try (Printer printer = new Printer(spec.commandLine().getOut(), logFile == null ? null
@@ -238,12 +239,7 @@ final class TronCommand implements Callable<Integer> {
         return parsePort(address.get(address.size() - 1));
     }
 
-    private void notes(PrintWriter err, DelayChoice choice) {
-        if (choice.min() > 0) {
-            err.println("dtron tron: note: -P " + delay + ": inputs come at most " + choice.bound() + " units after"
-                    + " their window opens; DTRON's engine does not hold them back for the lower bound "
-                    + choice.min());
-        }
+    private void notes(PrintWriter err) {
         if (uncertainty != null) {
             err.println("dtron tron: note: -U " + uncertainty + " is accepted and not applied: DTRON time-stamps each"
                     + " output when it arrives and checks it against the model at the precision of the time unit");
@@ -320,6 +316,9 @@ final class TronCommand implements Callable<Integer> {
         TestOptions options;
         try {
             options = new TestOptions(runSeed, unit, units, choice.policy(), choice.bound(), virtual);
+            if (choice.shortBound() > 0) {
+                options = options.withShortOrLongDelays(choice.shortBound(), choice.bound());
+            }
             if (!virtual) {
                 options = options.withInputMargin(SchedulingDelay.inputMarginForRun("tron", network, ti, unit,
                         "-Q PORT", quiet ? null : printer::println, err));
@@ -331,6 +330,9 @@ final class TronCommand implements Callable<Integer> {
             adapter.refuse("DTRON refuses the start: " + reason);
             err.println("dtron tron: " + reason);
             return 1;
+        }
+        if (!quiet) {
+            OnlineTester.zenoEnvironment(network, ti).ifPresent(zeno -> printer.println("dtron tron: " + zeno));
         }
         OnlineTester tester = new OnlineTester(network, ti, adapter, options);
         if (verbosity >= 1 && !quiet) {
@@ -376,8 +378,12 @@ final class TronCommand implements Callable<Integer> {
         return "inputs " + CheckCommand.channels(ti.inputs()) + "; outputs " + CheckCommand.channels(ti.outputs());
     }
 
-    /** TRON's {@code -P} value as DTRON's delay policy. */
-    record DelayChoice(DelayPolicy policy, long min, long bound) {
+    /**
+     * TRON's {@code -P} value as DTRON's delay policy: {@code SHORT,LONG} bounds each delay by SHORT or by LONG, one
+     * of the two at random, as TRON's manual says ("the choice of a short or a long delay is random"); shortBound 0
+     * for the other values.
+     */
+    record DelayChoice(DelayPolicy policy, long shortBound, long bound) {
         static DelayChoice parse(String text) {
             String t = text.strip().toLowerCase(Locale.ROOT);
             switch (t) {
@@ -391,14 +397,14 @@ final class TronCommand implements Callable<Integer> {
             }
             if (t.matches("\\d{1,9},\\d{1,9}")) {
                 String[] parts = t.split(",");
-                long min = Long.parseLong(parts[0]);
-                long max = Long.parseLong(parts[1]);
-                if (min <= max) {
-                    return new DelayChoice(DelayPolicy.RANDOM_BOUNDED, min, max);
+                long shortBound = Long.parseLong(parts[0]);
+                long longBound = Long.parseLong(parts[1]);
+                if (shortBound <= longBound) {
+                    return new DelayChoice(DelayPolicy.RANDOM_BOUNDED, shortBound, longBound);
                 }
             }
-            throw new IllegalArgumentException("-P " + text + ": use random, eager, lazy, MAX or MIN,MAX with MIN <="
-                    + " MAX (model time units)");
+            throw new IllegalArgumentException("-P " + text + ": use random, eager, lazy, MAX or SHORT,LONG with SHORT"
+                    + " <= LONG (model time units)");
         }
     }
 

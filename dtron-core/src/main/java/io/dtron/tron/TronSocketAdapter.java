@@ -294,7 +294,9 @@ public final class TronSocketAdapter implements Adapter, Closeable {
 
     private void configurationPhase() throws IOException {
         long deadline = System.nanoTime() + settings.configurationTimeout().toNanos();
+        boolean heard = false;
         while (true) {
+            reader.endFrame(); // the last command was read whole: between frames, as in the testing phase
             int command;
             try {
                 command = reader.firstByte(deadline);
@@ -302,10 +304,15 @@ public final class TronSocketAdapter implements Adapter, Closeable {
                 throw new TronProtocolException("the adapter closed the connection during configuration, before"
                         + " starting the test (command 64)");
             } catch (SocketTimeoutException e) {
-                throw new TronProtocolException("the adapter sent nothing for "
-                        + settings.configurationTimeout().toSeconds() + " s during configuration; it must register"
-                        + " its channels and start the test (command 64)" + silenceHint());
+                Duration limit = settings.configurationTimeout();
+                String within = limit.toMillis() % 1000 == 0 ? limit.toSeconds() + " s" : limit.toMillis() + " ms";
+                throw new TronProtocolException(!heard
+                        ? "the adapter sent nothing for " + within + " during configuration; it must register"
+                        + " its channels and start the test (command 64)" + silenceHint()
+                        : "the adapter did not start the test (command 64) within " + within + " of configuration;"
+                        + " it registered " + registry.channels().size() + " channels, then sent nothing more");
             }
+            heard = true;
             switch (command) {
                 case Wire.INPUT, Wire.OUTPUT -> {
                     String name = reader.string("the channel name of command " + command);
@@ -350,6 +357,7 @@ public final class TronSocketAdapter implements Adapter, Closeable {
                         byName.put(r.name(), r);
                     }
                     LOG.info("adapter {} configured: {}", remote(), describe());
+                    reader.endFrame();
                     return;
                 }
                 default -> {

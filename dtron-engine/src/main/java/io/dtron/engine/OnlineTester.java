@@ -9,6 +9,7 @@ import io.dtron.engine.internal.sem.PartitionException;
 import io.dtron.engine.internal.sem.Semantics;
 import io.dtron.engine.internal.tester.Plan;
 import io.dtron.engine.internal.tester.StateSet;
+import io.dtron.engine.internal.verify.ZenoCycles;
 import io.dtron.model.Network;
 import io.dtron.model.TestInterface;
 import java.util.ArrayList;
@@ -37,6 +38,12 @@ public final class OnlineTester {
      * acknowledgement of an input, when the adapters acknowledge inputs: its place decides the order of events.
      */
     private static final int ACK_PATIENCE = 4;
+    /**
+     * The most inputs the tester gives at one instant (in real time: within the input margin of the first): then it
+     * lets time pass, its next input at least one model time unit later, so that an environment that may give inputs
+     * without time passing (Zeno) does not hold time still, and an output deadline is reached and judged.
+     */
+    public static final int MAX_INPUTS_AT_ONE_INSTANT = 100;
 
     private final Network network;
     private final TestInterface testInterface;
@@ -50,6 +57,38 @@ public final class OnlineTester {
         this.testInterface = Objects.requireNonNull(testInterface, "testInterface");
         this.adapter = Objects.requireNonNull(adapter, "adapter");
         this.options = Objects.requireNonNull(options, "options");
+    }
+
+    /**
+     * Whether the environment of {@code network} may give inputs without end at one instant (Zeno), found as
+     * {@code dtron check --testability} finds Zeno cycles, structurally: a cycle of an environment process of sends
+     * and internal edges on which no clock is both reset and bounded from below. Returns one line saying which
+     * cycle and what the tester does about it, or empty when there is none, or the model cannot be run.
+     */
+    public static java.util.Optional<String> zenoEnvironment(Network network, TestInterface testInterface) {
+        Partition partition;
+        int dimension;
+        try {
+            partition = Partition.of(network, testInterface);
+            dimension = new Semantics(network, 1).dimension();
+        } catch (PartitionException | UnsupportedModelException e) {
+            return java.util.Optional.empty(); // the run says why
+        }
+        for (int p = 0; p < network.processes().size(); p++) {
+            if (!partition.isEnvironment(p)) {
+                continue;
+            }
+            io.dtron.model.Process process = network.processes().get(p);
+            List<String> cycle = ZenoCycles.possiblyZenoAlone(process, dimension);
+            if (cycle != null) {
+                return java.util.Optional.of("the environment may give inputs with no time passing (Zeno): the cycle "
+                        + String.join(" -> ", cycle) + " of " + process.name() + " may take no time; the tester gives"
+                        + " at most " + MAX_INPUTS_AT_ONE_INSTANT + " inputs at one instant, then lets time pass (its"
+                        + " next input at least a time unit later), so that a missed output deadline is reached and"
+                        + " judged");
+            }
+        }
+        return java.util.Optional.empty();
     }
 
     /** Adds a listener that follows the run. */
@@ -226,6 +265,9 @@ public final class OnlineTester {
         private long performed;
         private int inputs;
         private int outputs;
+        /** When the inputs at one instant began, and how many there have been ({@link #MAX_INPUTS_AT_ONE_INSTANT}). */
+        private long instantMicros = -1;
+        private int inputsAtInstant;
 
         Run(Semantics semantics, Partition partition, RunClock clock, Random random, int ticksPerUnit,
             AtomicLong windowMicros) {
@@ -306,8 +348,8 @@ public final class OnlineTester {
                 Plan plan = plan();
                 long elapsed = ticksFloor(now - lastMicros);
                 Plan.Choice choice = plan.choose(elapsed, random, options.delayPolicy(),
-                        options.delayBound() * ticksPerUnit,
-                        Math.max(inputMargin, ticksCeil(2 * clock.worstLatenessMicros())));
+                        options.delayBound() * ticksPerUnit, options.shortDelayBound() * ticksPerUnit,
+                        Math.max(inputMargin, ticksCeil(2 * clock.worstLatenessMicros())), earliestInput());
                 long at = lastMicros + micros(choice.ticks());
                 // a deadline within the test is declared missed only when the outputs stamped before it had the
                 // reorder window to arrive
@@ -342,7 +384,13 @@ public final class OnlineTester {
                         }
                         continue;
                     }
-                    if (plan.inputPossibleAt(plan.deadline())) {
+                    if (choice.letsTimePass() && !plan.environmentLetsTimePass()) {
+                        return result(Verdict.INCONCLUSIVE, "no input was applied by " + deadlineAt + ": the"
+                                + " environment allowed inputs until then but no time to pass without one, and the"
+                                + " tester let time pass " + whyTimePassed() + ". " + plan.explainInputs(this::time,
+                                lastMicros));
+                    }
+                    if (plan.inputPossibleAt(plan.deadline()) && !choice.letsTimePass()) {
                         return result(Verdict.INCONCLUSIVE, "no input was applied by " + deadlineAt + ", when the"
                                 + " environment's window closed: the tester learned of the events before it too late,"
                                 + " or was held up (input executed too late). " + plan.explainInputs(this::time,
@@ -355,8 +403,39 @@ public final class OnlineTester {
                     return result(Verdict.FAILED, afterLastTaken() + "no output came by " + deadlineAt + ": the model required the"
                             + " system under test to act by then" + (window() > 0
                             ? " (the tester waited " + Plan.units(window(), unit) + " time units more for messages"
-                            + " in transit)" : "") + ". " + plan.explainOutputs(this::time, lastMicros));
+                            + " in transit)" : "") + (choice.letsTimePass() ? "; the environment allowed more inputs"
+                            + " until then and lets time pass without them, and the tester let time pass "
+                            + whyTimePassed() : "") + ". " + plan.explainOutputs(this::time, lastMicros));
                 }
+            }
+        }
+
+        /**
+         * The earliest tick (after the last event) of the next input: 0, or, after {@link #MAX_INPUTS_AT_ONE_INSTANT}
+         * inputs at one instant, one time unit after that instant.
+         */
+        private long earliestInput() {
+            if (inputsAtInstant < MAX_INPUTS_AT_ONE_INSTANT) {
+                return 0;
+            }
+            return Math.max(1, ticksCeil(instantMicros + unit - lastMicros));
+        }
+
+        /** Why the tester let time pass while the environment allowed an input, for explanations. */
+        private String whyTimePassed() {
+            return inputsAtInstant >= MAX_INPUTS_AT_ONE_INSTANT ? "after " + inputsAtInstant + " inputs at "
+                    + time(instantMicros) + " (it gives at most " + MAX_INPUTS_AT_ONE_INSTANT + " inputs at one instant)"
+                    : "rather than aim an input less than its input margin before the deadline";
+        }
+
+        /** Counts an input applied at {@code micros} towards the inputs at one instant. */
+        private void countInstant(long micros) {
+            long instant = options.virtualTime() ? 0 : options.inputMarginMicros();
+            if (instantMicros >= 0 && micros - instantMicros <= instant) {
+                inputsAtInstant++;
+            } else {
+                instantMicros = micros;
+                inputsAtInstant = 1;
             }
         }
 
@@ -670,6 +749,7 @@ public final class OnlineTester {
             p.afterMicros = now;
             pending.add(p);
             inputs++;
+            countInstant(now);
             for (TestListener l : listeners) {
                 l.inputApplied(event, now);
             }

@@ -23,9 +23,12 @@ import java.util.Objects;
  *                       loaded one), and an input applied after its window ends makes the run INCONCLUSIVE. In a
  *                       window narrower than the margin the input is aimed at the window's start. During the run
  *                       the tester widens it to twice the latest it has woken up so far. Not used in virtual time
+ * @param shortDelayBound for {@link DelayPolicy#RANDOM_BOUNDED}, when positive: each delay is bounded by this or by
+ *                       {@code delayBound}, one of the two at random (TRON's {@code -P SHORT,LONG}); 0 for none
  */
 public record TestOptions(long seed, long timeUnitMicros, long timeout, DelayPolicy delayPolicy, long delayBound,
-                          boolean virtualTime, long reorderWindowMicros, long inputMarginMicros) {
+                          boolean virtualTime, long reorderWindowMicros, long inputMarginMicros,
+                          long shortDelayBound) {
     /** The input margin when none is given: 2 ms. */
     public static final long DEFAULT_INPUT_MARGIN_MICROS = 2000;
 
@@ -44,7 +47,7 @@ public record TestOptions(long seed, long timeUnitMicros, long timeout, DelayPol
         if (timeout <= 0) {
             throw new IllegalArgumentException("the timeout must be a positive number of model time units");
         }
-        if (delayBound < 0) {
+        if (delayBound < 0 || shortDelayBound < 0) {
             throw new IllegalArgumentException("the delay bound must not be negative");
         }
         if (reorderWindowMicros < 0 || reorderWindowMicros > MAX_DURATION_MICROS) {
@@ -56,7 +59,7 @@ public record TestOptions(long seed, long timeUnitMicros, long timeout, DelayPol
         if (!fits(timeout, timeUnitMicros)) {
             throw new IllegalArgumentException(tooLong("the timeout", timeout, timeUnitMicros));
         }
-        if (!fits(delayBound, timeUnitMicros)) {
+        if (!fits(Math.max(delayBound, shortDelayBound), timeUnitMicros)) {
             throw new IllegalArgumentException(tooLong("the delay bound", delayBound, timeUnitMicros));
         }
     }
@@ -73,6 +76,13 @@ public record TestOptions(long seed, long timeUnitMicros, long timeout, DelayPol
     public static String tooLong(String what, long units, long timeUnitMicros) {
         return what + " of " + units + " time units of " + timeUnitMicros + " us is longer than DTRON can time: at"
                 + " most " + MAX_DURATION_MICROS + " us (about 292 years)";
+    }
+
+    /** Options without a short delay bound. */
+    public TestOptions(long seed, long timeUnitMicros, long timeout, DelayPolicy delayPolicy, long delayBound,
+                       boolean virtualTime, long reorderWindowMicros, long inputMarginMicros) {
+        this(seed, timeUnitMicros, timeout, delayPolicy, delayBound, virtualTime, reorderWindowMicros,
+                inputMarginMicros, 0);
     }
 
     /** Options with the {@link #DEFAULT_INPUT_MARGIN_MICROS default input margin}. */
@@ -96,36 +106,45 @@ public record TestOptions(long seed, long timeUnitMicros, long timeout, DelayPol
     /** These options with another timeout (model time units). */
     public TestOptions withTimeout(long units) {
         return new TestOptions(seed, timeUnitMicros, units, delayPolicy, delayBound, virtualTime, reorderWindowMicros,
-                inputMarginMicros);
+                inputMarginMicros, shortDelayBound);
     }
 
     /** These options with another time unit. */
     public TestOptions withTimeUnit(long micros) {
         return new TestOptions(seed, micros, timeout, delayPolicy, delayBound, virtualTime, reorderWindowMicros,
-                inputMarginMicros);
+                inputMarginMicros, shortDelayBound);
     }
 
-    /** These options with another delay policy and bound. */
+    /** These options with another delay policy and bound, and no short bound. */
     public TestOptions withDelayPolicy(DelayPolicy policy, long bound) {
         return new TestOptions(seed, timeUnitMicros, timeout, policy, bound, virtualTime, reorderWindowMicros,
-                inputMarginMicros);
+                inputMarginMicros, 0);
+    }
+
+    /**
+     * These options with delays bounded by {@code shortBound} or {@code longBound} (model time units), one of the two
+     * at random for each delay, as TRON's {@code -P SHORT,LONG} chooses them.
+     */
+    public TestOptions withShortOrLongDelays(long shortBound, long longBound) {
+        return new TestOptions(seed, timeUnitMicros, timeout, DelayPolicy.RANDOM_BOUNDED, longBound, virtualTime,
+                reorderWindowMicros, inputMarginMicros, shortBound);
     }
 
     /** These options in real or virtual time. */
     public TestOptions withVirtualTime(boolean virtual) {
         return new TestOptions(seed, timeUnitMicros, timeout, delayPolicy, delayBound, virtual, reorderWindowMicros,
-                inputMarginMicros);
+                inputMarginMicros, shortDelayBound);
     }
 
     /** These options with another reorder window (microseconds). */
     public TestOptions withReorderWindow(long micros) {
         return new TestOptions(seed, timeUnitMicros, timeout, delayPolicy, delayBound, virtualTime, micros,
-                inputMarginMicros);
+                inputMarginMicros, shortDelayBound);
     }
 
     /** These options with another input margin (microseconds). */
     public TestOptions withInputMargin(long micros) {
         return new TestOptions(seed, timeUnitMicros, timeout, delayPolicy, delayBound, virtualTime, reorderWindowMicros,
-                micros);
+                micros, shortDelayBound);
     }
 }

@@ -215,6 +215,35 @@ public final class Semantics {
         return invariants(s.locations, s.vars, s.zone);
     }
 
+    /**
+     * Whether the processes {@code processes} accepts, on their own, let clock {@code clock} pass {@code ticks} in
+     * {@code s}: none of them is in an urgent or committed location, no urgent synchronisation is enabled (whose
+     * side is not told apart), and their invariants allow a valuation of {@code s} with the clock above {@code
+     * ticks} after a delay. The other processes' invariants are not applied: they are what such a delay violates.
+     */
+    public boolean mayDelayPast(SymState s, java.util.function.IntPredicate processes, int clock, long ticks) {
+        int[] locations = s.locations;
+        for (int p = 0; p < locations.length; p++) {
+            int l = locations[p];
+            if (processes.test(p) && l >= 0 && urgentOrCommitted[p][l]) {
+                return false;
+            }
+        }
+        if (urgentSyncEnabled(s)) {
+            return false;
+        }
+        Dbm zone = s.zone.copy();
+        zone.up();
+        for (int p = 0; p < locations.length; p++) {
+            int l = locations[p];
+            Evaluator.Handle inv = l < 0 || !processes.test(p) ? null : invariant[p][l];
+            if (inv != null && !evaluator.constrain(inv, s.vars, null, zone, ticksPerUnit)) {
+                return false;
+            }
+        }
+        return zone.constrain(0, clock, Bound.lt((int) -Math.min(ticks, Bound.MAX_VALUE)));
+    }
+
     /** Applies the invariants of {@code locations} to {@code zone}; false if the zone becomes empty. */
     public boolean invariants(int[] locations, int[] vars, Dbm zone) {
         // their clock bounds listed first and added together (Dbm.constrainAll); when listing meets a model

@@ -29,13 +29,21 @@ public final class Plan {
     private final Map<Integer, TestInterface.ObservableChannel> inputs;
     private final Map<Integer, String> names;
     private final String implementationState;
+    /** The states reachable before the horizon, and the partition, for {@link #environmentLetsTimePass}. */
+    private final List<SymState> reach;
+    private final Partition partition;
+    private Boolean environmentLetsTimePass;
 
     /** A window of elapsed ticks in which a channel is enabled, with the edge that would take it. */
     record Window(long lo, long hi, Semantics.Step edge) {
     }
 
-    /** The tester's next move: an input after {@code ticks}, or (input null) waiting until {@code ticks}. */
-    public record Choice(TestInterface.ObservableChannel input, long ticks) {
+    /**
+     * The tester's next move: an input after {@code ticks}, or (input null) waiting until {@code ticks}; {@code
+     * letsTimePass} when the tester waits past a deadline at which the environment allowed an input (it lets time
+     * pass rather than give more inputs at one instant, or an input it could not aim a margin before the deadline).
+     */
+    public record Choice(TestInterface.ObservableChannel input, long ticks, boolean letsTimePass) {
         /** Whether this applies an input. */
         public boolean isInput() {
             return input != null;
@@ -44,7 +52,7 @@ public final class Plan {
 
     private Plan(Semantics semantics, long unitMicros, long horizon, long deadline,
                  Map<Integer, List<Window>> windows, Map<Integer, TestInterface.ObservableChannel> inputs,
-                 Map<Integer, String> names, String implementationState) {
+                 Map<Integer, String> names, String implementationState, List<SymState> reach, Partition partition) {
         this.semantics = semantics;
         this.unitMicros = unitMicros;
         this.horizon = horizon;
@@ -53,6 +61,8 @@ public final class Plan {
         this.inputs = inputs;
         this.names = names;
         this.implementationState = implementationState;
+        this.reach = reach;
+        this.partition = partition;
     }
 
     /** The plan for {@code set}, looking at most {@code horizon} ticks ahead; {@code unitMicros} per time unit. */
@@ -95,7 +105,8 @@ public final class Plan {
             implementation[p] = !partition.isEnvironment(p);
         }
         String state = set.states().isEmpty() ? "" : semantics.describe(set.states().get(0), implementation);
-        return new Plan(semantics, unitMicros, horizon, Math.min(deadline, horizon), windows, inputs, names, state);
+        return new Plan(semantics, unitMicros, horizon, Math.min(deadline, horizon), windows, inputs, names, state,
+                reach, partition);
     }
 
     private static long upper(SymState s, int clock, long horizon) {
@@ -154,16 +165,54 @@ public final class Plan {
     }
 
     /**
+     * Whether the environment, on its own, lets time pass beyond the deadline: in every state that is possible at
+     * the deadline no environment process is urgent or committed and their invariants allow more time. Then the
+     * deadline is the implementation's: if the tester lets time pass, the system under test must act by it. True
+     * when nothing must happen before the horizon.
+     */
+    public boolean environmentLetsTimePass() {
+        if (environmentLetsTimePass == null) {
+            boolean lets = true;
+            if (hasDeadline()) {
+                int clock = semantics.elapsedClock();
+                for (SymState s : reach) {
+                    if (upper(s, clock, horizon) >= deadline
+                            && !semantics.mayDelayPast(s, partition::isEnvironment, clock, deadline)) {
+                        lets = false;
+                        break;
+                    }
+                }
+            }
+            environmentLetsTimePass = lets;
+        }
+        return environmentLetsTimePass;
+    }
+
+    /** {@link #choose(long, Random, DelayPolicy, long, long, long, long) Chooses} with no short bound, no earliest. */
+    public Choice choose(long elapsed, Random random, DelayPolicy policy, long boundTicks, long marginTicks) {
+        return choose(elapsed, random, policy, boundTicks, 0, marginTicks, 0);
+    }
+
+    /**
      * Chooses the next move at {@code elapsed} ticks: an input among those the environment allows (with its
      * time by {@code policy}), or waiting until the deadline (or the horizon). When an input is possible at the
-     * deadline, the tester does not wait past it. An input's time is chosen at least {@code marginTicks} before the
-     * end of its window (at the window's start when it is narrower than that), so that a tester that wakes up a
-     * little late still applies it inside the window: as late as can still be met, for {@link DelayPolicy#LAZY}.
+     * deadline, the tester does not wait past it, with two exceptions, where it lets time pass (the choice {@link
+     * Choice#letsTimePass}): no input earlier than {@code earliestTicks} (the tester has given as many inputs at one
+     * instant as it gives, and time must advance), and, when the environment lets time pass beyond the deadline
+     * ({@link #environmentLetsTimePass}), no input in a window that ends at the deadline less than {@code
+     * marginTicks} after it opens (the tester could not meet it reliably; the system under test must act by the
+     * deadline anyway). An input's time is chosen at least {@code marginTicks} before the end of its window (at the
+     * window's start when it is narrower than that), so that a tester that wakes up a little late still applies it
+     * inside the window: as late as can still be met, for {@link DelayPolicy#LAZY}. For {@link
+     * DelayPolicy#RANDOM_BOUNDED} the bound is {@code boundTicks}, or, when {@code shortBoundTicks} is positive,
+     * {@code shortBoundTicks} or {@code boundTicks} at random (TRON's {@code -P SHORT,LONG}).
      */
-    public Choice choose(long elapsed, Random random, DelayPolicy policy, long boundTicks, long marginTicks) {
+    public Choice choose(long elapsed, Random random, DelayPolicy policy, long boundTicks, long shortBoundTicks,
+                         long marginTicks, long earliestTicks) {
         List<long[]> options = new ArrayList<>();
         List<TestInterface.ObservableChannel> channels = new ArrayList<>();
         boolean mustAct = false;
+        boolean couldActAtDeadline = false;
         for (Map.Entry<Integer, List<Window>> e : windows.entrySet()) {
             TestInterface.ObservableChannel input = inputs.get(e.getKey());
             if (input == null) {
@@ -172,13 +221,17 @@ public final class Plan {
             for (Window w : e.getValue()) {
                 long lo = Math.max(w.lo(), elapsed);
                 long hi = hasDeadline() ? Math.min(w.hi(), deadline) : w.hi();
-                if (lo <= hi) {
-                    // never later than the margin before the end: the tester is never early, only late, so in a
-                    // window narrower than the margin the start gives it the most room
-                    options.add(new long[] {lo, Math.max(lo, hi - marginTicks)});
-                    channels.add(input);
-                    mustAct |= hasDeadline() && w.lo() <= deadline && deadline <= w.hi();
+                couldActAtDeadline |= hasDeadline() && lo <= deadline && deadline <= w.hi();
+                lo = Math.max(lo, earliestTicks);
+                if (lo > hi || marginTicks > 0 && hi - marginTicks < lo && hasDeadline() && w.hi() >= deadline
+                        && environmentLetsTimePass()) {
+                    continue;
                 }
+                // never later than the margin before the end: the tester is never early, only late, so in a
+                // window narrower than the margin the start gives it the most room
+                options.add(new long[] {lo, Math.max(lo, hi - marginTicks)});
+                channels.add(input);
+                mustAct |= hasDeadline() && lo <= deadline && deadline <= w.hi();
             }
         }
         // waiting is a choice of its own only when something must happen by a deadline: otherwise an input's
@@ -187,7 +240,8 @@ public final class Plan {
         int count = options.size() + (offerWait ? 1 : 0);
         int pick = options.isEmpty() ? 0 : random.nextInt(count);
         if (pick == options.size()) {
-            return new Choice(null, hasDeadline() ? deadline + 1 : horizon);
+            // waiting past a deadline at which an input was possible, when the tester no longer offers it
+            return new Choice(null, hasDeadline() ? deadline + 1 : horizon, couldActAtDeadline && !mustAct);
         }
         long lo = options.get(pick)[0];
         long hi = options.get(pick)[1];
@@ -196,11 +250,12 @@ public final class Plan {
             case LAZY -> hi;
             case RANDOM -> lo + (long) Math.floor(random.nextDouble() * (hi - lo + 1));
             case RANDOM_BOUNDED -> {
-                long top = Math.min(hi, lo + boundTicks);
+                long bound = shortBoundTicks > 0 && random.nextBoolean() ? shortBoundTicks : boundTicks;
+                long top = Math.min(hi, lo + bound);
                 yield lo + (long) Math.floor(random.nextDouble() * (top - lo + 1));
             }
         };
-        return new Choice(channels.get(pick), Math.min(ticks, hi));
+        return new Choice(channels.get(pick), Math.min(ticks, hi), false);
     }
 
     /** The outputs the model allowed, with their times, and the implementation's state, for explanations. */

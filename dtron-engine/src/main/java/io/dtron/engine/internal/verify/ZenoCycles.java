@@ -15,7 +15,7 @@ import java.util.List;
  * when every cycle of every process takes time, so does every cycle of the network. A cycle that fails the
  * condition may still take time for other reasons (an invariant, data): it is reported as possibly Zeno.
  */
-final class ZenoCycles {
+public final class ZenoCycles {
     private static final int MAX_CLOCKS = 10;
 
     private ZenoCycles() {
@@ -23,6 +23,27 @@ final class ZenoCycles {
 
     /** A cycle of {@code p} that may take no time, as its locations; null if every cycle takes time. */
     static List<String> possiblyZeno(Process p, int dimension) {
+        return possiblyZeno(p, dimension, new BitSet());
+    }
+
+    /**
+     * A cycle of {@code p} that it may go round on its own with no time passing (no edge of it receives on a
+     * channel: sends and internal edges only), as its locations; null if there is none. For an environment process
+     * whose sends are the inputs the system under test always accepts, such a cycle lets it give inputs without end
+     * at one instant.
+     */
+    public static List<String> possiblyZenoAlone(Process p, int dimension) {
+        BitSet receiving = new BitSet();
+        for (int i = 0; i < p.edges().size(); i++) {
+            Edge e = p.edges().get(i);
+            if (e.sync() != null && e.sync().direction() == Edge.Direction.RECEIVE) {
+                receiving.set(i);
+            }
+        }
+        return possiblyZeno(p, dimension, receiving);
+    }
+
+    private static List<String> possiblyZeno(Process p, int dimension, BitSet excluded) {
         List<Edge> edges = p.edges();
         int n = edges.size();
         BitSet[] resets = new BitSet[dimension];
@@ -51,7 +72,7 @@ final class ZenoCycles {
         }
         // a cycle may take no time iff, for every clock, it avoids its resets or its lower guards
         for (int choice = 0; choice < 1 << clocks.size(); choice++) {
-            BitSet removed = new BitSet(n);
+            BitSet removed = (BitSet) excluded.clone();
             for (int k = 0; k < clocks.size(); k++) {
                 removed.or((choice >> k & 1) == 0 ? resets[clocks.get(k)] : lowerGuards[clocks.get(k)]);
             }
