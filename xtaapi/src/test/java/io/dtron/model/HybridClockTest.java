@@ -88,6 +88,8 @@ class HybridClockTest {
                 error(edge("int i = 3;\nclock y = i;", "")));
         assertEquals("1:15: clock 'xs' has 2 elements, but the initialiser gives 3",
                 error(edge("clock xs[2] = {1, 2, 3};", "")));
+        assertEquals("1:1: 'const' does not apply to clocks", error(edge("const clock c = 1;", "")));
+        assertEquals("1:1: 'meta' does not apply to clocks", error(edge("meta clock c;", "")));
         assertEquals("2:11: clock 'x' is a clock and cannot be initialised with an array (int[3])",
                 error(edge("const int a[3] = {1, 2, 3};\nclock x = a;", "")));
     }

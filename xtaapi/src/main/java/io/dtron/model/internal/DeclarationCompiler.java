@@ -114,6 +114,11 @@ final class DeclarationCompiler {
         if (type instanceof Type.Void) {
             diagnostics.error(v.pos(), "'" + v.name() + "' cannot be of type void");
         } else if (type.clocks() > 0) {
+            if (r.constant() || r.meta()) {
+                // Uppaal: "prefix const (meta) not allowed for clocks"
+                diagnostics.error(v.type().pos(), (r.constant() ? "'const'" : "'meta'") + " does not apply to clocks");
+                return;
+            }
             if (v.init() != null && initialValues(v.init(), type, checker, "clock '" + v.name() + "'", false) != null) {
                 // Uppaal (statistical model checking) starts a clock at a number computable at compile time
                 compilation.unsupported(v.init().pos(), "a clock with an initial value", "the engine starts every"
