@@ -88,36 +88,37 @@ public final class ModelSyntax {
      * XML declaration are UTF-8, or whatever their mark says.
      */
     public static String decode(byte[] bytes) {
-        int bom = 0;
-        Charset charset;
+        int bom = byteOrderMark(bytes);
+        return new String(bytes, bom, bytes.length - bom, encodingOf(bytes));
+    }
+
+    /** The length of the byte-order mark {@code bytes} start with (UTF-8, UTF-16, UTF-32), 0 when none. */
+    public static int byteOrderMark(byte[] bytes) {
         if (startsWith(bytes, 0xEF, 0xBB, 0xBF)) {
-            bom = 3;
-            charset = StandardCharsets.UTF_8;
-        } else if (startsWith(bytes, 0x00, 0x00, 0xFE, 0xFF)) {
-            bom = 4;
-            charset = Charset.forName("UTF-32BE");
-        } else if (startsWith(bytes, 0xFF, 0xFE, 0x00, 0x00)) {
-            bom = 4;
-            charset = Charset.forName("UTF-32LE");
-        } else if (startsWith(bytes, 0xFE, 0xFF)) {
-            bom = 2;
-            charset = StandardCharsets.UTF_16BE;
-        } else if (startsWith(bytes, 0xFF, 0xFE)) {
-            bom = 2;
-            charset = StandardCharsets.UTF_16LE;
-        } else if (startsWith(bytes, 0x00, 0x00, 0x00, '<')) {
-            charset = Charset.forName("UTF-32BE");
-        } else if (startsWith(bytes, '<', 0x00, 0x00, 0x00)) {
-            charset = Charset.forName("UTF-32LE");
-        } else if (startsWith(bytes, 0x00, '<', 0x00, '?')) {
-            charset = StandardCharsets.UTF_16BE;
-        } else if (startsWith(bytes, '<', 0x00, '?', 0x00)) {
-            charset = StandardCharsets.UTF_16LE;
-        } else {
-            // an encoding that agrees with ASCII on "<?xml ... encoding='...'?>": the declaration names it
-            charset = declaredEncoding(new String(bytes, 0, Math.min(bytes.length, 200), StandardCharsets.ISO_8859_1));
+            return 3;
+        } else if (startsWith(bytes, 0x00, 0x00, 0xFE, 0xFF) || startsWith(bytes, 0xFF, 0xFE, 0x00, 0x00)) {
+            return 4;
+        } else if (startsWith(bytes, 0xFE, 0xFF) || startsWith(bytes, 0xFF, 0xFE)) {
+            return 2;
         }
-        return new String(bytes, bom, bytes.length - bom, charset);
+        return 0;
+    }
+
+    /** The encoding of a model file's bytes, found as {@link #decode} says; the byte order is in the name. */
+    public static Charset encodingOf(byte[] bytes) {
+        if (startsWith(bytes, 0xEF, 0xBB, 0xBF)) {
+            return StandardCharsets.UTF_8;
+        } else if (startsWith(bytes, 0x00, 0x00, 0xFE, 0xFF) || startsWith(bytes, 0x00, 0x00, 0x00, '<')) {
+            return Charset.forName("UTF-32BE");
+        } else if (startsWith(bytes, 0xFF, 0xFE, 0x00, 0x00) || startsWith(bytes, '<', 0x00, 0x00, 0x00)) {
+            return Charset.forName("UTF-32LE");
+        } else if (startsWith(bytes, 0xFE, 0xFF) || startsWith(bytes, 0x00, '<', 0x00, '?')) {
+            return StandardCharsets.UTF_16BE;
+        } else if (startsWith(bytes, 0xFF, 0xFE) || startsWith(bytes, '<', 0x00, '?', 0x00)) {
+            return StandardCharsets.UTF_16LE;
+        }
+        // an encoding that agrees with ASCII on "<?xml ... encoding='...'?>": the declaration names it
+        return declaredEncoding(new String(bytes, 0, Math.min(bytes.length, 200), StandardCharsets.ISO_8859_1));
     }
 
     private static boolean startsWith(byte[] bytes, int... prefix) {
