@@ -110,6 +110,24 @@ class HybridClockTest {
     }
 
     @Test
+    void aConditionalWithADoubleOrAClockInABranchIsADouble() throws ModelException {
+        Network n = load(edge("clock x;\ndouble d;\nbool b;", "assign d = b ? 1.5 : 2, d = b ? x : 0;"));
+        assertEquals("4:75: a clock used as a real number cannot be run by DTRON's engine: clocks used as real numbers"
+                + " (in arithmetic on doubles, or passed as a double) belong to statistical model checking, and the"
+                + " engine treats clocks symbolically, as zones", refusal(n, "a clock used"));
+        assertEquals("4:58: cannot assign a double to 'i' of type int",
+                error(edge("clock x;\nint i;\nbool b;", "assign i = b ? 1.5 : 2;")));
+    }
+
+    @Test
+    void doublesAreInitialisedWithValuesComputableAtCompileTime() {
+        assertEquals("2:18: the initial value of 'C' must be computable at compile time",
+                error(edge("double v = 1.0;\nconst double C = v * 2;", "")));
+        assertEquals("2:12: the initial value of 'd' must be computable at compile time",
+                error(edge("clock x;\ndouble d = x;", "")));
+    }
+
+    @Test
     void clocksInIntegerArithmeticAreStillErrors() {
         assertEquals("3:58: '%' needs integers, not a clock (clocks can only be compared with integers, as in x < 5"
                 + " or x - y <= 3, or reset, as in x = 0)", error(edge("clock x;\nint i;", "assign i = x % 2;")));

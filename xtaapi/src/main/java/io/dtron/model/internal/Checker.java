@@ -863,6 +863,12 @@ final class Checker {
             type = Type.Int.UNBOUNDED;
         } else if (then.type().isIntegral() && sameType(then.type(), otherwise.type())) {
             type = then.type();
+        } else if (isNumberOrClock(then.type()) && isNumberOrClock(otherwise.type())) {
+            // a double or a clock in either branch makes a double, as in Uppaal: b ? 1.5 : 2, b ? x : 0
+            if (isClockValue(then.type()) || isClockValue(otherwise.type())) {
+                unsupportedClockArithmetic(c.pos());
+            }
+            type = Type.Double.INSTANCE;
         } else {
             return error(c.pos(), "both branches of '?:' must be integers or booleans, not " + describe(then.type())
                     + " and " + describe(otherwise.type()));

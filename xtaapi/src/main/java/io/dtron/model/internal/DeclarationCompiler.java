@@ -172,6 +172,11 @@ final class DeclarationCompiler {
                     + Checker.describe(x.type()));
             return null;
         }
+        if (x != null && !Checker.computable(x)) {
+            diagnostics.error(single.pos(), "the initial value of '" + v.name() + "' must be computable at compile"
+                    + " time");
+            return null;
+        }
         return x;
     }
 
