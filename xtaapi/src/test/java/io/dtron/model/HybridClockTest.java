@@ -150,6 +150,25 @@ class HybridClockTest {
                 error(edge("clock x;\nint a[2];", "assign x = a;")));
     }
 
+    @Test
+    void aClockComparedWithADoubleIsAnUpperBoundOrAGuardAsInUppaal() throws ModelException {
+        // x <= 2.5 may stand in an invariant; x >= 2.5 (a guard in Uppaal 5) may not
+        Network n = load("""
+                clock x;
+                process P() { state A { x <= 2.5 }; init A; trans A -> A { guard x >= 1.5 && x != 0.5; }; }
+                system P;
+                """);
+        assertEquals(1, n.processes().get(0).edges().size());
+        ModelException e = assertThrows(ModelException.class, () -> load("""
+                clock x;
+                process P() { state A { x >= 2.5 }; init A; }
+                system P;
+                """));
+        Diagnostic d = e.errors().get(0);
+        assertEquals("2:25", d.line() + ":" + d.column(), d::format);
+        assertTrue(d.message().startsWith("an invariant is a conjunction of bounds on clocks"), d::format);
+    }
+
     // ================================================================ rates
 
     @Test
@@ -167,6 +186,8 @@ class HybridClockTest {
                 + " array (int[2])", error("""
                 clock x; int a[2]; process P() { state A { x' == a }; init A; } system P;
                 """));
+        assertEquals("1:32: a rate is written x' == expression, with a clock x and a number, not an integer and an"
+                + " integer", error("int i; process P() { state A { i' == 1 }; init A; } system P;"));
         assertEquals("3:53: a clock rate (x' == e) can only stand in an invariant",
                 error(edge("clock x, y;\nint i;", "guard x' == y;")));
     }
