@@ -81,6 +81,12 @@ class HybridClockTest {
     }
 
     @Test
+    void aClockInitialisedToZeroStartsWhereEveryClockStarts() throws ModelException {
+        Network n = load(edge("clock x = 0;\nclock xs[2] = {0, 0};", ""));
+        assertTrue(n.startErrors().isEmpty(), () -> n.startErrors().toString());
+    }
+
+    @Test
     void aClockInitialisedFromAVariableOrAClockIsNotComputableAtCompileTime() {
         assertEquals("2:11: the initial value of clock 'y' must be computable at compile time",
                 error(edge("clock x;\nclock y = x;", "")));

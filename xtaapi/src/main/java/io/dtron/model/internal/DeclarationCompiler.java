@@ -6,6 +6,7 @@ import io.dtron.model.Statement;
 import io.dtron.model.Type;
 import io.dtron.xta.Pos;
 import io.dtron.xta.ast.Decl;
+import io.dtron.xta.ast.Expr;
 import io.dtron.xta.ast.Initializer;
 import io.dtron.xta.ast.Param;
 import io.dtron.xta.ast.TypeExpr;
@@ -119,7 +120,8 @@ final class DeclarationCompiler {
                 diagnostics.error(v.type().pos(), (r.constant() ? "'const'" : "'meta'") + " does not apply to clocks");
                 return;
             }
-            if (v.init() != null && initialValues(v.init(), type, checker, "clock '" + v.name() + "'", false) != null) {
+            if (v.init() != null && initialValues(v.init(), type, checker, "clock '" + v.name() + "'", false) != null
+                    && !zero(v.init())) {
                 // Uppaal (statistical model checking) starts a clock at a number computable at compile time
                 compilation.unsupported(v.init().pos(), "a clock with an initial value", "the engine starts every"
                         + " clock at 0, as the zones of symbolic model checking do");
@@ -157,6 +159,14 @@ final class DeclarationCompiler {
             scope.put(v.name(), new Symbol.Var(v.pos(), compilation.newVariable(qualified(owner, v.name()), type,
                     values, r.meta(), owner, v.pos())));
         }
+    }
+
+    /** Whether {@code init} is {@code 0}, or braces of zeros: where every clock starts anyway. */
+    private static boolean zero(Initializer init) {
+        if (init instanceof Initializer.Braces b) {
+            return b.elements().stream().allMatch(DeclarationCompiler::zero);
+        }
+        return ((Initializer.Single) init).value() instanceof Expr.IntLit i && i.value() == 0;
     }
 
     /** The value of a {@code const double}: a number, kept as the expression (the engine does not run doubles). */
