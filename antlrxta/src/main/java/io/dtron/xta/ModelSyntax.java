@@ -7,6 +7,7 @@ import io.dtron.xta.ast.Query;
 import io.dtron.xta.internal.Parsing;
 import java.nio.charset.Charset;
 import java.nio.charset.StandardCharsets;
+import java.util.Arrays;
 import java.util.List;
 import java.util.regex.Matcher;
 import java.util.regex.Pattern;
@@ -79,21 +80,75 @@ public final class ModelSyntax {
     }
 
     /**
-     * Decodes a model file's bytes: the encoding named in an XML declaration, else UTF-8; a byte-order
-     * mark is dropped.
+     * Decodes a model file's bytes as an XML processor does (XML 1.0, appendix F): a byte-order mark names the
+     * encoding (UTF-8, UTF-16 big- or little-endian, UTF-32); without one, the first bytes of {@code <?xml} tell
+     * UTF-16 and UTF-32 from the encodings that agree with ASCII, and for those the encoding named in the XML
+     * declaration is used ({@code encoding="ISO-8859-1"}, {@code windows-1252}, ...), else UTF-8. The mark is
+     * dropped, so that lines and columns count characters of the model's text. XTA files and others without an
+     * XML declaration are UTF-8, or whatever their mark says.
      */
     public static String decode(byte[] bytes) {
-        String ascii = new String(bytes, 0, Math.min(bytes.length, 200), StandardCharsets.ISO_8859_1);
-        Charset charset = StandardCharsets.UTF_8;
-        Matcher m = XML_ENCODING.matcher(stripBom(ascii.replace("\u00ef\u00bb\u00bf", "")));
-        if (m.find()) {
-            try {
-                charset = Charset.forName(m.group(1));
-            } catch (IllegalArgumentException unknown) {
-                charset = StandardCharsets.UTF_8;
+        int bom = byteOrderMark(bytes);
+        return new String(bytes, bom, bytes.length - bom, encodingOf(bytes));
+    }
+
+    /** The length of the byte-order mark {@code bytes} start with (UTF-8, UTF-16, UTF-32), 0 when none. */
+    public static int byteOrderMark(byte[] bytes) {
+        if (startsWith(bytes, 0xEF, 0xBB, 0xBF)) {
+            return 3;
+        } else if (startsWith(bytes, 0x00, 0x00, 0xFE, 0xFF) || startsWith(bytes, 0xFF, 0xFE, 0x00, 0x00)) {
+            return 4;
+        } else if (startsWith(bytes, 0xFE, 0xFF) || startsWith(bytes, 0xFF, 0xFE)) {
+            return 2;
+        }
+        return 0;
+    }
+
+    /** The encoding of a model file's bytes, found as {@link #decode} says; the byte order is in the name. */
+    public static Charset encodingOf(byte[] bytes) {
+        if (startsWith(bytes, 0xEF, 0xBB, 0xBF)) {
+            return StandardCharsets.UTF_8;
+        } else if (startsWith(bytes, 0x00, 0x00, 0xFE, 0xFF) || startsWith(bytes, 0x00, 0x00, 0x00, '<')) {
+            return Charset.forName("UTF-32BE");
+        } else if (startsWith(bytes, 0xFF, 0xFE, 0x00, 0x00) || startsWith(bytes, '<', 0x00, 0x00, 0x00)) {
+            return Charset.forName("UTF-32LE");
+        } else if (startsWith(bytes, 0xFE, 0xFF) || startsWith(bytes, 0x00, '<', 0x00, '?')) {
+            return StandardCharsets.UTF_16BE;
+        } else if (startsWith(bytes, 0xFF, 0xFE) || startsWith(bytes, '<', 0x00, '?', 0x00)) {
+            return StandardCharsets.UTF_16LE;
+        }
+        // an encoding that agrees with ASCII on "<?xml ... encoding='...'?>": the declaration names it
+        return declaredEncoding(new String(bytes, 0, Math.min(bytes.length, 200), StandardCharsets.ISO_8859_1));
+    }
+
+    private static boolean startsWith(byte[] bytes, int... prefix) {
+        if (bytes.length < prefix.length) {
+            return false;
+        }
+        for (int i = 0; i < prefix.length; i++) {
+            if ((bytes[i] & 0xFF) != prefix[i]) {
+                return false;
             }
         }
-        return stripBom(new String(bytes, charset));
+        return true;
+    }
+
+    /** The encoding an XML declaration at the start of {@code head} names and Java knows, or UTF-8. */
+    private static Charset declaredEncoding(String head) {
+        Matcher m = XML_ENCODING.matcher(head);
+        if (m.find()) {
+            try {
+                Charset declared = Charset.forName(m.group(1));
+                // "UTF-16" declared over bytes that agree with ASCII is a mislabelled file: read what is there
+                if (!declared.canEncode() || Arrays.equals(head.substring(0, m.end()).getBytes(declared),
+                        head.substring(0, m.end()).getBytes(StandardCharsets.US_ASCII))) {
+                    return declared;
+                }
+            } catch (IllegalArgumentException unknown) {
+                // unknown or unsupported: read it as UTF-8, as before
+            }
+        }
+        return StandardCharsets.UTF_8;
     }
 
     private static String stripBom(String text) {

@@ -125,7 +125,15 @@ final class VerifyCommand implements Callable<Integer> {
                 .withOrder(order == Order.dfs ? SearchOrder.DEPTH_FIRST : SearchOrder.BREADTH_FIRST)
                 .withTimeLimit(timeLimit == null ? null : Duration.ofNanos((long) (timeLimit * 1e9)))
                 .withMemoryLimit(memoryLimit == null ? 0 : memoryLimit << 20);
-        Verifier verifier = new Verifier(network, options);
+        Verifier verifier = null;
+        UnsupportedModelException cannotRun = null;
+        try {
+            verifier = new Verifier(network, options);
+        } catch (UnsupportedModelException e) {
+            // a model of statistical model checking: its statistical queries are skipped as always, the others
+            // cannot be checked, and each says so
+            cannotRun = e;
+        }
         List<Query> toCheck = new ArrayList<>();
         for (String q : queries) {
             try {
@@ -142,7 +150,7 @@ final class VerifyCommand implements Callable<Integer> {
             source = queries.isEmpty() ? queryFile.toString() : "--query and " + queryFile;
         }
         if (toCheck.isEmpty()) {
-            toCheck.addAll(verifier.modelQueries());
+            toCheck.addAll(verifier != null ? verifier.modelQueries() : modelQueries(network));
             source = "the model";
         }
         if (toCheck.isEmpty()) {
@@ -157,6 +165,16 @@ final class VerifyCommand implements Callable<Integer> {
         for (int i = 0; i < toCheck.size(); i++) {
             Query q = toCheck.get(i);
             text.println("[" + (i + 1) + "] " + q.text());
+            if (cannotRun != null) {
+                if (q.kind() == Query.Kind.UNSUPPORTED) {
+                    text.println("    skipped: " + q.reason());
+                    skipped++;
+                } else {
+                    text.println("    not checked: " + cannotRun.getMessage());
+                    errors++;
+                }
+                continue;
+            }
             VerificationResult r;
             try {
                 r = verifier.verify(q);
@@ -196,12 +214,31 @@ final class VerifyCommand implements Callable<Integer> {
             text.flush();
             out.flush();
         }
+        if (cannotRun != null) {
+            text.println("none checked: DTRON's engine cannot run the model" + (skipped > 0 ? "; " + skipped + " skipped"
+                    : ""));
+            err.println("dtron verify: " + model + ": " + cannotRun.getMessage());
+            return 1;
+        }
         int checked = toCheck.size() - skipped - errors;
         text.println(checked - violated - unknown + " of " + checked + " checked hold" + (violated > 0 ? ", " + violated
                 + " do not" : "") + (unknown > 0 ? ", " + unknown + " unknown" : "") + (skipped > 0 ? "; " + skipped
                 + " skipped" : "") + (errors > 0 ? "; " + errors + " in error" : ""));
         // a counterexample outranks an error, an error (to fix) an unknown answer (to retry with larger limits)
         return violated > 0 ? 2 : errors > 0 ? 1 : unknown > 0 ? 3 : 0;
+    }
+
+    /** The queries written in {@code network}, parsed; one that does not parse is {@link Query.Kind#INVALID}. */
+    private static List<Query> modelQueries(Network network) {
+        List<Query> out = new ArrayList<>();
+        for (io.dtron.xta.ast.Query q : network.queries()) {
+            try {
+                out.add(Query.parse(q.pos().text()));
+            } catch (QueryException e) {
+                out.add(new Query(q.pos().text().strip(), Query.Kind.INVALID, null, null, e.getMessage(), 0, 0));
+            }
+        }
+        return out;
     }
 
     /** The Delta-extended model of the delays, loaded, or null after an error (printed). */

@@ -76,6 +76,23 @@ class RunCommandTest {
     }
 
     @Test
+    void aHybridClockModelIsCheckedAndRefusedByRunWithTheConstructItsPlaceAndWhy() throws IOException {
+        // Uppaal 5 sets a clock to another clock in statistical model checking; DTRON's zones cannot
+        Path hybrid = dir.resolve("ticker-hybrid.xta");
+        Files.writeString(hybrid, TICKER.replace("process Env() { clock e;", "process Env() { clock e, f;")
+                .replace("assign e = 0;", "assign e = 0, f = e;"));
+        CommandRun check = CommandRun.of("check", hybrid.toString());
+        assertEquals(0, check.exit(), check.err());
+        assertTrue(check.out().contains(hybrid + ":8:78: warning: a clock set to a real number or to another clock"
+                + " cannot be run by DTRON's engine"), check.out());
+        CommandRun r = CommandRun.of("run", hybrid.toString(), "--sut", TickerForTests.class.getName(), "--virtual-time");
+        assertEquals(1, r.exit(), r.out() + r.err());
+        assertEquals("dtron run: " + hybrid + ": the model cannot start: " + hybrid + ":8:78: error: a clock set to a"
+                + " real number or to another clock cannot be run by DTRON's engine: the engine resets clocks to"
+                + " integers, as zones need", r.err().strip());
+    }
+
+    @Test
     void aCorrectSystemPassesWithExitCodeZero() {
         CommandRun r = CommandRun.of("run", model.toString(), "--sut", TickerForTests.class.getName(), "--virtual-time", "--seed", "7",
                 "--timeout", "300");

@@ -166,6 +166,22 @@ class VerifyCommandTest {
     }
 
     @Test
+    void aStatisticalModelListsItsStatisticalQueriesAsSkippedAndSaysWhyTheOthersAreNotChecked(@TempDir Path dir)
+            throws IOException {
+        Path hybrid = dir.resolve("hybrid.xta");
+        Files.writeString(hybrid, "const int WAIT = 2;\nclock h = 2.5;\n" + FISCHER);
+        Path q = dir.resolve("q.q");
+        Files.writeString(q, "Pr[<=10](<> P(1).cs)\nA[] not (P(1).cs and P(2).cs)\n");
+        CommandRun r = CommandRun.of("verify", hybrid.toString(), "--queries", q.toString());
+        assertEquals(1, r.exit(), r.out() + r.err());
+        assertTrue(r.out().contains("[1] Pr[<=10](<> P(1).cs)\n    skipped: a probability estimate"), r.out());
+        assertTrue(r.out().contains("[2] A[] not (P(1).cs and P(2).cs)\n    not checked: the model cannot start: "
+                + hybrid + ":2:11: error: real numbers (double) cannot be run by DTRON's engine"), r.out());
+        assertTrue(r.out().contains("none checked: DTRON's engine cannot run the model; 1 skipped"), r.out());
+        assertTrue(r.err().startsWith("dtron verify: " + hybrid + ": the model cannot start: "), r.err());
+    }
+
+    @Test
     void theModelsOwnQueriesAreTheDefault() {
         CommandRun r = CommandRun.of("verify", SHARED.resolve("benchmarks/fischer-4.xml").toString(), "--trace", "none");
         assertEquals(0, r.exit(), r.out() + r.err());

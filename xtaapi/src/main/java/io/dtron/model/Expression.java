@@ -28,6 +28,10 @@ public sealed interface Expression {
     record DoubleConstant(Pos pos, Type type, double value) implements Expression {
     }
 
+    /** A string literal, passed to an external function (statistical model checking; never evaluated). */
+    record StringConstant(Pos pos, Type type, String value) implements Expression {
+    }
+
     /** A constant array or struct known at load time, laid out like a variable of its type. */
     record ConstantTable(Pos pos, Type type, int[] values) implements Expression {
         public ConstantTable {

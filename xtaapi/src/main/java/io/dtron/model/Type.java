@@ -120,6 +120,25 @@ public sealed interface Type {
         }
     }
 
+    /**
+     * {@code string}: the type of string literals and of the parameters of external functions that take one
+     * ({@code import "lib.so" { void log(const string& s); };}). Holds nothing in the state vector.
+     */
+    record Str() implements Type {
+        /** The one string type. */
+        public static final Str INSTANCE = new Str();
+
+        @Override
+        public int slots() {
+            return 0;
+        }
+
+        @Override
+        public String toString() {
+            return "string";
+        }
+    }
+
     /** {@code clock}. */
     record Clock() implements Type {
         /** The one clock type. */

@@ -446,12 +446,15 @@ class ModelErrorsTest {
     }
 
     @Test
-    void clockInArithmetic() {
-        // decoded guard: "i == 0 && x * 2 < 3"
-        ModelException e = rejected(XML, xml().guard("i == 0 &amp;&amp; x * 2 &lt; 3").text());
+    void clockInIntegerArithmetic() throws ModelException {
+        // decoded guard: "i == 0 && x % 2 < 3"; x * 2 is a double in Uppaal 5 (statistical model checking), x % 2 is
+        // nothing
+        ModelException e = rejected(XML, xml().guard("i == 0 &amp;&amp; x % 2 &lt; 3").text());
         Diagnostic d = onlyError(e);
-        assertError(d, "'*' needs integers, not a clock", 15, 21 + 18);
+        assertError(d, "'%' needs integers, not a clock", 15, 21 + 18);
         assertInLabel(d, "P", "guard", 11);
+        Network n = ModelLoader.load(XML, xml().guard("i == 0 &amp;&amp; x * 2 &lt; 3").text());
+        assertTrue(n.startErrors().get(0).message().startsWith("a clock used as a real number"), n::toString);
     }
 
     @Test
@@ -490,12 +493,17 @@ class ModelErrorsTest {
     }
 
     @Test
-    void urgentChannelEdgeWithAClockGuard() {
-        ModelException e = rejected(XML, xml().global("clock x; urgent chan u; int i;")
-                .guard("x > 1").sync("u!").text());
-        Diagnostic d = onlyError(e);
-        assertError(d, "an edge that synchronises on an urgent channel cannot have a clock guard", 15, 21);
+    void urgentChannelEdgeWithAClockGuardIsAWarningAsInUppaal() throws ModelException {
+        // Uppaal warns "Clock guards are not allowed on urgent edges" and runs the model in statistical model
+        // checking only; DTRON loads it and refuses to run it
+        Network n = ModelLoader.load(XML, xml().global("clock x; urgent chan u; int i;").guard("x > 1").sync("u!")
+                .text());
+        Diagnostic d = n.warnings().stream().filter(w -> w.message().startsWith("a clock guard on an edge that"
+                + " synchronises on an urgent channel")).findFirst().orElseThrow(() -> new AssertionError(n.warnings()));
+        assertEquals(15, d.line(), d::format);
+        assertEquals(21, d.column(), d::format);
         assertInLabel(d, "P", "guard", 1);
+        assertEquals(d.pos(), n.startErrors().get(0).pos());
     }
 
     // =============================================================================================== edges

@@ -44,7 +44,7 @@ class SharedModelsLoadTest {
             // utap: $Incompatible_argument, $Must_be_computable_at_compile_time, $Channel_expected
             Map.entry("err-07.xta", new Expected(17, 32, "a clock parameter must be a reference")),
             // utap: $Must_be_computable_at_compile_time, $Channel_expected
-            Map.entry("err-08.xta", new Expected(9, 19, "clock 'cl' cannot have an initialiser")),
+            Map.entry("err-08.xta", new Expected(9, 21, "the initial value of clock 'cl' must be computable at compile time")),
             // utap: $Array_expected, $Incompatible_argument
             Map.entry("err-09.xta", new Expected(17, 32, "a clock parameter must be a reference")),
             // utap: $Free_process_parameters_must_be_a_bounded_integer_or_a_scalar

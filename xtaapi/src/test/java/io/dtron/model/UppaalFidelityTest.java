@@ -275,7 +275,8 @@ class UppaalFidelityTest {
         assertTrue(n.processes().get(0).locations().stream().anyMatch(l -> l.kind() == Location.Kind.BRANCHPOINT));
         Map<String, Integer> features = Map.of("real numbers (double)", 6, "a hybrid clock", 11,
                 "the built-in function 'random'", 35, "a branchpoint", 37, "dynamic templates", 47,
-                "the external function 'log_event' of \"libsensor.so\"", 47);
+                "the external function 'log_event' of \"libsensor.so\"", 47, "a clock rate given by a clock or a real"
+                + " number", 22);
         for (Map.Entry<String, Integer> f : features.entrySet()) {
             Diagnostic d = n.startErrors().stream().filter(s -> s.message().startsWith(f.getKey())).findFirst()
                     .orElseThrow(() -> new AssertionError(f.getKey() + " in " + n.startErrors()));
@@ -284,7 +285,7 @@ class UppaalFidelityTest {
             assertTrue(n.warnings().stream().anyMatch(w -> w.pos() == d.pos()
                     && w.message().endsWith("'dtron run' refuses it")), () -> "check warns of " + d.format());
         }
-        assertEquals(6, n.startErrors().size(), "one per kind of feature: " + n.startErrors());
+        assertEquals(7, n.startErrors().size(), "one per kind of feature: " + n.startErrors());
         assertEquals(Query.Kind.PROBABILITY, n.queries().get(0).kind());
     }
 

@@ -17,6 +17,10 @@ public sealed interface Expr {
     record DoubleLit(Pos pos, double value) implements Expr {
     }
 
+    /** A string literal (without its quotes), an argument of an external function: {@code log("start")}. */
+    record StringLit(Pos pos, String value) implements Expr {
+    }
+
     /** {@code true} or {@code false}. */
     record BoolLit(Pos pos, boolean value) implements Expr {
     }

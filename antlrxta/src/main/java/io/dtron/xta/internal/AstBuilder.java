@@ -122,7 +122,9 @@ final class AstBuilder {
                 params.add(new Param(p.identifier() == null ? pos(p) : pos(p.identifier()), type(p.type()),
                         p.ref != null, p.identifier() == null ? "" : name(p.identifier()), dims(p.arrayDim())));
             }
-            out.add(new Decl.External(pos(f.identifier(0)), type(f.type()), name(f.identifier(0)), params, library));
+            IdentifierContext symbol = f.identifier(f.alias == null ? 0 : 1);
+            String name = f.alias == null ? name(symbol) : name(f.alias);
+            out.add(new Decl.External(pos(f.alias == null ? symbol : f.alias), type(f.type()), name, params, library));
         }
     }
 
@@ -445,6 +447,9 @@ final class AstBuilder {
             return new Expr.IntLit(pos, natural(n.NAT().getSymbol()));
         } else if (ctx instanceof FloatLiteralContext) {
             return new Expr.DoubleLit(pos, Double.parseDouble(ctx.getText()));
+        } else if (ctx instanceof StringLiteralContext) {
+            String quoted = ctx.getText();
+            return new Expr.StringLit(pos, quoted.substring(1, quoted.length() - 1));
         } else if (ctx instanceof TrueLiteralContext) {
             return new Expr.BoolLit(pos, true);
         } else if (ctx instanceof FalseLiteralContext) {

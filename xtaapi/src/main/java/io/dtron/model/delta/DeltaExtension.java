@@ -3,12 +3,9 @@ package io.dtron.model.delta;
 import io.dtron.model.Network;
 import io.dtron.model.TestInterface;
 import io.dtron.model.internal.DeltaWidener;
-import java.nio.charset.Charset;
-import java.nio.charset.StandardCharsets;
+import io.dtron.xta.ModelSyntax;
 import java.util.List;
 import java.util.Map;
-import java.util.regex.Matcher;
-import java.util.regex.Pattern;
 
 /**
  * The Delta-extended model of a distributed test (DTRON thesis, section 3.5, step 2): the model with the clock
@@ -27,8 +24,6 @@ import java.util.regex.Pattern;
  * constant bound are left as they are and listed in {@link Result#left()}.
  */
 public final class DeltaExtension {
-    private static final Pattern XML_ENCODING =
-            Pattern.compile("^\\s*<\\?xml[^>]*encoding\\s*=\\s*[\"']([A-Za-z0-9._-]+)[\"']");
 
     private DeltaExtension() {
     }
@@ -113,30 +108,16 @@ public final class DeltaExtension {
     }
 
     /**
-     * {@code text} encoded as the model file {@code original} was: in the charset its XML declaration names
-     * (else UTF-8), with a UTF-8 byte-order mark when it had one.
+     * {@code text} encoded as the model file {@code original} was ({@link ModelSyntax#encodingOf}: UTF-16 stays
+     * UTF-16 in its byte order, else the charset the XML declaration names, else UTF-8), with the same byte-order
+     * mark when it had one.
      */
     public static byte[] encodeLike(String text, byte[] original) {
-        Charset charset = StandardCharsets.UTF_8;
-        Matcher m = XML_ENCODING.matcher(text);
-        if (m.find()) {
-            try {
-                charset = Charset.forName(m.group(1));
-            } catch (IllegalArgumentException unknown) {
-                charset = StandardCharsets.UTF_8;
-            }
-        }
-        boolean bom = original.length >= 3 && (original[0] & 0xff) == 0xef && (original[1] & 0xff) == 0xbb
-                && (original[2] & 0xff) == 0xbf;
-        byte[] body = text.getBytes(charset);
-        if (!bom) {
-            return body;
-        }
-        byte[] out = new byte[body.length + 3];
-        out[0] = (byte) 0xef;
-        out[1] = (byte) 0xbb;
-        out[2] = (byte) 0xbf;
-        System.arraycopy(body, 0, out, 3, body.length);
+        int bom = ModelSyntax.byteOrderMark(original);
+        byte[] body = text.getBytes(ModelSyntax.encodingOf(original));
+        byte[] out = new byte[bom + body.length];
+        System.arraycopy(original, 0, out, 0, bom);
+        System.arraycopy(body, 0, out, bom, body.length);
         return out;
     }
 }

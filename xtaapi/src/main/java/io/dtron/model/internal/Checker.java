@@ -260,6 +260,8 @@ final class Checker {
             return new Expression.Constant(e.pos(), Type.Int.UNBOUNDED, (int) i.value());
         } else if (e instanceof Expr.BoolLit b) {
             return new Expression.Constant(e.pos(), Type.Bool.INSTANCE, b.value() ? 1 : 0);
+        } else if (e instanceof Expr.StringLit s) {
+            return new Expression.StringConstant(e.pos(), Type.Str.INSTANCE, s.value());
         } else if (e instanceof Expr.DoubleLit d) {
             unsupportedDouble(e.pos());
             return new Expression.DoubleConstant(e.pos(), Type.Double.INSTANCE, d.value());
@@ -312,6 +314,11 @@ final class Checker {
             }
             return new Expression.Constant(pos, f.type(), f.value());
         } else if (sym instanceof Symbol.Alias a) {
+            if (a.target() instanceof Expression.DoubleConstant d) {
+                // a double constant, also one of Uppaal's built-in ones (M_PI), stands where it is used
+                unsupportedDouble(pos);
+                return new Expression.DoubleConstant(pos, d.type(), d.value());
+            }
             if (a.placeholder()) {
                 usedPlaceholder = true;
             }
@@ -451,6 +458,8 @@ final class Checker {
                 error(argExpr.pos(), "argument " + (i + 1) + " of '" + id.name() + "' must be " + p.type() + ", not "
                         + describe(arg.type()));
                 ok = false;
+            } else if (isClockValue(arg.type())) {
+                unsupportedClockArithmetic(argExpr.pos());
             }
             args.add(arg);
         }
@@ -506,6 +515,8 @@ final class Checker {
                         + (reference ? " (a variable: it is passed by reference)" : "") + ", not "
                         + describe(arg.type()));
                 ok = false;
+            } else if (!reference && isClockValue(arg.type())) {
+                unsupportedClockArithmetic(argExpr.pos());
             }
             args.add(arg);
         }
@@ -597,7 +608,10 @@ final class Checker {
             }
             return fold(new Expression.Unary(u.pos(), Type.Bool.INSTANCE, Operator.NOT, operand));
         }
-        if (operand.type() instanceof Type.Double) {
+        if (operand.type() instanceof Type.Double || isClockValue(operand.type()) && u.op() == Expr.UnaryOp.NEG) {
+            if (isClockValue(operand.type())) {
+                unsupportedClockArithmetic(u.pos());
+            }
             return u.op() == Expr.UnaryOp.PLUS ? operand
                     : new Expression.Unary(u.pos(), Type.Double.INSTANCE, Operator.NEG, operand);
         }
@@ -667,47 +681,82 @@ final class Checker {
                 // arithmetic below
             }
         }
-        if (left.type() instanceof Type.Double || right.type() instanceof Type.Double) {
+        if (isReal(left.type()) && isNumberOrClock(right.type()) || isReal(right.type()) && isNumberOrClock(left.type())) {
             return doubleArithmetic(b, op, left, right);
         }
         for (Expression x : List.of(left, right)) {
             if (!isInteger(x.type())) {
-                String hint = x.type() instanceof Type.Clock
-                        ? " (clocks can only be compared with integers, as in x < 5 or x - y <= 3, or reset, as in x = 0)"
-                        : "";
+                String hint = isClockValue(x.type()) ? CLOCK_HINT : "";
                 return error(x.pos(), "'" + b.op().symbol() + "' needs integers, not " + describe(x.type()) + hint);
             }
         }
         return fold(new Expression.Binary(pos, Type.Int.UNBOUNDED, op, left, right));
     }
 
-    /** {@code x' == e}: the rate of clock {@code x}, an integer or a double (0 stops the clock). */
+    /**
+     * {@code x' == e}: the rate of clock {@code x}, an integer, a double, or (statistical model checking) a clock
+     * or real-valued expression of clocks, as in {@code x' == y} (0 stops the clock).
+     */
     private Expression rate(Expr.Binary b, Expr.Unary prime) {
         Expression clock = compile(prime.operand());
         Expression rate = compile(b.right());
         if (clock == null || rate == null) {
             return null;
         }
-        if (!(clock.type() instanceof Type.Clock) || !isNumber(rate.type())) {
+        if (!(clock.type() instanceof Type.Clock) || !isNumberOrClock(rate.type())) {
             return error(b.pos(), "a rate is written x' == expression, with a clock x and a number, not "
                     + describe(clock.type()) + " and " + describe(rate.type()));
+        }
+        if (!isInteger(rate.type())) {
+            compilation.unsupported(b.pos(), "a clock rate given by a clock or a real number", "rates between clocks"
+                    + " and real-valued rates belong to statistical model checking, and the engine's zones let clocks"
+                    + " run at rate 1");
         }
         return new Expression.ClockRate(b.pos(), new Type.ClockConstraint(ConstraintKind.INVARIANT), clock, rate);
     }
 
-    /** Arithmetic with a double operand gives a double; the other operand is an integer or a double. */
+    /**
+     * Arithmetic with a double or a clock operand (other than a clock plus or minus an integer, or the difference
+     * of two clocks) gives a double, as in Uppaal: {@code x * 2}, {@code 2.5 - x}, {@code x + y}.
+     */
     private Expression doubleArithmetic(Expr.Binary b, Operator op, Expression left, Expression right) {
-        for (Expression x : List.of(left, right)) {
-            if (!isNumber(x.type())) {
-                return error(x.pos(), "'" + b.op().symbol() + "' needs numbers, not " + describe(x.type()));
-            }
-        }
         return switch (op) {
-            case ADD, SUB, MUL, DIV, POW, MIN, MAX -> new Expression.Binary(b.pos(), Type.Double.INSTANCE, op, left,
-                    right);
-            case AND, OR, IMPLY -> new Expression.Binary(b.pos(), Type.Bool.INSTANCE, op, left, right);
-            default -> error(b.pos(), "'" + b.op().symbol() + "' needs integers, not a double");
+            case ADD, SUB, MUL, DIV, POW, MIN, MAX -> {
+                if (isClockValue(left.type()) || isClockValue(right.type())) {
+                    unsupportedClockArithmetic(b.pos());
+                }
+                yield new Expression.Binary(b.pos(), Type.Double.INSTANCE, op, left, right);
+            }
+            default -> {
+                Expression bad = isInteger(left.type()) ? right : left;
+                yield error(bad.pos(), "'" + b.op().symbol() + "' needs integers, not " + describe(bad.type())
+                        + (isClockValue(bad.type()) ? CLOCK_HINT : ""));
+            }
         };
+    }
+
+    private static final String CLOCK_HINT =
+            " (clocks can only be compared with integers, as in x < 5 or x - y <= 3, or reset, as in x = 0)";
+
+    /** A clock or a clock difference: a real number in Uppaal's arithmetic on doubles. */
+    static boolean isClockValue(Type t) {
+        return t instanceof Type.Clock || t instanceof Type.ClockDifference;
+    }
+
+    /** A double, a clock or a clock difference: what makes arithmetic real-valued. */
+    private static boolean isReal(Type t) {
+        return t instanceof Type.Double || isClockValue(t);
+    }
+
+    /** Integers, booleans, doubles, clocks and clock differences: Uppaal's numbers. */
+    static boolean isNumberOrClock(Type t) {
+        return isNumber(t) || isClockValue(t);
+    }
+
+    private void unsupportedClockArithmetic(Pos pos) {
+        compilation.unsupported(pos, "a clock used as a real number", "clocks used as real numbers (in arithmetic on"
+                + " doubles, or passed as a double) belong to statistical model checking, and the engine treats clocks"
+                + " symbolically, as zones");
     }
 
     private Expression comparison(Expr.Binary b, Operator op, Expression left, Expression right) {
@@ -727,16 +776,31 @@ final class Checker {
             }
             return fold(new Expression.Binary(pos, Type.Bool.INSTANCE, op, left, right));
         }
-        boolean lClock = lt instanceof Type.Clock || lt instanceof Type.ClockDifference;
-        boolean rClock = rt instanceof Type.Clock || rt instanceof Type.ClockDifference;
-        if (isNumber(lt) && isNumber(rt)) {
+        boolean lClock = isClockValue(lt);
+        boolean rClock = isClockValue(rt);
+        if ((op == Operator.EQ || op == Operator.NE) && (lt instanceof Type.Array || lt instanceof Type.Struct)) {
+            return compareAggregates(b, op, left, right);
+        }
+        if (!lClock && !rClock && isNumber(lt) && isNumber(rt)) {
             // one of them is a double
             return new Expression.Binary(pos, Type.Bool.INSTANCE, op, left, right);
         }
-        if (lClock && rt instanceof Type.Double || lt instanceof Type.Double && rClock) {
-            // statistical model checking compares clocks with real numbers
-            return new Expression.Binary(pos, new Type.ClockConstraint(op == Operator.EQ ? ConstraintKind.GUARD
-                    : op == Operator.NE ? ConstraintKind.CONSTRAINT : ConstraintKind.INVARIANT), op, left, right);
+        boolean lDouble = lt instanceof Type.Double;
+        boolean rDouble = rt instanceof Type.Double;
+        if (lClock && rDouble || lDouble && rClock) {
+            // as in Uppaal: x <= 2.5 (and 2.5 <= x) may stand in an invariant, x >= 2.5 and x == 2.5 only in guards,
+            // and x != 2.5 is a condition evaluated on the clock's real value
+            ConstraintKind kind = switch (op) {
+                case LT, LE -> ConstraintKind.INVARIANT;
+                case GE, GT -> ConstraintKind.GUARD;
+                case EQ -> ConstraintKind.GUARD;
+                default -> null;
+            };
+            if (kind == null) {
+                unsupportedClockArithmetic(pos);
+                return new Expression.Binary(pos, Type.Bool.INSTANCE, op, left, right);
+            }
+            return new Expression.Binary(pos, new Type.ClockConstraint(kind), op, left, right);
         }
         // clocks are compared with integers (not booleans), with clocks, or as differences with integers
         if (lClock && rt instanceof Type.Int || lt instanceof Type.Int && rClock
@@ -753,6 +817,20 @@ final class Checker {
                 + describe(rt) + (lClock || rClock ? "; a clock is compared with an integer, as in x <= 5" : ""));
     }
 
+    /**
+     * {@code a == b} and {@code a != b} on arrays and structs of the same type, element by element, as Uppaal
+     * compares them; the engine compares single values only.
+     */
+    private Expression compareAggregates(Expr.Binary b, Operator op, Expression left, Expression right) {
+        Type lt = left.type();
+        if (!sameType(lt, right.type()) || lt.clocks() > 0 || lt.channels() > 0) {
+            return error(b.pos(), "'" + b.op().symbol() + "' compares arrays and structs of the same type (the same"
+                    + " size, element type and ranges), not " + describe(lt) + " and " + describe(right.type()));
+        }
+        compilation.unsupported(b.pos(), "'==' and '!=' on arrays and structs", "the engine compares single values;"
+                + " compare the elements one by one");
+        return new Expression.Binary(b.pos(), Type.Bool.INSTANCE, op, left, right);
+    }
 
     private static ConstraintKind kindOf(Expression e) {
         return e.type() instanceof Type.ClockConstraint c ? c.kind() : null;
@@ -785,6 +863,12 @@ final class Checker {
             type = Type.Int.UNBOUNDED;
         } else if (then.type().isIntegral() && sameType(then.type(), otherwise.type())) {
             type = then.type();
+        } else if (isNumberOrClock(then.type()) && isNumberOrClock(otherwise.type())) {
+            // a double or a clock in either branch makes a double, as in Uppaal: b ? 1.5 : 2, b ? x : 0
+            if (isClockValue(then.type()) || isClockValue(otherwise.type())) {
+                unsupportedClockArithmetic(c.pos());
+            }
+            type = Type.Double.INSTANCE;
         } else {
             return error(c.pos(), "both branches of '?:' must be integers or booleans, not " + describe(then.type())
                     + " and " + describe(otherwise.type()));
@@ -806,8 +890,14 @@ final class Checker {
             if (op != null) {
                 return error(a.pos(), "a clock can only be reset with '=', as in x = 0");
             }
+            if (isReal(value.type())) {
+                // Uppaal accepts x = 1.5, x = d and x = y: statistical model checking sets clocks to real values
+                compilation.unsupported(a.pos(), "a clock set to a real number or to another clock", "the engine"
+                        + " resets clocks to integers, as zones need");
+                return new Expression.Assign(a.pos(), Type.Clock.INSTANCE, target, null, value);
+            }
             if (!isInteger(value.type())) {
-                return error(a.value().pos(), "a clock is reset to an integer, not to " + describe(value.type()));
+                return error(a.value().pos(), "a clock is set to a number or a clock, not to " + describe(value.type()));
             }
             if (value instanceof Expression.Constant k && k.value() < 0) {
                 return error(a.value().pos(), "a clock cannot be reset to a negative value (" + k.value() + ")");
@@ -815,9 +905,12 @@ final class Checker {
             return new Expression.Assign(a.pos(), Type.Clock.INSTANCE, target, null, value);
         }
         if (target.type() instanceof Type.Double) {
-            if (!isNumber(value.type())) {
+            if (!isNumberOrClock(value.type())) {
                 return error(a.value().pos(), "cannot assign " + describe(value.type()) + " to the double '"
                         + a.target().pos().text() + "'");
+            }
+            if (isClockValue(value.type())) {
+                unsupportedClockArithmetic(a.value().pos());
             }
             return new Expression.Assign(a.pos(), target.type(), target, op, value);
         }
@@ -904,18 +997,29 @@ final class Checker {
             return isInteger(v);
         }
         if (target instanceof Type.Double) {
-            return isNumber(v);
+            return isNumberOrClock(v);
+        }
+        if (target instanceof Type.Str) {
+            return v instanceof Type.Str;
         }
         if (target instanceof Type.Scalar s) {
             return v instanceof Type.Scalar vs && vs.id() == s.id();
         }
         if (target instanceof Type.Clock) {
-            return isInteger(v);
+            return isNumberOrClock(v);
         }
         if (target instanceof Type.Array || target instanceof Type.Struct) {
             return sameType(target, v);
         }
         return false;
+    }
+
+    /**
+     * Whether {@code value} may initialise a variable of type {@code target}: as {@link #assignable}, but a clock
+     * initialises no double or clock (Uppaal's rule: an initialiser is computable at compile time).
+     */
+    static boolean initialisable(Type target, Expression value) {
+        return assignable(target, value) && !isClockValue(value.type());
     }
 
     /** Equality of types for references and whole-array assignment; integer ranges must agree. */
@@ -936,6 +1040,33 @@ final class Checker {
             return p.index().equals(a.index()) && sameReferenceType(p.element(), a.element());
         }
         return sameType(parameter, argument);
+    }
+
+    /**
+     * Whether {@code e} reads no variable and no clock, so that its value is known when the model loads (used for
+     * the initial values of doubles and clocks; integer ones are evaluated).
+     */
+    static boolean computable(Expression e) {
+        if (e instanceof Expression.VariableRef || e instanceof Expression.ClockRef) {
+            return false;
+        } else if (e instanceof Expression.Index i) {
+            return computable(i.array()) && computable(i.index());
+        } else if (e instanceof Expression.FieldRef f) {
+            return computable(f.struct());
+        } else if (e instanceof Expression.Unary u) {
+            return computable(u.operand());
+        } else if (e instanceof Expression.Binary b) {
+            return computable(b.left()) && computable(b.right());
+        } else if (e instanceof Expression.Conditional c) {
+            return computable(c.condition()) && computable(c.then()) && computable(c.otherwise());
+        } else if (e instanceof Expression.Call c) {
+            return c.args().stream().allMatch(Checker::computable);
+        } else if (e instanceof Expression.Builtin b) {
+            return b.args().stream().allMatch(Checker::computable);
+        } else if (e instanceof Expression.Quantified q) {
+            return computable(q.body());
+        }
+        return true;
     }
 
     /** Integers, booleans and doubles. */
@@ -996,7 +1127,8 @@ final class Checker {
                     + ": the system line makes one process per value of " + f.type()
                     + ", so it is a constant in each; use a local variable initialised from it instead";
         } else if (sym instanceof Symbol.Alias a) {
-            return a.assignable() ? null : "'" + id.name() + "' is a constant parameter";
+            return a.assignable() ? null : "'" + id.name() + "' is a constant"
+                    + (a.target().type() instanceof Type.Double ? "" : " parameter");
         }
         return "'" + id.name() + "' is not a variable";
     }
@@ -1074,6 +1206,9 @@ final class Checker {
         }
         if (t instanceof Type.Double) {
             return "a double";
+        }
+        if (t instanceof Type.Str) {
+            return "a string";
         }
         return "a " + t;
     }

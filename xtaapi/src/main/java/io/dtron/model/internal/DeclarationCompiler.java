@@ -6,8 +6,10 @@ import io.dtron.model.Statement;
 import io.dtron.model.Type;
 import io.dtron.xta.Pos;
 import io.dtron.xta.ast.Decl;
+import io.dtron.xta.ast.Expr;
 import io.dtron.xta.ast.Initializer;
 import io.dtron.xta.ast.Param;
+import io.dtron.xta.ast.TypeExpr;
 import java.util.ArrayList;
 import java.util.List;
 
@@ -70,13 +72,17 @@ final class DeclarationCompiler {
         List<Type> types = new ArrayList<>();
         List<Boolean> references = new ArrayList<>();
         for (Param p : x.params()) {
-            Checker.Resolved r = checker.resolve(p.type());
+            // a library may take strings (Uppaal passes them as C strings); no other declaration has that type
+            Checker.Resolved r = p.type() instanceof TypeExpr.NamedType n && n.name().equals("string")
+                    && !(checker.scope().lookup("string") instanceof Symbol.TypeName)
+                    ? new Checker.Resolved(Type.Str.INSTANCE, true, false) : checker.resolve(p.type());
             Type t = r == null ? null : checker.applyDims(r.type(), p.dims());
             if (t == null) {
                 return;
             }
             types.add(t);
-            references.add(p.reference());
+            // a string is passed as a C string whether or not it is declared const string&
+            references.add(p.reference() && !(t instanceof Type.Str));
         }
         checker.scope().put(x.name(), new Symbol.External(x.pos(), x.name(), ret.type(), types, references,
                 x.library()));
@@ -109,9 +115,16 @@ final class DeclarationCompiler {
         if (type instanceof Type.Void) {
             diagnostics.error(v.pos(), "'" + v.name() + "' cannot be of type void");
         } else if (type.clocks() > 0) {
-            if (v.init() != null) {
-                diagnostics.error(v.init().pos(), "clock '" + v.name()
-                        + "' cannot have an initialiser: every clock starts at 0");
+            if (r.constant() || r.meta()) {
+                // Uppaal: "prefix const (meta) not allowed for clocks"
+                diagnostics.error(v.type().pos(), (r.constant() ? "'const'" : "'meta'") + " does not apply to clocks");
+                return;
+            }
+            if (v.init() != null && initialValues(v.init(), type, checker, "clock '" + v.name() + "'", false) != null
+                    && !zero(v.init())) {
+                // Uppaal (statistical model checking) starts a clock at a number computable at compile time
+                compilation.unsupported(v.init().pos(), "a clock with an initial value", "the engine starts every"
+                        + " clock at 0, as the zones of symbolic model checking do");
             }
             scope.put(v.name(), new Symbol.ClockVar(v.pos(),
                     compilation.newClock(qualified(owner, v.name()), type, owner, v.pos())));
@@ -148,6 +161,14 @@ final class DeclarationCompiler {
         }
     }
 
+    /** Whether {@code init} is {@code 0}, or braces of zeros: where every clock starts anyway. */
+    private static boolean zero(Initializer init) {
+        if (init instanceof Initializer.Braces b) {
+            return b.elements().stream().allMatch(DeclarationCompiler::zero);
+        }
+        return ((Initializer.Single) init).value() instanceof Expr.IntLit i && i.value() == 0;
+    }
+
     /** The value of a {@code const double}: a number, kept as the expression (the engine does not run doubles). */
     private Expression doubleConstant(Decl.Variable v, Checker checker) {
         if (!(v.init() instanceof Initializer.Single single)) {
@@ -159,6 +180,11 @@ final class DeclarationCompiler {
         if (x != null && (!Checker.isNumber(x.type()) || checker.hasSideEffects(x))) {
             diagnostics.error(single.pos(), "'" + v.name() + "' is a double and cannot be initialised with "
                     + Checker.describe(x.type()));
+            return null;
+        }
+        if (x != null && !Checker.computable(x)) {
+            diagnostics.error(single.pos(), "the initial value of '" + v.name() + "' must be computable at compile"
+                    + " time");
             return null;
         }
         return x;
@@ -257,13 +283,23 @@ final class DeclarationCompiler {
             diagnostics.error(single.pos(), "the initial value of " + what + " cannot be computed: " + m.message());
             return null;
         }
-        if (type instanceof Type.Double) {
-            if (!Checker.isNumber(x.type())) {
-                diagnostics.error(single.pos(), what + " is a double and cannot be initialised with "
+        if (type instanceof Type.Double || type instanceof Type.Clock) {
+            String kind = type instanceof Type.Double ? "a double" : "a clock";
+            if (!Checker.isNumberOrClock(x.type())) {
+                diagnostics.error(single.pos(), what + " is " + kind + " and cannot be initialised with "
                         + Checker.describe(x.type()));
                 return null;
             }
-            return new int[1];
+            if (reference || !Checker.computable(x)) {
+                diagnostics.error(single.pos(), "the initial value of " + what + " must be computable at compile time"
+                        + (reference ? " (a reference parameter is not, even when it refers to a constant)" : ""));
+                return null;
+            }
+            return new int[type.slots()];
+        }
+        if (x.type() instanceof Type.Double && !Checker.assignable(type, x)) {
+            diagnostics.error(single.pos(), what + " is " + type + " and cannot be initialised with a double");
+            return null;
         }
         int[] values = reference ? null : checker.constantValues(x);
         if (values == null) {
@@ -370,7 +406,7 @@ final class DeclarationCompiler {
         Expression initial = null;
         if (v.init() instanceof Initializer.Single s) {
             initial = checker.compile(s.value());
-            if (initial != null && !Checker.assignable(type, initial)) {
+            if (initial != null && !Checker.initialisable(type, initial)) {
                 diagnostics.error(s.pos(), "'" + v.name() + "' is " + type + " and cannot be initialised with "
                         + Checker.describe(initial.type()));
                 initial = null;

@@ -33,7 +33,7 @@ public final class NetworkCompiler {
     private final Compilation compilation = new Compilation();
     private final Diagnostics diagnostics = compilation.diagnostics;
     private final DeclarationCompiler declarations = new DeclarationCompiler(compilation);
-    private final Scope global = new Scope(null);
+    private final Scope global = new Scope(Builtins.scope());
     private final List<Process> processes = new ArrayList<>();
     private final Set<String> instantiatedTemplates = new HashSet<>();
     private Pos firstCsp;
@@ -631,9 +631,11 @@ public final class NetworkCompiler {
                 return null;
             }
             if (kind.urgent() && guard != null && guard.type() instanceof Type.ClockConstraint) {
-                diagnostics.error(guard.pos(), "an edge that synchronises on an urgent channel cannot have a clock"
-                        + " guard");
-                return null;
+                // Uppaal warns ("clock guards are not allowed on urgent edges") and runs such an edge only in
+                // statistical model checking, where it fires as soon as the guard holds
+                compilation.unsupported(guard.pos(), "a clock guard on an edge that synchronises on an urgent channel",
+                        "Uppaal allows it only in statistical model checking (its symbolic engine refuses it too), and"
+                        + " the engine cannot let time pass while an urgent edge waits for its clock guard");
             }
             Edge.Direction direction = Edge.Direction.valueOf(s.direction().name());
             if (direction == Edge.Direction.CSP) {

@@ -262,5 +262,13 @@ class DeltaExtensionTest {
         String latin = "<?xml version=\"1.0\" encoding=\"ISO-8859-1\"?><nta>\u00e9</nta>";
         assertArrayEquals(latin.getBytes(StandardCharsets.ISO_8859_1), DeltaExtension.encodeLike(latin,
                 latin.getBytes(StandardCharsets.ISO_8859_1)));
+        // UTF-16 stays UTF-16 in its byte order, with its mark
+        String utf16 = "<?xml version=\"1.0\" encoding=\"utf-16\"?><nta>\u00e9</nta>";
+        byte[] body = utf16.getBytes(StandardCharsets.UTF_16LE);
+        byte[] original = new byte[body.length + 2];
+        original[0] = (byte) 0xff;
+        original[1] = (byte) 0xfe;
+        System.arraycopy(body, 0, original, 2, body.length);
+        assertArrayEquals(original, DeltaExtension.encodeLike(utf16, original));
     }
 }

@@ -103,7 +103,12 @@ dynamicDecl : 'dynamic' identifier '(' parameterList? ')' ';' ;
 /** Statistical model checking: {@code import "lib.so" { int f(int a); };} declares external functions. */
 importDecl : 'import' STRING '{' importFunction* '}' ';'? ;
 
-importFunction : type identifier '(' (importParameter (',' importParameter)*)? ')' ('=' identifier)? ';' ;
+/**
+ * {@code int f(int a);}, or {@code name = int f(int a);} (Uppaal 5's documented form) to call the library's {@code f}
+ * {@code name} in the model; the older {@code int f(int a) = c_f;} is read too.
+ */
+importFunction : (alias=identifier '=')? type identifier '(' (importParameter (',' importParameter)*)? ')'
+                 ('=' identifier)? ';' ;
 
 importParameter : type ref='&'? identifier? arrayDim* ;
 
@@ -261,6 +266,7 @@ expression
 primary
     : NAT                           # NatLiteral
     | FLOAT                         # FloatLiteral
+    | STRING                        # StringLiteral
     | 'true'                        # TrueLiteral
     | 'false'                       # FalseLiteral
     | 'deadlock'                    # DeadlockLiteral
