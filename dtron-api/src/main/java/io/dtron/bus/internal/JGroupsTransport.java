@@ -5,6 +5,10 @@ import io.dtron.bus.MembershipView;
 import io.dtron.bus.Subscription;
 import io.dtron.bus.Transport;
 import java.io.IOException;
+import java.net.BindException;
+import java.net.InetAddress;
+import java.net.ServerSocket;
+import java.util.ArrayList;
 import java.util.List;
 import java.util.Objects;
 import java.util.function.Consumer;
@@ -37,14 +41,70 @@ public final class JGroupsTransport implements Transport, Receiver {
     }
 
     /**
-     * Joins the cluster described by the settings.
+     * Joins the cluster described by the settings. Over TCP the member takes the
+     * first bus port P whose failure detection port {@code P + busPorts()} is
+     * free too (both on the bind address); a port another process takes between
+     * the check and the bind moves it on to the next.
      *
-     * @throws Exception whatever JGroups throws when the stack cannot start or
-     *                   the cluster refuses this member ({@link SecurityException}
-     *                   when authentication fails)
+     * @throws PortsInUseException when no bus port is free with its failure detection port
+     * @throws Exception           whatever JGroups throws when the stack cannot start or
+     *                             the cluster refuses this member ({@link SecurityException}
+     *                             when authentication fails)
      */
     public static JGroupsTransport connect(JGroupsSettings settings) throws Exception {
-        JChannel channel = new JChannel(JGroupsStack.build(settings));
+        if (settings.inJvm()) {
+            return join(settings, 0);
+        }
+        List<Integer> inUse = new ArrayList<>();
+        int busPorts = settings.busPorts();
+        for (int port = settings.port(); port < settings.port() + busPorts; port++) {
+            List<Integer> taken = taken(settings.bindAddress(), port, port + busPorts);
+            if (taken.isEmpty()) {
+                try {
+                    return join(settings, port);
+                } catch (Exception e) {
+                    taken = taken(settings.bindAddress(), port, port + busPorts);
+                    if (taken.isEmpty() && !failedToBind(e)) {
+                        throw e;
+                    }
+                    taken = taken.isEmpty() ? List.of(port, port + busPorts) : taken;
+                    LOG.debug("Port {} taken while joining ({}); trying the next", taken, e.toString());
+                }
+            }
+            inUse.addAll(taken);
+        }
+        throw new PortsInUseException(settings, inUse);
+    }
+
+    /** Returns those of the ports that cannot be listened on at the address now. */
+    private static List<Integer> taken(InetAddress address, int... ports) {
+        List<Integer> taken = new ArrayList<>();
+        for (int port : ports) {
+            try (ServerSocket probe = new ServerSocket(port, 1, address)) {
+                LOG.trace("Port {} is free", probe.getLocalPort());
+            } catch (IOException e) {
+                taken.add(port);
+            }
+        }
+        return taken;
+    }
+
+    /**
+     * Whether joining failed for a port in use: a socket's bind, or FD_SOCK2's server, which says so only in its
+     * message (a port in TIME_WAIT may refuse JGroups' bind yet let the check above bind it).
+     */
+    private static boolean failedToBind(Throwable e) {
+        for (Throwable t = e; t != null; t = t.getCause()) {
+            if (t instanceof BindException || t instanceof IllegalStateException && t.getMessage() != null
+                    && t.getMessage().contains("failed to find an available port")) {
+                return true;
+            }
+        }
+        return false;
+    }
+
+    private static JGroupsTransport join(JGroupsSettings settings, int busPort) throws Exception {
+        JChannel channel = new JChannel(JGroupsStack.build(settings, busPort));
         JGroupsTransport transport = new JGroupsTransport(channel, settings.memberName());
         try {
             channel.name(settings.memberName());
