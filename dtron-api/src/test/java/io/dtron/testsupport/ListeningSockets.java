@@ -7,10 +7,14 @@ import java.net.UnknownHostException;
 import java.nio.file.DirectoryStream;
 import java.nio.file.Files;
 import java.nio.file.Path;
+import java.time.Duration;
 import java.util.ArrayList;
 import java.util.HashSet;
 import java.util.List;
+import java.util.Map;
 import java.util.Set;
+import java.util.concurrent.ConcurrentHashMap;
+import org.awaitility.Awaitility;
 
 /**
  * The listening sockets of a process, as {@code ss -ltnup} lists them, read from Linux's {@code /proc}: the TCP
@@ -29,6 +33,32 @@ public final class ListeningSockets {
         public String toString() {
             return protocol + " " + address.getHostAddress() + ":" + port;
         }
+    }
+
+    /**
+     * Returns, for each process (by pid), every listening socket it opened while it ran: their sockets are read
+     * again and again (with Awaitility, every 50 ms) until all of them have exited, or {@code atMost} passed.
+     */
+    public static Map<Long, Set<Listener>> whileRunning(Duration atMost, ProcessHandle... processes) {
+        Map<Long, Set<Listener>> seen = new ConcurrentHashMap<>();
+        for (ProcessHandle process : processes) {
+            seen.put(process.pid(), ConcurrentHashMap.newKeySet());
+        }
+        Awaitility.await().pollDelay(Duration.ZERO).pollInterval(Duration.ofMillis(50)).atMost(atMost).until(() -> {
+            boolean running = false;
+            for (ProcessHandle process : processes) {
+                if (process.isAlive()) {
+                    running = true;
+                    try {
+                        seen.get(process.pid()).addAll(of(process.pid()));
+                    } catch (UncheckedIOException e) {
+                        // it exited while its sockets were read
+                    }
+                }
+            }
+            return !running;
+        });
+        return seen;
     }
 
     /** Whether this system has {@code /proc/PID/net} to read. */
