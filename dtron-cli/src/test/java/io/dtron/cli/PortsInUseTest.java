@@ -81,6 +81,17 @@ class PortsInUseTest {
     }
 
     @Test
+    void theErrorCliMdShowsIsWhatDtronPrintsWhenEveryPortIsInUse() throws Exception {
+        String shown = DocPage.read("cli.md").blockAfter("naming the ports in use and the options (exit 1):").code()
+                .strip();
+        int port = hold(FreePorts.range(61), 62); // the page's 7800..7861, moved to free ports
+        String error = oneLine(CommandRun.of("run", model.toString(), "--port", Integer.toString(port),
+                "--wait-timeout", "1"));
+        assertEquals(shown.replace("7861", Integer.toString(port + 61)).replace("7830", Integer.toString(port + 30))
+                .replace("7800", Integer.toString(port)), error);
+    }
+
+    @Test
     void portOptionsThatCannotWorkAreUsageErrors() {
         CommandRun zero = CommandRun.of("run", model.toString(), "--port-range", "0");
         assertEquals(1, zero.exit(), zero.err());
