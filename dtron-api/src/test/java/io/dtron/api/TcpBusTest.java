@@ -18,10 +18,10 @@ class TcpBusTest {
     private static final Duration WAIT = Duration.ofSeconds(15);
     private final IDtronChannel move = IDtronChannel.of("move", "amount");
     private final String cluster = TestClusters.uniqueName("tcp");
-    private final int port = FreePorts.range(7);
+    private final int port = FreePorts.range(FreePorts.BUS_RANGE);
 
     private DtronOptions.Builder options() {
-        return DtronOptions.builder().clusterName(cluster).port(port).portRange(7);
+        return DtronOptions.builder().clusterName(cluster).port(port).portRange(FreePorts.BUS_RANGE);
     }
 
     @Test

@@ -1,5 +1,6 @@
 package io.dtron.testsupport;
 
+import io.dtron.api.DtronOptions;
 import java.io.IOException;
 import java.io.UncheckedIOException;
 import java.net.InetAddress;
@@ -15,7 +16,18 @@ public final class FreePorts {
     private static final int LOWEST = 10_000;
     private static final int HIGHEST = 32_000;
 
+    /** The port range of a test's bus: 4 bus ports and their 4 failure detection ports. */
+    public static final int BUS_RANGE = 7;
+
     private FreePorts() {
+    }
+
+    /**
+     * Sets the bus's first port (with the range {@link #BUS_RANGE}) from a test main's argument {@code args[at]}, if
+     * it was given: the port the test picked for its bus with {@link #range}.
+     */
+    public static DtronOptions.Builder onPort(DtronOptions.Builder options, String[] args, int at) {
+        return args.length > at ? options.port(Integer.parseInt(args[at])).portRange(BUS_RANGE) : options;
     }
 
     /** Returns a port that is free now at every address (127.0.0.1 when none is given). */
