@@ -102,7 +102,7 @@ final class RunCommand implements Callable<Integer> {
 
     @Option(names = "--members", split = ",", paramLabel = "HOST[:PORT]",
             description = "Bus mode: where to look for the other members on other hosts, comma separated (default: at"
-                    + " the bind address); each is probed over the port range from PORT (default: --port).")
+                    + " the bind address); each is probed at its bus ports from PORT (default: --port).")
     private List<String> members = List.of();
 
     @Option(names = "--port", paramLabel = "N",
