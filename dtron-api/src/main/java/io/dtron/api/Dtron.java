@@ -15,6 +15,7 @@ import io.dtron.bus.BusMessage;
 import io.dtron.bus.MembershipView;
 import io.dtron.bus.Subscription;
 import io.dtron.bus.Transport;
+import io.dtron.bus.internal.BindAddressException;
 import io.dtron.bus.internal.EpochClock;
 import io.dtron.bus.internal.PortsInUseException;
 import java.io.IOException;
@@ -212,7 +213,8 @@ public final class Dtron implements AutoCloseable {
      *
      * @throws DtronException if the bus cannot be joined, for instance because the
      *                        members refused this member's secret, or because the
-     *                        ports of the options are in use (the message names them)
+     *                        ports of the options are in use or the bind address is not
+     *                        this host's (the message says which, in one line)
      */
     public static Dtron connect(DtronOptions options) {
         Objects.requireNonNull(options, "options");
@@ -223,7 +225,7 @@ public final class Dtron implements AutoCloseable {
         } catch (SecurityException e) {
             throw new DtronException("the members of bus '" + options.getClusterName()
                     + "' refused this member: " + e.getMessage(), e);
-        } catch (PortsInUseException e) {
+        } catch (PortsInUseException | BindAddressException e) {
             // the message says it all, in one line: which ports, and which options choose others
             throw new DtronException("cannot join bus '" + options.getClusterName() + "': " + e.getMessage(), null);
         } catch (Exception e) {

@@ -102,6 +102,17 @@ class BusPortsTest {
     }
 
     @Test
+    void aBindAddressOfAnotherHostIsNamedNotTakenForPortsInUse() throws Exception {
+        InetAddress elsewhere = InetAddress.getByName("192.0.2.1"); // TEST-NET-1: never an address of this host
+        DtronException e = assertThrows(DtronException.class, () -> Dtron.connect(options(elsewhere, 7800)).close());
+        assertTrue(e.getMessage().startsWith("cannot join bus '" + cluster + "': cannot listen on 192.0.2.1, the bind"
+                + " address: "), e.getMessage());
+        assertTrue(e.getMessage().endsWith("; give an address of this host with the bind address option (dtron:"
+                + " --bind)"), e.getMessage());
+        assertFalse(e.getMessage().contains("in use"), e.getMessage());
+    }
+
+    @Test
     void aPortRangeOfZeroIsRefusedOverTcpOnly() {
         IllegalStateException e = assertThrows(IllegalStateException.class,
                 () -> DtronOptions.builder().portRange(0).build());

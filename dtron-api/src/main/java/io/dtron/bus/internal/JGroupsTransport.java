@@ -46,7 +46,8 @@ public final class JGroupsTransport implements Transport, Receiver {
      * free too (both on the bind address); a port another process takes between
      * the check and the bind moves it on to the next.
      *
-     * @throws PortsInUseException when no bus port is free with its failure detection port
+     * @throws BindAddressException when nothing can listen on the bind address
+     * @throws PortsInUseException  when no bus port is free with its failure detection port
      * @throws Exception           whatever JGroups throws when the stack cannot start or
      *                             the cluster refuses this member ({@link SecurityException}
      *                             when authentication fails)
@@ -54,6 +55,11 @@ public final class JGroupsTransport implements Transport, Receiver {
     public static JGroupsTransport connect(JGroupsSettings settings) throws Exception {
         if (settings.inJvm()) {
             return join(settings, 0);
+        }
+        try (ServerSocket anyPort = new ServerSocket(0, 1, settings.bindAddress())) {
+            LOG.trace("{} can be listened on", anyPort.getInetAddress());
+        } catch (IOException e) {
+            throw new BindAddressException(settings.bindAddress(), e);
         }
         List<Integer> inUse = new ArrayList<>();
         int busPorts = settings.busPorts();
