@@ -111,7 +111,7 @@ public final class DtronOptions {
         return port;
     }
 
-    /** Returns how many ports above {@link #getPort()} a member may use: half for the bus, half for failure detection. */
+    /** Returns how many ports above {@link #getPort()} a member may use: the bus's half, failure detection's half. */
     public int getPortRange() {
         return portRange;
     }

@@ -86,7 +86,8 @@ class DistributedRunTest {
     private static Relay relay(Path dir, String variant, int port, long timeUnit) throws Exception {
         String cluster = cluster();
         String[] relayArgs = port == DEFAULT_PORTS ? new String[] {cluster, "127.0.0.3", MEMBERS, variant}
-                : new String[] {cluster, "127.0.0.3", MEMBERS, variant, Integer.toString(port), Integer.toString(RANGE)};
+                : new String[] {cluster, "127.0.0.3", MEMBERS, variant, Integer.toString(port),
+                    Integer.toString(RANGE)};
         try (ChildJvm port1 = tester(dir, "port1", "relay/port1.xta", cluster, "127.0.0.1", port, timeUnit,
                 "--testers", "2");
                 ChildJvm port2 = tester(dir, "port2", "relay/port2.xta", cluster, "127.0.0.2", port, timeUnit,
