@@ -12,7 +12,7 @@ import java.util.concurrent.TimeUnit;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.Timeout;
 
-/** Members over TCP on loopback on free ports, found without more configuration; with and without a secret, encrypted. */
+/** Members over TCP on loopback on free ports, found without configuration; with and without a secret, encrypted. */
 @Timeout(value = 60, unit = TimeUnit.SECONDS)
 class TcpBusTest {
     private static final Duration WAIT = Duration.ofSeconds(15);
