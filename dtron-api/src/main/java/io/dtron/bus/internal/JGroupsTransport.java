@@ -7,7 +7,8 @@ import io.dtron.bus.Transport;
 import java.io.IOException;
 import java.net.BindException;
 import java.net.InetAddress;
-import java.net.ServerSocket;
+import java.net.InetSocketAddress;
+import java.net.Socket;
 import java.util.ArrayList;
 import java.util.List;
 import java.util.Objects;
@@ -56,8 +57,8 @@ public final class JGroupsTransport implements Transport, Receiver {
         if (settings.inJvm()) {
             return join(settings, 0);
         }
-        try (ServerSocket anyPort = new ServerSocket(0, 1, settings.bindAddress())) {
-            LOG.trace("{} can be listened on", anyPort.getInetAddress());
+        try {
+            bind(settings.bindAddress(), 0);
         } catch (IOException e) {
             throw new BindAddressException(settings.bindAddress(), e);
         }
@@ -86,13 +87,25 @@ public final class JGroupsTransport implements Transport, Receiver {
     private static List<Integer> taken(InetAddress address, int... ports) {
         List<Integer> taken = new ArrayList<>();
         for (int port : ports) {
-            try (ServerSocket probe = new ServerSocket(port, 1, address)) {
-                LOG.trace("Port {} is free", probe.getLocalPort());
+            try {
+                bind(address, port);
             } catch (IOException e) {
                 taken.add(port);
             }
         }
         return taken;
+    }
+
+    /**
+     * Binds a TCP socket to the address and port, and closes it: a socket that never listens (no one can connect
+     * to it, and it shows in no list of listening sockets), which a port another socket listens on refuses, and a
+     * port in TIME_WAIT does not.
+     */
+    private static void bind(InetAddress address, int port) throws IOException {
+        try (Socket probe = new Socket()) {
+            probe.setReuseAddress(true);
+            probe.bind(new InetSocketAddress(address, port));
+        }
     }
 
     /**
