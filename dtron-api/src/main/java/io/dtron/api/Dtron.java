@@ -15,7 +15,9 @@ import io.dtron.bus.BusMessage;
 import io.dtron.bus.MembershipView;
 import io.dtron.bus.Subscription;
 import io.dtron.bus.Transport;
+import io.dtron.bus.internal.BindAddressException;
 import io.dtron.bus.internal.EpochClock;
+import io.dtron.bus.internal.PortsInUseException;
 import java.io.IOException;
 import java.time.Duration;
 import java.util.ArrayList;
@@ -213,7 +215,9 @@ public final class Dtron implements AutoCloseable {
      * Joins the bus.
      *
      * @throws DtronException if the bus cannot be joined, for instance because the
-     *                        members refused this member's secret
+     *                        members refused this member's secret, or because the
+     *                        ports of the options are in use or the bind address is not
+     *                        this host's (the message says which, in one line)
      */
     public static Dtron connect(DtronOptions options) {
         Objects.requireNonNull(options, "options");
@@ -224,6 +228,9 @@ public final class Dtron implements AutoCloseable {
         } catch (SecurityException e) {
             throw new DtronException("the members of bus '" + options.getClusterName()
                     + "' refused this member: " + e.getMessage(), e);
+        } catch (PortsInUseException | BindAddressException e) {
+            // the message says it all, in one line: which ports, and which options choose others
+            throw new DtronException("cannot join bus '" + options.getClusterName() + "': " + e.getMessage(), null);
         } catch (Exception e) {
             throw new DtronException("cannot join bus " + options, e);
         }

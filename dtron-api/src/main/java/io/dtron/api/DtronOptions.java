@@ -15,12 +15,17 @@ import java.util.Optional;
 /**
  * How a {@link Dtron} joins the bus. Immutable; made with {@link #builder()}.
  *
- * <p>The defaults need no configuration on one host: the bus binds to the
- * loopback interface and members find each other by probing the ports
- * {@code port .. port+portRange} there. For a LAN, give the
+ * <p>The defaults need no configuration on one host: every socket of the bus
+ * listens on the loopback interface, and members find each other by probing
+ * the bus ports there. A member uses two ports of {@code port .. port+portRange}:
+ * a bus port P of the lower half, {@code port .. port+(portRange+1)/2-1} (the
+ * ports probed), and {@code P + (portRange+1)/2} for failure detection; by
+ * default 7800..7830 and 7831..7861, 31 members per address. When no bus port
+ * is free with its failure detection port, {@link Dtron#connect(DtronOptions)}
+ * throws a {@link DtronException} naming the ports in use. For a LAN, give the
  * {@linkplain Builder#bindAddress interface} to bind to and the
  * {@linkplain Builder#initialMembers hosts} where to look for members (each
- * probed over the same port range). A {@linkplain Builder#secret shared
+ * probed over the same bus ports). A {@linkplain Builder#secret shared
  * secret} makes members prove it before joining;
  * {@linkplain Builder#encrypt encryption} encrypts all traffic with a key
  * derived from it. {@linkplain Builder#inJvm In-JVM mode} joins only members
@@ -31,8 +36,11 @@ public final class DtronOptions {
     public static final String DEFAULT_CLUSTER = "dtron";
     /** The first port probed and bound to when none is given. */
     public static final int DEFAULT_PORT = 7800;
-    /** How many ports above the first are probed and bound to when not told otherwise. */
-    public static final int DEFAULT_PORT_RANGE = 30;
+    /**
+     * How many ports above the first a member may use when not told otherwise: 61, so that the bus ports 7800..7830
+     * (31 members per address) and their failure detection ports 7831..7861 fit.
+     */
+    public static final int DEFAULT_PORT_RANGE = 61;
 
     private final String clusterName;
     private final Optional<String> memberName;
@@ -103,7 +111,7 @@ public final class DtronOptions {
         return port;
     }
 
-    /** Returns how many ports above {@link #getPort()} to bind to and to probe. */
+    /** Returns how many ports above {@link #getPort()} a member may use: the bus's half, failure detection's half. */
     public int getPortRange() {
         return portRange;
     }
@@ -337,7 +345,10 @@ public final class DtronOptions {
             return this;
         }
 
-        /** Sets how many ports above the first to bind to and to probe (default {@value DtronOptions#DEFAULT_PORT_RANGE}). */
+        /**
+         * Sets how many ports above the first a member may use (default {@value DtronOptions#DEFAULT_PORT_RANGE}): the
+         * lower half are bus ports (bound to and probed), the upper half failure detection ports; at least 1 over TCP.
+         */
         public Builder portRange(int range) {
             if (range < 0) {
                 throw new IllegalArgumentException("port range is negative: " + range);
@@ -418,8 +429,8 @@ public final class DtronOptions {
         /**
          * Builds the options.
          *
-         * @throws IllegalStateException if encryption is on without a secret, the port range exceeds 65535, or NATS
-         *                               credentials come without NATS servers
+         * @throws IllegalStateException if encryption is on without a secret, the port range exceeds 65535 or is 0
+         *                               over TCP, or NATS credentials come without NATS servers
          */
         public DtronOptions build() {
             if (natsServers.isEmpty() && (natsUser.isPresent() || natsToken.isPresent()
@@ -434,6 +445,10 @@ public final class DtronOptions {
             }
             if (port + portRange > 65535) {
                 throw new IllegalStateException("ports " + port + ".." + (port + portRange) + " exceed 65535");
+            }
+            if (portRange < 1 && natsServers.isEmpty() && !inJvm) {
+                throw new IllegalStateException("a port range of 0 leaves no port for failure detection: each member"
+                        + " listens on two ports (give a port range of 1 or more)");
             }
             return new DtronOptions(this);
         }

@@ -3,6 +3,7 @@ package io.dtron.api;
 import static org.junit.jupiter.api.Assertions.assertEquals;
 
 import io.dtron.testadapter.EchoAdapterMain;
+import io.dtron.testsupport.FreePorts;
 import io.dtron.testsupport.Inbox;
 import java.nio.file.Path;
 import java.time.Duration;
@@ -21,12 +22,15 @@ class AdapterProcessTest {
     @Test
     void exchangesMessagesWithAnAdapterInAnotherJvm(@TempDir Path dir) throws Exception {
         String cluster = TestClusters.uniqueName("adapter");
-        try (Dtron tester = Dtron.connect(DtronOptions.builder().clusterName(cluster).memberName("tester").build())) {
+        int port = FreePorts.range(FreePorts.BUS_RANGE);
+        try (Dtron tester = Dtron.connect(DtronOptions.builder().clusterName(cluster).memberName("tester").port(port)
+                .portRange(FreePorts.BUS_RANGE).build())) {
             Inbox ready = new Inbox(IDtronChannel.of("ready"));
             Inbox replies = new Inbox(done);
             tester.addDtronListener(ready);
             tester.addDtronListener(replies);
-            try (ChildJvm adapter = ChildJvm.start(EchoAdapterMain.class, dir.resolve("adapter.log"), cluster)) {
+            try (ChildJvm adapter = ChildJvm.start(EchoAdapterMain.class, dir.resolve("adapter.log"), cluster,
+                    Integer.toString(port))) {
                 assertEquals("echo-adapter", ready.take().getSender(), adapter.output());
 
                 for (int amount = 1; amount <= 50; amount++) {

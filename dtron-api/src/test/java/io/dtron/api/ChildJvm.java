@@ -97,6 +97,11 @@ public final class ChildJvm implements AutoCloseable {
         }
     }
 
+    /** Returns the JVM's process, to watch it (its sockets, whether it still runs). */
+    public ProcessHandle toHandle() {
+        return process.toHandle();
+    }
+
     /** Returns what the JVM printed so far. */
     public String output() throws IOException {
         return Files.readString(log);

@@ -6,6 +6,7 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import io.dtron.bus.internal.EpochClock;
 import io.dtron.testadapter.ClockMemberMain;
+import io.dtron.testsupport.FreePorts;
 import io.dtron.testsupport.Inbox;
 import java.nio.file.Path;
 import java.time.Duration;
@@ -104,8 +105,9 @@ class ClockOffsetTest {
         String cluster = TestClusters.uniqueName("offsetJvm");
         long unitMicros = 100_000;
         long fireAtNanos = (long) (ClockMemberMain.FIRE_AT_UNITS * unitMicros * 1_000);
+        int port = FreePorts.range(FreePorts.BUS_RANGE);
         try (Dtron tester = Dtron.connect(DtronOptions.builder().clusterName(cluster).memberName("tester")
-                .tester(true).build())) {
+                .port(port).portRange(FreePorts.BUS_RANGE).tester(true).build())) {
             Inbox estimates = new Inbox(ClockMemberMain.ESTIMATED);
             Inbox fired = new Inbox(ClockMemberMain.FIRED);
             Inbox starts = new Inbox(Dtron.RUN_START);
@@ -113,9 +115,9 @@ class ClockOffsetTest {
             tester.addDtronListener(fired);
             tester.addDtronListener(starts);
             try (ChildJvm ahead = ChildJvm.start(ClockMemberMain.class, dir.resolve("ahead.log"), cluster, "ahead",
-                    Long.toString(SHIFT_MILLIS));
+                    Long.toString(SHIFT_MILLIS), Integer.toString(port));
                     ChildJvm behind = ChildJvm.start(ClockMemberMain.class, dir.resolve("behind.log"), cluster,
-                            "behind", Long.toString(-SHIFT_MILLIS))) {
+                            "behind", Long.toString(-SHIFT_MILLIS), Integer.toString(port))) {
                 Map<String, Long> shifts = Map.of("ahead", SHIFT_MILLIS * 1_000_000, "behind",
                         -SHIFT_MILLIS * 1_000_000);
                 Map<String, IDtronChannelValued> byMember = new HashMap<>();

@@ -6,6 +6,7 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import io.dtron.testadapter.RunClockTicker;
 import io.dtron.testadapter.RunClockTickerMain;
+import io.dtron.testsupport.FreePorts;
 import io.dtron.testsupport.Inbox;
 import java.nio.file.Path;
 import java.time.Duration;
@@ -76,10 +77,11 @@ class RunClockTickerTest {
     @Test
     void aTickerInItsOwnJvmWithItsClock120MsBehindTicksAtTheTestersRunTimes(@TempDir Path dir) throws Exception {
         String cluster = TestClusters.uniqueName("runClockTickerJvm");
+        int port = FreePorts.range(FreePorts.BUS_RANGE);
         Dtron tester = Dtron.connect(DtronOptions.builder().clusterName(cluster).memberName("tester").tester(true)
-                .build());
+                .port(port).portRange(FreePorts.BUS_RANGE).build());
         try (ChildJvm child = ChildJvm.start(RunClockTickerMain.class, dir.resolve("ticker.log"), cluster, "ticker",
-                "correct", "-120", "1")) {
+                "correct", "-120", "1", Integer.toString(port))) {
             child.awaitOutput("joined", Duration.ofSeconds(60));
             Inbox ticks = new Inbox(TICK);
             Inbox starts = new Inbox(Dtron.RUN_START);

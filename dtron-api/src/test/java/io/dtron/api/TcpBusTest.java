@@ -4,6 +4,7 @@ import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertThrows;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
+import io.dtron.testsupport.FreePorts;
 import io.dtron.testsupport.Inbox;
 import java.time.Duration;
 import java.util.Map;
@@ -11,15 +12,16 @@ import java.util.concurrent.TimeUnit;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.Timeout;
 
-/** Members over TCP on loopback, found without configuration; with and without a secret and encryption. */
+/** Members over TCP on loopback on free ports, found without configuration; with and without a secret, encrypted. */
 @Timeout(value = 60, unit = TimeUnit.SECONDS)
 class TcpBusTest {
     private static final Duration WAIT = Duration.ofSeconds(15);
     private final IDtronChannel move = IDtronChannel.of("move", "amount");
     private final String cluster = TestClusters.uniqueName("tcp");
+    private final int port = FreePorts.range(FreePorts.BUS_RANGE);
 
     private DtronOptions.Builder options() {
-        return DtronOptions.builder().clusterName(cluster);
+        return DtronOptions.builder().clusterName(cluster).port(port).portRange(FreePorts.BUS_RANGE);
     }
 
     @Test

@@ -3,6 +3,7 @@ package io.dtron.testadapter;
 import io.dtron.api.Dtron;
 import io.dtron.api.DtronListener;
 import io.dtron.api.DtronOptions;
+import io.dtron.testsupport.FreePorts;
 import io.dtron.api.IDtronChannel;
 import io.dtron.api.IDtronChannelValued;
 import java.time.Duration;
@@ -35,8 +36,8 @@ public final class ClockMemberMain {
 
     public static void main(String[] args) throws InterruptedException {
         CountDownLatch quitting = new CountDownLatch(1);
-        DtronOptions options = DtronOptions.builder().clusterName(args[0]).memberName(args[1])
-                .clockShiftForTesting(Duration.ofMillis(Long.parseLong(args[2]))).build();
+        DtronOptions options = FreePorts.onPort(DtronOptions.builder().clusterName(args[0]).memberName(args[1])
+                .clockShiftForTesting(Duration.ofMillis(Long.parseLong(args[2]))), args, 3).build();
         try (Dtron dtron = Dtron.connect(options)) {
             addListeners(dtron, quitting);
             long deadline = System.nanoTime() + TimeUnit.MINUTES.toNanos(1);

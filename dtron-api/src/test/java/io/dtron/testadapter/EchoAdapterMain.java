@@ -3,6 +3,7 @@ package io.dtron.testadapter;
 import io.dtron.api.Dtron;
 import io.dtron.api.DtronListener;
 import io.dtron.api.DtronOptions;
+import io.dtron.testsupport.FreePorts;
 import io.dtron.api.IDtronChannel;
 import io.dtron.api.IDtronChannelValued;
 import java.time.Duration;
@@ -13,7 +14,8 @@ import java.util.concurrent.TimeUnit;
 /**
  * A small adapter that uses only {@code io.dtron.api}: answers every
  * {@code move(amount)} with {@code done(2 * amount)}, announces itself with
- * {@code ready} and leaves on {@code quit}. Arguments: the cluster name.
+ * {@code ready} and leaves on {@code quit}. Arguments: the cluster name and, optionally, the bus's first port (its
+ * port range {@value io.dtron.testsupport.FreePorts#BUS_RANGE}).
  * Exit code 0 after {@code quit}, 2 if none came within a minute.
  */
 public final class EchoAdapterMain {
@@ -26,8 +28,8 @@ public final class EchoAdapterMain {
         IDtronChannel ready = IDtronChannel.of("ready");
         IDtronChannel quit = IDtronChannel.of("quit");
         CountDownLatch quitting = new CountDownLatch(1);
-        try (Dtron dtron = Dtron.connect(DtronOptions.builder().clusterName(args[0]).memberName("echo-adapter")
-                .build())) {
+        try (Dtron dtron = Dtron.connect(FreePorts.onPort(DtronOptions.builder().clusterName(args[0])
+                .memberName("echo-adapter"), args, 1).build())) {
             dtron.addDtronListener(new DtronListener(move) {
                 @Override
                 public void messageReceived(IDtronChannelValued message) {

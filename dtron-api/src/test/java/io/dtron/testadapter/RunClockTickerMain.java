@@ -2,6 +2,7 @@ package io.dtron.testadapter;
 
 import io.dtron.api.Dtron;
 import io.dtron.api.DtronOptions;
+import io.dtron.testsupport.FreePorts;
 import java.time.Duration;
 import java.util.concurrent.CountDownLatch;
 import java.util.concurrent.TimeUnit;
@@ -17,8 +18,8 @@ public final class RunClockTickerMain {
     }
 
     public static void main(String[] args) throws InterruptedException {
-        DtronOptions options = DtronOptions.builder().clusterName(args[0]).memberName(args[1])
-                .clockShiftForTesting(Duration.ofMillis(Long.parseLong(args[3]))).build();
+        DtronOptions options = FreePorts.onPort(DtronOptions.builder().clusterName(args[0]).memberName(args[1])
+                .clockShiftForTesting(Duration.ofMillis(Long.parseLong(args[3]))), args, 5).build();
         CountDownLatch testersGone = new CountDownLatch(Integer.parseInt(args[4]));
         boolean done;
         try (Dtron dtron = Dtron.connect(options); RunClockTicker ticker = new RunClockTicker(args[2])) {

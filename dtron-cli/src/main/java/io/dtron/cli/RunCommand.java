@@ -102,17 +102,18 @@ final class RunCommand implements Callable<Integer> {
 
     @Option(names = "--members", split = ",", paramLabel = "HOST[:PORT]",
             description = "Bus mode: where to look for the other members on other hosts, comma separated (default: at"
-                    + " the bind address); each is probed over the port range from PORT (default: --port).")
+                    + " the bind address); each is probed at its bus ports from PORT (default: --port).")
     private List<String> members = List.of();
 
     @Option(names = "--port", paramLabel = "N",
-            description = "Bus mode: the first port to bind to and to probe (default: " + DtronOptions.DEFAULT_PORT
+            description = "Bus mode: the first of the ports a member may use (default: " + DtronOptions.DEFAULT_PORT
                     + ").")
     private Integer port;
 
     @Option(names = "--port-range", paramLabel = "N",
-            description = "Bus mode: how many ports above --port to bind to and to probe (default: "
-                    + DtronOptions.DEFAULT_PORT_RANGE + ").")
+            description = "Bus mode: how many ports above --port a member may use (default: "
+                    + DtronOptions.DEFAULT_PORT_RANGE + "): a bus port P in the lower half (the ports probed) and"
+                    + " P + (N+1)/2 for failure detection, all on the bind address.")
     private Integer portRange;
 
     @Option(names = "--testers", paramLabel = "N",
@@ -436,8 +437,15 @@ final class RunCommand implements Callable<Integer> {
         if (testers != null && testers < 1) {
             throw usage("--testers must be 1 or more: " + testers);
         }
-        if (port != null && (port < 1 || port > 65535) || portRange != null && (portRange < 0 || portRange > 65535)) {
-            throw usage("--port must be 1 to 65535 and --port-range 0 to 65535");
+        if (port != null && (port < 1 || port > 65535) || portRange != null && (portRange < 1 || portRange > 65535)) {
+            throw usage("--port must be 1 to 65535 and --port-range 1 to 65535 (each member of the bus listens on two"
+                    + " ports: a bus port and one for failure detection)");
+        }
+        int first = port != null ? port : DtronOptions.DEFAULT_PORT;
+        int range = portRange != null ? portRange : DtronOptions.DEFAULT_PORT_RANGE;
+        if (first + range > 65535) {
+            throw usage("--port " + first + " --port-range " + range + ": the ports " + first + ".." + (first + range)
+                    + " go beyond 65535");
         }
         if (busMode) {
             initialMembers();
@@ -836,7 +844,16 @@ final class RunCommand implements Callable<Integer> {
         try {
             if (address.host() == null) {
                 InetAddress listenAt = bindAddress();
-                try (ServerSocket server = new ServerSocket(address.port(), 1, listenAt)) {
+                ServerSocket listening;
+                try {
+                    listening = new ServerSocket(address.port(), 1, listenAt);
+                } catch (IOException e) {
+                    err.println("dtron run: --tron-adapter " + tronAdapter + ": cannot listen for the adapter on "
+                            + listenAt.getHostAddress() + ":" + address.port() + ": " + e.getMessage()
+                            + " (give another port, or 0 for any free one)");
+                    return 1;
+                }
+                try (ServerSocket server = listening) {
                     out.println("dtron run: waiting for the TRON adapter on " + listenAt.getHostAddress() + ":"
                             + server.getLocalPort());
                     out.flush();

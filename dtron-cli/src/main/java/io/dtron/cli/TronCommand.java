@@ -256,7 +256,7 @@ final class TronCommand implements Callable<Integer> {
             clock = TronClockServer.open(InetAddress.getByName(bind), parsePort(clockPort));
         } catch (IOException e) {
             err.println("dtron tron: -Q " + clockPort + ": cannot serve the virtual clock on " + bind + ":" + clockPort
-                    + ": " + e.getMessage());
+                    + ": " + e.getMessage() + " (give another port, or 0 for any free one)");
             return 1;
         }
         try (clock) {
@@ -278,10 +278,20 @@ final class TronCommand implements Callable<Integer> {
         }
         TronSocketAdapter.Settings settings = timeouts.applyTo(TronSocketAdapter.Settings.forRealTime()
                 .withVirtualTime(virtual));
+        ServerSocket server = null;
+        if (listen) {
+            try {
+                server = new ServerSocket(port(), 1, InetAddress.getByName(bind));
+            } catch (IOException e) {
+                err.println("dtron tron: -- " + port() + ": cannot listen for the adapter on " + bind + ":" + port()
+                        + ": " + e.getMessage() + " (give another port after --, or 0 for any free one)");
+                return 1;
+            }
+        }
         TronSocketAdapter adapter;
         try {
             if (listen) {
-                adapter = acceptOne(network, settings, printer);
+                adapter = acceptOne(server, network, settings, printer);
             } else if (clock != null) {
                 adapter = TronSocketAdapter.connectWhenOpen(address.get(0), port(), network, settings,
                         ADAPTER_PORT_WAIT);
@@ -363,9 +373,9 @@ final class TronCommand implements Callable<Integer> {
         return result.verdict().exitCode();
     }
 
-    private TronSocketAdapter acceptOne(Network network, TronSocketAdapter.Settings settings, Printer printer)
-            throws IOException {
-        try (ServerSocket server = new ServerSocket(port(), 1, InetAddress.getByName(bind))) {
+    private TronSocketAdapter acceptOne(ServerSocket listening, Network network, TronSocketAdapter.Settings settings,
+            Printer printer) throws IOException {
+        try (ServerSocket server = listening) {
             if (!quiet) {
                 printer.println("dtron tron: waiting for the adapter on " + server.getInetAddress().getHostAddress()
                         + ":" + server.getLocalPort());

@@ -9,6 +9,7 @@ import io.dtron.engine.ObservableWindow;
 import io.dtron.model.ModelLoader;
 import io.dtron.model.Network;
 import io.dtron.model.TestInterface;
+import io.dtron.testsupport.FreePorts;
 import java.nio.file.Files;
 import java.nio.file.Path;
 import java.util.List;
@@ -59,8 +60,10 @@ class BusTimingTest {
     @Test
     void aRunAgainstTheDeltaExtendedModelWidensItsBoundsFirst() throws Exception {
         Path report = Path.of(BusTimingTest.class.getResource("delta-report.json").toURI());
-        CommandRun r = CommandRun.of(TICKER.toString(), "--cluster", "widened-" + System.nanoTime(), "--adapter",
-                io.dtron.testadapter.RunClockTicker.class.getName(), "--timeunit", "10000", "--timeout", "60",
+        CommandRun r = CommandRun.of(TICKER.toString(), "--cluster", "widened-" + System.nanoTime(), "--port",
+                Integer.toString(FreePorts.range(FreePorts.BUS_RANGE)), "--port-range",
+                Integer.toString(FreePorts.BUS_RANGE), "--adapter", io.dtron.testadapter.RunClockTicker.class.getName(),
+                "--timeunit", "10000", "--timeout", "60",
                 "--delay-policy", "eager", "--delta-from", report.toString());
         // 2.4 ms + 1.75 ms at 10 ms per unit: the invariant x <= P + T grows by one unit; the lower bounds would grow
         // by 0.27 ms, rounded down to nothing
@@ -100,8 +103,10 @@ class BusTimingTest {
     @Test
     void aRunOnTheBusSaysWhatItMeasuredAndWhatTheRunSaw(@TempDir Path dir) throws Exception {
         Path report = dir.resolve("delta.json");
-        CommandRun r = CommandRun.of(TICKER.toString(), "--cluster", "timing-" + System.nanoTime(), "--adapter",
-                io.dtron.testadapter.RunClockTicker.class.getName(), "--timeunit", "100", "--timeout", "300",
+        CommandRun r = CommandRun.of(TICKER.toString(), "--cluster", "timing-" + System.nanoTime(), "--port",
+                Integer.toString(FreePorts.range(FreePorts.BUS_RANGE)), "--port-range",
+                Integer.toString(FreePorts.BUS_RANGE), "--adapter", io.dtron.testadapter.RunClockTicker.class.getName(),
+                "--timeunit", "100", "--timeout", "300",
                 "--delay-policy", "eager", "--delta-report", report.toString());
         assertTrue(r.out().contains("dtron run: delays on the bus before the run: up to "), r.out());
         assertTrue(r.out().matches("(?s).*reorder window \\(Delta\\) [0-9.]+ ms \\(auto: .*"), r.out());

@@ -5,16 +5,17 @@ import io.dtron.api.DtronListener;
 import io.dtron.api.DtronOptions;
 import io.dtron.api.IDtronChannel;
 import io.dtron.api.IDtronChannelValued;
+import io.dtron.testsupport.FreePorts;
 import java.util.Map;
 import java.util.concurrent.TimeUnit;
 
 /**
- * The system of {@code crossing.xta} behind a bus adapter in a JVM of its own. Arguments: the cluster name and the
- * variant. {@code crossing}: when input y reaches it, the system has just produced x, which the adapter publishes
- * with the time it happened, 5 ms later (held up between stamping and sending), before it applies y (its listener
- * returns, and the automatic acknowledgement says y was applied then): on the bus, x crosses y, but it happened
- * before. {@code late}: y is applied at once, and x happens 5 ms after it: a fault of the system. Prints "ready"
- * once it knows the tester's clock; runs until it is stopped.
+ * The system of {@code crossing.xta} behind a bus adapter in a JVM of its own. Arguments: the cluster name, the variant
+ * and, optionally, the bus's first port. {@code crossing}: when input y reaches it, the system has just produced x,
+ * which the adapter publishes with the time it happened, 5 ms later (held up between stamping and sending), before it
+ * applies y (its listener returns, and the automatic acknowledgement says y was applied then): on the bus, x crosses y,
+ * but it happened before. {@code late}: y is applied at once, and x happens 5 ms after it: a fault of the system.
+ * Prints "ready" once it knows the tester's clock; runs until it is stopped.
  */
 public final class CrossingAdapterMain {
     private static final IDtronChannel X = IDtronChannel.of("x");
@@ -25,8 +26,8 @@ public final class CrossingAdapterMain {
 
     public static void main(String[] args) throws InterruptedException {
         boolean crossing = args[1].equals("crossing");
-        try (Dtron dtron = Dtron.connect(DtronOptions.builder().clusterName(args[0]).memberName("crossing-" + args[1])
-                .build())) {
+        try (Dtron dtron = Dtron.connect(FreePorts.onPort(DtronOptions.builder().clusterName(args[0])
+                .memberName("crossing-" + args[1]), args, 2).build())) {
             dtron.declareOutputs(X);
             dtron.addDtronListener(new DtronListener(Y) {
                 @Override

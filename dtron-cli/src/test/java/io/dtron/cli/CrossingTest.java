@@ -13,6 +13,7 @@ import io.dtron.engine.Verdict;
 import io.dtron.model.ModelLoader;
 import io.dtron.model.Network;
 import io.dtron.model.TestInterface;
+import io.dtron.testsupport.FreePorts;
 import java.io.InputStream;
 import java.nio.charset.StandardCharsets;
 import java.nio.file.Files;
@@ -53,8 +54,11 @@ class CrossingTest {
         String cluster = "crossing-" + UUID.randomUUID().toString().substring(0, 8);
         Path log = dir.resolve(variant + ".log");
         Map<Verdict, List<String>> verdicts = new TreeMap<>();
-        try (BusBridge bridge = BusBridge.connect(testInterface, DtronOptions.builder().clusterName(cluster));
-                ChildJvm adapter = ChildJvm.start(CrossingAdapterMain.class, log, cluster, variant)) {
+        int port = FreePorts.range(FreePorts.BUS_RANGE);
+        try (BusBridge bridge = BusBridge.connect(testInterface, DtronOptions.builder().clusterName(cluster)
+                .port(port).portRange(FreePorts.BUS_RANGE));
+                ChildJvm adapter = ChildJvm.start(CrossingAdapterMain.class, log, cluster, variant,
+                        Integer.toString(port))) {
             adapter.awaitOutput("ready", Duration.ofSeconds(60));
             for (int seed = 1; seed <= RUNS; seed++) {
                 // y as early as allowed (t=10): the crossing adapter applies it about 6 ms (0.6 units) after it came

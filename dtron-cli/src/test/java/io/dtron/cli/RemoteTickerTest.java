@@ -16,6 +16,7 @@ import io.dtron.model.ModelLoader;
 import io.dtron.model.Network;
 import io.dtron.model.TestInterface;
 import io.dtron.testadapter.RunClockTickerMain;
+import io.dtron.testsupport.FreePorts;
 import java.nio.file.Path;
 import java.time.Duration;
 import java.util.UUID;
@@ -54,9 +55,11 @@ class RemoteTickerTest {
         TestInterface testInterface = TestInterface.fromNames(network);
         String cluster = "silent-" + UUID.randomUUID().toString().substring(0, 8);
         String member = "ticker-" + UUID.randomUUID().toString().substring(0, 8);
-        try (BusBridge bridge = BusBridge.connect(testInterface, DtronOptions.builder().clusterName(cluster));
+        int port = FreePorts.range(FreePorts.BUS_RANGE);
+        try (BusBridge bridge = BusBridge.connect(testInterface, DtronOptions.builder().clusterName(cluster)
+                .port(port).portRange(FreePorts.BUS_RANGE));
                 ChildJvm ticker = ChildJvm.start(RunClockTickerMain.class, dir.resolve("ticker.log"), cluster, member,
-                        "correct", "0", "1")) {
+                        "correct", "0", "1", Integer.toString(port))) {
             ticker.awaitOutput("joined", Duration.ofSeconds(60));
             assertTrue(bridge.awaitAdapters(1, Duration.ofSeconds(30)));
             Thread.sleep(500); // the ticker's clock offset estimate
@@ -85,9 +88,11 @@ class RemoteTickerTest {
         TestInterface testInterface = TestInterface.fromNames(network);
         String cluster = "shifted-" + UUID.randomUUID().toString().substring(0, 8);
         for (String shift : new String[] {"50", "-50"}) {
-            try (BusBridge bridge = BusBridge.connect(testInterface, DtronOptions.builder().clusterName(cluster));
+            int port = FreePorts.range(FreePorts.BUS_RANGE);
+            try (BusBridge bridge = BusBridge.connect(testInterface, DtronOptions.builder().clusterName(cluster)
+                    .port(port).portRange(FreePorts.BUS_RANGE));
                     ChildJvm ticker = ChildJvm.start(RunClockTickerMain.class, dir.resolve("shifted" + shift + ".log"),
-                            cluster, "shifted-ticker", "correct", shift, "1")) {
+                            cluster, "shifted-ticker", "correct", shift, "1", Integer.toString(port))) {
                 ticker.awaitOutput("joined", Duration.ofSeconds(60));
                 assertTrue(bridge.awaitAdapters(1, Duration.ofSeconds(30)));
                 Thread.sleep(500); // the ticker's clock offset estimate

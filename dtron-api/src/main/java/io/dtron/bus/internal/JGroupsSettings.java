@@ -12,10 +12,12 @@ import java.util.Optional;
  *
  * @param clusterName    the JGroups cluster; members of different clusters never see each other
  * @param memberName     this member's logical name, unique in the cluster
- * @param bindAddress    the interface the TCP transport listens on
- * @param port           the first port to listen on
- * @param portRange      how many further ports to try for listening, and to probe at each initial member
- * @param initialMembers where to look for other members; empty means {@code bindAddress:port} and the range above it
+ * @param bindAddress    the interface every socket of the member listens on (the bus and failure detection)
+ * @param port           the first port of the member's ports
+ * @param portRange      how many ports above {@code port} the member may use: the lower half for the bus (and
+ *                       probed at each initial member), the upper half for failure detection; at least 1 over TCP
+ * @param initialMembers where to look for other members; empty means {@code bindAddress:port} and the bus ports
+ *                       above it
  * @param secret         shared secret for authentication (and the encryption key), if any
  * @param encrypt        whether to encrypt all messages between members (needs a secret)
  * @param inJvm          whether to use the in-JVM transport without sockets instead of TCP
@@ -47,11 +49,27 @@ public record JGroupsSettings(
         if (encrypt && secret.isEmpty()) {
             throw new IllegalArgumentException("encryption needs a shared secret");
         }
+        if (!inJvm && portRange < 1) {
+            throw new IllegalArgumentException(NO_ROOM_FOR_FAILURE_DETECTION);
+        }
+    }
+
+    /** Why a port range of 0 does not do over TCP. */
+    static final String NO_ROOM_FOR_FAILURE_DETECTION = "a port range of 0 leaves no port for failure detection:"
+            + " each member listens on two ports (give a port range of 1 or more)";
+
+    /**
+     * Returns how many bus ports there are, {@code port .. port+busPorts()-1}: how many members one address holds.
+     * A member listening for the bus on port P listens for failure detection on {@code P + busPorts()}, so that
+     * every port a member uses lies in {@code port .. port+portRange}.
+     */
+    public int busPorts() {
+        return (portRange + 1) / 2;
     }
 
     /**
      * Returns the addresses TCPPING probes: each initial member (by default the
-     * bind address and port) at its port and the {@link #portRange()} ports above it.
+     * bind address and port) at its port and the bus ports above it ({@link #busPorts()} in all).
      */
     List<InetSocketAddress> discoveryAddresses() {
         List<InetSocketAddress> starts = initialMembers.isEmpty()
@@ -59,7 +77,7 @@ public record JGroupsSettings(
                 : initialMembers;
         List<InetSocketAddress> probed = new ArrayList<>();
         for (InetSocketAddress start : starts) {
-            for (int p = start.getPort(); p <= Math.min(start.getPort() + portRange, 65535); p++) {
+            for (int p = start.getPort(); p < Math.min(start.getPort() + busPorts(), 65536); p++) {
                 probed.add(new InetSocketAddress(start.getAddress(), p));
             }
         }

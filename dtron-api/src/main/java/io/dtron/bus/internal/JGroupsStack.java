@@ -32,10 +32,10 @@ import org.jgroups.stack.Protocol;
  * Not API. Builds DTRON's JGroups protocol stack in code, bottom (transport) first.
  *
  * <pre>
- *  TCP (bind address, port..port+range)      | SHARED_LOOPBACK        (in-JVM mode)
- *  TCPPING (initial members, same range)     | SHARED_LOOPBACK_PING
+ *  TCP (bind address, one bus port P)        | SHARED_LOOPBACK        (in-JVM mode)
+ *  TCPPING (initial members, the bus ports)  | SHARED_LOOPBACK_PING
  *  MERGE3                                      heals partitions
- *  FD_SOCK2 (TCP only), FD_ALL3, VERIFY_SUSPECT2   failure detection
+ *  FD_SOCK2 (TCP only: bind address, P + busPorts), FD_ALL3, VERIFY_SUSPECT2   failure detection
  *  SYM_ENCRYPT                                 optional: AES, key derived from the secret
  *  NAKACK2, UNICAST3, STABLE                   reliable FIFO multicast and unicast
  *  AUTH                                        optional: members must prove the secret to join
@@ -45,16 +45,24 @@ import org.jgroups.stack.Protocol;
  *  FRAG2                                       large messages
  * </pre>
  *
- * <p><b>Discovery.</b> Members find each other with TCPPING over a port range:
- * every member listens on the first free port of {@code port..port+range} and
- * probes that whole range at each initial member (by default only the bind
+ * <p><b>Ports.</b> Every socket listens on the bind address, none on the
+ * wildcard address, and every port lies in {@code port..port+range}: the lower
+ * half ({@link JGroupsSettings#busPorts()} ports) holds the members' bus ports,
+ * the upper half their failure detection ports, FD_SOCK2's server of the member
+ * with bus port P listening on {@code P + busPorts()} (where the other members
+ * look for it). {@link JGroupsTransport} picks P. JGroups' diagnostics (a UDP
+ * listener) stay off, as JGroups' default has them.
+ *
+ * <p><b>Discovery.</b> Members find each other with TCPPING over the bus ports:
+ * every member listens on a free bus port and
+ * probes all bus ports at each initial member (by default only the bind
  * address, i.e. 127.0.0.1). On one host this needs no configuration, no
  * multicast (often unavailable on loopback in containers and sandboxes), no
  * shared directory and no daemon; probing a closed loopback port fails at
  * once. On a LAN, the same range is probed at every given initial member
  * (a connection attempt gives up after 300 ms). Members of other clusters in
  * the range answer nothing: JGroups drops messages whose cluster name differs.
- * The range bounds how many members one host can hold (31 by default).
+ * The bus ports bound how many members one address can hold (31 by default).
  * Alternatives that were not taken: UDP multicast discovery (blocked in many
  * sandboxes and containers, even on loopback) and FILE_PING (needs a
  * directory shared by all users of the bus and leaves stale entries of
@@ -80,7 +88,11 @@ final class JGroupsStack {
     private JGroupsStack() {
     }
 
-    static List<Protocol> build(JGroupsSettings settings) {
+    /**
+     * Returns the stack of a member; over TCP, its bus port is {@code busPort} (in JGroupsSettings' bus ports) and
+     * its failure detection port {@code busPort + settings.busPorts()}.
+     */
+    static List<Protocol> build(JGroupsSettings settings, int busPort) {
         List<Protocol> stack = new ArrayList<>();
         if (settings.inJvm()) {
             SHARED_LOOPBACK loopback = new SHARED_LOOPBACK();
@@ -102,15 +114,17 @@ final class JGroupsStack {
             tcp.setMessageProcessingPolicy(DIRECT);
             stack.add(tcp
                     .setBindAddress(settings.bindAddress())
-                    .setBindPort(settings.port())
-                    .setPortRange(settings.portRange())
+                    .setBindPort(busPort)
+                    .setPortRange(0)
                     .logDiscardMsgs(false));
             // TCPPING applies its own port_range only to hosts given as a string, so the range is expanded here
             stack.add(new TCPPING().setInitialHosts(settings.discoveryAddresses()).setPortRange(0));
         }
         stack.add(new MERGE3().setMinInterval(1_000).setMaxInterval(5_000));
         if (!settings.inJvm()) {
-            stack.add(new FD_SOCK2());
+            // FD_SOCK2 listens on every interface, at the bus port + 100..103, unless told otherwise
+            stack.add(new FD_SOCK2().setBindAddress(settings.bindAddress()).setOffset(settings.busPorts())
+                    .setPortRange(0));
         }
         stack.add(new FD_ALL3().setTimeout(15_000).setInterval(3_000));
         stack.add(new VERIFY_SUSPECT2().setTimeout(1_500));

@@ -5,6 +5,11 @@ import io.dtron.bus.MembershipView;
 import io.dtron.bus.Subscription;
 import io.dtron.bus.Transport;
 import java.io.IOException;
+import java.net.BindException;
+import java.net.InetAddress;
+import java.net.InetSocketAddress;
+import java.net.Socket;
+import java.util.ArrayList;
 import java.util.List;
 import java.util.Objects;
 import java.util.function.Consumer;
@@ -37,14 +42,88 @@ public final class JGroupsTransport implements Transport, Receiver {
     }
 
     /**
-     * Joins the cluster described by the settings.
+     * Joins the cluster described by the settings. Over TCP the member takes the
+     * first bus port P whose failure detection port {@code P + busPorts()} is
+     * free too (both on the bind address); a port another process takes between
+     * the check and the bind moves it on to the next.
      *
-     * @throws Exception whatever JGroups throws when the stack cannot start or
-     *                   the cluster refuses this member ({@link SecurityException}
-     *                   when authentication fails)
+     * @throws BindAddressException when nothing can listen on the bind address
+     * @throws PortsInUseException  when no bus port is free with its failure detection port
+     * @throws Exception           whatever JGroups throws when the stack cannot start or
+     *                             the cluster refuses this member ({@link SecurityException}
+     *                             when authentication fails)
      */
     public static JGroupsTransport connect(JGroupsSettings settings) throws Exception {
-        JChannel channel = new JChannel(JGroupsStack.build(settings));
+        if (settings.inJvm()) {
+            return join(settings, 0);
+        }
+        try {
+            bind(settings.bindAddress(), 0);
+        } catch (IOException e) {
+            throw new BindAddressException(settings.bindAddress(), e);
+        }
+        List<Integer> inUse = new ArrayList<>();
+        int busPorts = settings.busPorts();
+        for (int port = settings.port(); port < settings.port() + busPorts; port++) {
+            List<Integer> taken = taken(settings.bindAddress(), port, port + busPorts);
+            if (taken.isEmpty()) {
+                try {
+                    return join(settings, port);
+                } catch (Exception e) {
+                    taken = taken(settings.bindAddress(), port, port + busPorts);
+                    if (taken.isEmpty() && !failedToBind(e)) {
+                        throw e;
+                    }
+                    taken = taken.isEmpty() ? List.of(port, port + busPorts) : taken;
+                    LOG.debug("Port {} taken while joining ({}); trying the next", taken, e.toString());
+                }
+            }
+            inUse.addAll(taken);
+        }
+        throw new PortsInUseException(settings, inUse);
+    }
+
+    /** Returns those of the ports that cannot be listened on at the address now. */
+    private static List<Integer> taken(InetAddress address, int... ports) {
+        List<Integer> taken = new ArrayList<>();
+        for (int port : ports) {
+            try {
+                bind(address, port);
+            } catch (IOException e) {
+                taken.add(port);
+            }
+        }
+        return taken;
+    }
+
+    /**
+     * Binds a TCP socket to the address and port, and closes it: a socket that never listens (no one can connect
+     * to it, and it shows in no list of listening sockets), which a port another socket listens on refuses, and a
+     * port in TIME_WAIT does not.
+     */
+    private static void bind(InetAddress address, int port) throws IOException {
+        try (Socket probe = new Socket()) {
+            probe.setReuseAddress(true);
+            probe.bind(new InetSocketAddress(address, port));
+        }
+    }
+
+    /**
+     * Whether joining failed for a port in use: a socket's bind, or FD_SOCK2's server, which says so only in its
+     * message (a port in TIME_WAIT may refuse JGroups' bind yet let the check above bind it).
+     */
+    private static boolean failedToBind(Throwable e) {
+        for (Throwable t = e; t != null; t = t.getCause()) {
+            if (t instanceof BindException || t instanceof IllegalStateException && t.getMessage() != null
+                    && t.getMessage().contains("failed to find an available port")) {
+                return true;
+            }
+        }
+        return false;
+    }
+
+    private static JGroupsTransport join(JGroupsSettings settings, int busPort) throws Exception {
+        JChannel channel = new JChannel(JGroupsStack.build(settings, busPort));
         JGroupsTransport transport = new JGroupsTransport(channel, settings.memberName());
         try {
             channel.name(settings.memberName());

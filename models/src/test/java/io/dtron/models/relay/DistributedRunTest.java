@@ -1,10 +1,16 @@
 package io.dtron.models.relay;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import io.dtron.api.ChildJvm;
+import io.dtron.api.Dtron;
+import io.dtron.api.DtronOptions;
 import io.dtron.cli.DtronCommand;
+import io.dtron.testsupport.FreePorts;
+import java.net.InetAddress;
+import java.net.ServerSocket;
 import java.nio.file.Files;
 import java.nio.file.Path;
 import java.time.Duration;
@@ -34,29 +40,59 @@ class DistributedRunTest {
         return "distributed-" + UUID.randomUUID().toString().substring(0, 8);
     }
 
-    private static ChildJvm tester(Path dir, String name, String model, String cluster, String address,
+    /** The bus's port range in these runs: 3 bus ports per address (2 testers, or 2 adapters, and one spare). */
+    static final int RANGE = 5;
+
+    /** Instead of a port: the bus's default ports, as distributed.md's commands have them. */
+    private static final int DEFAULT_PORTS = -1;
+
+    /** The first port of a range free at the three addresses. */
+    static int freePort() throws Exception {
+        return FreePorts.range(RANGE, InetAddress.getByName("127.0.0.1"), InetAddress.getByName("127.0.0.2"),
+                InetAddress.getByName("127.0.0.3"));
+    }
+
+    static ChildJvm tester(Path dir, String name, String model, String cluster, String address, int port,
             String... more) throws Exception {
+        return tester(dir, name, model, cluster, address, port, 20_000, more);
+    }
+
+    private static ChildJvm tester(Path dir, String name, String model, String cluster, String address, int port,
+            long timeUnit, String... more) throws Exception {
         List<String> args = new ArrayList<>(List.of("run", MODELS.resolve(model).toString(), "--cluster", cluster,
-                "--bind", address, "--members", MEMBERS, "--timeunit", "20000", "--timeout", "150", "--delay-policy",
+                "--bind", address, "--members", MEMBERS, "--timeunit", Long.toString(timeUnit), "--timeout", "150",
+                "--delay-policy",
                 "eager", "--seed", "7", "--wait-timeout", "90"));
+        if (port != DEFAULT_PORTS) {
+            args.addAll(List.of("--port", Integer.toString(port), "--port-range", Integer.toString(RANGE)));
+        }
         args.addAll(List.of(more));
         return ChildJvm.start(DtronCommand.class, dir.resolve(name + ".log"), args.toArray(String[]::new));
     }
 
     /** The exit codes and outputs of the relay's two testers, with the relay's output. */
-    private record Relay(int port1, int port2, String port1Output, String port2Output, String relayOutput) {
+    record Relay(int port1, int port2, String port1Output, String port2Output, String relayOutput) {
         String all() {
             return port1Output + port2Output + relayOutput;
         }
     }
 
     /** Runs both ports' testers against a relay of the variant, each port in a JVM of its own. */
-    private static Relay relay(Path dir, String variant) throws Exception {
+    static Relay relay(Path dir, String variant) throws Exception {
+        return relay(dir, variant, freePort(), 20_000);
+    }
+
+    /** Runs the relay as {@link #relay(Path, String)} does, on the port range from {@code port}, in the time unit. */
+    private static Relay relay(Path dir, String variant, int port, long timeUnit) throws Exception {
         String cluster = cluster();
-        try (ChildJvm port1 = tester(dir, "port1", "relay/port1.xta", cluster, "127.0.0.1", "--testers", "2");
-                ChildJvm port2 = tester(dir, "port2", "relay/port2.xta", cluster, "127.0.0.2", "--join");
-                ChildJvm relay = ChildJvm.start(RelayAdapters.class, dir.resolve("relay.log"), cluster, "127.0.0.3",
-                        MEMBERS, variant)) {
+        String[] relayArgs = port == DEFAULT_PORTS ? new String[] {cluster, "127.0.0.3", MEMBERS, variant}
+                : new String[] {cluster, "127.0.0.3", MEMBERS, variant, Integer.toString(port),
+                    Integer.toString(RANGE)};
+        try (ChildJvm port1 = tester(dir, "port1", "relay/port1.xta", cluster, "127.0.0.1", port, timeUnit,
+                "--testers", "2");
+                ChildJvm port2 = tester(dir, "port2", "relay/port2.xta", cluster, "127.0.0.2", port, timeUnit,
+                        "--join");
+                ChildJvm relay = ChildJvm.start(RelayAdapters.class, dir.resolve("relay.log"), relayArgs)) {
             int second = port2.waitFor(WAIT);
             int first = port1.waitFor(WAIT);
             return new Relay(first, second, port1.output(), port2.output(), relay.output());
@@ -72,6 +108,51 @@ class DistributedRunTest {
         assertTrue(r.port2Output().contains("PASSED: the timeout of 150 time units was reached"), r.all());
         assertTrue(r.port1Output().contains("dtron run: the run's testers: "), r.all());
         assertTrue(r.port1Output().matches("(?s).*tester \\S+ of this run: PASSED.*"), r.all());
+    }
+
+    /**
+     * distributed.md's commands, on the default ports, while members of another bus hold the first of them at each
+     * of the three addresses: every member takes the next free ports, on its own address only. The time unit is 5
+     * times the page's, 100 ms, so that a busy host does not decide the verdict this test is not about.
+     */
+    @Test
+    void theRelayPassesOnTheDefaultPortsWhileAnotherBusHoldsTheFirstOfThem(@TempDir Path dir) throws Exception {
+        List<Dtron> otherBus = new ArrayList<>();
+        String other = "other-" + cluster();
+        try {
+            for (String address : MEMBERS.split(",")) {
+                for (int i = 0; i < 2; i++) {
+                    otherBus.add(Dtron.connect(DtronOptions.builder().clusterName(other)
+                            .bindAddress(InetAddress.getByName(address)).build()));
+                }
+            }
+            Relay r = relay(dir, "correct", DEFAULT_PORTS, 100_000);
+            assertEquals(0, r.port1(), r.all());
+            assertEquals(0, r.port2(), r.all());
+            assertTrue(r.port2Output().contains("PASSED: the timeout of 150 time units was reached"), r.all());
+        } finally {
+            otherBus.forEach(Dtron::close);
+        }
+    }
+
+    @Test
+    void theRelaySaysInOneLineWhichPortsAreInUse(@TempDir Path dir) throws Exception {
+        InetAddress address = InetAddress.getByName("127.0.0.3");
+        int port = FreePorts.range(1, address);
+        try (ServerSocket bus = new ServerSocket(port, 1, address);
+                ServerSocket failureDetection = new ServerSocket(port + 1, 1, address);
+                ChildJvm relay = ChildJvm.start(RelayAdapters.class, dir.resolve("relay.log"), cluster(),
+                        "127.0.0.3", "127.0.0.3", "correct", Integer.toString(port), "1")) {
+            assertEquals(1, relay.waitFor(WAIT), relay.output());
+            String output = relay.output();
+            String error = output.lines().filter(l -> l.startsWith("RelayAdapters: ")).findFirst()
+                    .orElseThrow(() -> new AssertionError(output));
+            assertTrue(error.contains(": no free ports for the bus on 127.0.0.3 in " + port + ".." + (port + 1)),
+                    error);
+            assertTrue(error.contains("ports " + port + "-" + (port + 1) + " are in use"), error);
+            assertTrue(error.endsWith("(dtron: --port, --port-range)"), error);
+            assertFalse(relay.output().contains("\tat ") || relay.output().contains("Exception"), relay.output());
+        }
     }
 
     @Test
@@ -92,10 +173,11 @@ class DistributedRunTest {
         String cluster = cluster();
         Path moverTrace = dir.resolve("mover.jsonl");
         Path responderTrace = dir.resolve("responder.jsonl");
-        try (ChildJvm mover = tester(dir, "mover", "conversation/mover.xta", cluster, "127.0.0.1", "--testers", "2",
-                "--trace", moverTrace.toString());
+        int port = freePort();
+        try (ChildJvm mover = tester(dir, "mover", "conversation/mover.xta", cluster, "127.0.0.1", port, "--testers",
+                "2", "--trace", moverTrace.toString());
                 ChildJvm responder = tester(dir, "responder", "conversation/responder.xta", cluster, "127.0.0.2",
-                        "--join", "--trace", responderTrace.toString())) {
+                        port, "--join", "--trace", responderTrace.toString())) {
             int first = mover.waitFor(WAIT);
             int second = responder.waitFor(WAIT);
             assertEquals(0, first, mover.output() + responder.output());
