@@ -70,21 +70,17 @@ final class ChildProcess implements AutoCloseable {
     }
 
     /**
-     * The {@code mvn} executable: the one of the Maven running the build (system property {@code maven.home}, which
-     * the build passes on), else the first on the {@code PATH}.
+     * The {@code mvn} executable a user would run: the first on the {@code PATH} (Debian's Maven 3.8.7 here), not the
+     * one running the build, so that a page's project is built as the page says.
      */
     static String mvn() {
         String name = System.getProperty("os.name").startsWith("Windows") ? "mvn.cmd" : "mvn";
-        String home = System.getProperty("maven.home", "");
-        if (!home.isEmpty() && Files.isExecutable(Path.of(home, "bin", name))) {
-            return Path.of(home, "bin", name).toString();
-        }
         for (String entry : System.getenv().getOrDefault("PATH", "").split(File.pathSeparator)) {
             if (!entry.isEmpty() && Files.isExecutable(Path.of(entry, name))) {
                 return Path.of(entry, name).toString();
             }
         }
-        throw new AssertionError("no " + name + " in maven.home ('" + home + "') nor on the PATH");
+        throw new AssertionError("no " + name + " on the PATH: the pages' projects are built with the mvn a user runs");
     }
 
     /** Waits for the process to exit and returns its exit code; fails the test, showing its output, after the timeout. */
