@@ -1,6 +1,7 @@
 package io.dtron.models.relay;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import io.dtron.api.ChildJvm;
@@ -53,8 +54,10 @@ class DistributedRunTest {
     /** Runs both ports' testers against a relay of the variant, each port in a JVM of its own. */
     private static Relay relay(Path dir, String variant) throws Exception {
         String cluster = cluster();
-        try (ChildJvm port1 = tester(dir, "port1", "relay/port1.xta", cluster, "127.0.0.1", "--testers", "2");
-                ChildJvm port2 = tester(dir, "port2", "relay/port2.xta", cluster, "127.0.0.2", "--join");
+        try (ChildJvm port1 = tester(dir, "port1", "relay/port1.xta", cluster, "127.0.0.1", "--testers", "2",
+                        "--trace", dir.resolve("port1.jsonl").toString());
+                ChildJvm port2 = tester(dir, "port2", "relay/port2.xta", cluster, "127.0.0.2", "--join",
+                        "--trace", dir.resolve("port2.jsonl").toString());
                 ChildJvm relay = ChildJvm.start(RelayAdapters.class, dir.resolve("relay.log"), cluster, "127.0.0.3",
                         MEMBERS, variant)) {
             int second = port2.waitFor(WAIT);
@@ -72,6 +75,16 @@ class DistributedRunTest {
         assertTrue(r.port2Output().contains("PASSED: the timeout of 150 time units was reached"), r.all());
         assertTrue(r.port1Output().contains("dtron run: the run's testers: "), r.all());
         assertTrue(r.port1Output().matches("(?s).*tester \\S+ of this run: PASSED.*"), r.all());
+        // the first tester's model has no resp: it neither rejects nor warns about the second's channel...
+        assertFalse(r.port1Output().contains("Rejected a message"), r.all());
+        assertTrue(r.port1Output().contains("rejected 0,"), r.all());
+        // ...and its trace is global: the second tester's responses are in it, as in the second's own trace
+        List<String> port1 = busMessages(dir.resolve("port1.jsonl"));
+        List<String> port2 = busMessages(dir.resolve("port2.jsonl"));
+        List<String> responses = port1.stream().filter(m -> m.startsWith("resp/")).toList();
+        assertFalse(responses.isEmpty(), "the relay's responses are in the first tester's trace: " + port1);
+        assertTrue(port2.containsAll(responses), "the second tester traced them too: " + port2);
+        assertSameOrder(port1, port2);
     }
 
     @Test
@@ -103,19 +116,25 @@ class DistributedRunTest {
             assertTrue(mover.output().contains("PASSED"), mover.output());
             assertTrue(responder.output().contains("PASSED"), responder.output());
         }
-        List<String> a = busMessages(moverTrace);
-        List<String> b = busMessages(responderTrace);
-        assertEquals(new HashSet<>(a).size(), a.size(), "every message once in the mover's trace");
-        assertEquals(new HashSet<>(b).size(), b.size(), "every message once in the responder's trace");
-        // the traces start when each engine started: from the first message both have, the order is the same
+        int overlap = assertSameOrder(busMessages(moverTrace), busMessages(responderTrace));
+        assertTrue(overlap >= 50, "moves, dones and the clocks' messages: " + overlap);
+    }
+
+    /**
+     * Two testers' traces hold every message once, and in the same order from the first message both have (each
+     * trace starts when its tester's engine started); returns how many messages that is.
+     */
+    private static int assertSameOrder(List<String> a, List<String> b) {
+        assertEquals(new HashSet<>(a).size(), a.size(), "every message once in the first trace");
+        assertEquals(new HashSet<>(b).size(), b.size(), "every message once in the second trace");
         int fromA = a.indexOf(b.get(0));
         int fromB = b.indexOf(a.get(0));
         assertTrue(fromA >= 0 || fromB >= 0, "the traces share messages: " + a.subList(0, 5) + " " + b.subList(0, 5));
         List<String> restA = a.subList(Math.max(0, fromA), a.size());
         List<String> restB = b.subList(Math.max(0, fromB), b.size());
         int overlap = Math.min(restA.size(), restB.size());
-        assertTrue(overlap >= 50, "moves, dones and the clocks' messages: " + overlap);
         assertEquals(restA.subList(0, overlap), restB.subList(0, overlap));
+        return overlap;
     }
 
     /** The bus lines of a trace, as channel/sender/sequence, in the order written. */
