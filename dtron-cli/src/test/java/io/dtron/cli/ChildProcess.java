@@ -2,7 +2,7 @@ package io.dtron.cli;
 
 import static org.junit.jupiter.api.Assertions.fail;
 
-import java.io.File;
+import io.dtron.testsupport.PageProjects;
 import java.io.IOException;
 import java.nio.file.Files;
 import java.nio.file.Path;
@@ -69,18 +69,9 @@ final class ChildProcess implements AutoCloseable {
         return Path.of(System.getProperty("java.home"), "bin", name).toString();
     }
 
-    /**
-     * The {@code mvn} executable a user would run: the first on the {@code PATH} (Debian's Maven 3.8.7 here), not the
-     * one running the build, so that a page's project is built as the page says.
-     */
+    /** The {@code mvn} a user runs: see {@link PageProjects#mvn()}. */
     static String mvn() {
-        String name = System.getProperty("os.name").startsWith("Windows") ? "mvn.cmd" : "mvn";
-        for (String entry : System.getenv().getOrDefault("PATH", "").split(File.pathSeparator)) {
-            if (!entry.isEmpty() && Files.isExecutable(Path.of(entry, name))) {
-                return Path.of(entry, name).toString();
-            }
-        }
-        throw new AssertionError("no " + name + " on the PATH: the pages' projects are built with the mvn a user runs");
+        return PageProjects.mvn();
     }
 
     /** Waits for the process to exit and returns its exit code; fails the test, showing its output, after the timeout. */

@@ -5,6 +5,7 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 import static org.junit.jupiter.api.Assertions.fail;
 
 import io.dtron.testsupport.DocPage;
+import io.dtron.testsupport.PageProjects;
 import java.io.File;
 import java.io.StringReader;
 import java.nio.file.Files;

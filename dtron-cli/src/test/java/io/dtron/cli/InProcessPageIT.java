@@ -5,6 +5,7 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 import static org.junit.jupiter.api.Assertions.fail;
 
 import io.dtron.testsupport.DocPage;
+import io.dtron.testsupport.PageProjects;
 import java.nio.file.Files;
 import java.nio.file.Path;
 import java.time.Duration;

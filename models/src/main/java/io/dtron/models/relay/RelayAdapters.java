@@ -20,8 +20,8 @@ import org.slf4j.LoggerFactory;
  * A system with two ports and its two adapters, for distributed testing: a request at port 1 ({@code req}) is
  * answered at port 2 ({@code resp}) some time units later, on the run's clock. Each port has its own bus member, as
  * adapters on two hosts would; a tester judges each port with its own model ({@code relay/port1.xta} starts the
- * run, {@code relay/port2.xta} joins it). The {@code correct} relay answers after 4 time units, within the 2 to 6
- * that port 2's model allows; the {@code late} one after 9.
+ * run, {@code relay/port2.xta} joins it). The {@code correct} relay answers after 4 time units, within the 2 to 9
+ * that port 2's model allows; the {@code late} one after 12.
  *
  * <p>{@code java -cp dtron.jar:models.jar io.dtron.models.relay.RelayAdapters CLUSTER ADDRESS MEMBERS VARIANT}:
  * both members bind to ADDRESS and look for the testers at MEMBERS (HOST or HOST:PORT, comma separated); the process
@@ -44,7 +44,7 @@ public final class RelayAdapters {
             System.err.println("usage: RelayAdapters CLUSTER ADDRESS MEMBERS correct|late");
             System.exit(1);
         }
-        double delayUnits = args[3].equals("correct") ? 4 : 9;
+        double delayUnits = args[3].equals("correct") ? 4 : 12;
         DtronOptions.Builder options = DtronOptions.builder().clusterName(args[0])
                 .bindAddress(InetAddress.getByName(args[1])).initialMembers(members(args[2]));
         try (Dtron port1 = Dtron.connect(options.memberName("relay-port1").build());

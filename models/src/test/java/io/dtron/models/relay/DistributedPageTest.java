@@ -108,8 +108,9 @@ class DistributedPageTest {
                 .forEach(l -> System.out.println("DistributedPageTest: " + l));
         long passed = output.lines().filter(l -> l.startsWith("PASSED: ")).count();
         assertEquals(testers, passed, output);
-        assertEquals(testers * (testers - 1), output.lines().filter(l -> l.matches("tester \\S+ of this run: PASSED"))
-                .count(), "each tester prints the others' verdicts: " + output);
+        // the starting tester waits for the others' verdicts and prints them (the others may end before its own)
+        assertTrue(output.lines().filter(l -> l.matches("tester \\S+ of this run: PASSED")).count() >= testers - 1,
+                "the starting tester prints the others' verdicts: " + output);
         assertFalse(output.contains("dtron run: warning"), "no warning about the bus's delays: " + output);
         assertFalse(output.contains("Rejected a message"), output);
     }

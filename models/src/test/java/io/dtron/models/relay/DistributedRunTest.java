@@ -116,15 +116,16 @@ class DistributedRunTest {
             assertTrue(mover.output().contains("PASSED"), mover.output());
             assertTrue(responder.output().contains("PASSED"), responder.output());
         }
-        int overlap = assertSameOrder(busMessages(moverTrace), busMessages(responderTrace));
-        assertTrue(overlap >= 50, "moves, dones and the clocks' messages: " + overlap);
+        List<String> shared = assertSameOrder(busMessages(moverTrace), busMessages(responderTrace));
+        assertTrue(shared.stream().anyMatch(m -> m.startsWith("move/"))
+                && shared.stream().anyMatch(m -> m.startsWith("done/")), "both traced moves and dones: " + shared);
     }
 
     /**
      * Two testers' traces hold every message once, and in the same order from the first message both have (each
-     * trace starts when its tester's engine started); returns how many messages that is.
+     * trace starts when its tester's engine started); returns the messages both have, in that order.
      */
-    private static int assertSameOrder(List<String> a, List<String> b) {
+    private static List<String> assertSameOrder(List<String> a, List<String> b) {
         assertEquals(new HashSet<>(a).size(), a.size(), "every message once in the first trace");
         assertEquals(new HashSet<>(b).size(), b.size(), "every message once in the second trace");
         int fromA = a.indexOf(b.get(0));
@@ -134,7 +135,7 @@ class DistributedRunTest {
         List<String> restB = b.subList(Math.max(0, fromB), b.size());
         int overlap = Math.min(restA.size(), restB.size());
         assertEquals(restA.subList(0, overlap), restB.subList(0, overlap));
-        return overlap;
+        return restA.subList(0, overlap);
     }
 
     /** The bus lines of a trace, as channel/sender/sequence, in the order written. */
