@@ -6,9 +6,10 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 import static org.junit.jupiter.api.Assertions.fail;
 
 import io.dtron.testsupport.DocPage;
-import java.io.IOException;
+import io.dtron.testsupport.ShellSession;
 import java.nio.file.Files;
 import java.nio.file.Path;
+import java.time.Duration;
 import java.util.ArrayList;
 import java.util.List;
 import java.util.UUID;
@@ -82,24 +83,8 @@ class DistributedPageTest {
             script.add(command.replaceAll("\\b" + pageBus + "\\b", bus));
         }
         script.add("wait");
-        Path log = dir.resolve(name + ".log");
-        Path file = dir.resolve(name + ".sh");
-        Files.write(file, script);
-        Process bash = new ProcessBuilder("bash", file.toString()).directory(ROOT.toFile())
-                .redirectErrorStream(true).redirectOutput(log.toFile()).start();
-        try {
-            if (!bash.waitFor(240, TimeUnit.SECONDS)) {
-                fail("the " + name + " session still runs after 240 s:\n" + output(log));
-            }
-        } finally {
-            bash.descendants().forEach(ProcessHandle::destroyForcibly);
-            bash.destroyForcibly();
-        }
-        return "the " + name + " session " + script + " printed:\n" + output(log);
-    }
-
-    private static String output(Path log) throws IOException {
-        return Files.readString(log);
+        String output = ShellSession.run(ROOT, script, dir.resolve(name + ".log"), Duration.ofSeconds(240));
+        return "the " + name + " session " + script + " printed:\n" + output;
     }
 
     /** Every tester passed, and none warned about the time unit or rejected a message. */
