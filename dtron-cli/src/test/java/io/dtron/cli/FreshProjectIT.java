@@ -39,15 +39,10 @@ import org.xml.sax.InputSource;
 @Timeout(value = 300, unit = TimeUnit.SECONDS)
 class FreshProjectIT {
     private static final Path JAR = Path.of("target", "dtron.jar").toAbsolutePath();
-    private static final Path TICKER = Path.of("..", "models", "src", "main", "resources", "io", "dtron", "models",
-            "ticker.xml").toAbsolutePath();
-    /**
-     * 50 ms per time unit: the model tolerates ticks 2 units early or late, 100 ms. The page's adapter keeps the
-     * tester's time with the run clock, so a start message that reaches its freshly started JVM late does not move
-     * its ticks; only a JVM held up by more than 100 ms would. 40 units are 2 s of test.
-     */
-    private static final String TIMEUNIT = "50000";
-    private static final String TIMEOUT = "40";
+    /** The project's folder, where the page's commands run. */
+    private static final Path ROOT = Path.of("..").toAbsolutePath().normalize();
+    /** How the page's tester command starts. */
+    private static final String TESTER = "$ java -jar dtron-cli/target/dtron.jar ";
     private static final Duration RUN = Duration.ofSeconds(90);
     /** The command the page gives for building the adapter's project and writing its classpath. */
     private static final String MVN_BUILD = "mvn -q compile dependency:build-classpath"
@@ -103,13 +98,16 @@ class FreshProjectIT {
         assertTrue(DocPage.read("adapters.md").text().contains(coordinates), "adapters.md should give " + coordinates);
     }
 
-    /** Starts the tester, then the adapter in {@code folder} with {@code classpath}; the run must pass. */
+    /**
+     * Starts the page's tester command in the project's folder (on this test's bus), then the adapter in
+     * {@code folder} with {@code classpath}; the run must pass.
+     */
     private void runAgainstTheTester(Path folder, String classpath) throws Exception {
+        List<String> tester = testerCommand(DocPage.read("adapters.md"));
+        String timeout = tester.get(tester.indexOf("--timeout") + 1);
         long start = System.nanoTime();
         String dtronLatency;
-        try (ChildProcess dtron = ChildProcess.java(dir, dir.resolve("dtron.log"), List.of("-jar", JAR.toString(),
-                        TICKER.toString(), "--cluster", cluster, "--timeunit", TIMEUNIT,
-                        "--timeout", TIMEOUT, "--delay-policy", "eager", "--seed", "1"));
+        try (ChildProcess dtron = ChildProcess.start(ROOT, dir.resolve("dtron.log"), tester);
                 ChildProcess adapter = ChildProcess.java(folder, dir.resolve("adapter.log"),
                         List.of("-cp", classpath, "TickerAdapter"))) {
             int exit = dtron.waitFor(RUN);
@@ -117,12 +115,35 @@ class FreshProjectIT {
             String both = "dtron.jar printed:\n" + out + "\nthe adapter printed:\n" + adapter.output();
             assertEquals(0, exit, "dtron.jar should pass the adapter; " + both);
             assertTrue(out.contains("ticker-adapter"), "the adapter joined the bus; " + both);
-            assertTrue(out.contains("PASSED: the timeout of " + TIMEOUT + " time units was reached after "), both);
+            assertTrue(out.contains("PASSED: the timeout of " + timeout + " time units was reached after "), both);
             assertEquals(0, adapter.waitFor(RUN), "the adapter leaves when the tester has left; " + both);
             dtronLatency = out.lines().filter(l -> l.startsWith("latency t2 - t1 of outputs")).findFirst().orElse("");
         }
         System.out.printf("FreshProjectIT: tester and adapter took %d ms; %s%n", (System.nanoTime() - start) / 1_000_000,
                 dtronLatency);
+    }
+
+    /**
+     * The page's tester command (its first line and the lines it continues onto), with this JDK's {@code java} and
+     * this test's bus instead of {@code lab}.
+     */
+    private List<String> testerCommand(DocPage page) {
+        String session = page.blocksStartingWith(TESTER).stream().findFirst()
+                .orElseThrow(() -> new AssertionError(page + " should start the tester with '" + TESTER + "'"))
+                .code();
+        StringBuilder command = new StringBuilder();
+        for (String line : session.split("\n")) {
+            command.append(line).append(' ');
+            if (!line.endsWith("\\")) {
+                break;
+            }
+            command.setLength(command.length() - 2);
+        }
+        List<String> words = new ArrayList<>(List.of(command.substring(2).trim().split("\\s+")));
+        assertTrue(words.contains("lab"), "the page's tester uses cluster lab: " + words);
+        words.replaceAll(w -> w.equals("lab") ? cluster : w);
+        words.set(0, ChildProcess.tool("java"));
+        return words;
     }
 
     /** The page's adapter, on this test's own bus cluster instead of the page's {@code lab}, to run beside others. */
