@@ -35,7 +35,7 @@ import org.jgroups.stack.Protocol;
  *  TCP (bind address, port..port+range)      | SHARED_LOOPBACK        (in-JVM mode)
  *  TCPPING (initial members, same range)     | SHARED_LOOPBACK_PING
  *  MERGE3                                      heals partitions
- *  FD_SOCK2 (TCP only), FD_ALL3, VERIFY_SUSPECT2   failure detection
+ *  FD_SOCK2 (TCP only: bind address, port+100..), FD_ALL3, VERIFY_SUSPECT2   failure detection
  *  SYM_ENCRYPT                                 optional: AES, key derived from the secret
  *  NAKACK2, UNICAST3, STABLE                   reliable FIFO multicast and unicast
  *  AUTH                                        optional: members must prove the secret to join
@@ -110,7 +110,10 @@ final class JGroupsStack {
         }
         stack.add(new MERGE3().setMinInterval(1_000).setMaxInterval(5_000));
         if (!settings.inJvm()) {
-            stack.add(new FD_SOCK2());
+            // its server socket listens at the bus's bind address too (JGroups' default is every interface), at
+            // 100 above the member's port and over the same range: with the default, every process on the host
+            // competed for the five ports from 7900, and members failed to start when a few buses ran at once
+            stack.add(new FD_SOCK2().setBindAddress(settings.bindAddress()).setPortRange(settings.portRange()));
         }
         stack.add(new FD_ALL3().setTimeout(15_000).setInterval(3_000));
         stack.add(new VERIFY_SUSPECT2().setTimeout(1_500));
