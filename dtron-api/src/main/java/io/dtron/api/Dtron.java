@@ -44,8 +44,9 @@ import org.slf4j.LoggerFactory;
  *
  * <p>Every member receives every message, its own included, in one total
  * order that is the same at all members. A received message that is no valid
- * {@code Sync}, names an unknown channel, or carries unknown or missing
- * variables is rejected: logged with the reason, counted in
+ * {@code Sync}, names an unknown channel (for a member with declared
+ * channels: one neither it nor another tester on the bus serves), or carries
+ * unknown or missing variables is rejected: logged with the reason, counted in
  * {@link #getStats()}, and not delivered; later messages are delivered as
  * usual. {@link DtronMembershipListener Membership listeners} learn who joins
  * and leaves. Thread-safe.
@@ -378,8 +379,10 @@ public final class Dtron implements AutoCloseable {
     /**
      * Adds a listener that receives a {@link BusRecord} of every later message this member receives, in the bus's
      * order, DTRON's own messages included, for traces. A member with {@linkplain DtronOptions.Builder#channels
-     * declared channels} (a tester) receives every message on the bus; others receive the channels they listen to
-     * and DTRON's. The listener is called on the transport's thread: it must return quickly and not throw.
+     * declared channels} (a tester) receives every message on the bus: those on its own channels, on the channels
+     * another tester on the bus serves (its model's, named in the handshake) and DTRON's, but not those it rejects;
+     * others receive the channels they listen to and DTRON's. The listener is called on the transport's thread: it
+     * must return quickly and not throw.
      */
     public void addRecordListener(java.util.function.Consumer<BusRecord> listener) {
         recordListeners.add(Objects.requireNonNull(listener, "listener"));
@@ -823,7 +826,9 @@ public final class Dtron implements AutoCloseable {
                         ? declared.get().get(group)
                         : registration == null ? null : registration.template();
         if (template == null) {
-            if (declared.isPresent()) {
+            if (declared.isPresent() && servedByAnotherTester(group)) {
+                recordOtherTestersMessage(message, receiveTime);
+            } else if (declared.isPresent()) {
                 reject(message, new InvalidMessageException(Reason.UNKNOWN_CHANNEL,
                         "channel '" + group + "' is not declared"));
             }
@@ -858,6 +863,42 @@ public final class Dtron implements AutoCloseable {
                     && !value.getSender().equals(getMemberId());
             dispatcher.execute(() -> deliver(value, acknowledge));
         }
+    }
+
+    /**
+     * Whether another tester on the bus (one that announced itself, or said in the handshake that it joins a run)
+     * serves {@code channel}: a channel of its model, which a tester of the same run sees pass without it being
+     * one of its own.
+     */
+    private boolean servedByAnotherTester(String channel) {
+        Set<String> testers = clockSync.otherTesters();
+        for (ServedChannels served : handshake.others().values()) {
+            if ((served.joinsRun() || served.tester() || testers.contains(served.member()))
+                    && (served.receives().contains(channel) || served.sends().contains(channel))) {
+                return true;
+            }
+        }
+        return false;
+    }
+
+    /**
+     * A message on another tester's channel: not this member's to check or count, only to hand to the record
+     * listeners, so that a tester's trace holds the whole run. One that is no valid {@code Sync} is rejected.
+     */
+    private void recordOtherTestersMessage(BusMessage message, long receiveTime) {
+        if (recordListeners.isEmpty()) {
+            return;
+        }
+        Sync sync;
+        try {
+            sync = SyncCodec.parse(message.payload());
+        } catch (InvalidMessageException e) {
+            reject(message, e);
+            return;
+        }
+        Map<String, Integer> variables = new LinkedHashMap<>();
+        sync.getVariablesList().forEach(v -> variables.putIfAbsent(v.getName(), v.getValue()));
+        record(message.group(), SyncCodec.stamp(sync, message.sender()), receiveTime, variables);
     }
 
     /** A hello, ping, pong or serve: for the clock offset and the handshake, not for listeners. */

@@ -386,8 +386,11 @@ public final class DtronOptions {
 
         /**
          * Declares every channel of the bus, as a tester knows them from its
-         * model: a message on any other channel is then rejected as unknown,
-         * and listeners and sent messages must use these templates.
+         * model: a message on any other channel is then rejected as unknown
+         * (unless another tester on the bus serves that channel, as the testers
+         * of a distributed run serve their models' channels: such a message is
+         * only handed to the record listeners), and listeners and sent messages
+         * must use these templates.
          * Without this call, messages on channels without a listener are ignored.
          * DTRON's own channels ({@link Dtron#isReservedChannel}) are always known and
          * need not be declared; {@link Dtron#RUN_START} and {@link Dtron#RUN_STOP} may be.

@@ -195,7 +195,8 @@ final class RunCommand implements Callable<Integer> {
     private String delta;
 
     @Option(names = "--trace", paramLabel = "FILE", description = "Write every event as one JSON line to FILE; on the"
-            + " bus also every message on the bus while the run lasts, in the bus's order.")
+            + " bus also every message on the bus while the run lasts, in the bus's order (the other testers' channels"
+            + " too; not the messages it rejects).")
     private Path trace;
 
     @Option(names = "--delta-report", paramLabel = "FILE",

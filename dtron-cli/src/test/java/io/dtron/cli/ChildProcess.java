@@ -2,7 +2,7 @@ package io.dtron.cli;
 
 import static org.junit.jupiter.api.Assertions.fail;
 
-import java.io.File;
+import io.dtron.testsupport.PageProjects;
 import java.io.IOException;
 import java.nio.file.Files;
 import java.nio.file.Path;
@@ -69,22 +69,9 @@ final class ChildProcess implements AutoCloseable {
         return Path.of(System.getProperty("java.home"), "bin", name).toString();
     }
 
-    /**
-     * The {@code mvn} executable: the one of the Maven running the build (system property {@code maven.home}, which
-     * the build passes on), else the first on the {@code PATH}.
-     */
+    /** The {@code mvn} a user runs: see {@link PageProjects#mvn()}. */
     static String mvn() {
-        String name = System.getProperty("os.name").startsWith("Windows") ? "mvn.cmd" : "mvn";
-        String home = System.getProperty("maven.home", "");
-        if (!home.isEmpty() && Files.isExecutable(Path.of(home, "bin", name))) {
-            return Path.of(home, "bin", name).toString();
-        }
-        for (String entry : System.getenv().getOrDefault("PATH", "").split(File.pathSeparator)) {
-            if (!entry.isEmpty() && Files.isExecutable(Path.of(entry, name))) {
-                return Path.of(entry, name).toString();
-            }
-        }
-        throw new AssertionError("no " + name + " in maven.home ('" + home + "') nor on the PATH");
+        return PageProjects.mvn();
     }
 
     /** Waits for the process to exit and returns its exit code; fails the test, showing its output, after the timeout. */

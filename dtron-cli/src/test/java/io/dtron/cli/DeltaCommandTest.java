@@ -8,6 +8,7 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 import io.dtron.model.Expression;
 import io.dtron.model.ModelLoader;
 import io.dtron.model.Network;
+import io.dtron.testsupport.DocPage;
 import java.io.File;
 import java.io.IOException;
 import java.net.URISyntaxException;

@@ -4,6 +4,8 @@ import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 import static org.junit.jupiter.api.Assertions.fail;
 
+import io.dtron.testsupport.DocPage;
+import io.dtron.testsupport.PageProjects;
 import java.io.File;
 import java.io.StringReader;
 import java.nio.file.Files;
@@ -25,28 +27,23 @@ import org.xml.sax.InputSource;
 
 /**
  * Depending on DTRON as the documentation says: the complete adapter of {@code adapters.md}, taken from the page,
- * is built in an empty folder with the page's {@code pom.xml} (Maven, against the {@code io.dtron:dtron-api} this
- * build installed into the local repository) and with plain {@code javac} against {@code dtron.jar}; each build runs
- * in a JVM of its own against {@code java -jar dtron.jar MODEL} in another, and the run must pass.
+ * is built in an empty folder with the page's {@code pom.xml} as it is (the {@code mvn} on the {@code PATH}, with the
+ * page's command, against the {@code io.dtron:dtron-api} this build installed into the local repository and Maven
+ * Central for the rest: nothing of the build's own poms) and with plain {@code javac} against {@code dtron.jar}; each
+ * build runs in a JVM of its own against {@code java -jar dtron.jar MODEL} in another, and the run must pass.
  *
- * <p>The build passes the local repository, the Maven installation and the project's version as system properties
- * ({@code dtron.localRepository}, {@code maven.home}, {@code dtron.version}); the test runs after the jar is built,
- * and needs {@code mvn install} (the README's test command), so that dtron-api is installed before it runs.
+ * <p>The build passes the local repository and the project's version as system properties
+ * ({@code dtron.localRepository}, {@code dtron.version}); the test runs after the jar is built, and needs
+ * {@code mvn install} (the README's test command), so that dtron-api is installed before it runs.
  */
 @Timeout(value = 300, unit = TimeUnit.SECONDS)
 class FreshProjectIT {
     private static final Path JAR = Path.of("target", "dtron.jar").toAbsolutePath();
-    private static final Path TICKER = Path.of("..", "models", "src", "main", "resources", "io", "dtron", "models",
-            "ticker.xml").toAbsolutePath();
-    /**
-     * 50 ms per time unit: the model tolerates ticks 2 units early or late, 100 ms. The page's adapter keeps the
-     * tester's time with the run clock, so a start message that reaches its freshly started JVM late does not move
-     * its ticks; only a JVM held up by more than 100 ms would. 40 units are 2 s of test.
-     */
-    private static final String TIMEUNIT = "50000";
-    private static final String TIMEOUT = "40";
+    /** The project's folder, where the page's commands run. */
+    private static final Path ROOT = Path.of("..").toAbsolutePath().normalize();
+    /** How the page's tester command starts. */
+    private static final String TESTER = "$ java -jar dtron-cli/target/dtron.jar ";
     private static final Duration RUN = Duration.ofSeconds(90);
-    private static final Duration BUILD = Duration.ofSeconds(180);
     /** The command the page gives for building the adapter's project and writing its classpath. */
     private static final String MVN_BUILD = "mvn -q compile dependency:build-classpath"
             + " -Dmdep.outputFile=target/classpath.txt";
@@ -58,21 +55,20 @@ class FreshProjectIT {
 
     @Test
     void theAdapterOfThePageBuiltWithMavenFromAFreshProjectPasses() throws Exception {
-        String version = property("dtron.version");
-        Path repository = Path.of(property("dtron.localRepository"));
-        requireThisBuildsDtronApiIn(repository, version);
+        String version = PageProjects.version();
+        Path repository = PageProjects.requireInstalled("dtron-api");
         DocPage page = DocPage.read("adapters.md");
         assertTrue(page.text().contains(MVN_BUILD), page + " should build the adapter with '" + MVN_BUILD + "'");
 
         Path project = Files.createDirectories(dir.resolve("ticker-adapter"));
-        Files.writeString(project.resolve("pom.xml"), withPinnedPlugins(pagePom(page, version)));
+        Files.writeString(project.resolve("pom.xml"), pagePom(page, version));
         Path sources = Files.createDirectories(project.resolve("src/main/java"));
         Files.writeString(sources.resolve("TickerAdapter.java"), adapterSource(page));
 
         long start = System.nanoTime();
         List<String> build = new ArrayList<>(List.of(ChildProcess.mvn(), "-B", "-Dmaven.repo.local=" + repository));
         build.addAll(List.of(MVN_BUILD.split(" ")).subList(1, MVN_BUILD.split(" ").length));
-        ChildProcess.run(project, dir.resolve("mvn.log"), BUILD, build);
+        ChildProcess.run(project, dir.resolve("mvn.log"), PageProjects.BUILD, build);
         System.out.printf("FreshProjectIT: mvn compile dependency:build-classpath took %d ms%n",
                 (System.nanoTime() - start) / 1_000_000);
         String classpath = Files.readString(project.resolve("target/classpath.txt")).trim();
@@ -88,7 +84,7 @@ class FreshProjectIT {
                 page + " should compile the adapter with javac against dtron.jar");
         Path folder = Files.createDirectories(dir.resolve("javac"));
         Files.writeString(folder.resolve("TickerAdapter.java"), adapterSource(page));
-        ChildProcess.run(folder, dir.resolve("javac.log"), BUILD,
+        ChildProcess.run(folder, dir.resolve("javac.log"), PageProjects.BUILD,
                 List.of(ChildProcess.tool("javac"), "-cp", JAR.toString(), "TickerAdapter.java"));
 
         runAgainstTheTester(folder, JAR + File.pathSeparator + ".");
@@ -96,19 +92,22 @@ class FreshProjectIT {
 
     @Test
     void theReadmeAndThePageGiveThisBuildsCoordinates() throws Exception {
-        String coordinates = "io.dtron:dtron-api:" + property("dtron.version");
+        String coordinates = "io.dtron:dtron-api:" + PageProjects.version();
         String readme = Files.readString(Path.of("..", "README.md"));
         assertTrue(readme.contains(coordinates), "README.md should give the coordinates " + coordinates);
         assertTrue(DocPage.read("adapters.md").text().contains(coordinates), "adapters.md should give " + coordinates);
     }
 
-    /** Starts the tester, then the adapter in {@code folder} with {@code classpath}; the run must pass. */
+    /**
+     * Starts the page's tester command in the project's folder (on this test's bus), then the adapter in
+     * {@code folder} with {@code classpath}; the run must pass.
+     */
     private void runAgainstTheTester(Path folder, String classpath) throws Exception {
+        List<String> tester = testerCommand(DocPage.read("adapters.md"));
+        String timeout = tester.get(tester.indexOf("--timeout") + 1);
         long start = System.nanoTime();
         String dtronLatency;
-        try (ChildProcess dtron = ChildProcess.java(dir, dir.resolve("dtron.log"), List.of("-jar", JAR.toString(),
-                        TICKER.toString(), "--cluster", cluster, "--timeunit", TIMEUNIT,
-                        "--timeout", TIMEOUT, "--delay-policy", "eager", "--seed", "1"));
+        try (ChildProcess dtron = ChildProcess.start(ROOT, dir.resolve("dtron.log"), tester);
                 ChildProcess adapter = ChildProcess.java(folder, dir.resolve("adapter.log"),
                         List.of("-cp", classpath, "TickerAdapter"))) {
             int exit = dtron.waitFor(RUN);
@@ -116,12 +115,35 @@ class FreshProjectIT {
             String both = "dtron.jar printed:\n" + out + "\nthe adapter printed:\n" + adapter.output();
             assertEquals(0, exit, "dtron.jar should pass the adapter; " + both);
             assertTrue(out.contains("ticker-adapter"), "the adapter joined the bus; " + both);
-            assertTrue(out.contains("PASSED: the timeout of " + TIMEOUT + " time units was reached after "), both);
+            assertTrue(out.contains("PASSED: the timeout of " + timeout + " time units was reached after "), both);
             assertEquals(0, adapter.waitFor(RUN), "the adapter leaves when the tester has left; " + both);
             dtronLatency = out.lines().filter(l -> l.startsWith("latency t2 - t1 of outputs")).findFirst().orElse("");
         }
         System.out.printf("FreshProjectIT: tester and adapter took %d ms; %s%n", (System.nanoTime() - start) / 1_000_000,
                 dtronLatency);
+    }
+
+    /**
+     * The page's tester command (its first line and the lines it continues onto), with this JDK's {@code java} and
+     * this test's bus instead of {@code lab}.
+     */
+    private List<String> testerCommand(DocPage page) {
+        String session = page.blocksStartingWith(TESTER).stream().findFirst()
+                .orElseThrow(() -> new AssertionError(page + " should start the tester with '" + TESTER + "'"))
+                .code();
+        StringBuilder command = new StringBuilder();
+        for (String line : session.split("\n")) {
+            command.append(line).append(' ');
+            if (!line.endsWith("\\")) {
+                break;
+            }
+            command.setLength(command.length() - 2);
+        }
+        List<String> words = new ArrayList<>(List.of(command.substring(2).trim().split("\\s+")));
+        assertTrue(words.contains("lab"), "the page's tester uses cluster lab: " + words);
+        words.replaceAll(w -> w.equals("lab") ? cluster : w);
+        words.set(0, ChildProcess.tool("java"));
+        return words;
     }
 
     /** The page's adapter, on this test's own bus cluster instead of the page's {@code lab}, to run beside others. */
@@ -135,77 +157,19 @@ class FreshProjectIT {
         return source.replace(lab, ".clusterName(\"" + cluster + "\")");
     }
 
-    /** The page's {@code pom.xml}: the xml block with a {@code <project>}; it must depend on this build's dtron-api. */
+    /** The page's {@code pom.xml}, as it is: the xml block with a {@code <project>}; it must depend on this build's dtron-api. */
     private static String pagePom(DocPage page, String version) throws Exception {
-        List<String> poms = page.blocks().stream()
-                .filter(b -> b.info().equals("xml") && b.code().contains("<project"))
-                .map(DocPage.Block::code)
-                .toList();
-        assertEquals(1, poms.size(), page + " should show one pom.xml (an ```xml block with a <project>)");
-        Document pom = parse(poms.get(0));
+        String text = page.block("xml", "<project");
+        Document pom = parse(text);
         NodeList dependencies = pom.getElementsByTagName("dependency");
         for (int i = 0; i < dependencies.getLength(); i++) {
             Element dependency = (Element) dependencies.item(i);
             if (text(dependency, "groupId").equals("io.dtron") && text(dependency, "artifactId").equals("dtron-api")) {
                 assertEquals(version, text(dependency, "version"), page + ": the pom's dtron-api is not this build's");
-                return poms.get(0);
+                return text;
             }
         }
         throw new AssertionError(page + ": the pom.xml has no dependency on io.dtron:dtron-api");
-    }
-
-    /**
-     * The pom with the versions of the Maven plugins the build pins (the parent pom's pluginManagement) added as
-     * its own pluginManagement: Maven then resolves them from the local repository, and the project is the page's.
-     */
-    private static String withPinnedPlugins(String pom) throws Exception {
-        if (pom.contains("<build>")) {
-            fail("the page's pom.xml has a <build>; the test adds its pinned plugins as <build> and needs adapting");
-        }
-        Document parent = parse(Files.readString(Path.of("..", "pom.xml")));
-        Element management = (Element) parent.getElementsByTagName("pluginManagement").item(0);
-        StringBuilder plugins = new StringBuilder();
-        List<String> pinned = new ArrayList<>();
-        NodeList all = management.getElementsByTagName("plugin");
-        for (int i = 0; i < all.getLength(); i++) {
-            Element plugin = (Element) all.item(i);
-            if (text(plugin, "groupId").equals("org.apache.maven.plugins")) {
-                pinned.add(text(plugin, "artifactId"));
-                plugins.append(String.format("        <plugin><groupId>org.apache.maven.plugins</groupId>"
-                        + "<artifactId>%s</artifactId><version>%s</version></plugin>%n",
-                        text(plugin, "artifactId"), text(plugin, "version")));
-            }
-        }
-        for (String needed : List.of("maven-resources-plugin", "maven-compiler-plugin", "maven-dependency-plugin")) {
-            assertTrue(pinned.contains(needed), "the parent pom should pin " + needed + " in its pluginManagement");
-        }
-        String build = "  <build>\n    <pluginManagement>\n      <plugins>\n" + plugins
-                + "      </plugins>\n    </pluginManagement>\n  </build>\n</project>";
-        int end = pom.lastIndexOf("</project>");
-        assertTrue(end > 0, "the page's pom.xml ends with </project>");
-        return pom.substring(0, end) + build + pom.substring(end + "</project>".length());
-    }
-
-    /** Fails clearly unless the local repository holds the dtron-api jar this build made. */
-    private static void requireThisBuildsDtronApiIn(Path repository, String version) throws Exception {
-        String name = "dtron-api-" + version + ".jar";
-        Path installed = repository.resolve(Path.of("io", "dtron", "dtron-api", version, name));
-        Path built = Path.of("..", "dtron-api", "target", name).toAbsolutePath().normalize();
-        assertTrue(Files.isRegularFile(built), "this build made no " + built);
-        if (!Files.isRegularFile(installed) || Files.mismatch(installed, built) != -1) {
-            fail("the local repository " + repository + " holds " + (Files.isRegularFile(installed)
-                    ? "another dtron-api " + version + " than this build made (" + built + ")"
-                    : "no dtron-api " + version) + ": run mvn install (the README's test command), not mvn verify,"
-                    + " so that the build installs dtron-api before this test builds a project depending on it");
-        }
-    }
-
-    private static String property(String name) {
-        String value = System.getProperty(name, "");
-        if (value.isEmpty()) {
-            fail("system property " + name + " is not set: run the test through Maven (failsafe in dtron-cli's pom)");
-        }
-        return value;
     }
 
     private static Document parse(String xml) throws Exception {

@@ -4,6 +4,8 @@ import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 import static org.junit.jupiter.api.Assertions.fail;
 
+import io.dtron.testsupport.DocPage;
+import io.dtron.testsupport.PageProjects;
 import java.nio.file.Files;
 import java.nio.file.Path;
 import java.time.Duration;
@@ -15,10 +17,12 @@ import org.junit.jupiter.api.Timeout;
 import org.junit.jupiter.api.io.TempDir;
 
 /**
- * The example of {@code in-process.md} does what the page says: the model and the system under test are taken from
- * the page into an empty folder, with {@code dtron.jar}, and the page's session (the lines after {@code $ }) is run
- * command by command; each command must print what the page shows after it (compared with runs of blanks made
- * one, so that the page may wrap long lines) and exit as its verdict says. Runs after the jar is built.
+ * The examples of {@code in-process.md} do what the page says: the model and the system under test are taken from
+ * the page into an empty folder, with {@code dtron.jar}, and the page's sessions (the lines after {@code $ }) are run
+ * command by command, once with {@code javac} and once in the page's Maven project (its {@code pom.xml} as it is, the
+ * {@code mvn} on the {@code PATH}); each command must print what the page shows after it (compared with runs of
+ * blanks made one, so that the page may wrap long lines) and exit as its verdict says. Runs after the jar is built,
+ * the Maven project after {@code mvn install} has installed dtron-engine.
  */
 @Timeout(value = 180, unit = TimeUnit.SECONDS)
 class InProcessPageIT {
@@ -27,6 +31,8 @@ class InProcessPageIT {
 
     @TempDir
     Path dir;
+    /** The local Maven repository the page's {@code mvn} commands use. */
+    private Path repository;
 
     /** One command of the session and the output the page shows for it. */
     private record Step(String command, String output) {
@@ -39,11 +45,39 @@ class InProcessPageIT {
         Files.writeString(dir.resolve("EchoSystem.java"), page.javaClass("EchoSystem"));
         Files.copy(JAR, dir.resolve("dtron.jar"));
 
-        List<DocPage.Block> sessions = page.blocksStartingWith("$ javac");
-        assertEquals(1, sessions.size(), page + " should show one session starting with '$ javac'");
-        List<Step> steps = steps(sessions.get(0).code());
+        assertEquals(List.of("PASSED EchoSystem", "FAILED EchoSystem:late"), runSession(page, "$ javac", dir),
+                "the page shows the correct echo passing and the late one failing");
+    }
+
+    /**
+     * The Maven project of the page: its {@code pom.xml} as it is, built with the page's command by the {@code mvn}
+     * on the {@code PATH} (against the dtron-engine this build installed, and Maven Central), and its classes tested
+     * as the page shows.
+     */
+    @Test
+    void theMavenProjectOfThePageBuildsAndItsEchoPasses() throws Exception {
+        Path repository = PageProjects.requireInstalled("dtron-engine");
+        DocPage page = DocPage.read("in-process.md");
+        Path project = Files.createDirectories(dir.resolve("echo"));
+        Files.writeString(project.resolve("pom.xml"), page.block("xml", "<project"));
+        Path sources = Files.createDirectories(project.resolve("src/main/java"));
+        Files.writeString(sources.resolve("EchoSystem.java"), page.javaClass("EchoSystem"));
+        Files.writeString(project.resolve("echo.xta"), page.blockAfter("The model, `echo.xta`").code());
+        Files.copy(JAR, project.resolve("dtron.jar"));
+
+        this.repository = repository;
+        assertEquals(List.of("PASSED EchoSystem"), runSession(page, "$ mvn", project));
+    }
+
+    /**
+     * Runs the one session of the page that starts with {@code start} in {@code folder}, command by command, and
+     * returns the verdict of each run with its system under test.
+     */
+    private List<String> runSession(DocPage page, String start, Path folder) throws Exception {
+        List<DocPage.Block> sessions = page.blocksStartingWith(start);
+        assertEquals(1, sessions.size(), page + " should show one session starting with '" + start + "'");
         List<String> verdicts = new ArrayList<>();
-        for (Step step : steps) {
+        for (Step step : steps(sessions.get(0).code())) {
             List<String> words = List.of(step.command().trim().split("\\s+"));
             int expectedExit = 0;
             if (words.get(0).equals("java")) {
@@ -57,26 +91,27 @@ class InProcessPageIT {
                     default -> 3;
                 };
             }
-            run(step, words, expectedExit);
+            run(folder, step, words, expectedExit);
         }
-        assertEquals(List.of("PASSED EchoSystem", "FAILED EchoSystem:late"), verdicts,
-                "the page shows the correct echo passing and the late one failing");
+        return verdicts;
     }
 
     /** Runs a step's command in the folder (java and javac of this JDK) and compares its output with the page's. */
-    private void run(Step step, List<String> words, int expectedExit) throws Exception {
+    private void run(Path folder, Step step, List<String> words, int expectedExit) throws Exception {
         List<String> command = new ArrayList<>();
         switch (words.get(0)) {
+            // the build's local repository (this build's dtron-engine, and Central for the rest); nothing else
+            case "mvn" -> command.addAll(List.of(ChildProcess.mvn(), "-B", "-Dmaven.repo.local=" + repository));
             case "java" -> {
                 command.add(ChildProcess.tool("java"));
                 command.addAll(ChildProcess.FAST_JVM);
             }
             case "javac" -> command.add(ChildProcess.tool("javac"));
-            default -> fail("the page's session runs only java and javac, not: " + step.command());
+            default -> fail("the page's sessions run only mvn, java and javac, not: " + step.command());
         }
         command.addAll(words.subList(1, words.size()));
-        try (ChildProcess child = ChildProcess.start(dir, dir.resolve("command.log"), command)) {
-            int exit = child.waitFor(COMMAND);
+        try (ChildProcess child = ChildProcess.start(folder, dir.resolve("command.log"), command)) {
+            int exit = child.waitFor(words.get(0).equals("mvn") ? PageProjects.BUILD : COMMAND);
             String output = child.output();
             String context = "'" + step.command() + "' printed:\n" + output;
             assertEquals(expectedExit, exit, "the exit code; " + context);
@@ -116,7 +151,8 @@ class InProcessPageIT {
         return steps;
     }
 
+    /** The text with runs of blanks made one, without the colour codes Debian's mvn prints even in batch mode. */
     private static String oneLine(String text) {
-        return text.trim().replaceAll("\\s+", " ");
+        return text.replaceAll("\u001B\\[[0-9;]*m", "").trim().replaceAll("\\s+", " ");
     }
 }

@@ -4,6 +4,7 @@ import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
+import io.dtron.testsupport.DocPage;
 import io.dtron.testsupport.FreePorts;
 import java.io.IOException;
 import java.net.InetAddress;

@@ -3,6 +3,7 @@ package io.dtron.cli;
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
+import io.dtron.testsupport.DocPage;
 import java.nio.file.Files;
 import java.nio.file.Path;
 import java.util.ArrayList;

@@ -6,6 +6,7 @@ import static org.junit.jupiter.api.Assertions.assertInstanceOf;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 import static org.junit.jupiter.api.Assertions.fail;
 
+import io.dtron.testsupport.DocPage;
 import io.dtron.testsupport.Tools;
 import java.io.File;
 import java.io.IOException;

@@ -21,8 +21,8 @@ import org.slf4j.LoggerFactory;
  * A system with two ports and its two adapters, for distributed testing: a request at port 1 ({@code req}) is
  * answered at port 2 ({@code resp}) some time units later, on the run's clock. Each port has its own bus member, as
  * adapters on two hosts would; a tester judges each port with its own model ({@code relay/port1.xta} starts the
- * run, {@code relay/port2.xta} joins it). The {@code correct} relay answers after 4 time units, within the 2 to 6
- * that port 2's model allows; the {@code late} one after 9.
+ * run, {@code relay/port2.xta} joins it). The {@code correct} relay answers after 4 time units, within the 2 to 9
+ * that port 2's model allows; the {@code late} one after 12.
  *
  * <p>{@code java -cp dtron.jar:models.jar io.dtron.models.relay.RelayAdapters CLUSTER ADDRESS MEMBERS VARIANT [PORT
  * RANGE]}: both members bind to ADDRESS and look for the testers at MEMBERS (HOST or HOST:PORT, comma separated);
@@ -46,7 +46,7 @@ public final class RelayAdapters {
         if (args.length != 4 && args.length != 6 || !List.of("correct", "late").contains(args[3])) {
             exit(USAGE);
         }
-        double delayUnits = args[3].equals("correct") ? 4 : 9;
+        double delayUnits = args[3].equals("correct") ? 4 : 12;
         DtronOptions.Builder options;
         try {
             int port = args.length == 6 ? Integer.parseInt(args[4]) : DtronOptions.DEFAULT_PORT;

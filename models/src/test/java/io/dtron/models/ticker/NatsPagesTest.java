@@ -3,9 +3,8 @@ package io.dtron.models.ticker;
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
+import io.dtron.testsupport.DocPage;
 import java.nio.file.Files;
-import java.nio.file.Path;
-import java.util.ArrayList;
 import java.util.List;
 import org.junit.jupiter.api.Test;
 
@@ -14,23 +13,9 @@ import org.junit.jupiter.api.Test;
  * what a reader copies is what passed.
  */
 class NatsPagesTest {
-    private static final Path SITE = Path.of("../src/site/markdown");
-
     /** The fenced blocks of a page opened with {@code ```info}. */
     private static List<String> blocks(String page, String info) throws Exception {
-        List<String> found = new ArrayList<>();
-        StringBuilder code = null;
-        for (String line : Files.readAllLines(SITE.resolve(page))) {
-            if (code == null && line.equals("```" + info)) {
-                code = new StringBuilder();
-            } else if (code != null && line.equals("```")) {
-                found.add(code.toString());
-                code = null;
-            } else if (code != null) {
-                code.append(line).append('\n');
-            }
-        }
-        return found;
+        return DocPage.read(page).blocks(info);
     }
 
     @Test

@@ -1,4 +1,4 @@
-package io.dtron.cli;
+package io.dtron.testsupport;
 
 import static org.junit.jupiter.api.Assertions.fail;
 
@@ -11,11 +11,12 @@ import java.util.regex.Pattern;
 
 /**
  * A page of the user documentation ({@code src/site/markdown/NAME}) and its fenced code blocks, so that tests run
- * the code the page shows instead of a copy of it.
+ * the code the page shows instead of a copy of it: the one place that reads a page's blocks, for every module's
+ * tests (they run in the module's folder, beside the site's).
  */
-final class DocPage {
+public final class DocPage {
     /** The site's markdown folder, from the dtron-cli module folder the tests run in. */
-    static final Path SITE = Path.of("..", "src", "site", "markdown");
+    public static final Path SITE = Path.of("..", "src", "site", "markdown");
 
     /**
      * A fenced code block.
@@ -24,7 +25,7 @@ final class DocPage {
      * @param code the lines between the fences, each ending with a newline
      * @param line the 1-based line of the opening fence
      */
-    record Block(String info, String code, int line) {
+    public record Block(String info, String code, int line) {
     }
 
     private final Path file;
@@ -54,27 +55,44 @@ final class DocPage {
     }
 
     /** Reads {@code src/site/markdown/NAME}. */
-    static DocPage read(String name) throws IOException {
+    public static DocPage read(String name) throws IOException {
         return read(SITE.resolve(name));
     }
 
     /** Reads a markdown file. */
-    static DocPage read(Path file) throws IOException {
+    public static DocPage read(Path file) throws IOException {
         return new DocPage(file, Files.readAllLines(file));
     }
 
     /** The whole page. */
-    String text() {
+    public String text() {
         return String.join("\n", lines);
     }
 
     /** The page's fenced code blocks, in order. */
-    List<Block> blocks() {
+    public List<Block> blocks() {
         return List.copyOf(blocks);
     }
 
+    /** The code of the blocks opened with {@code ```info}, in order. */
+    public List<String> blocks(String info) {
+        return blocks.stream().filter(b -> b.info().equals(info)).map(Block::code).toList();
+    }
+
+    /**
+     * The code of the one block opened with {@code ```info} that contains {@code text} (a {@code pom.xml}: "xml" and
+     * "<project"); fails the test if there is none or more.
+     */
+    public String block(String info, String text) {
+        List<String> found = blocks(info).stream().filter(code -> code.contains(text)).toList();
+        if (found.size() != 1) {
+            fail(file + " should have one ```" + info + " block containing '" + text + "', but has " + found.size());
+        }
+        return found.get(0);
+    }
+
     /** The one {@code java} block that declares class {@code simpleName}; fails the test if there is none or more. */
-    String javaClass(String simpleName) {
+    public String javaClass(String simpleName) {
         Pattern declaration = Pattern.compile("(?m)^public (final )?class " + Pattern.quote(simpleName) + "\\b");
         List<Block> found = blocks.stream()
                 .filter(b -> b.info().equals("java") && declaration.matcher(b.code()).find())
@@ -90,7 +108,7 @@ final class DocPage {
      * The first code block after the first line that contains {@code text}; fails the test if the page has no
      * such line or no block after it.
      */
-    Block blockAfter(String text) {
+    public Block blockAfter(String text) {
         for (int i = 0; i < lines.size(); i++) {
             if (lines.get(i).contains(text)) {
                 int markerLine = i + 1;
@@ -104,7 +122,7 @@ final class DocPage {
     }
 
     /** The blocks whose first line starts with {@code prefix} (a shell session: {@code "$ java"}). */
-    List<Block> blocksStartingWith(String prefix) {
+    public List<Block> blocksStartingWith(String prefix) {
         return blocks.stream().filter(b -> b.code().startsWith(prefix)).toList();
     }
 
