@@ -305,9 +305,11 @@ public final class OnlineTester {
                 }
                 Plan plan = plan();
                 long elapsed = ticksFloor(now - lastMicros);
+                // room before a window's end: for the tester's own lateness, and for the input's way to the system
+                long lateness = Math.max(inputMargin, ticksCeil(2 * clock.worstLatenessMicros()));
                 Plan.Choice choice = plan.choose(elapsed, random, options.delayPolicy(),
                         options.delayBound() * ticksPerUnit,
-                        Math.max(inputMargin, ticksCeil(2 * clock.worstLatenessMicros())));
+                        input -> lateness + ticksCeil(Math.max(0, adapter.inputDelayMicros(input.name()))));
                 long at = lastMicros + micros(choice.ticks());
                 // a deadline within the test is declared missed only when the outputs stamped before it had the
                 // reorder window to arrive

@@ -14,6 +14,7 @@ import java.util.List;
 import java.util.Map;
 import java.util.Random;
 import java.util.function.LongFunction;
+import java.util.function.ToLongFunction;
 
 /**
  * What may happen next, seen from the last observation: for every observable channel the windows of elapsed
@@ -156,11 +157,13 @@ public final class Plan {
     /**
      * Chooses the next move at {@code elapsed} ticks: an input among those the environment allows (with its
      * time by {@code policy}), or waiting until the deadline (or the horizon). When an input is possible at the
-     * deadline, the tester does not wait past it. An input's time is chosen at least {@code marginTicks} before the
-     * end of its window (at the window's start when it is narrower than that), so that a tester that wakes up a
-     * little late still applies it inside the window: as late as can still be met, for {@link DelayPolicy#LAZY}.
+     * deadline, the tester does not wait past it. An input's time is chosen at least {@code marginTicks} of its
+     * channel before the end of its window (at the window's start when it is narrower than that), so that an input
+     * sent by a tester that wakes up a little late, and that takes a while to reach the system, still lands inside
+     * the window: as late as can still be met, for {@link DelayPolicy#LAZY}.
      */
-    public Choice choose(long elapsed, Random random, DelayPolicy policy, long boundTicks, long marginTicks) {
+    public Choice choose(long elapsed, Random random, DelayPolicy policy, long boundTicks,
+                         ToLongFunction<TestInterface.ObservableChannel> marginTicks) {
         List<long[]> options = new ArrayList<>();
         List<TestInterface.ObservableChannel> channels = new ArrayList<>();
         boolean mustAct = false;
@@ -169,13 +172,14 @@ public final class Plan {
             if (input == null) {
                 continue;
             }
+            long margin = marginTicks.applyAsLong(input);
             for (Window w : e.getValue()) {
                 long lo = Math.max(w.lo(), elapsed);
                 long hi = hasDeadline() ? Math.min(w.hi(), deadline) : w.hi();
                 if (lo <= hi) {
                     // never later than the margin before the end: the tester is never early, only late, so in a
                     // window narrower than the margin the start gives it the most room
-                    options.add(new long[] {lo, Math.max(lo, hi - marginTicks)});
+                    options.add(new long[] {lo, Math.max(lo, hi - margin)});
                     channels.add(input);
                     mustAct |= hasDeadline() && w.lo() <= deadline && deadline <= w.hi();
                 }
