@@ -11,7 +11,7 @@
 #   -l           keep both cores busy during the runs (verdict-stats.sh -l)
 #   -b BUSY      keep BUSY busy processes running during the runs (-b 1: one busy core)
 #   -u US        microseconds per time unit (default 10000)
-#   -v VARIANT   correct (default) or late: done 2 units after the model's deadline, FAILED whenever its input landed
+#   -v VARIANT   correct (default) or late: done 3 units after the model's deadline, FAILED whenever its input landed
 #   -t UNITS     the timeout of each run in time units (default 200)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -24,13 +24,16 @@ if [ "${1:-}" = "--one" ]; then
     shift
     unit=$1 variant=$2 timeout=$3
     cluster=racing-$$-$RANDOM
-    java -cp "$classes:$jar" io.dtron.cli.RacingAdapterMain "$cluster" "$variant" > /dev/null 2>&1 &
+    adapter_log=$(mktemp /tmp/racing-adapter.XXXXXX)
+    java -cp "$classes:$jar" io.dtron.cli.RacingAdapterMain "$cluster" "$variant" > "$adapter_log" 2>&1 &
     adapter=$!
-    trap 'kill "$adapter" 2>/dev/null || true' EXIT
+    trap 'kill "$adapter" 2>/dev/null || true; rm -f "$adapter_log"' EXIT
     set +e
     java -jar "$jar" run "$model" --cluster "$cluster" --timeunit "$unit" --timeout "$timeout" --wait-timeout 60
     code=$?
     set -e
+    # the adapter's warnings (an output it sent after its deadline: its JVM was held up) go in the run's log
+    grep WARN "$adapter_log" || true
     exit $code
 fi
 
