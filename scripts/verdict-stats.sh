@@ -71,7 +71,7 @@ echo "busy processes: $busy_count; runs: $runs; $(( $(date +%s) - start )) s; lo
 for log in "$out"/run-*.log; do
     if grep -qE '^(FAILED|INCONCLUSIVE)' "$log"; then
         echo "$(basename "$log"): $(grep -E '^(FAILED|INCONCLUSIVE)' "$log" | head -1)"
-        grep -E 'WARN' "$log" | head -3 | sed 's/^/    /'
+        { grep -E 'WARN' "$log" || true; } | head -3 | sed 's/^/    /'
     fi
 done
 echo "$passed passed, $failed failed, $inconclusive inconclusive, $other other"

@@ -412,4 +412,28 @@ class OnlineTesterTest {
         assertEquals(10_000L, goTimes(15, DelayPolicy.LAZY).get(0));
         assertEquals(10_000L, goTimes(15, DelayPolicy.RANDOM).get(0));
     }
+
+    @Test
+    void anOutputStampedAfterAnInputTheTesterMissedIsInconclusiveNotFailed() throws Exception {
+        // go must come by e = 20; an output stamped at 23 (its stamp ran ahead of the tester's clock, or the tester
+        // was held up) comes after the tester missed its input: it cannot be judged, whatever the output
+        Network n = ModelLoader.load("go.xta", GO);
+        Adapter ahead = new Adapter() {
+            @Override
+            public void start(AdapterContext context) {
+                context.report(Event.of("done"), 23 * context.timeUnitMicros(), 0);
+            }
+
+            @Override
+            public void perform(Event input) {
+            }
+        };
+        TestResult r = new OnlineTester(n, TestInterface.fromNames(n), ahead,
+                TestOptions.defaults(3).withTimeout(100)).run();
+        assertEquals(Verdict.INCONCLUSIVE, r.verdict(), r.explanation());
+        assertTrue(r.explanation().startsWith("output done() observed at t=23.000 may have come after t=20.000, when"
+                + " the environment's window for an input closed, and the tester had applied none by then (input"
+                + " executed too late). The model allowed these inputs: go between t=10.000 and t=20.000"),
+                r.explanation());
+    }
 }
