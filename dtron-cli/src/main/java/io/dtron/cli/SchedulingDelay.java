@@ -75,10 +75,11 @@ record SchedulingDelay(long worstMicros, long marginMicros) {
         if (said != null) {
             said.accept("dtron " + command + ": " + delay.describe(unitMicros));
         }
-        delay.narrowInputWindow(network, testInterface, unitMicros, virtualTimeOption, channel -> 0).ifPresent(warning -> {
-            err.println("dtron " + command + ": warning: " + warning);
-            err.flush();
-        });
+        delay.narrowInputWindow(network, testInterface, unitMicros, virtualTimeOption, channel -> 0)
+                .ifPresent(warning -> {
+                    err.println("dtron " + command + ": warning: " + warning);
+                    err.flush();
+                });
         return delay.marginMicros();
     }
 
