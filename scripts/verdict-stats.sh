@@ -3,10 +3,11 @@
 # a correct system never gets FAILED under load. Not part of the test command: run it before a submission that
 # touches real time, the bus or the tester, and report its figures.
 #
-#   scripts/verdict-stats.sh [-n RUNS] [-l] [-o DIR] -- COMMAND...
+#   scripts/verdict-stats.sh [-n RUNS] [-l | -b BUSY] [-o DIR] -- COMMAND...
 #
 #   -n RUNS   how many runs (default 20)
 #   -l        keep two busy processes running (as many as this 2-core machine has cores) during the runs
+#   -b BUSY   keep BUSY busy processes running during the runs (-l is -b 2)
 #   -o DIR    where each run's output goes (default: a new folder under /tmp); FAILED and INCONCLUSIVE runs are
 #             listed with their verdict lines at the end
 #
@@ -16,20 +17,21 @@
 #       --adapter io.dtron.models.ticker.TickerBusAdapter --timeunit 1000 --timeout 300 --delay-policy eager
 set -euo pipefail
 runs=20
-load=false
+busy_count=0
 out=""
-while getopts "n:lo:" opt; do
+while getopts "n:lb:o:" opt; do
     case "$opt" in
         n) runs=$OPTARG ;;
-        l) load=true ;;
+        l) busy_count=2 ;;
+        b) busy_count=$OPTARG ;;
         o) out=$OPTARG ;;
-        *) echo "usage: $0 [-n RUNS] [-l] [-o DIR] -- COMMAND..." >&2; exit 1 ;;
+        *) echo "usage: $0 [-n RUNS] [-l | -b BUSY] [-o DIR] -- COMMAND..." >&2; exit 1 ;;
     esac
 done
 shift $((OPTIND - 1))
 [ "${1:-}" = "--" ] && shift
 if [ $# -eq 0 ]; then
-    echo "usage: $0 [-n RUNS] [-l] [-o DIR] -- COMMAND..." >&2
+    echo "usage: $0 [-n RUNS] [-l | -b BUSY] [-o DIR] -- COMMAND..." >&2
     exit 1
 fi
 out=${out:-$(mktemp -d /tmp/verdict-stats.XXXXXX)}
@@ -40,8 +42,8 @@ stop_load() {
     for pid in "${busy[@]}"; do kill "$pid" 2>/dev/null || true; done
 }
 trap stop_load EXIT
-if $load; then
-    for _ in 1 2; do
+if [ "$busy_count" -gt 0 ]; then
+    for _ in $(seq 1 "$busy_count"); do
         sh -c 'while :; do :; done' &
         busy+=($!)
     done
@@ -65,11 +67,11 @@ for i in $(seq 1 "$runs"); do
         "$passed" "$failed" "$inconclusive" "$other"
 done
 echo "command: $*"
-echo "load: $load; runs: $runs; $(( $(date +%s) - start )) s; logs in $out"
+echo "busy processes: $busy_count; runs: $runs; $(( $(date +%s) - start )) s; logs in $out"
 for log in "$out"/run-*.log; do
     if grep -qE '^(FAILED|INCONCLUSIVE)' "$log"; then
         echo "$(basename "$log"): $(grep -E '^(FAILED|INCONCLUSIVE)' "$log" | head -1)"
-        grep -E 'WARN' "$log" | head -3 | sed 's/^/    /'
+        { grep -E 'WARN' "$log" || true; } | head -3 | sed 's/^/    /'
     fi
 done
 echo "$passed passed, $failed failed, $inconclusive inconclusive, $other other"

@@ -6,12 +6,7 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import io.dtron.testsupport.FreePorts;
 import io.dtron.testsupport.Inbox;
-import java.net.BindException;
-import java.net.InetAddress;
-import java.net.InetSocketAddress;
-import java.net.ServerSocket;
 import java.time.Duration;
-import java.util.List;
 import java.util.Map;
 import java.util.concurrent.TimeUnit;
 import org.junit.jupiter.api.Test;
@@ -52,28 +47,6 @@ class TcpBusTest {
                     () -> Dtron.connect(options().secret("guess").build()).close());
             assertTrue(refused.getMessage().contains("refused"), refused.getMessage());
             assertEquals(1, first.getMembers().size());
-        }
-    }
-
-    /**
-     * The failure detector's server socket (FD_SOCK2, 100 above the member's port) listens at the bind address, not
-     * on every interface: the same port at another loopback address is free, at the bind address it is taken.
-     */
-    @Test
-    void theFailureDetectorListensAtTheBindAddressOnly() throws Exception {
-        int port;
-        try (ServerSocket free = new ServerSocket(0, 1, InetAddress.getByName("127.0.0.1"))) {
-            port = free.getLocalPort();
-        }
-        InetAddress bind = InetAddress.getByName("127.0.0.1");
-        try (Dtron member = Dtron.connect(options().bindAddress(bind).port(port).portRange(0)
-                .initialMembers(List.of(new InetSocketAddress(bind, port))).build())) {
-            assertEquals(1, member.getMembers().size());
-            try (ServerSocket elsewhere = new ServerSocket(port + 100, 1, InetAddress.getByName("127.0.0.2"))) {
-                assertEquals(port + 100, elsewhere.getLocalPort());
-            }
-            assertThrows(BindException.class, () -> new ServerSocket(port + 100, 1, bind).close(),
-                    "the failure detector listens at " + bind + ":" + (port + 100));
         }
     }
 

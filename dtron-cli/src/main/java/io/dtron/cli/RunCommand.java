@@ -74,9 +74,13 @@ final class RunCommand implements Callable<Integer> {
     @Parameters(index = "0", paramLabel = "MODEL", description = "The model (.xml, .xta, or an Uppaal 3 .ta).")
     private Path model;
 
-    /** How many times the tester asks the adapters to answer before a run, to measure the bus's delays. */
-    private static final int DELAY_PROBES = 10;
+    /**
+     * Before a run the tester probes the adapters in rounds this far apart, for at least {@link #PROBE_MINIMUM} (its
+     * engine warms up meanwhile) and until their round trips are steady, or {@link #PROBE_LIMIT} passed.
+     */
     private static final Duration DELAY_PROBE_SPACING = Duration.ofMillis(20);
+    private static final Duration PROBE_MINIMUM = Duration.ofMillis(400);
+    private static final Duration PROBE_LIMIT = Duration.ofSeconds(3);
     /** How far ahead a run of several testers is started, so that every tester starts its engine at time 0. */
     private static final Duration RUN_LEAD = Duration.ofMillis(500);
 
@@ -272,7 +276,7 @@ final class RunCommand implements Callable<Integer> {
             OnlineTester.zenoEnvironment(network, testInterface).ifPresent(zeno -> out.println("dtron run: " + zeno));
         }
         if (!virtualTime && !tronBackend && !busMode) {
-            // on a bus, adapters often start beside the tester: its margin starts at the default, widening in the run
+            // on a bus it is measured while the adapters are probed (prepareOnBus)
             options = options.withInputMargin(inputMargin(network, testInterface, options.timeUnitMicros(), out, err));
         }
         Judge judge;
@@ -606,8 +610,9 @@ final class RunCommand implements Callable<Integer> {
                 } else if (testers != null && testers > 1 && !awaitTesters(bridge, testers - 1, seconds, out, err)) {
                     return 1;
                 }
-                // a joining tester measures what passes by: the others' pings and answers
-                BusBridge.Delays delays = bridge.measureDelays(join ? 0 : DELAY_PROBES, DELAY_PROBE_SPACING);
+                options = prepareOnBus(bridge, network, testInterface, options, out, err);
+                // what the probes measured, and for a joining tester what passes by: the others' pings and answers
+                BusBridge.Delays delays = bridge.measureDelays(0, DELAY_PROBE_SPACING);
                 window = auto ? BusTiming.autoWindow(delays) : reorderWindow();
                 out.println(BusTiming.delaysLine(delays, window, auto));
                 BusTiming.windowWarning(ObservableWindow.narrowest(network, testInterface), delays,
@@ -907,6 +912,43 @@ final class RunCommand implements Callable<Integer> {
         } finally {
             adapter.close();
         }
+    }
+
+    /**
+     * Before time 0 of a bus run: probes the adapters until their round trips are steady (a joining tester does not:
+     * it measures what passes by) while, in real time with the engine, the engine warms up and the tester's lateness
+     * is measured; says what it found, warns about input windows narrower than the room their inputs need (the
+     * margin for the lateness plus each channel's delay to its adapter), and returns the options with that margin.
+     */
+    private TestOptions prepareOnBus(BusBridge bridge, Network network, TestInterface testInterface,
+            TestOptions options, PrintWriter out, PrintWriter err) throws InterruptedException {
+        boolean warm = !options.virtualTime() && !parseBackend();
+        SchedulingDelay[] lateness = new SchedulingDelay[1];
+        Thread measuring = new Thread(() -> lateness[0] = SchedulingDelay.measureWarmingUp(network, testInterface),
+                "dtron-lateness");
+        measuring.setDaemon(true);
+        if (warm) {
+            measuring.start();
+        }
+        if (!join) {
+            out.println(BusTiming.probingLine(bridge.probeUntilSteady(DELAY_PROBE_SPACING, warm ? PROBE_MINIMUM
+                    : Duration.ZERO, PROBE_LIMIT), warm));
+            out.flush();
+        }
+        if (!warm) {
+            return options;
+        }
+        measuring.join();
+        long unit = options.timeUnitMicros();
+        out.println("dtron run: " + lateness[0].describe(unit) + ", and each input channel's delay to its adapter"
+                + " further inside");
+        out.flush();
+        lateness[0].narrowInputWindow(network, testInterface, unit, "--virtual-time", bridge::inputDelayMicros)
+                .ifPresent(warning -> {
+                    err.println("dtron run: warning: " + warning);
+                    err.flush();
+                });
+        return options.withInputMargin(lateness[0].marginMicros());
     }
 
     /** The input margin of a real-time run, measured and said as {@link SchedulingDelay#inputMarginForRun} does. */

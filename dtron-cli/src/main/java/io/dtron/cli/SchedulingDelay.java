@@ -5,12 +5,14 @@ import io.dtron.engine.TestOptions;
 import io.dtron.model.Network;
 import io.dtron.model.TestInterface;
 import java.io.PrintWriter;
+import java.util.ArrayList;
 import java.util.List;
 import java.util.Locale;
 import java.util.Optional;
 import java.util.concurrent.LinkedBlockingQueue;
 import java.util.concurrent.TimeUnit;
 import java.util.function.Consumer;
+import java.util.function.ToLongFunction;
 
 /**
  * How late this machine wakes the tester's thread, measured before a real-time run the way the tester waits (a
@@ -48,7 +50,7 @@ record SchedulingDelay(long worstMicros, long marginMicros) {
      * Measures while the engine warms up on {@code network} on another thread ({@link EngineWarmUp}), as a cold JVM
      * compiles and collects when a run starts; returns when both are done (about 300 ms).
      */
-    private static SchedulingDelay measureWarmingUp(Network network, TestInterface testInterface) {
+    static SchedulingDelay measureWarmingUp(Network network, TestInterface testInterface) {
         Thread warmUp = new Thread(() -> EngineWarmUp.run(network, testInterface), "dtron-warm-up");
         warmUp.setDaemon(true);
         warmUp.start();
@@ -73,15 +75,16 @@ record SchedulingDelay(long worstMicros, long marginMicros) {
         if (said != null) {
             said.accept("dtron " + command + ": " + delay.describe(unitMicros));
         }
-        delay.narrowInputWindow(network, testInterface, unitMicros, virtualTimeOption).ifPresent(warning -> {
-            err.println("dtron " + command + ": warning: " + warning);
-            err.flush();
-        });
+        delay.narrowInputWindow(network, testInterface, unitMicros, virtualTimeOption, channel -> 0)
+                .ifPresent(warning -> {
+                    err.println("dtron " + command + ": warning: " + warning);
+                    err.flush();
+                });
         return delay.marginMicros();
     }
 
     /** What was measured and what inputs are aimed at, for a run at {@code unitMicros} per time unit. */
-    private String describe(long unitMicros) {
+    String describe(long unitMicros) {
         return String.format(Locale.ROOT, "the tester's thread wakes up to %.3f ms late here; inputs are aimed at"
                 + " least %.3f ms (%.3f time units) inside the end of their windows", worstMicros / 1000.0,
                 marginMicros / 1000.0, marginMicros / (double) unitMicros);
@@ -94,21 +97,35 @@ record SchedulingDelay(long worstMicros, long marginMicros) {
     }
 
     /**
-     * A warning when the model's narrowest input window ({@link ObservableWindow#narrowest}) at {@code unitMicros} per
-     * time unit is narrower than this margin: inputs in it are aimed at its start and may still come late. {@code
-     * virtualTimeOption} is the option that runs in virtual time instead.
+     * A warning when an input channel's narrowest window ({@link ObservableWindow#narrowest}) at {@code unitMicros} per
+     * time unit is narrower than the room its inputs need: this margin plus {@code inputDelayMicros} of the channel
+     * (its way to the system, by name; 0 in the tester's process). Inputs in such a window are aimed at its start and
+     * may still come late. Names each such channel with its figures. {@code virtualTimeOption} is the option that
+     * runs in virtual time instead.
      */
     Optional<String> narrowInputWindow(Network network, TestInterface testInterface, long unitMicros,
-            String virtualTimeOption) {
-        TestInterface inputs = new TestInterface(testInterface.inputs(), List.of(), testInterface.timeUnitMicros(),
-                testInterface.timeout());
-        return ObservableWindow.narrowest(network, inputs).filter(w -> w.width() * unitMicros < marginMicros)
-                .map(w -> "the window of input " + w + " is " + w.width() + " time units of " + unitMicros + " us,"
-                        + " narrower than the margin of " + marginMicros + " us that inputs need here: they are aimed"
-                        + " at the window's start and may still come late (INCONCLUSIVE, input executed too late)"
-                        + (w.width() == 0 ? "; a single instant cannot be met in real time: run the model in virtual"
-                        + " time (" + virtualTimeOption + ")" : "; a time unit of at least "
-                        + ceilDiv(marginMicros, w.width()) + " us leaves room"));
+            String virtualTimeOption, ToLongFunction<String> inputDelayMicros) {
+        List<String> narrow = new ArrayList<>();
+        for (TestInterface.ObservableChannel input : testInterface.inputs()) {
+            TestInterface one = new TestInterface(List.of(input), List.of(), testInterface.timeUnitMicros(),
+                    testInterface.timeout());
+            long delay = Math.max(0, inputDelayMicros.applyAsLong(input.name()));
+            long room = marginMicros + delay;
+            ObservableWindow.narrowest(network, one).filter(w -> w.width() * unitMicros < room).ifPresent(w ->
+                    narrow.add("the window of input " + w + " is " + w.width() + " time units of " + unitMicros
+                            + " us, narrower than the " + (delay == 0 ? "margin of " + room + " us that inputs need"
+                            + " here" : "room of " + room + " us that its inputs need here (a margin of "
+                            + marginMicros + " us for the tester's lateness and " + delay + " us for their way to"
+                            + " the adapter)") + (w.width() == 0 ? "" : "; a time unit of at least "
+                            + ceilDiv(room, w.width()) + " us leaves room")));
+        }
+        if (narrow.isEmpty()) {
+            return Optional.empty();
+        }
+        boolean instant = narrow.stream().anyMatch(n -> n.contains(" is 0 time units"));
+        return Optional.of(String.join("; ", narrow) + ": inputs in such a window are aimed at its start and may"
+                + " still come late (INCONCLUSIVE, input executed too late)" + (instant ? "; a single instant cannot"
+                + " be met in real time: run the model in virtual time (" + virtualTimeOption + ")" : ""));
     }
 
     private static long ceilDiv(long a, long b) {

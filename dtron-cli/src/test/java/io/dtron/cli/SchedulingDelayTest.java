@@ -30,12 +30,22 @@ class SchedulingDelayTest {
         Network lightContr = ModelLoader.load(TRON.resolve("LightContr.xml"));
         TestInterface ti = TestInterface.fromFile(lightContr, TRON.resolve("LightContr.trn"));
         // LightContr's narrowest input window is tens of units wide: ample at 1 ms per unit with a 2 ms margin
-        assertEquals(Optional.empty(), SchedulingDelay.of(1000).narrowInputWindow(lightContr, ti, 1000, "--virtual-time"));
+        assertEquals(Optional.empty(), SchedulingDelay.of(1000).narrowInputWindow(lightContr, ti, 1000, "--virtual-time",
+                c -> 0));
         // a loaded machine that wakes the tester up to a second late needs windows of 2 s
-        String warning = SchedulingDelay.of(1_000_000).narrowInputWindow(lightContr, ti, 1000, "--virtual-time").orElseThrow();
+        String warning = SchedulingDelay.of(1_000_000).narrowInputWindow(lightContr, ti, 1000, "--virtual-time", c -> 0)
+                .orElseThrow();
         assertTrue(warning.startsWith("the window of input "), warning);
-        assertTrue(warning.contains("narrower than the margin of 2000000 us that inputs need here: they are aimed at"
-                + " the window's start and may still come late (INCONCLUSIVE, input executed too late); a time unit of"
-                + " at least "), warning);
+        assertTrue(warning.contains("narrower than the margin of 2000000 us that inputs need here; a time unit of at"
+                + " least "), warning);
+        assertTrue(warning.endsWith(": inputs in such a window are aimed at its start and may still come late"
+                + " (INCONCLUSIVE, input executed too late)"), warning);
+        // on a bus, the way of the inputs to their adapter adds to the room, per channel
+        String bus = SchedulingDelay.of(1000).narrowInputWindow(lightContr, ti, 1000, "--virtual-time",
+                c -> c.equals("grasp") ? 150_000 : 0).orElseThrow();
+        assertTrue(bus.startsWith("the window of input grasp in "), bus);
+        assertTrue(bus.contains(" is 100 time units of 1000 us, narrower than the room of 152000 us that its inputs"
+                + " need here (a margin of 2000 us for the tester's lateness and 150000 us for their way to the adapter); a"
+                + " time unit of at least 1520 us leaves room: inputs"), bus);
     }
 }

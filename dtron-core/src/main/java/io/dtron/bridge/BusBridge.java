@@ -9,6 +9,7 @@ import io.dtron.api.DtronStats;
 import io.dtron.api.IDtronChannel;
 import io.dtron.api.IDtronChannelValued;
 import io.dtron.api.ServedChannels;
+import io.dtron.bridge.internal.InputDelays;
 import io.dtron.bridge.internal.LatencyRecorder;
 import io.dtron.engine.Adapter;
 import io.dtron.engine.AdapterContext;
@@ -94,6 +95,8 @@ public final class BusBridge implements Adapter, AutoCloseable {
     private long performed;
     /** The delays of this run's messages by "input NAME" and "output NAME" (see {@link ChannelDelay}). */
     private final Map<String, ChannelDelay> runDelays = new ConcurrentHashMap<>();
+    /** How long inputs take to reach the adapters, for {@link #inputDelayMicros}. */
+    private final InputDelays inputDelays = new InputDelays();
     /** When each input of the run was published, on the run's clock in microseconds, by its number. */
     private final Map<Long, Long> inputSentMicros = new ConcurrentHashMap<>();
     private final List<String> widenings = Collections.synchronizedList(new ArrayList<>());
@@ -581,6 +584,77 @@ public final class BusBridge implements Adapter, AutoCloseable {
     }
 
     /**
+     * The probes before a run ({@link #probeUntilSteady}).
+     *
+     * @param rounds     how many rounds were probed
+     * @param steady     whether the round trips of the last rounds were steady (else the time limit ended them)
+     * @param lastMicros the longest round trip of the last {@value InputDelays#STEADY_ROUNDS} rounds, in microseconds
+     * @param millis     how long the probing took, in milliseconds
+     */
+    public record Probing(int rounds, boolean steady, long lastMicros, long millis) {
+    }
+
+    /**
+     * Probes every adapter member in rounds, {@code spacing} apart, for at least {@code minimum} (while this process
+     * warms up, say) and until the round trips of the last rounds are steady ({@link InputDelays#steady}), or
+     * {@code limit} has passed: a fresh JVM's first compilations and collections, here and in the adapters, then
+     * happen before the run, not in it. Each member's longest round trip in the last rounds is taken as the delay of
+     * the inputs it receives until the run's acknowledgements say more ({@link #inputDelayMicros}). Nothing to probe
+     * (no adapter member) returns at once.
+     *
+     * @throws InterruptedException if the thread was interrupted while waiting
+     */
+    public Probing probeUntilSteady(Duration spacing, Duration minimum, Duration limit) throws InterruptedException {
+        long start = System.nanoTime();
+        Set<String> adapters = new java.util.TreeSet<>(dtron.getMembers());
+        adapters.remove(dtron.getMemberId());
+        adapters.removeAll(testersOfOtherRuns());
+        adapters.removeAll(dtron.getOtherTesters());
+        Map<String, List<Long>> byMember = new HashMap<>();
+        List<Long> rounds = new ArrayList<>();
+        boolean steady = false;
+        while (!adapters.isEmpty()) {
+            long round = 0;
+            for (String member : adapters) {
+                long sent = System.nanoTime();
+                Set<String> answered = dtron.probe(Set.of(member), PROBE_TIMEOUT);
+                long micros = answered.contains(member) ? (System.nanoTime() - sent) / 1000 : PROBE_TIMEOUT.toNanos()
+                        / 1000;
+                byMember.computeIfAbsent(member, m -> new ArrayList<>()).add(micros);
+                round = Math.max(round, micros);
+            }
+            rounds.add(round);
+            long elapsed = System.nanoTime() - start;
+            steady = InputDelays.steady(rounds);
+            if (steady && elapsed >= minimum.toNanos() || elapsed >= limit.toNanos()) {
+                break;
+            }
+            Thread.sleep(spacing.toMillis());
+        }
+        byMember.forEach((member, trips) -> inputDelays.probed(member, trips.subList(Math.max(0, trips.size()
+                - InputDelays.STEADY_ROUNDS), trips.size()).stream().mapToLong(Long::longValue).max().orElse(0)));
+        long last = rounds.subList(Math.max(0, rounds.size() - InputDelays.STEADY_ROUNDS), rounds.size()).stream()
+                .mapToLong(Long::longValue).max().orElse(0);
+        return new Probing(rounds.size(), steady, last, (System.nanoTime() - start) / 1_000_000);
+    }
+
+    /**
+     * How long an input on {@code channel} may take to reach the system: the longer of the probe round trip before
+     * the run of the adapters that receive it and the 99th percentile of the delays of its inputs acknowledged so far
+     * (published to applied), each with its clock error; 0 before anything was measured.
+     */
+    @Override
+    public long inputDelayMicros(String channel) {
+        List<String> receivers = new ArrayList<>();
+        dtron.getMembersServedChannels().forEach((member, served) -> {
+            if (served.receives().contains(channel) && !isPeerTester(member)) {
+                receivers.add(member);
+            }
+        });
+        return inputDelays.roomMicros(channel, receivers);
+    }
+
+    /**
      * Sets the reorder window the next run starts with, in microseconds, and whether the bridge widens it when a
      * message of the run takes more than half of it (to twice that message's delay, rounded up to a millisecond):
      * {@code --delta auto}. A fixed window ({@code auto} false) stays as the user set it.
@@ -917,6 +991,7 @@ public final class BusBridge implements Adapter, AutoCloseable {
             Long sent = inputSentMicros.remove(number);
             if (sent != null) {
                 measured("input", channel, applied - sent);
+                inputDelays.applied(channel, applied - sent, errorMicros(ack));
             }
             arrived(ack, "acknowledgement of " + channel, applied);
             context.inputApplied(number, applied, errorMicros(ack));

@@ -270,6 +270,21 @@ class BusBridgeTest {
     }
 
     @Test
+    void probesGoOnUntilSteadyWithinTheirLimitAndGiveTheRoomOfTheInputs() throws Exception {
+        awaitOffset();
+        BusBridge.Probing probing = bridge.probeUntilSteady(Duration.ofMillis(5), Duration.ofMillis(50),
+                Duration.ofSeconds(2));
+        assertTrue(probing.rounds() >= 1, probing.toString());
+        // steady takes twice five rounds at least; else the limit ended them (plus a round of at most a second)
+        assertTrue(probing.steady() ? probing.rounds() >= 10 : probing.millis() >= 2_000, probing.toString());
+        assertTrue(probing.millis() >= 50, probing.toString());
+        assertTrue(probing.lastMicros() > 0, probing.toString());
+        // the adapter receives move: its longest round trip of the last rounds is the room of move
+        long room = bridge.inputDelayMicros("move");
+        assertTrue(room > 0 && room <= probing.lastMicros(), room + " us, " + probing);
+    }
+
+    @Test
     void inputsAreAcknowledgedWhereTheAdapterAppliedThem() throws Exception {
         Inbox moves = new Inbox(MOVE);
         adapter.addDtronListener(moves);

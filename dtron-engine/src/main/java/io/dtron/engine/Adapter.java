@@ -44,6 +44,18 @@ public interface Adapter {
         return false;
     }
 
+    /**
+     * Returns how long an input on {@code channel} (its name, as {@link Event#channel()}) may take from {@link
+     * #perform} until the system under test has it, in microseconds, with the error of the clocks that measured it:
+     * the tester aims every input on the channel that much further inside the end of its window (at the window's
+     * start when the window is narrower), so that it lands inside. Asked before every choice of an input, so it may
+     * change during a run; must return at once. 0 by default (an adapter in the tester's process applies an input
+     * when it is performed).
+     */
+    default long inputDelayMicros(String channel) {
+        return 0;
+    }
+
     /** Called once at the end of the run (the verdict is known). */
     default void stop() {
     }

@@ -347,9 +347,12 @@ public final class OnlineTester {
                 }
                 Plan plan = plan();
                 long elapsed = ticksFloor(now - lastMicros);
+                // room before a window's end: for the tester's own lateness, and for the input's way to the system
+                long lateness = Math.max(inputMargin, ticksCeil(2 * clock.worstLatenessMicros()));
                 Plan.Choice choice = plan.choose(elapsed, random, options.delayPolicy(),
                         options.delayBound() * ticksPerUnit, options.shortDelayBound() * ticksPerUnit,
-                        Math.max(inputMargin, ticksCeil(2 * clock.worstLatenessMicros())), earliestInput());
+                        input -> lateness + ticksCeil(Math.max(0, adapter.inputDelayMicros(input.name()))),
+                        earliestInput());
                 long at = lastMicros + micros(choice.ticks());
                 // a deadline within the test is declared missed only when the outputs stamped before it had the
                 // reorder window to arrive
@@ -623,6 +626,10 @@ public final class OnlineTester {
                             + time(at) + ": the model cannot let that much time pass before the input (input"
                             + " executed too late)");
                 }
+                TestResult missed = missedInput(event, at, uncertainty);
+                if (missed != null) {
+                    return missed;
+                }
                 return result(Verdict.FAILED, afterLastTaken() + "output " + event + " observed at " + time(at)
                         + " is too late: "
                         + plan().explainOutputs(this::time, lastMicros));
@@ -651,11 +658,34 @@ public final class OnlineTester {
                 return result(Verdict.INCONCLUSIVE, "the environment model cannot accept output " + event + " at "
                         + time(at) + ": " + envRefusal);
             }
+            TestResult missed = missedInput(event, at, uncertainty);
+            if (missed != null) {
+                return missed;
+            }
             Plan plan = plan();
             return result(Verdict.FAILED, afterLastTaken() + "output " + event + " observed at " + time(at)
                     + " is not allowed then"
                     + plan.timing(channel.channel(), ticksFloor(at - lastMicros)) + ". "
                     + plan.explainOutputs(this::time, lastMicros));
+        }
+
+        /**
+         * INCONCLUSIVE when output {@code event} at {@code at}, give or take {@code uncertainty}, may have come after
+         * the deadline by which the tester was to apply an input (one was possible then, so it does not wait past it)
+         * and it applied none: the output cannot be judged after an input the tester missed (it was held up, or the
+         * output's stamp ran ahead of its clock). Else null.
+         */
+        private TestResult missedInput(Event event, long at, long uncertainty) {
+            Plan plan = plan();
+            long deadline = lastMicros + micros(plan.deadline());
+            if (!plan.hasDeadline() || at + uncertainty <= deadline || !plan.inputPossibleAt(plan.deadline())) {
+                return null;
+            }
+            return result(Verdict.INCONCLUSIVE, "output " + event + " observed at " + time(at) + (uncertainty > 0
+                    ? " (give or take " + Plan.units(uncertainty, unit) + " time units)" : "") + " may have come after "
+                    + time(deadline) + ", when the environment's window for an input closed, and the tester had"
+                    + " applied none by then (input executed too late). " + plan.explainInputs(this::time,
+                    lastMicros));
         }
 
         /**

@@ -342,4 +342,98 @@ class OnlineTesterTest {
         assertTrue(TestOptions.fits(longest.timeout(), longest.timeUnitMicros()));
         assertTrue(!TestOptions.fits(longest.timeout() + 1, longest.timeUnitMicros()));
     }
+
+    /** The environment may send go from e = 10 to e = 20; the system answers done one unit later. */
+    static final String GO = """
+            chan i_go, o_done;
+            process Sys() {
+                clock y;
+                state Idle, Busy { y <= 1 };
+                init Idle;
+                trans Idle -> Busy { sync i_go?; assign y = 0; },
+                      Busy -> Idle { guard y >= 1; sync o_done!; };
+            }
+            process Env() {
+                clock e;
+                state Waiting { e <= 20 }, Done;
+                init Waiting;
+                trans Waiting -> Done { guard e >= 10; sync i_go!; assign e = 0; },
+                      Done -> Waiting { sync o_done?; assign e = 0; };
+            }
+            system Sys, Env;
+            """;
+
+    /** When go was applied, in each run with an adapter whose inputs on go take {@code delayUnits} to arrive. */
+    private static List<Long> goTimes(long delayUnits, DelayPolicy policy) throws Exception {
+        Network n = ModelLoader.load("go.xta", GO);
+        List<Long> applied = new ArrayList<>();
+        Adapter delayed = new Adapter() {
+            private AdapterContext context;
+
+            @Override
+            public void start(AdapterContext context) {
+                this.context = context;
+            }
+
+            @Override
+            public void perform(Event input) {
+                context.clock().schedule(context.timeUnitMicros(), () -> context.report(Event.of("done")));
+            }
+
+            @Override
+            public long inputDelayMicros(String channel) {
+                assertEquals("go", channel);
+                return delayUnits * context.timeUnitMicros();
+            }
+        };
+        TestResult r = new OnlineTester(n, TestInterface.fromNames(n), delayed,
+                TestOptions.defaults(3).withTimeout(100).withDelayPolicy(policy, 0)).addListener(new TestListener() {
+                    @Override
+                    public void inputApplied(Event input, long micros) {
+                        applied.add(micros);
+                    }
+                }).run();
+        assertEquals(Verdict.PASSED, r.verdict(), r.explanation());
+        return applied;
+    }
+
+    @Test
+    void anInputLeavesRoomForItsChannelsDelayBeforeItsWindowCloses() throws Exception {
+        // lazy: as late as the delay allows, 20 - 3 units after the window of 10..20 opened
+        List<Long> lazy = goTimes(3, DelayPolicy.LAZY);
+        assertTrue(lazy.size() >= 2, lazy.toString());
+        assertEquals(17_000L, lazy.get(0));
+        assertEquals(17_000L + 1_000 + 17_000, lazy.get(1), lazy.toString());
+        // random: never later than the room allows
+        for (long at : goTimes(3, DelayPolicy.RANDOM).subList(0, 1)) {
+            assertTrue(at >= 10_000 && at <= 17_000, "go at " + at);
+        }
+        // a window (10 units) narrower than the room (15 units): the earliest point, the window's start
+        assertEquals(10_000L, goTimes(15, DelayPolicy.LAZY).get(0));
+        assertEquals(10_000L, goTimes(15, DelayPolicy.RANDOM).get(0));
+    }
+
+    @Test
+    void anOutputStampedAfterAnInputTheTesterMissedIsInconclusiveNotFailed() throws Exception {
+        // go must come by e = 20; an output stamped at 23 (its stamp ran ahead of the tester's clock, or the tester
+        // was held up) comes after the tester missed its input: it cannot be judged, whatever the output
+        Network n = ModelLoader.load("go.xta", GO);
+        Adapter ahead = new Adapter() {
+            @Override
+            public void start(AdapterContext context) {
+                context.report(Event.of("done"), 23 * context.timeUnitMicros(), 0);
+            }
+
+            @Override
+            public void perform(Event input) {
+            }
+        };
+        TestResult r = new OnlineTester(n, TestInterface.fromNames(n), ahead,
+                TestOptions.defaults(3).withTimeout(100)).run();
+        assertEquals(Verdict.INCONCLUSIVE, r.verdict(), r.explanation());
+        assertTrue(r.explanation().startsWith("output done() observed at t=23.000 may have come after t=20.000, when"
+                + " the environment's window for an input closed, and the tester had applied none by then (input"
+                + " executed too late). The model allowed these inputs: go between t=10.000 and t=20.000"),
+                r.explanation());
+    }
 }

@@ -14,6 +14,7 @@ import java.util.List;
 import java.util.Map;
 import java.util.Random;
 import java.util.function.LongFunction;
+import java.util.function.ToLongFunction;
 
 /**
  * What may happen next, seen from the last observation: for every observable channel the windows of elapsed
@@ -188,8 +189,12 @@ public final class Plan {
         return environmentLetsTimePass;
     }
 
-    /** {@link #choose(long, Random, DelayPolicy, long, long, long, long) Chooses} with no short bound, no earliest. */
-    public Choice choose(long elapsed, Random random, DelayPolicy policy, long boundTicks, long marginTicks) {
+    /**
+     * {@link #choose(long, Random, DelayPolicy, long, long, ToLongFunction, long) Chooses} with no short bound and no
+     * earliest input.
+     */
+    public Choice choose(long elapsed, Random random, DelayPolicy policy, long boundTicks,
+                         ToLongFunction<TestInterface.ObservableChannel> marginTicks) {
         return choose(elapsed, random, policy, boundTicks, 0, marginTicks, 0);
     }
 
@@ -199,16 +204,17 @@ public final class Plan {
      * deadline, the tester does not wait past it, with two exceptions, where it lets time pass (the choice {@link
      * Choice#letsTimePass}): no input earlier than {@code earliestTicks} (the tester has given as many inputs at one
      * instant as it gives, and time must advance), and, when the environment lets time pass beyond the deadline
-     * ({@link #environmentLetsTimePass}), no input in a window that ends at the deadline less than {@code
-     * marginTicks} after it opens (the tester could not meet it reliably; the system under test must act by the
-     * deadline anyway). An input's time is chosen at least {@code marginTicks} before the end of its window (at the
-     * window's start when it is narrower than that), so that a tester that wakes up a little late still applies it
-     * inside the window: as late as can still be met, for {@link DelayPolicy#LAZY}. For {@link
-     * DelayPolicy#RANDOM_BOUNDED} the bound is {@code boundTicks}, or, when {@code shortBoundTicks} is positive,
-     * {@code shortBoundTicks} or {@code boundTicks} at random (TRON's {@code -P SHORT,LONG}).
+     * ({@link #environmentLetsTimePass}), no input in a window that ends at the deadline less than the {@code
+     * marginTicks} of its channel after it opens (the tester could not meet it reliably; the system under test must
+     * act by the deadline anyway). An input's time is chosen at least the {@code marginTicks} of its channel before
+     * the end of its window (at the window's start when it is narrower than that), so that an input sent by a tester
+     * that wakes up a little late, and that takes a while to reach the system, still lands inside the window: as late
+     * as can still be met, for {@link DelayPolicy#LAZY}. For {@link DelayPolicy#RANDOM_BOUNDED} the bound is {@code
+     * boundTicks}, or, when {@code shortBoundTicks} is positive, {@code shortBoundTicks} or {@code boundTicks} at
+     * random (TRON's {@code -P SHORT,LONG}).
      */
     public Choice choose(long elapsed, Random random, DelayPolicy policy, long boundTicks, long shortBoundTicks,
-                         long marginTicks, long earliestTicks) {
+                         ToLongFunction<TestInterface.ObservableChannel> marginTicks, long earliestTicks) {
         List<long[]> options = new ArrayList<>();
         List<TestInterface.ObservableChannel> channels = new ArrayList<>();
         boolean mustAct = false;
@@ -218,18 +224,19 @@ public final class Plan {
             if (input == null) {
                 continue;
             }
+            long margin = marginTicks.applyAsLong(input);
             for (Window w : e.getValue()) {
                 long lo = Math.max(w.lo(), elapsed);
                 long hi = hasDeadline() ? Math.min(w.hi(), deadline) : w.hi();
                 couldActAtDeadline |= hasDeadline() && lo <= deadline && deadline <= w.hi();
                 lo = Math.max(lo, earliestTicks);
-                if (lo > hi || marginTicks > 0 && hi - marginTicks < lo && hasDeadline() && w.hi() >= deadline
+                if (lo > hi || margin > 0 && hi - margin < lo && hasDeadline() && w.hi() >= deadline
                         && environmentLetsTimePass()) {
                     continue;
                 }
                 // never later than the margin before the end: the tester is never early, only late, so in a
                 // window narrower than the margin the start gives it the most room
-                options.add(new long[] {lo, Math.max(lo, hi - marginTicks)});
+                options.add(new long[] {lo, Math.max(lo, hi - margin)});
                 channels.add(input);
                 mustAct |= hasDeadline() && lo <= deadline && deadline <= w.hi();
             }

@@ -107,16 +107,16 @@ class SemanticsWindowsTest {
         Plan plan = Plan.of(h.set, h.semantics, h.partition, h.iface, 1000, 100 * TICKS);
         java.util.Random random = new java.util.Random(1);
         // lazy: the end of the window, less the margin of 2 units
-        assertEquals(18 * TICKS, plan.choose(0, random, io.dtron.engine.DelayPolicy.LAZY, 0, 2 * TICKS).ticks());
-        assertEquals(20 * TICKS, plan.choose(0, random, io.dtron.engine.DelayPolicy.LAZY, 0, 0).ticks());
+        assertEquals(18 * TICKS, plan.choose(0, random, io.dtron.engine.DelayPolicy.LAZY, 0, c -> 2 * TICKS).ticks());
+        assertEquals(20 * TICKS, plan.choose(0, random, io.dtron.engine.DelayPolicy.LAZY, 0, c -> 0).ticks());
         // a window narrower than twice the margin: still the margin before its end
-        assertEquals(12 * TICKS, plan.choose(0, random, io.dtron.engine.DelayPolicy.LAZY, 0, 8 * TICKS).ticks());
+        assertEquals(12 * TICKS, plan.choose(0, random, io.dtron.engine.DelayPolicy.LAZY, 0, c -> 8 * TICKS).ticks());
         // narrower than the margin: its start, the time with the most room, by every policy
         for (io.dtron.engine.DelayPolicy policy : io.dtron.engine.DelayPolicy.values()) {
-            assertEquals(10 * TICKS, plan.choose(0, random, policy, 5, 12 * TICKS).ticks(), policy.name());
+            assertEquals(10 * TICKS, plan.choose(0, random, policy, 5, c -> 12 * TICKS).ticks(), policy.name());
         }
         for (int i = 0; i < 200; i++) {
-            long t = plan.choose(0, random, io.dtron.engine.DelayPolicy.RANDOM, 0, 2 * TICKS).ticks();
+            long t = plan.choose(0, random, io.dtron.engine.DelayPolicy.RANDOM, 0, c -> 2 * TICKS).ticks();
             assertTrue(t >= 10 * TICKS && t <= 18 * TICKS, "chosen at " + t);
         }
     }

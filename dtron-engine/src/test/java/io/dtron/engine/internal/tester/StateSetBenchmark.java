@@ -81,7 +81,7 @@ public class StateSetBenchmark {
                     }
                 }
             }
-            Plan.Choice choice = plan.choose(0, random, DelayPolicy.RANDOM, 0, 0);
+            Plan.Choice choice = plan.choose(0, random, DelayPolicy.RANDOM, 0, c -> 0);
             if (choice.isInput() && (delay < 0 || choice.ticks() < delay)) {
                 delay = choice.ticks();
                 channel = choice.input().channel();

@@ -1,0 +1,102 @@
+package io.dtron.cli;
+
+import io.dtron.api.Dtron;
+import io.dtron.api.DtronListener;
+import io.dtron.api.DtronOptions;
+import io.dtron.api.IDtronChannel;
+import io.dtron.api.IDtronChannelValued;
+import io.dtron.api.RunClock;
+import java.util.Map;
+import java.util.concurrent.TimeUnit;
+import org.slf4j.Logger;
+import org.slf4j.LoggerFactory;
+
+/**
+ * The system of {@code racing.xta} behind a bus adapter in a JVM of its own, on the run's clock. Arguments: the
+ * cluster name and the variant. {@code correct}: done 2 units after start is applied (the model allows 1 to 5), and
+ * timeout 11.5 units after time 0 or its last output when no start came (so it races a start that comes after the
+ * environment's window of 9 to 11 units closed). {@code late}: done 8 units after start, 3 units after the model's
+ * deadline: a fault of the system. Logs a warning when an output of the correct system went out after the model's
+ * deadline by its own run clock (its JVM was held up), so that a FAILED verdict can be told from a wrong one. Prints
+ * "joined" once on the bus; runs until it is stopped.
+ */
+public final class RacingAdapterMain {
+    private static final IDtronChannel START = IDtronChannel.of("start");
+    private static final IDtronChannel DONE = IDtronChannel.of("done");
+    private static final IDtronChannel TIMEOUT = IDtronChannel.of("timeout");
+    private static final double TIMEOUT_UNITS = 11.5;
+    /** The model's deadline of done after start, and of timeout after the last output, in time units. */
+    private static final double DONE_DEADLINE = 5;
+    private static final double TIMEOUT_DEADLINE = 12;
+    private static final Logger LOG = LoggerFactory.getLogger(RacingAdapterMain.class);
+
+    private final Dtron dtron;
+    private final double doneUnits;
+    private RunClock.Task pending;
+
+    private RacingAdapterMain(Dtron dtron, double doneUnits) {
+        this.dtron = dtron;
+        this.doneUnits = doneUnits;
+    }
+
+    public static void main(String[] args) throws InterruptedException {
+        double done = switch (args[1]) {
+            case "correct" -> 2;
+            case "late" -> 8;
+            default -> throw new IllegalArgumentException("unknown variant '" + args[1] + "' (correct, late)");
+        };
+        try (Dtron dtron = Dtron.connect(DtronOptions.builder().clusterName(args[0]).memberName("racing-" + args[1])
+                .build())) {
+            RacingAdapterMain system = new RacingAdapterMain(dtron, done);
+            dtron.declareOutputs(DONE, TIMEOUT);
+            dtron.addDtronListener(new DtronListener(Dtron.RUN_START) {
+                @Override
+                public void messageReceived(IDtronChannelValued message) {
+                    system.waitFrom(0);
+                }
+            });
+            dtron.addDtronListener(new DtronListener(START) {
+                @Override
+                public void messageReceived(IDtronChannelValued message) {
+                    system.started();
+                }
+            });
+            System.out.println("joined");
+            System.out.flush();
+            Thread.sleep(TimeUnit.MINUTES.toMillis(30)); // until it is stopped
+        }
+    }
+
+    /** Waiting from run time {@code fromUnits}: times out 11.5 units later unless start comes. */
+    private synchronized void waitFrom(double fromUnits) {
+        schedule(fromUnits + TIMEOUT_UNITS, () -> output(TIMEOUT, fromUnits + TIMEOUT_DEADLINE));
+    }
+
+    /** Start is applied now (the listener returns at once, and its acknowledgement says when). */
+    private synchronized void started() {
+        RunClock clock = dtron.runClock();
+        if (clock.isRunning()) {
+            double now = clock.nowUnits();
+            schedule(now + doneUnits, () -> output(DONE, doneUnits < DONE_DEADLINE ? now + DONE_DEADLINE
+                    : Double.MAX_VALUE));
+        }
+    }
+
+    /** Sends an output that the model requires by run time {@code deadlineUnits}, warning when it is past. */
+    private synchronized void output(IDtronChannel channel, double deadlineUnits) {
+        double now = dtron.runClock().nowUnits();
+        dtron.send(channel.constructValued(Map.of()));
+        if (now > deadlineUnits) {
+            LOG.warn("{} at t={} by this adapter's run clock, after its deadline t={} (this JVM was held up)",
+                    channel.getChannelName(), String.format("%.3f", now), String.format("%.3f", deadlineUnits));
+        }
+        waitFrom(now);
+    }
+
+    private void schedule(double atUnits, Runnable task) {
+        if (pending != null) {
+            pending.cancel();
+        }
+        pending = dtron.runClock().scheduleAt(atUnits, task);
+    }
+}

@@ -1,0 +1,50 @@
+package io.dtron.bridge.internal;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertFalse;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+import java.util.List;
+import java.util.Set;
+import org.junit.jupiter.api.Test;
+
+class InputDelaysTest {
+
+    @Test
+    void roundTripsAreSteadyWhenTheLastRoundsAreNoWorseThanTheOnesBefore() {
+        // too few rounds to tell
+        assertFalse(InputDelays.steady(List.of(500L, 500L, 500L, 500L, 500L, 500L, 500L, 500L, 500L)));
+        // a fresh JVM: slow first rounds, then alike
+        assertTrue(InputDelays.steady(List.of(57_000L, 20_000L, 9_000L, 600L, 500L, 400L, 500L, 450L, 500L, 480L,
+                520L, 470L, 500L)));
+        // a spike among the last rounds: not yet
+        assertFalse(InputDelays.steady(List.of(4_000L, 4_000L, 4_000L, 4_000L, 4_000L, 4_000L, 4_000L, 6_100L,
+                4_000L, 4_000L)));
+        // 1.5 times the median of the rounds before is still steady
+        assertTrue(InputDelays.steady(List.of(4_000L, 4_000L, 4_000L, 4_000L, 4_000L, 4_000L, 4_000L, 6_000L,
+                4_000L, 4_000L)));
+        // short round trips: within 1 ms of the median is steady, however many times it is
+        assertTrue(InputDelays.steady(List.of(200L, 200L, 200L, 200L, 200L, 200L, 1_200L, 200L, 200L, 200L)));
+        assertFalse(InputDelays.steady(List.of(200L, 200L, 200L, 200L, 200L, 200L, 1_201L, 200L, 200L, 200L)));
+    }
+
+    @Test
+    void theRoomOfAChannelIsItsReceiversProbeOrTheHighPercentileOfItsAcknowledgedDelays() {
+        InputDelays delays = new InputDelays();
+        assertEquals(0, delays.roomMicros("start", Set.of()));
+        delays.probed("adapter-a", 800);
+        delays.probed("adapter-b", 3_000);
+        assertEquals(800, delays.roomMicros("start", Set.of("adapter-a")));
+        // nobody said it receives the channel: any member might
+        assertEquals(3_000, delays.roomMicros("start", Set.of()));
+        // acknowledged delays with their clock errors: the 99th percentile, when above the probe
+        for (int i = 0; i < 99; i++) {
+            delays.applied("start", 1_000, 100);
+        }
+        delays.applied("start", 50_000, 100);
+        assertEquals(1_100, delays.roomMicros("start", Set.of("adapter-a")));
+        delays.applied("start", 40_000, 100);
+        assertEquals(40_100, delays.roomMicros("start", Set.of("adapter-a")));
+        assertEquals(800, delays.roomMicros("stop", Set.of("adapter-a")));
+    }
+}
