@@ -1,5 +1,6 @@
 package io.dtron.api;
 
+import io.dtron.testsupport.Waits;
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertNull;
@@ -153,11 +154,7 @@ class DtronInJvmTest {
                 assertTrue(first.awaitMembers(2, WAIT));
                 assertEquals(List.of("first", second.getMemberId()), first.getMembers());
             }
-            long deadline = System.nanoTime() + WAIT.toNanos();
-            while (first.getMembers().size() > 1 && System.nanoTime() < deadline) {
-                Thread.sleep(20);
-            }
-            assertEquals(List.of("first"), first.getMembers());
+            Waits.await("the second member gone").until(first::getMembers, List.of("first")::equals);
             assertFalse(first.awaitMembers(2, Duration.ofMillis(100)));
         }
     }

@@ -1,5 +1,6 @@
 package io.dtron.api;
 
+import io.dtron.testsupport.Waits;
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertNotNull;
@@ -236,11 +237,7 @@ class RunClockTest {
             assertTrue(clock.runNanosOf(reset) <= clock.nowNanos());
 
             tester.close();
-            long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(20);
-            while (clock.isRunning()) {
-                assertTrue(System.nanoTime() < deadline, "the run clock outlived the run's tester");
-                Thread.sleep(20);
-            }
+            Waits.await("the run clock stopped with its tester gone").until(() -> !clock.isRunning());
             assertTrue(later.isCancelled());
         } finally {
             tester.close();

@@ -1,5 +1,6 @@
 package io.dtron.bus.internal;
 
+import io.dtron.testsupport.Waits;
 import static org.junit.jupiter.api.Assertions.assertArrayEquals;
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertNotNull;
@@ -111,11 +112,7 @@ class JGroupsTransportTest {
         assertThrows(IllegalStateException.class, () -> a.publish("move", new byte[0]));
     }
 
-    private static void awaitMembers(JGroupsTransport transport, int count) throws InterruptedException {
-        long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(10);
-        while (transport.view().members().size() < count && System.nanoTime() < deadline) {
-            Thread.sleep(10);
-        }
-        assertEquals(count, transport.view().members().size());
+    private static void awaitMembers(JGroupsTransport transport, int count) {
+        Waits.await(count + " members").until(() -> transport.view().members().size(), c -> c == count);
     }
 }
