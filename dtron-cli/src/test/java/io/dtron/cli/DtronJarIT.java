@@ -47,34 +47,6 @@ class DtronJarIT {
         return ChildJvm.startJar(JAR, dir.resolve("dtron.log"), args.toArray(new String[0]));
     }
 
-    /**
-     * Asserts that a 200-unit run of the ticker model PASSED with as many inputs and outputs as the model allows, and
-     * a summary that fits them; returns the number of inputs. How many events a real-time run squeezes in before its
-     * timeout is the machine's business (an input due right at the end comes in time or not), so only the model's
-     * bounds are asserted: resets are at least R = 25 units apart, so at most 200 / 25 = 8; before each reset at
-     * least 25 units passed, in which the invariant x <= 12 forced at least 2 ticks; ticks are at least 8 units
-     * apart (or after a reset), so at most 200 / 8 = 25.
-     */
-    private static int assertPassedWithinTheModelsBounds(String out) {
-        Matcher passed = Pattern.compile("PASSED: the timeout of 200 time units was reached after (\\d+) inputs? and"
-                + " (\\d+) outputs?").matcher(out);
-        assertTrue(passed.find(), out);
-        int inputs = Integer.parseInt(passed.group(1));
-        int outputs = Integer.parseInt(passed.group(2));
-        assertTrue(inputs >= 1 && inputs <= 8, "resets at least 25 of 200 units apart, the first due at 25: " + out);
-        assertTrue(outputs >= 2 * inputs && outputs >= 1 && outputs <= 25, "ticks within the model's bounds: " + out);
-        assertTrue(out.contains("statistics: 1 PASSED " + inputs + " " + outputs + " "), out);
-        // every judged output was received, so counted; outputs after the end may add to the count
-        Matcher latency = Pattern.compile("latency t2 - t1 of outputs: count (\\d+), min ").matcher(out);
-        assertTrue(latency.find() && Long.parseLong(latency.group(1)) >= outputs, out);
-        // the tester published run start, stop and every input; it accepted at least the outputs it judged
-        Matcher bus = Pattern.compile("bus: published (\\d+), accepted (\\d+), rejected ").matcher(out);
-        assertTrue(bus.find(), out);
-        assertEquals(inputs + 2, Integer.parseInt(bus.group(1)), out);
-        assertTrue(Integer.parseInt(bus.group(2)) >= outputs, out);
-        return inputs;
-    }
-
     private ChildJvm adapter(String variant) throws Exception {
         return ChildJvm.start(TickerAdapterMain.class, dir.resolve("adapter.log"), cluster, "ticker-adapter", variant,
                 "1");
@@ -87,7 +59,7 @@ class DtronJarIT {
             assertEquals(0, dtron.waitFor(WAIT), dtron.output());
             String out = dtron.output();
             assertTrue(out.contains("dtron run: members [") && out.contains("ticker-adapter"), out);
-            int inputs = assertPassedWithinTheModelsBounds(out);
+            int inputs = TickerRunBounds.assertPassed(out, 200);
             assertTrue(out.contains("latency t2 - t1 of inputs back from the bus: count "), out);
             assertTrue(out.contains(", rejected 0, listener failures 0"), out);
             assertEquals(0, adapter.waitFor(WAIT), adapter.output());
@@ -122,7 +94,7 @@ class DtronJarIT {
             assertEquals(0, dtron.waitFor(WAIT), dtron.output() + rogue.output());
             String out = dtron.output();
             assertTrue(rogue.output().contains("sent 4"), rogue.output());
-            assertPassedWithinTheModelsBounds(out);
+            TickerRunBounds.assertPassed(out, 200);
             // the rogue sent its 4 messages 300 ms into a run of 5 s, and the tester counts each as it arrives
             assertTrue(out.contains(", rejected 4 (malformed 1, unknown channel 1, unknown variables 1, missing"
                     + " variables 1), listener failures 0"), out);
