@@ -1,11 +1,11 @@
 package io.dtron.api;
 
-import io.dtron.testsupport.Waits;
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertThrows;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
+import io.dtron.testsupport.Waits;
 import java.time.Duration;
 import java.util.Map;
 import java.util.Optional;

@@ -1,6 +1,5 @@
 package io.dtron.api;
 
-import io.dtron.testsupport.Waits;
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertTrue;
@@ -8,6 +7,7 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 import io.dtron.bus.internal.EpochClock;
 import io.dtron.testadapter.ClockMemberMain;
 import io.dtron.testsupport.Inbox;
+import io.dtron.testsupport.Waits;
 import java.nio.file.Path;
 import java.time.Duration;
 import java.util.HashMap;

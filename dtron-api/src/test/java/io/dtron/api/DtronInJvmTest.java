@@ -1,6 +1,5 @@
 package io.dtron.api;
 
-import io.dtron.testsupport.Waits;
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertNull;
@@ -11,6 +10,7 @@ import ch.qos.logback.classic.Level;
 import ch.qos.logback.classic.spi.ILoggingEvent;
 import io.dtron.testsupport.Inbox;
 import io.dtron.testsupport.LogCapture;
+import io.dtron.testsupport.Waits;
 import java.time.Duration;
 import java.util.List;
 import java.util.Map;

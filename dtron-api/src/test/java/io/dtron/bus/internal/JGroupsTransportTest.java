@@ -1,6 +1,5 @@
 package io.dtron.bus.internal;
 
-import io.dtron.testsupport.Waits;
 import static org.junit.jupiter.api.Assertions.assertArrayEquals;
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertNotNull;
@@ -11,6 +10,7 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 import io.dtron.bus.BusMessage;
 import io.dtron.bus.MembershipView;
 import io.dtron.bus.Subscription;
+import io.dtron.testsupport.Waits;
 import java.net.InetAddress;
 import java.util.List;
 import java.util.Optional;

@@ -3,13 +3,13 @@ package io.dtron.models.ticker;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import io.dtron.testsupport.NatsServer;
+import io.dtron.testsupport.Waits;
 import io.nats.client.Connection;
 import io.nats.client.JetStreamApiException;
 import io.nats.client.JetStreamManagement;
 import io.nats.client.Nats;
 import io.nats.client.api.StorageType;
 import io.nats.client.api.StreamConfiguration;
-import io.dtron.testsupport.Waits;
 import java.io.IOException;
 import java.nio.file.Path;
 import java.time.Duration;
