@@ -1,6 +1,7 @@
 package io.dtron.cli;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import io.dtron.api.ChildJvm;
 import io.dtron.api.DtronOptions;
@@ -33,7 +34,8 @@ import org.junit.jupiter.api.io.TempDir;
  * behind an adapter in a JVM of its own, produces x just before input y reaches it, and x reaches the tester after
  * the tester sent y (held up 5 ms between stamping and sending). Judged by arrival, the correct system would fail
  * every run; judged by event times (x's stamp, y's acknowledgement) it passes every run, and the same adapter with
- * x truly after y fails every run. Real time, 10 ms per unit, both on one bus for many runs.
+ * x truly after y fails every run (a run whose message a busy machine held up beyond the reorder window is
+ * INCONCLUSIVE instead, never judged). Real time, 10 ms per unit, both on one bus for many runs.
  */
 @Timeout(value = 5, unit = TimeUnit.MINUTES)
 class CrossingTest {
@@ -71,15 +73,26 @@ class CrossingTest {
         return verdicts;
     }
 
+    /**
+     * Asserts that every run ended {@code expected}, or INCONCLUSIVE because a message was held up beyond the
+     * reorder window (which the machine's load can do, and which is never judged), and that some ended {@code
+     * expected}: a wrong verdict fails the test, a busy machine does not.
+     */
+    private static void assertEveryJudgedRun(Verdict expected, Map<Verdict, List<String>> verdicts) {
+        List<String> judged = verdicts.getOrDefault(expected, List.of());
+        List<String> heldUp = verdicts.getOrDefault(Verdict.INCONCLUSIVE, List.of());
+        assertEquals(RUNS, judged.size() + heldUp.size(), verdicts.toString());
+        assertTrue(heldUp.stream().allMatch(r -> r.contains("more than the reorder window")), verdicts.toString());
+        assertTrue(!judged.isEmpty(), verdicts.toString());
+    }
+
     @Test
     void anOutputThatCrossedAnInputOnTheBusPassesEveryRun() throws Exception {
-        Map<Verdict, List<String>> verdicts = runs("crossing");
-        assertEquals(RUNS, verdicts.getOrDefault(Verdict.PASSED, List.of()).size(), verdicts.toString());
+        assertEveryJudgedRun(Verdict.PASSED, runs("crossing"));
     }
 
     @Test
     void anOutputTrulyAfterTheInputFailsEveryRun() throws Exception {
-        Map<Verdict, List<String>> verdicts = runs("late");
-        assertEquals(RUNS, verdicts.getOrDefault(Verdict.FAILED, List.of()).size(), verdicts.toString());
+        assertEveryJudgedRun(Verdict.FAILED, runs("late"));
     }
 }

@@ -119,7 +119,8 @@ class RunWithTronTest {
             peer.awaitHangUp();
             assertEquals(1, r.exit(), r.out() + r.err());
             assertTrue(r.err().contains("the adapter sent nothing for 1 s during configuration"), r.err());
-            assertTrue(took < 8000, "took " + took + " ms, more than the 1 s asked and the 10 s default is near");
+            // not before the 1 s asked; the 10 s default would take 10 s at least
+            assertTrue(took >= 1000 && took < 10_000, "took " + took + " ms, not the 1 s asked");
         }
     }
 

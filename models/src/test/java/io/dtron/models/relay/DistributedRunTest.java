@@ -114,7 +114,9 @@ class DistributedRunTest {
         List<String> restA = a.subList(Math.max(0, fromA), a.size());
         List<String> restB = b.subList(Math.max(0, fromB), b.size());
         int overlap = Math.min(restA.size(), restB.size());
-        assertTrue(overlap >= 50, "moves, dones and the clocks' messages: " + overlap);
+        // both PASSED 150 units: a move at most 15 units after each done (e <= 15), its done at most 8 after it
+        // (x <= 8), so at least 6 of each; how many more (and how many clock messages) is the machine's business
+        assertTrue(overlap >= 12, "moves, dones and the clocks' messages: " + overlap);
         assertEquals(restA.subList(0, overlap), restB.subList(0, overlap));
     }
 
