@@ -27,9 +27,14 @@ public final class Waits {
     private Waits() {
     }
 
-    /** Awaitility's {@code await}, named {@code what} (a timeout names it), with the tests' timeout and poll. */
+    /**
+     * Awaitility's {@code await}, named {@code what} (a timeout names it), with the tests' timeout and poll. It
+     * leaves other threads' uncaught exceptions alone (Awaitility would fail the wait on them): some tests make
+     * threads fail on purpose.
+     */
     public static ConditionFactory await(String what) {
-        return Awaitility.await(what).atMost(TIMEOUT).pollDelay(Duration.ZERO).pollInterval(POLL);
+        return Awaitility.await(what).atMost(TIMEOUT).pollDelay(Duration.ZERO).pollInterval(POLL)
+                .dontCatchUncaughtExceptions();
     }
 
     /**
