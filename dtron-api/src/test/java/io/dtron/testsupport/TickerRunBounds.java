@@ -1,4 +1,4 @@
-package io.dtron.cli;
+package io.dtron.testsupport;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertTrue;
@@ -7,12 +7,13 @@ import java.util.regex.Matcher;
 import java.util.regex.Pattern;
 
 /**
- * What a PASSED real-time run of the bundled ticker model (a tick 8 to 12 units after the last tick or reset,
- * resets at least R = 25 units apart) guarantees about what {@code dtron run} prints. How many events a real-time
+ * What a PASSED real-time run of the bundled ticker model ({@code models/.../ticker.xml}: a tick 8 to 12 units after
+ * the last tick or reset, resets at least R = 25 units apart) guarantees about what {@code dtron run} prints on the
+ * bus. How many events a real-time
  * run squeezes in before its timeout is the machine's business (an input due right at the end comes in time or
  * not), so only the model's bounds are asserted.
  */
-final class TickerRunBounds {
+public final class TickerRunBounds {
     private TickerRunBounds() {
     }
 
@@ -23,7 +24,7 @@ final class TickerRunBounds {
      * passed, in which the invariant x <= 12 forced at least 2 ticks; ticks are at least 8 units apart (or after a
      * reset), so at most timeout / 8.
      */
-    static int assertPassed(String out, int timeoutUnits) {
+    public static int assertPassed(String out, int timeoutUnits) {
         Matcher passed = Pattern.compile("PASSED: the timeout of " + timeoutUnits + " time units was reached after"
                 + " (\\d+) inputs? and (\\d+) outputs?").matcher(out);
         assertTrue(passed.find(), out);
@@ -42,5 +43,16 @@ final class TickerRunBounds {
         assertEquals(inputs + 2, Integer.parseInt(bus.group(1)), out);
         assertTrue(Integer.parseInt(bus.group(2)) >= outputs, out);
         return inputs;
+    }
+
+    /**
+     * Asserts that a run against the slow ticker (a tick every 13 units) FAILED on its first tick, observed at 13 by
+     * its run clock or later (when the machine is busy; never earlier), outside the window the model allowed.
+     */
+    public static void assertSlowTickerFailed(String out) {
+        Matcher late = Pattern.compile("FAILED: output tick\\(seq=1\\) observed at t=(\\d+)\\.").matcher(out);
+        assertTrue(late.find() && Integer.parseInt(late.group(1)) >= 12, out);
+        assertTrue(out.contains("is too late: The model allowed these outputs: tick between t=8.000 and t=12.000"),
+                out);
     }
 }
