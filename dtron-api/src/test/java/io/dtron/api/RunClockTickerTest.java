@@ -170,7 +170,7 @@ class RunClockTickerTest {
     }
 
     @Test
-    void aTickerInItsOwnJvmWithItsClock120MsAheadTicksAtTheTestersRunTimes(@TempDir Path dir) throws Exception {
+    void aTickerInItsOwnJvmWithItsClock120MsAheadNeverTicksEarlyAndCarriesItsOffset(@TempDir Path dir) throws Exception {
         String cluster = TestClusters.uniqueName("runClockTickerJvm");
         Dtron tester = Dtron.connect(DtronOptions.builder().clusterName(cluster).memberName("tester").tester(true)
                 .build());

@@ -87,12 +87,12 @@ class CrossingTest {
     }
 
     @Test
-    void anOutputThatCrossedAnInputOnTheBusPassesEveryRun() throws Exception {
+    void anOutputThatCrossedAnInputOnTheBusPassesEveryJudgedRun() throws Exception {
         assertEveryJudgedRun(Verdict.PASSED, runs("crossing"));
     }
 
     @Test
-    void anOutputTrulyAfterTheInputFailsEveryRun() throws Exception {
+    void anOutputTrulyAfterTheInputFailsEveryJudgedRun() throws Exception {
         assertEveryJudgedRun(Verdict.FAILED, runs("late"));
     }
 }
