@@ -33,9 +33,10 @@ import org.junit.jupiter.api.io.TempDir;
  * An output that crosses an input on the bus is judged where it happened: the system of {@code crossing.xta},
  * behind an adapter in a JVM of its own, produces x just before input y reaches it, and x reaches the tester after
  * the tester sent y (held up 5 ms between stamping and sending). Judged by arrival, the correct system would fail
- * every run; judged by event times (x's stamp, y's acknowledgement) it passes every run, and the same adapter with
- * x truly after y fails every run (a run whose message a busy machine held up beyond the reorder window is
- * INCONCLUSIVE instead, never judged). Real time, 10 ms per unit, both on one bus for many runs.
+ * every run; judged by event times (x's stamp, y's acknowledgement) it is never failed, and the same adapter with
+ * x truly after y fails every run that saw x. A busy machine may hold up the tester or a message beyond what the
+ * model's windows or the reorder window allow (INCONCLUSIVE, saying so), or x beyond the run's end (PASSED without
+ * outputs): never a wrong verdict. Real time, 10 ms per unit, both on one bus for many runs.
  */
 @Timeout(value = 5, unit = TimeUnit.MINUTES)
 class CrossingTest {
@@ -74,25 +75,31 @@ class CrossingTest {
     }
 
     /**
-     * Asserts that every run ended {@code expected}, or INCONCLUSIVE because a message was held up beyond the
-     * reorder window (which the machine's load can do, and which is never judged), and that some ended {@code
-     * expected}: a wrong verdict fails the test, a busy machine does not.
+     * Asserts that the runs that were not judged were INCONCLUSIVE because a busy machine held up the tester or a
+     * message (an input too late for its window, a message beyond the reorder window): never judged, never wrong.
      */
-    private static void assertEveryJudgedRun(Verdict expected, Map<Verdict, List<String>> verdicts) {
-        List<String> judged = verdicts.getOrDefault(expected, List.of());
-        List<String> heldUp = verdicts.getOrDefault(Verdict.INCONCLUSIVE, List.of());
-        assertEquals(RUNS, judged.size() + heldUp.size(), verdicts.toString());
-        assertTrue(heldUp.stream().allMatch(r -> r.contains("more than the reorder window")), verdicts.toString());
-        assertTrue(!judged.isEmpty(), verdicts.toString());
+    private static void assertHeldUpOnly(Map<Verdict, List<String>> verdicts) {
+        assertTrue(verdicts.getOrDefault(Verdict.INCONCLUSIVE, List.of()).stream()
+                .allMatch(r -> r.contains("too late") || r.contains("more than the reorder window")), verdicts.toString());
     }
 
     @Test
-    void anOutputThatCrossedAnInputOnTheBusPassesEveryJudgedRun() throws Exception {
-        assertEveryJudgedRun(Verdict.PASSED, runs("crossing"));
+    void anOutputThatCrossedAnInputOnTheBusIsNeverFailed() throws Exception {
+        Map<Verdict, List<String>> verdicts = runs("crossing");
+        assertEquals(List.of(), verdicts.getOrDefault(Verdict.FAILED, List.of()), verdicts.toString());
+        assertHeldUpOnly(verdicts);
+        assertTrue(verdicts.containsKey(Verdict.PASSED), verdicts.toString());
     }
 
     @Test
-    void anOutputTrulyAfterTheInputFailsEveryJudgedRun() throws Exception {
-        assertEveryJudgedRun(Verdict.FAILED, runs("late"));
+    void anOutputTrulyAfterTheInputFailsEveryRunThatSawIt() throws Exception {
+        Map<Verdict, List<String>> verdicts = runs("late");
+        // a run passes only when x had not come by its end (the machine held up the adapter's thread that long)
+        assertTrue(verdicts.getOrDefault(Verdict.PASSED, List.of()).stream().allMatch(r -> r.contains(" and 0 outputs")),
+                verdicts.toString());
+        assertTrue(verdicts.getOrDefault(Verdict.FAILED, List.of()).stream()
+                .allMatch(r -> r.contains("output x() observed at t=")), verdicts.toString());
+        assertHeldUpOnly(verdicts);
+        assertTrue(verdicts.containsKey(Verdict.FAILED), verdicts.toString());
     }
 }
