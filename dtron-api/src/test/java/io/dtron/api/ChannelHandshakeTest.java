@@ -6,7 +6,6 @@ import static org.junit.jupiter.api.Assertions.assertThrows;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import io.dtron.testsupport.Waits;
-import java.time.Duration;
 import java.util.Map;
 import java.util.Optional;
 import java.util.Set;

@@ -1,7 +1,6 @@
 package io.dtron.api;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
-import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import io.dtron.testadapter.OrderMemberMain;

@@ -1,7 +1,5 @@
 package io.dtron.models.ticker;
 
-import static org.junit.jupiter.api.Assertions.assertTrue;
-
 import io.dtron.testsupport.NatsServer;
 import io.dtron.testsupport.Waits;
 import io.nats.client.Connection;
