@@ -12,6 +12,7 @@ import io.dtron.api.DtronOptions;
 import io.dtron.api.IDtronChannel;
 import io.dtron.api.IDtronChannelValued;
 import io.dtron.cli.DtronCommand;
+import io.dtron.testsupport.LogCapture;
 import io.dtron.testsupport.TickerRunBounds;
 import io.dtron.testsupport.Waits;
 import java.io.PrintWriter;
@@ -94,14 +95,26 @@ class TickerBusAdapterTest {
     }
 
     @Test
-    void theReadmeCommandPassesAndTheSlowVariantFails() {
+    void theReadmeCommandPassesUnlessTheTickerWasHeldUpAndTheSlowVariantFails() {
         String[] readme = {"src/main/resources/io/dtron/models/ticker.xml", "--adapter",
                 TickerBusAdapter.class.getName(), "--timeunit", "10000", "--timeout", "300", "--delay-policy", "eager",
                 "--cluster", cluster};
         StringWriter out = new StringWriter();
         StringWriter err = new StringWriter();
-        assertEquals(0, DtronCommand.run(readme, new PrintWriter(out), new PrintWriter(err)), out + "" + err);
-        TickerRunBounds.assertPassed(out.toString(), 300);
+        try (LogCapture ticker = new LogCapture(TickerBusAdapter.class)) {
+            int exit = DtronCommand.run(readme, new PrintWriter(out), new PrintWriter(err));
+            if (exit == 2) {
+                // at 10 ms per unit a busy machine can hold the ticker's JVM up beyond the model's 2 units: then the
+                // verdict is right, and the ticker, timing its ticks on its own run clock, says it was late. A FAILED
+                // verdict for a tick the ticker sent on time would be a false one, and fails this test.
+                assertTrue(out.toString().contains("is too late"), out + "" + err);
+                assertTrue(ticker.messages().stream().anyMatch(m -> m.contains("(this JVM was held up)")),
+                        "FAILED, yet the ticker kept its period: " + out + err + ticker.messages());
+            } else {
+                assertEquals(0, exit, out + "" + err);
+                TickerRunBounds.assertPassed(out.toString(), 300);
+            }
+        }
 
         readme[2] = TickerBusAdapter.class.getName() + ":slow";
         readme[readme.length - 1] = cluster + "-slow";
