@@ -5,7 +5,7 @@ import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertThrows;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
-import java.time.Duration;
+import io.dtron.testsupport.Waits;
 import java.util.Map;
 import java.util.Optional;
 import java.util.Set;
@@ -20,7 +20,6 @@ import org.junit.jupiter.api.Timeout;
  */
 @Timeout(value = 60, unit = TimeUnit.SECONDS)
 class ChannelHandshakeTest {
-    private static final Duration WAIT = Duration.ofSeconds(10);
     private static final IDtronChannel RESET = IDtronChannel.of("reset");
     private static final IDtronChannel TICK = IDtronChannel.of("tick", "seq");
 
@@ -33,16 +32,8 @@ class ChannelHandshakeTest {
     }
 
     /** Waits until the tester's view of the members' channels fits. */
-    private static Map<String, ServedChannels> awaitServed(Dtron tester, Predicate<Map<String, ServedChannels>> fits)
-            throws InterruptedException {
-        long deadline = System.nanoTime() + WAIT.toNanos();
-        Map<String, ServedChannels> served = tester.getMembersServedChannels();
-        while (!fits.test(served)) {
-            assertTrue(System.nanoTime() < deadline, "the tester sees " + served);
-            Thread.sleep(10);
-            served = tester.getMembersServedChannels();
-        }
-        return served;
+    private static Map<String, ServedChannels> awaitServed(Dtron tester, Predicate<Map<String, ServedChannels>> fits) {
+        return Waits.await("the tester's view of the served channels").until(tester::getMembersServedChannels, fits::test);
     }
 
     @Test

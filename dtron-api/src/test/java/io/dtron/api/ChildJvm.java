@@ -2,6 +2,7 @@ package io.dtron.api;
 
 import static org.junit.jupiter.api.Assertions.fail;
 
+import io.dtron.testsupport.Waits;
 import java.io.IOException;
 import java.nio.file.Files;
 import java.nio.file.Path;
@@ -9,6 +10,7 @@ import java.time.Duration;
 import java.util.ArrayList;
 import java.util.List;
 import java.util.concurrent.TimeUnit;
+import java.util.regex.Pattern;
 
 /** A main class of the tests, or a jar, run in a JVM of its own. */
 public final class ChildJvm implements AutoCloseable {
@@ -65,14 +67,8 @@ public final class ChildJvm implements AutoCloseable {
     /**
      * Waits until the JVM has printed {@code text}; fails the test if it exits first or the timeout passes.
      */
-    public void awaitOutput(String text, Duration timeout) throws InterruptedException, IOException {
-        long deadline = System.nanoTime() + timeout.toNanos();
-        while (!output().contains(text)) {
-            if (!process.isAlive() || System.nanoTime() > deadline) {
-                fail("child JVM did not print '" + text + "' within " + timeout + "; its output:\n" + output());
-            }
-            Thread.sleep(20);
-        }
+    public void awaitOutput(String text, Duration timeout) {
+        Waits.awaitOutput(process, log, Pattern.compile(Pattern.quote(text)), timeout);
     }
 
     /** Kills the JVM at once, as a crash would. */

@@ -10,6 +10,7 @@ import ch.qos.logback.classic.Level;
 import ch.qos.logback.classic.spi.ILoggingEvent;
 import io.dtron.testsupport.Inbox;
 import io.dtron.testsupport.LogCapture;
+import io.dtron.testsupport.Waits;
 import java.time.Duration;
 import java.util.List;
 import java.util.Map;
@@ -153,11 +154,7 @@ class DtronInJvmTest {
                 assertTrue(first.awaitMembers(2, WAIT));
                 assertEquals(List.of("first", second.getMemberId()), first.getMembers());
             }
-            long deadline = System.nanoTime() + WAIT.toNanos();
-            while (first.getMembers().size() > 1 && System.nanoTime() < deadline) {
-                Thread.sleep(20);
-            }
-            assertEquals(List.of("first"), first.getMembers());
+            Waits.await("the second member gone").until(first::getMembers, List.of("first")::equals);
             assertFalse(first.awaitMembers(2, Duration.ofMillis(100)));
         }
     }

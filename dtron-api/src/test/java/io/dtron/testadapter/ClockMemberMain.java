@@ -6,6 +6,7 @@ import io.dtron.api.DtronOptions;
 import io.dtron.testsupport.FreePorts;
 import io.dtron.api.IDtronChannel;
 import io.dtron.api.IDtronChannelValued;
+import io.dtron.testsupport.Waits;
 import java.time.Duration;
 import java.util.Map;
 import java.util.concurrent.CountDownLatch;
@@ -16,8 +17,8 @@ import java.util.concurrent.TimeUnit;
  * the tester it publishes {@code estimated(offset_us, error_us)} (the message also carries the estimate in its
  * clock fields). {@code slow(millis)} keeps its listener thread busy that long. When a run starts it schedules, at
  * run time 10 units, {@code fired()} with the firing time as event time. Leaves on {@code quit}. Arguments: cluster
- * name, member name, clock shift in milliseconds. Exit code 0 after {@code quit}, 2 if there was no estimate or no
- * quit within a minute.
+ * name, member name, clock shift in milliseconds. Exit code 0 after {@code quit}, 2 if there was no quit within a
+ * minute, 1 if there was no estimate within {@link Waits#TIMEOUT}.
  */
 public final class ClockMemberMain {
     /** {@code estimated(offset_us, error_us)}. */
@@ -40,13 +41,7 @@ public final class ClockMemberMain {
                 .clockShiftForTesting(Duration.ofMillis(Long.parseLong(args[2]))), args, 3).build();
         try (Dtron dtron = Dtron.connect(options)) {
             addListeners(dtron, quitting);
-            long deadline = System.nanoTime() + TimeUnit.MINUTES.toNanos(1);
-            while (!dtron.hasClockOffset()) {
-                if (System.nanoTime() > deadline) {
-                    System.exit(2);
-                }
-                Thread.sleep(10);
-            }
+            Waits.await("a clock offset estimate").until(dtron::hasClockOffset);
             System.out.println("offset " + dtron.getClockOffsetNanos() + " error " + dtron.getClockErrorNanos());
             System.out.flush();
             dtron.send(ESTIMATED.constructValued(Map.of("offset_us", (int) (dtron.getClockOffsetNanos() / 1000),

@@ -3,6 +3,7 @@ package io.dtron.testadapter;
 import io.dtron.api.Dtron;
 import io.dtron.api.DtronOptions;
 import io.dtron.testsupport.FreePorts;
+import io.dtron.testsupport.Waits;
 import java.time.Duration;
 import java.util.concurrent.CountDownLatch;
 import java.util.concurrent.TimeUnit;
@@ -10,8 +11,8 @@ import java.util.concurrent.TimeUnit;
 /**
  * A {@link RunClockTicker} process, using only {@code io.dtron.api}, whose clock may be off. Arguments: cluster
  * name, member name, variant ({@code correct} or {@code slow}), clock shift in milliseconds (as if this host's
- * clock were off by that much), the number of testers to serve. Prints {@code joined} once on the bus and leaves
- * when that many other members have left. Exit code 0, or 2 if they did not come and go within ten minutes.
+ * clock were off by that much), the number of testers to serve. Prints {@code joined} once on the bus, {@code
+ * offset} once it has an estimate of a tester's clock, and leaves when that many other members have left. Exit code 0, or 2 if they did not come and go within ten minutes.
  */
 public final class RunClockTickerMain {
     private RunClockTickerMain() {
@@ -27,6 +28,13 @@ public final class RunClockTickerMain {
             ticker.start(dtron);
             System.out.println("joined " + dtron.getMembers());
             System.out.flush();
+            Thread announcer = new Thread(() -> {
+                Waits.await("a clock offset estimate").atMost(Duration.ofMinutes(10)).until(dtron::hasClockOffset);
+                System.out.println("offset " + dtron.getClockOffset().orElseThrow());
+                System.out.flush();
+            }, "offset-announcer");
+            announcer.setDaemon(true);
+            announcer.start();
             done = testersGone.await(10, TimeUnit.MINUTES);
         }
         System.exit(done ? 0 : 2);

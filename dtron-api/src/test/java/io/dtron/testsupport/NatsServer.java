@@ -13,6 +13,7 @@ import java.util.ArrayList;
 import java.util.List;
 import java.util.Optional;
 import java.util.concurrent.TimeUnit;
+import java.util.regex.Pattern;
 
 /**
  * A {@code nats-server} with JetStream, started by a test on a free loopback port with a store in a folder of the
@@ -89,14 +90,12 @@ public final class NatsServer implements AutoCloseable {
     }
 
     /** Waits until the server's log shows {@code text}; fails the test if it exits first or the timeout passes. */
-    public void awaitLog(String text, Duration timeout) throws IOException, InterruptedException {
-        long deadline = System.nanoTime() + timeout.toNanos();
-        while (!Files.readString(log).contains(text)) {
-            if (!process.isAlive() || System.nanoTime() > deadline) {
-                process.destroyForcibly();
-                fail("nats-server did not log '" + text + "' within " + timeout + ":\n" + Files.readString(log));
-            }
-            Thread.sleep(20);
+    public void awaitLog(String text, Duration timeout) {
+        try {
+            Waits.awaitOutput(process, log, Pattern.compile(Pattern.quote(text)), timeout);
+        } catch (AssertionError e) {
+            process.destroyForcibly();
+            throw e;
         }
     }
 

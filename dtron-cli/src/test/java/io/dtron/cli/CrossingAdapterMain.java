@@ -6,6 +6,7 @@ import io.dtron.api.DtronOptions;
 import io.dtron.api.IDtronChannel;
 import io.dtron.api.IDtronChannelValued;
 import io.dtron.testsupport.FreePorts;
+import io.dtron.testsupport.Waits;
 import java.util.Map;
 import java.util.concurrent.TimeUnit;
 
@@ -47,10 +48,7 @@ public final class CrossingAdapterMain {
                     }
                 }
             });
-            long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(60);
-            while (!dtron.hasClockOffset() && System.nanoTime() < deadline) {
-                Thread.sleep(10);
-            }
+            Waits.await("a clock offset estimate").until(dtron::hasClockOffset);
             System.out.println("ready");
             System.out.flush();
             Thread.sleep(TimeUnit.MINUTES.toMillis(5)); // until the test stops this JVM

@@ -1,6 +1,7 @@
 package io.dtron.cli;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import io.dtron.api.ChildJvm;
 import io.dtron.api.DtronOptions;
@@ -33,8 +34,10 @@ import org.junit.jupiter.api.io.TempDir;
  * An output that crosses an input on the bus is judged where it happened: the system of {@code crossing.xta},
  * behind an adapter in a JVM of its own, produces x just before input y reaches it, and x reaches the tester after
  * the tester sent y (held up 5 ms between stamping and sending). Judged by arrival, the correct system would fail
- * every run; judged by event times (x's stamp, y's acknowledgement) it passes every run, and the same adapter with
- * x truly after y fails every run. Real time, 10 ms per unit, both on one bus for many runs.
+ * every run; judged by event times (x's stamp, y's acknowledgement) it is never failed, and the same adapter with
+ * x truly after y fails every run that saw x. A busy machine may hold up the tester or a message beyond what the
+ * model's windows or the reorder window allow (INCONCLUSIVE, saying so), or x beyond the run's end (PASSED without
+ * outputs): never a wrong verdict. Real time, 10 ms per unit, both on one bus for many runs.
  */
 @Timeout(value = 5, unit = TimeUnit.MINUTES)
 class CrossingTest {
@@ -75,15 +78,32 @@ class CrossingTest {
         return verdicts;
     }
 
-    @Test
-    void anOutputThatCrossedAnInputOnTheBusPassesEveryRun() throws Exception {
-        Map<Verdict, List<String>> verdicts = runs("crossing");
-        assertEquals(RUNS, verdicts.getOrDefault(Verdict.PASSED, List.of()).size(), verdicts.toString());
+    /**
+     * Asserts that the runs that were not judged were INCONCLUSIVE because a busy machine held up the tester or a
+     * message (an input too late for its window, a message beyond the reorder window): never judged, never wrong.
+     */
+    private static void assertHeldUpOnly(Map<Verdict, List<String>> verdicts) {
+        assertTrue(verdicts.getOrDefault(Verdict.INCONCLUSIVE, List.of()).stream()
+                .allMatch(r -> r.contains("too late") || r.contains("more than the reorder window")), verdicts.toString());
     }
 
     @Test
-    void anOutputTrulyAfterTheInputFailsEveryRun() throws Exception {
+    void anOutputThatCrossedAnInputOnTheBusIsNeverFailed() throws Exception {
+        Map<Verdict, List<String>> verdicts = runs("crossing");
+        assertEquals(List.of(), verdicts.getOrDefault(Verdict.FAILED, List.of()), verdicts.toString());
+        assertHeldUpOnly(verdicts);
+        assertTrue(verdicts.containsKey(Verdict.PASSED), verdicts.toString());
+    }
+
+    @Test
+    void anOutputTrulyAfterTheInputFailsEveryRunThatSawIt() throws Exception {
         Map<Verdict, List<String>> verdicts = runs("late");
-        assertEquals(RUNS, verdicts.getOrDefault(Verdict.FAILED, List.of()).size(), verdicts.toString());
+        // a run passes only when x had not come by its end (the machine held up the adapter's thread that long)
+        assertTrue(verdicts.getOrDefault(Verdict.PASSED, List.of()).stream().allMatch(r -> r.contains(" and 0 outputs")),
+                verdicts.toString());
+        assertTrue(verdicts.getOrDefault(Verdict.FAILED, List.of()).stream()
+                .allMatch(r -> r.contains("output x() observed at t=")), verdicts.toString());
+        assertHeldUpOnly(verdicts);
+        assertTrue(verdicts.containsKey(Verdict.FAILED), verdicts.toString());
     }
 }

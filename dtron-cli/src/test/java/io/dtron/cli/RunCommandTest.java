@@ -17,6 +17,8 @@ import io.dtron.engine.TestClock;
 import io.dtron.model.ModelLoader;
 import io.dtron.model.TestInterface;
 import io.dtron.testadapter.BusTicker;
+import io.dtron.testsupport.TickerRunBounds;
+import io.dtron.testsupport.Waits;
 import java.io.File;
 import java.io.IOException;
 import java.io.PrintWriter;
@@ -319,30 +321,14 @@ class RunCommandTest {
 
     @Test
     void aBusAdapterInThisJvmPassesAndPrintsTheLatency() {
+        // 25 ms per unit: the model's 2 units of jitter, 50 ms, hold on a busy machine
         CommandRun r = CommandRun.of(model.toString(), "--adapter", BusTicker.class.getName(), "--cluster", cluster(), "--timeunit",
-                "10000", "--timeout", "100", "--delay-policy", "eager", "--seed", "3");
+                "25000", "--timeout", "100", "--delay-policy", "eager", "--seed", "3");
         assertEquals(0, r.exit(), r.out() + r.err());
         assertTrue(r.out().contains("adapter " + BusTicker.class.getName() + " joined as "), r.out());
-        // eager resets at 25, 50, 75 and maybe 100 units; ticks every 10 units after each
-        Matcher passed = Pattern.compile("PASSED: the timeout of 100 time units was reached after ([34]) inputs and"
-                + " (\\d+) outputs").matcher(r.out());
-        assertTrue(passed.find(), r.out());
-        int inputs = Integer.parseInt(passed.group(1));
-        int outputs = Integer.parseInt(passed.group(2));
-        assertTrue(outputs >= 7 && outputs <= 9, r.out());
-        // a tick that arrives while the run ends (it waits Delta past its timeout) is counted, not judged
-        Matcher latency = Pattern.compile("latency t2 - t1 of outputs: count (\\d+), min ").matcher(r.out());
-        assertTrue(latency.find(), r.out());
-        int received = Integer.parseInt(latency.group(1));
-        assertTrue(received == outputs || received == outputs + 1, r.out());
-        assertTrue(r.out().contains("latency t2 - t1 of inputs back from the bus: count " + inputs + ", min "), r.out());
-        // the bus counts a tick that came as the run ended before its listener has run: one more at most
-        Matcher bus = Pattern.compile("bus: published (\\d+), accepted (\\d+), rejected 0, listener failures 0")
-                .matcher(r.out());
-        assertTrue(bus.find(), r.out());
-        assertEquals(inputs + 2, Integer.parseInt(bus.group(1)), r.out());
-        int accepted = Integer.parseInt(bus.group(2));
-        assertTrue(accepted == received + inputs + 2 || accepted == received + inputs + 3, r.out());
+        TickerRunBounds.assertPassed(r.out(), 100);
+        assertTrue(r.out().contains("latency t2 - t1 of inputs back from the bus: count "), r.out());
+        assertTrue(r.out().contains(", rejected 0, listener failures 0"), r.out());
     }
 
     @Test
@@ -351,7 +337,7 @@ class RunCommandTest {
                 "--timeunit", "10000", "--timeout", "100", "--seed", "3");
         assertEquals(2, r.exit(), r.out() + r.err());
         // the tick due by 12 comes at 13 by the adapter's clock, within the reorder window: judged at its time
-        assertTrue(r.out().contains("FAILED: output tick(seq=1) observed at t=13."), r.out());
+        TickerRunBounds.assertSlowTickerFailed(r.out());
         assertTrue(r.out().contains("latency t2 - t1 of outputs: count "), r.out());
     }
 
@@ -484,10 +470,7 @@ class RunCommandTest {
             IDtronChannel tick = IDtronChannel.of("tick", "seq");
             member.get(0).send(tick.constructValued(Map.of("seq", 1)));
             member.get(0).send(tick.constructValued(Map.of("seq", 2)));
-            long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(30);
-            while (session.bridge().outputsAfterEnd() < 2 && System.nanoTime() < deadline) {
-                Thread.sleep(10);
-            }
+            Waits.await("2 outputs after the end").until(() -> session.bridge().outputsAfterEnd() >= 2);
             StringWriter summary = new StringWriter();
             session.printSummary(new PrintWriter(summary, true));
             assertTrue(summary.toString().contains(", 2 outputs after the end (not judged)"), summary.toString());

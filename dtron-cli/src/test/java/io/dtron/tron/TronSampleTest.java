@@ -96,8 +96,8 @@ class TronSampleTest {
         String[] line = Files.readString(stats).strip().split(" ");
         assertTrue(Integer.parseInt(line[2]) > 100 && Integer.parseInt(line[3]) > 100, Files.readString(stats));
         assertEquals("60000000", line[4], "the duration is virtual: " + Files.readString(stats));
-        // 60 s of test time; the run, the lamp JVM's start included, takes a fraction of it
-        assertTrue(s.took().toSeconds() < 30, "took " + s.took());
+        // 60 s of test time; the run, the lamp JVM's start included, takes less (a few seconds when all is well)
+        assertTrue(s.took().toSeconds() < 60, "took " + s.took());
         // virtual time is deterministic: the same seed, the same run
         Path again = dir.resolve("again");
         int clock2 = freePort();

@@ -27,6 +27,7 @@ import io.dtron.model.ModelLoader;
 import io.dtron.model.TestInterface;
 import io.dtron.testsupport.Inbox;
 import io.dtron.testsupport.LogCapture;
+import io.dtron.testsupport.Waits;
 import java.time.Duration;
 import java.util.List;
 import java.util.Map;
@@ -203,12 +204,8 @@ class BusBridgeTest {
     }
 
     /** Waits until the adapter has an estimate of its clock offset to the tester. */
-    private void awaitOffset() throws InterruptedException {
-        long deadline = System.nanoTime() + WAIT.toNanos();
-        while (!adapter.hasClockOffset()) {
-            assertTrue(System.nanoTime() < deadline, "the adapter has no clock offset");
-            Thread.sleep(10);
-        }
+    private void awaitOffset() {
+        Waits.await("the adapter's clock offset estimate").until(adapter::hasClockOffset);
     }
 
     @Test
@@ -316,10 +313,7 @@ class BusBridgeTest {
             adapter.send(DONE.constructValued(Map.of("amount", 6)));
             assertEquals(Event.of("done", "amount", 6), context.outputs.poll(10, TimeUnit.SECONDS),
                     "the other run's output is not this run's");
-            long deadline = System.nanoTime() + WAIT.toNanos();
-            while (bridge.messagesOfOtherRuns() < 1 && System.nanoTime() < deadline) {
-                Thread.sleep(10);
-            }
+            Waits.await("the other run's message counted").until(() -> bridge.messagesOfOtherRuns() >= 1);
             assertEquals(1, bridge.messagesOfOtherRuns());
             assertTrue(context.outputs.isEmpty(), context.outputs.toString());
         }
@@ -434,12 +428,8 @@ class BusBridgeTest {
         assertFalse(reason.contains("member adapter "), "the adapter still on the bus is not named: " + reason);
     }
 
-    private void awaitMembers(int count) throws InterruptedException {
-        long deadline = System.nanoTime() + WAIT.toNanos();
-        while (bridge.members().size() != count && System.nanoTime() < deadline) {
-            Thread.sleep(10);
-        }
-        assertEquals(count, bridge.members().size(), bridge.members().toString());
+    private void awaitMembers(int count) {
+        Waits.await(count + " members").until(() -> bridge.members().size() == count);
     }
 
     @Test
@@ -463,11 +453,8 @@ class BusBridgeTest {
     }
 
     /** Waits until the bridge has handled {@code count} outputs (it records the latency of each). */
-    private void awaitOutputsSeen(long count) throws InterruptedException {
-        long deadline = System.nanoTime() + WAIT.toNanos();
-        while (bridge.outputLatency().count() < count && System.nanoTime() < deadline) {
-            Thread.sleep(10);
-        }
+    private void awaitOutputsSeen(long count) {
+        Waits.await(count + " outputs handled").until(() -> bridge.outputLatency().count() >= count);
         assertEquals(count, bridge.outputLatency().count());
     }
 

@@ -2,6 +2,7 @@ package io.dtron.tron;
 
 import static org.junit.jupiter.api.Assertions.fail;
 
+import io.dtron.testsupport.Waits;
 import java.io.IOException;
 import java.nio.file.Files;
 import java.nio.file.Path;
@@ -9,7 +10,6 @@ import java.time.Duration;
 import java.util.ArrayList;
 import java.util.List;
 import java.util.concurrent.TimeUnit;
-import java.util.regex.Matcher;
 import java.util.regex.Pattern;
 
 /** A main class of the tests run in a JVM of its own, on the test classpath, with its output in a file. */
@@ -45,20 +45,8 @@ final class ChildProcess implements AutoCloseable {
     }
 
     /** Waits for the child to print {@code PORT n} and returns n. */
-    int awaitPort(Duration timeout) throws IOException, InterruptedException {
-        long deadline = System.nanoTime() + timeout.toNanos();
-        while (System.nanoTime() < deadline) {
-            Matcher m = PORT.matcher(output());
-            if (m.find()) {
-                return Integer.parseInt(m.group(1));
-            }
-            if (!process.isAlive()) {
-                break;
-            }
-            Thread.sleep(20);
-        }
-        fail("the child printed no port; its output:\n" + output());
-        return -1;
+    int awaitPort(Duration timeout) {
+        return Integer.parseInt(Waits.awaitOutput(process, log, PORT, timeout).group(1));
     }
 
     /** Waits for the child to exit and returns its exit code; fails the test after the timeout. */

@@ -2,6 +2,7 @@ package io.dtron.tron;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
 
+import java.io.BufferedOutputStream;
 import java.io.Closeable;
 import java.io.DataInputStream;
 import java.io.DataOutputStream;
@@ -24,7 +25,9 @@ final class RawClient implements Closeable {
         this.socket = socket;
         socket.setTcpNoDelay(true);
         socket.setSoTimeout(10_000);
-        out = new DataOutputStream(socket.getOutputStream());
+        // each call's bytes leave in one write, as a real adapter's would: a busy machine may hold up the test
+        // between calls, not in the middle of a number
+        out = new DataOutputStream(new BufferedOutputStream(socket.getOutputStream()));
         in = new DataInputStream(socket.getInputStream());
     }
 

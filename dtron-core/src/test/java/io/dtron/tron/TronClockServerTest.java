@@ -5,6 +5,7 @@ import static org.junit.jupiter.api.Assertions.assertNull;
 import static org.junit.jupiter.api.Assertions.assertThrows;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
+import io.dtron.testsupport.Waits;
 import java.io.DataInputStream;
 import java.io.DataOutputStream;
 import java.io.EOFException;
@@ -61,11 +62,8 @@ class TronClockServerTest {
         }
     }
 
-    private static void awaitConnected(TronClockServer server, int n) throws InterruptedException {
-        long deadline = System.nanoTime() + Duration.ofSeconds(5).toNanos();
-        while (server.threadsConnected() < n && System.nanoTime() < deadline) {
-            Thread.sleep(5);
-        }
+    private static void awaitConnected(TronClockServer server, int n) {
+        Waits.await(n + " threads connected").until(() -> server.threadsConnected() >= n);
         assertEquals(n, server.threadsConnected());
     }
 

@@ -11,6 +11,7 @@ import io.dtron.cli.DtronCommand;
 import io.dtron.selenium.internal.StepWatch;
 import io.dtron.testsupport.Inbox;
 import io.dtron.testsupport.LogCapture;
+import io.dtron.testsupport.Waits;
 import java.io.PrintWriter;
 import java.io.StringWriter;
 import java.nio.file.Path;
@@ -53,15 +54,9 @@ class AdapterMachineryTest {
         }
 
         /** Waits until the adapters' member has left the bus. */
-        boolean adaptersLeft(long millis) throws InterruptedException {
-            long deadline = System.nanoTime() + TimeUnit.MILLISECONDS.toNanos(millis);
-            while (System.nanoTime() < deadline) {
-                if (!tester.getMembers().contains(adapterMember.getMemberId())) {
-                    return true;
-                }
-                Thread.sleep(50);
-            }
-            return false;
+        void awaitAdaptersLeft() {
+            Waits.await("the adapters gave up the run and left the bus")
+                    .until(() -> !tester.getMembers().contains(adapterMember.getMemberId()));
         }
 
         @Override
@@ -86,7 +81,7 @@ class AdapterMachineryTest {
                      .property(SeleniumAdapters.STEP_TIMEOUT_PROPERTY, "1500"))) {
             long start = System.nanoTime();
             bus.tester.send(GREET.constructValued(Map.of("user", 0)));
-            assertTrue(bus.adaptersLeft(10_000), "the adapters gave up the run and left the bus");
+            bus.awaitAdaptersLeft();
             long millis = (System.nanoTime() - start) / 1_000_000;
             assertTrue(millis >= 1500 && millis < 6_000, "left after " + millis + " ms");
             assertNull(bus.results.poll(300), "no result blames the page for the adapters' stall");
@@ -114,7 +109,7 @@ class AdapterMachineryTest {
         try (LogCapture adapters = new LogCapture(SeleniumAdapters.class);
              Bus bus = new Bus(SeleniumAdapters.builder().scan("io.dtron.selenium.broken").browsers(1))) {
             bus.tester.send(CRASH.constructValued(Map.of("user", 0)));
-            assertTrue(bus.adaptersLeft(10_000), "the adapters gave up the run and left the bus");
+            bus.awaitAdaptersLeft();
             assertNull(bus.results.poll(300), "no resCode 1 for the browser's failure");
             List<String> gaveUp = adapters.messages();
             assertEquals(1, gaveUp.size(), gaveUp.toString());
@@ -130,7 +125,7 @@ class AdapterMachineryTest {
              LogCapture sessions = new LogCapture(io.dtron.selenium.internal.UserSessions.class);
              Bus bus = new Bus(SeleniumAdapters.builder().scan("io.dtron.selenium.broken"))) {
             bus.tester.send(IDtronChannel.of("overflow", "user").constructValued(Map.of("user", 1)));
-            assertTrue(bus.adaptersLeft(10_000), "the adapters gave up the run and left the bus");
+            bus.awaitAdaptersLeft();
             assertNull(bus.results.poll(300));
             assertTrue(adapters.messages().stream().anyMatch(m -> m.startsWith("Overflow[overflow[user]] could not do"
                     + " overflow{user=1} for user 1: java.lang.StackOverflowError: deliberate")),

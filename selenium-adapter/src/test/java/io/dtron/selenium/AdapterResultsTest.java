@@ -115,7 +115,8 @@ class AdapterResultsTest {
             IDtronChannelValued result = results.take();
             long millis = (System.nanoTime() - start) / 1_000_000;
             assertEquals(Map.of("user", 0, "resCode", AbstractSeleniumAdapter.RESULT_FAILED), result.getVariables());
-            assertTrue(millis < 10_000, "failed after " + millis + " ms");
+            // fast: after the locator's wait of 2 s (the log says so below), not before; a busy machine may add to it
+            assertTrue(millis >= 2000, "failed after " + millis + " ms");
             List<String> messages = log.messages();
             assertEquals(1, messages.size(), messages.toString());
             String message = messages.get(0);

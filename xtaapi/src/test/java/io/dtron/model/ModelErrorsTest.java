@@ -1,5 +1,6 @@
 package io.dtron.model;
 
+import static org.junit.jupiter.api.Assertions.assertArrayEquals;
 import static org.junit.jupiter.api.Assertions.assertDoesNotThrow;
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertFalse;
@@ -71,8 +72,8 @@ class ModelErrorsTest {
 
     @Test
     void controlCorrectedVersionsOfRejectedModelsLoad() throws ModelException {
-        // the same texts as below with the one mistake removed
-        ModelLoader.load(XTA, """
+        // the same texts as below with the one mistake removed: each loads, with what it declares
+        Network declarations = ModelLoader.load(XTA, """
                 int i = 0;
                 clock x;
                 int[0,3] v = 3;
@@ -85,10 +86,24 @@ class ModelErrorsTest {
                 }
                 system P;
                 """);
-        ModelLoader.load(XML, xml().global("clock x; chan a; int i; const int N = 3;")
+        assertArrayEquals(new int[] {0}, declarations.variable("i").orElseThrow().initial());
+        assertArrayEquals(new int[] {3}, declarations.variable("v").orElseThrow().initial());
+        assertArrayEquals(new int[] {1, 2, 3}, declarations.variable("a").orElseThrow().initial());
+        assertArrayEquals(new int[] {0, 0, 0}, declarations.variable("b").orElseThrow().initial(), "b[n], n = 3");
+        assertTrue(declarations.clock("x").isPresent());
+        assertEquals(List.of("P"), declarations.processes().stream().map(Process::name).toList());
+
+        Network labels = ModelLoader.load(XML, xml().global("clock x; chan a; int i; const int N = 3;")
                 .guard("x &lt; 1 &amp;&amp; i &lt;= 2").assign("i = 1, i := 4").text());
-        ModelLoader.load(XML, xml().parameters("const int[0,1] id").system("system P;").text());
-        ModelLoader.load(XTA, """
+        Edge edge = labels.process("P").orElseThrow().edges().get(0);
+        assertNotNull(edge.guard(), "the guard");
+        assertEquals(2, edge.updates().size(), "both assignments: " + edge.updates());
+        assertTrue(labels.channel("a").isPresent());
+
+        Network expanded = ModelLoader.load(XML, xml().parameters("const int[0,1] id").system("system P;").text());
+        assertEquals(2, expanded.processes().size(), "P(0) and P(1): " + expanded.processes());
+
+        Network instantiated = ModelLoader.load(XTA, """
                 chan c;
                 clock x;
                 int[0,3] v;
@@ -100,6 +115,8 @@ class ModelErrorsTest {
                 Q = P(c, x, v, 1);
                 system Q;
                 """);
+        Edge sync = instantiated.process("Q").orElseThrow().edges().get(0);
+        assertNotNull(sync.sync(), "Q's edge sends on the channel passed by reference");
     }
 
     @Test

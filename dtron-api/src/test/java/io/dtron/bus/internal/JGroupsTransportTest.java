@@ -10,6 +10,7 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 import io.dtron.bus.BusMessage;
 import io.dtron.bus.MembershipView;
 import io.dtron.bus.Subscription;
+import io.dtron.testsupport.Waits;
 import java.net.InetAddress;
 import java.util.List;
 import java.util.Optional;
@@ -111,11 +112,7 @@ class JGroupsTransportTest {
         assertThrows(IllegalStateException.class, () -> a.publish("move", new byte[0]));
     }
 
-    private static void awaitMembers(JGroupsTransport transport, int count) throws InterruptedException {
-        long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(10);
-        while (transport.view().members().size() < count && System.nanoTime() < deadline) {
-            Thread.sleep(10);
-        }
-        assertEquals(count, transport.view().members().size());
+    private static void awaitMembers(JGroupsTransport transport, int count) {
+        Waits.await(count + " members").until(() -> transport.view().members().size(), c -> c == count);
     }
 }

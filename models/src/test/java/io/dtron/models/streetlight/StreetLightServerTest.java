@@ -4,6 +4,7 @@ import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
+import io.dtron.testsupport.Waits;
 import java.net.CookieManager;
 import java.net.URI;
 import java.net.http.HttpClient;
@@ -59,16 +60,12 @@ class StreetLightServerTest {
 
         /** Waits until the result page shows a final status; returns controller, state and status. */
         String[] finalResult() throws Exception {
-            long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(5);
-            while (true) {
+            return Waits.await("a final status on the result page").until(() -> {
                 String page = get("/result").body();
                 Matcher m = RESULT_ROW.matcher(page);
                 assertTrue(m.find(), page);
-                if (!m.group(3).equals("PENDING") || System.nanoTime() > deadline) {
-                    return new String[] {m.group(1), m.group(2), m.group(3)};
-                }
-                Thread.sleep(50);
-            }
+                return new String[] {m.group(1), m.group(2), m.group(3)};
+            }, result -> !result[2].equals("PENDING"));
         }
     }
 

@@ -1,8 +1,7 @@
 package io.dtron.models.ticker;
 
-import static org.junit.jupiter.api.Assertions.assertTrue;
-
 import io.dtron.testsupport.NatsServer;
+import io.dtron.testsupport.Waits;
 import io.nats.client.Connection;
 import io.nats.client.JetStreamApiException;
 import io.nats.client.JetStreamManagement;
@@ -55,11 +54,8 @@ class NatsClusterTest {
                 try (OrderMembers members = new OrderMembers(dir, bus, MESSAGES, servers.get(0).url(),
                         servers.get(1).url(), servers.get(2).url())) {
                     // mid-run: once three quarters of the messages are in the stream
-                    long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(90);
-                    while (messages(admin, bus) < 3L * MESSAGES / 4) {
-                        assertTrue(System.nanoTime() < deadline, "the members did not publish");
-                        Thread.sleep(5);
-                    }
+                    Waits.await("three quarters of the messages in the stream").atMost(Duration.ofSeconds(90))
+                            .until(() -> messages(admin, bus) >= 3L * MESSAGES / 4);
                     servers.get(1).kill();
                     members.awaitSuccess(Duration.ofSeconds(150), Duration.ofSeconds(60));
                     members.assertOneOrder();
@@ -73,23 +69,15 @@ class NatsClusterTest {
     }
 
     /** Creates the bus's stream on all three servers, once JetStream's cluster has a leader. */
-    private static void createReplicatedStream(JetStreamManagement management, String bus) throws Exception {
+    private static void createReplicatedStream(JetStreamManagement management, String bus) {
         StreamConfiguration config = StreamConfiguration.builder().name("DTRON_" + bus)
                 .subjects("dtron." + bus + ".>").storageType(StorageType.File).replicas(3)
                 .maxAge(Duration.ofMinutes(10)).maxBytes(64L * 1024 * 1024).duplicateWindow(Duration.ofMinutes(1))
                 .build();
-        long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(30);
-        while (true) {
-            try {
-                management.addStream(config);
-                return;
-            } catch (JetStreamApiException | IOException e) {
-                if (System.nanoTime() > deadline) {
-                    throw e;
-                }
-                Thread.sleep(200); // JetStream's cluster is still electing its leader
-            }
-        }
+        // refused while JetStream's cluster is still electing its leader
+        Waits.await("the replicated stream created").pollInterval(Duration.ofMillis(200))
+                .ignoreExceptionsMatching(e -> e instanceof JetStreamApiException || e instanceof IOException)
+                .until(() -> management.addStream(config) != null);
     }
 
     private static long messages(Connection admin, String bus) {

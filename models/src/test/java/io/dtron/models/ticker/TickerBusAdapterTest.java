@@ -9,14 +9,19 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 import io.dtron.api.Dtron;
 import io.dtron.api.DtronListener;
 import io.dtron.api.DtronOptions;
+import io.dtron.api.IDtronChannel;
 import io.dtron.api.IDtronChannelValued;
 import io.dtron.cli.DtronCommand;
+import io.dtron.testsupport.LogCapture;
+import io.dtron.testsupport.TickerRunBounds;
+import io.dtron.testsupport.Waits;
 import java.io.PrintWriter;
 import java.io.StringWriter;
 import java.time.Duration;
 import java.util.Map;
 import java.util.UUID;
 import java.util.concurrent.BlockingQueue;
+import java.util.concurrent.CountDownLatch;
 import java.util.concurrent.LinkedBlockingQueue;
 import java.util.concurrent.TimeUnit;
 import org.junit.jupiter.api.Test;
@@ -25,6 +30,7 @@ import org.junit.jupiter.api.Timeout;
 /** The ticker as a bus adapter: on its own on the bus, and tested by the README's command. */
 @Timeout(value = 60, unit = TimeUnit.SECONDS)
 class TickerBusAdapterTest {
+    private static final IDtronChannel FLUSHED = IDtronChannel.of("flushed");
     private final String cluster = "ticker-" + UUID.randomUUID().toString().substring(0, 8);
 
     @Test
@@ -49,15 +55,30 @@ class TickerBusAdapterTest {
             assertTrue(first >= 15, "the first tick comes 10 time units (20 ms) after the start, not " + first);
             assertEquals(2, seq(ticks));
             tester.send(TickerBusAdapter.RESET.constructValued(Map.of()));
+            // ticks due before the reset reached the ticker (how many is the machine's business) go on counting
             int next = seq(ticks);
-            if (next == 3) {
+            for (int old = 3; next == old; old++) {
                 next = seq(ticks);
             }
             assertEquals(1, next, "a reset restarts the numbering");
             tester.send(Dtron.RUN_STOP.constructValued(Map.of()));
-            Thread.sleep(100);
+            // once the ticker's run clock stopped, its member sends a marker: the bus keeps a member's order, so every
+            // tick sent before arrived before the marker
+            Waits.await("the ticker's run clock stopped").until(() -> !bus.runClock().isRunning());
+            CountDownLatch flushed = new CountDownLatch(1);
+            tester.addDtronListener(new DtronListener(FLUSHED) {
+                @Override
+                public void messageReceived(IDtronChannelValued message) {
+                    flushed.countDown();
+                }
+            });
+            bus.send(FLUSHED.constructValued(Map.of()));
+            assertTrue(flushed.await(Waits.TIMEOUT.toSeconds(), TimeUnit.SECONDS));
             ticks.clear();
-            assertNull(ticks.poll(100, TimeUnit.MILLISECONDS), "no tick after the end of the run");
+            // a tick under way when the run stopped finishes (however long load holds up its thread); none starts
+            if (ticks.poll(100, TimeUnit.MILLISECONDS) != null) {
+                assertNull(ticks.poll(100, TimeUnit.MILLISECONDS), "no tick after the end of the run");
+            }
             tester.send(TickerBusAdapter.RESET.constructValued(Map.of()));
             assertNull(ticks.poll(100, TimeUnit.MILLISECONDS), "a reset between runs starts nothing");
             tester.send(Dtron.RUN_START.constructValued(Map.of("timeunit", 2000)));
@@ -74,16 +95,26 @@ class TickerBusAdapterTest {
     }
 
     @Test
-    void theReadmeCommandPassesAndTheSlowVariantFails() {
+    void theReadmeCommandPassesUnlessTheTickerWasHeldUpAndTheSlowVariantFails() {
         String[] readme = {"src/main/resources/io/dtron/models/ticker.xml", "--adapter",
                 TickerBusAdapter.class.getName(), "--timeunit", "10000", "--timeout", "300", "--delay-policy", "eager",
                 "--cluster", cluster};
         StringWriter out = new StringWriter();
         StringWriter err = new StringWriter();
-        assertEquals(0, DtronCommand.run(readme, new PrintWriter(out), new PrintWriter(err)), out + "" + err);
-        assertTrue(out.toString().contains("PASSED: the timeout of 300 time units was reached after 11 inputs and 24"
-                + " outputs, all as the model allows"), out.toString());
-        assertTrue(out.toString().contains("latency t2 - t1 of outputs: count 24, "), out.toString());
+        try (LogCapture ticker = new LogCapture(TickerBusAdapter.class)) {
+            int exit = DtronCommand.run(readme, new PrintWriter(out), new PrintWriter(err));
+            if (exit == 2) {
+                // at 10 ms per unit a busy machine can hold the ticker's JVM up beyond the model's 2 units: then the
+                // verdict is right, and the ticker, timing its ticks on its own run clock, says it was late. A FAILED
+                // verdict for a tick the ticker sent on time would be a false one, and fails this test.
+                assertTrue(out.toString().contains("is too late"), out + "" + err);
+                assertTrue(ticker.messages().stream().anyMatch(m -> m.contains("(this JVM was held up)")),
+                        "FAILED, yet the ticker kept its period: " + out + err + ticker.messages());
+            } else {
+                assertEquals(0, exit, out + "" + err);
+                TickerRunBounds.assertPassed(out.toString(), 300);
+            }
+        }
 
         readme[2] = TickerBusAdapter.class.getName() + ":slow";
         readme[readme.length - 1] = cluster + "-slow";
@@ -91,9 +122,7 @@ class TickerBusAdapterTest {
         assertEquals(2, DtronCommand.run(readme, new PrintWriter(slow), new PrintWriter(new StringWriter())),
                 slow.toString());
         // the slow ticker's first tick, at 13 on the run's clock, is judged at that time
-        assertTrue(slow.toString().contains("FAILED: output tick(seq=1) observed at t=13."), slow.toString());
-        assertTrue(slow.toString().contains("is too late: The model allowed these outputs: tick between t=8.000 and"
-                + " t=12.000"), slow.toString());
+        TickerRunBounds.assertSlowTickerFailed(slow.toString());
     }
 
     private static int seq(BlockingQueue<IDtronChannelValued> ticks) throws InterruptedException {
