@@ -889,11 +889,8 @@ public final class Dtron implements AutoCloseable {
         if (recordListeners.isEmpty()) {
             return;
         }
-        Sync sync;
-        try {
-            sync = SyncCodec.parse(message.payload());
-        } catch (InvalidMessageException e) {
-            reject(message, e);
+        Sync sync = parseOrReject(message);
+        if (sync == null) {
             return;
         }
         Map<String, Integer> variables = new LinkedHashMap<>();
@@ -901,13 +898,20 @@ public final class Dtron implements AutoCloseable {
         record(message.group(), SyncCodec.stamp(sync, message.sender()), receiveTime, variables);
     }
 
-    /** A hello, ping, pong or serve: for the clock offset and the handshake, not for listeners. */
-    private void controlReceived(BusMessage message, long receiveTime) {
-        Sync sync;
+    /** The message's {@code Sync}, or null when it is none: then it is rejected (logged and counted). */
+    private Sync parseOrReject(BusMessage message) {
         try {
-            sync = SyncCodec.parse(message.payload());
+            return SyncCodec.parse(message.payload());
         } catch (InvalidMessageException e) {
             reject(message, e);
+            return null;
+        }
+    }
+
+    /** A hello, ping, pong or serve: for the clock offset and the handshake, not for listeners. */
+    private void controlReceived(BusMessage message, long receiveTime) {
+        Sync sync = parseOrReject(message);
+        if (sync == null) {
             return;
         }
         Stamp stamp = SyncCodec.stamp(sync, message.sender());
