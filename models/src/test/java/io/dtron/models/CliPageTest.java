@@ -2,6 +2,7 @@ package io.dtron.models;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertFalse;
+import static org.junit.jupiter.api.Assertions.assertTrue;
 import static org.junit.jupiter.api.Assertions.fail;
 
 import io.dtron.api.Dtron;
@@ -11,7 +12,6 @@ import io.dtron.models.ticker.TickerBusAdapter;
 import io.dtron.testsupport.DocPage;
 import io.dtron.testsupport.Waits;
 import java.io.File;
-import java.io.IOException;
 import java.io.PrintWriter;
 import java.io.StringWriter;
 import java.nio.file.Files;
@@ -29,7 +29,8 @@ import org.junit.jupiter.api.io.TempDir;
 /**
  * The {@code $ java -jar dtron.jar ...} sessions of the command line page ({@code cli.md}) run as written, in this
  * JVM, in a folder holding the models they name: {@code LightContr.xml} and {@code .trn} and {@code decl-04.xta}
- * from the shared models, the bundled {@code ticker.xml}; {@code models/target/classes} is this module's classes.
+ * from the shared models, the bundled {@code ticker.xml}, and the page's own {@code q.xml} and {@code broken.xml};
+ * {@code models/target/classes} is this module's classes.
  * A line of a session is a line the command printed, on standard output or on standard error, each stream's lines in
  * their order; a line {@code ...} stands for any lines. Sessions in virtual time, of {@code check} and of usage
  * errors print exactly what the page shows; a real-time run prints lines that begin as the page's do, up to their
@@ -59,8 +60,11 @@ class CliPageTest {
         Files.copy(SHARED.resolve("tron/LightContr.trn"), dir.resolve("LightContr.trn"));
         Files.copy(SHARED.resolve("xta-syntax/decl-04.xta"), dir.resolve("decl-04.xta"));
         Files.copy(ROOT.resolve("models/src/main/resources/io/dtron/models/ticker.xml"), dir.resolve("ticker.xml"));
+        DocPage page = DocPage.read("cli.md");
+        Files.writeString(dir.resolve("q.xml"), page.blockAfter("On this `q.xml`").code());
+        Files.writeString(dir.resolve("broken.xml"), page.blockAfter("and this `broken.xml`").code());
         List<String> exits = new ArrayList<>();
-        for (Session s : sessions(dir)) {
+        for (Session s : sessions(page, dir)) {
             StringWriter out = new StringWriter();
             StringWriter err = new StringWriter();
             int exit;
@@ -75,7 +79,8 @@ class CliPageTest {
             exits.add(s.shown() + ": " + exit);
         }
         // each session this test runs, by its command's first words, and its exit code: the page's verdicts
-        assertEquals(List.of("check LightContr.xml: 0", "check decl-04.xta: 1", "run LightContr.xml: 0",
+        assertEquals(List.of("check LightContr.xml: 0", "check q.xml: 0", "check decl-04.xta: 1",
+                "check broken.xml: 1", "run LightContr.xml: 0",
                 "run LightContr.xml: 2", "run ticker.xml: 1", "ticker.xml --cluster: 0", "ticker.xml --classpath: 0"),
                 exits);
     }
@@ -98,12 +103,12 @@ class CliPageTest {
     }
 
     /**
-     * The page's sessions whose files are here, with the files' names resolved in {@code dir} and the models'
+     * The page's sessions, with the files' names resolved in {@code dir} and the models'
      * classes in this build; the page's {@code delta} session is {@code DeltaCommandTest}'s (it writes a file).
      */
-    private static List<Session> sessions(Path dir) throws IOException {
+    private static List<Session> sessions(DocPage page, Path dir) {
         List<Session> sessions = new ArrayList<>();
-        for (DocPage.Block b : DocPage.read("cli.md").blocksStartingWith(PROMPT)) {
+        for (DocPage.Block b : page.blocksStartingWith(PROMPT)) {
             List<String> lines = b.code().lines().toList();
             for (int i = 0; i < lines.size(); ) {
                 int line = b.line() + 1 + i;
@@ -121,20 +126,17 @@ class CliPageTest {
                 if (args.get(0).equals("delta")) {
                     continue;
                 }
-                boolean here = true;
                 for (int a = 0; a < args.size(); a++) {
                     String arg = args.get(a);
                     if (arg.matches("[\\w-]+\\.(xml|xta|trn)")) {
-                        here &= Files.exists(dir.resolve(arg));
+                        assertTrue(Files.exists(dir.resolve(arg)), "cli.md, line " + line + ": no " + arg);
                         args.set(a, dir.resolve(arg).toString());
                     } else if (arg.equals("models/target/classes")) {
                         args.set(a, ROOT.resolve(arg).toString());
                     }
                 }
-                if (here) { // q.xml and broken.xml: the page shows what check says of them, not the models
-                    sessions.add(new Session(String.join(" ", List.of(command.substring(PROMPT.length()).trim()
-                            .split("\\s+")).subList(0, 2)), args, expected, line));
-                }
+                sessions.add(new Session(String.join(" ", List.of(command.substring(PROMPT.length()).trim()
+                        .split("\\s+")).subList(0, 2)), args, expected, line));
             }
         }
         return sessions;
