@@ -5,6 +5,7 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import io.dtron.api.ChildJvm;
 import io.dtron.cli.CommandRun;
+import io.dtron.testsupport.DocPage;
 import java.net.InetAddress;
 import java.net.ServerSocket;
 import java.nio.file.Files;
@@ -14,6 +15,7 @@ import java.util.ArrayList;
 import java.util.List;
 import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.TimeUnit;
+import java.util.regex.Pattern;
 import org.junit.jupiter.api.BeforeAll;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.Timeout;
@@ -130,5 +132,44 @@ class TronSampleTest {
         assertEquals(2, late.tron().exit(), late.tron().out() + late.tron().err() + late.lamp());
         assertTrue(late.tron().out().startsWith("TEST FAILED: "), late.tron().out());
         assertTrue(late.tron().out().contains("levelAdapter"), late.tron().out());
+    }
+
+    /**
+     * tron.md's command lines for TRON's sample as the page writes them, but for the ports (free ones instead of the
+     * page's 9999 and 6521, which something else on this host may hold): the real-time line, and the virtual-time one
+     * with the lamp started on the clock server; the correct lamp passes both, with the page's verdict line.
+     */
+    @Test
+    void tronPagesCommandLinesPassTheCorrectLamp() throws Exception {
+        DocPage page = DocPage.read("tron.md");
+        List<String> realTime = List.of(page.blockAfter("TRON's smart-lamp sample, where the").code().lines().toList()
+                .get(1).split("\\s+"));
+        List<String> virtual = new ArrayList<>(List.of(page.blockAfter("The same command lines run DTRON:").code()
+                .lines().toList().get(0).split("\\s+")));
+        String lamp = page.blockAfter("The same command lines run DTRON:").code().lines().toList().get(1);
+        assertEquals("&", virtual.remove(virtual.size() - 1), "the page starts dtron tron in the background");
+        assertTrue(lamp.endsWith(" -C localhost 6521"), lamp);
+        String shown = page.blockAfter("the verdict as").code().strip();
+        String verdict = shown.substring(0, shown.indexOf(" after ") + 7);
+        for (List<String> line : List.of(realTime, virtual)) {
+            int model = line.indexOf("LightContr.xml");
+            assertEquals(List.of("dtron", "tron"), line.subList(0, 2), line.toString());
+            assertEquals(List.of("--", "localhost", "9999"), line.subList(model + 1, line.size()), line.toString());
+            List<String> options = new ArrayList<>(line.subList(2, model));
+            int clock = options.contains("-qQ") ? freePort() : 0;
+            if (clock > 0) {
+                assertEquals("6521", options.set(options.indexOf("-qQ") + 1, Integer.toString(clock)));
+            }
+            // the lamp's own time unit: 1 ms in virtual time, as the page says; 10 ms in real time, where a busy
+            // machine holds threads up for milliseconds
+            Sample s = run(clock, "correct", 1000, clock > 0 ? 1000 : TronLampEndToEndTest.REAL_TIME_UNIT,
+                    options.toArray(String[]::new));
+            String out = s.tron().out() + s.tron().err() + s.lamp();
+            assertEquals(0, s.tron().exit(), out);
+            String units = options.get(options.indexOf("-F") + 1);
+            assertTrue(s.tron().out().lines().anyMatch(l -> l.matches(Pattern.quote(verdict.replace("300", units))
+                    + "\\d+ inputs and \\d+ outputs, all as the model allows")), verdict + " in " + out);
+            assertEquals(0, s.lampExit(), s.lamp());
+        }
     }
 }
