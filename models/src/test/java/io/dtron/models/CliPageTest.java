@@ -10,6 +10,7 @@ import io.dtron.api.DtronOptions;
 import io.dtron.cli.DtronCommand;
 import io.dtron.models.ticker.TickerBusAdapter;
 import io.dtron.testsupport.DocPage;
+import io.dtron.testsupport.LogCapture;
 import io.dtron.testsupport.Waits;
 import java.io.File;
 import java.io.PrintWriter;
@@ -34,7 +35,9 @@ import org.junit.jupiter.api.io.TempDir;
  * A line of a session is a line the command printed, on standard output or on standard error, each stream's lines in
  * their order; a line {@code ...} stands for any lines. Sessions in virtual time, of {@code check} and of usage
  * errors print exactly what the page shows; a real-time run prints lines that begin as the page's do, up to their
- * first number (its seed, its counts, its timings and member ids differ), in their order, with the same verdict.
+ * first number (its seed, its counts, its timings and member ids differ), in their order, with the same verdict, or,
+ * when a busy machine held the run's threads up, INCONCLUSIVE naming the event that came too late, or FAILED on a
+ * tick that the bundled ticker says it published late.
  */
 @Timeout(value = 120, unit = TimeUnit.SECONDS)
 class CliPageTest {
@@ -42,6 +45,9 @@ class CliPageTest {
     private static final Path SHARED = Path.of(System.getProperty("dtron.shared", "../../shared"), "models");
     private static final String PROMPT = "$ java -jar dtron.jar ";
     private static final Pattern DIGIT = Pattern.compile("\\d");
+    /** The verdict of a real-time run whose threads a busy machine held up past a window of the model. */
+    private static final Pattern HELD_UP = Pattern.compile(
+            "(?m)^INCONCLUSIVE: .*(input executed too late|more than the reorder window)");
 
     /**
      * A session: its command's first two words as the page shows them, the command's arguments, the lines the page
@@ -68,15 +74,25 @@ class CliPageTest {
             StringWriter out = new StringWriter();
             StringWriter err = new StringWriter();
             int exit;
-            if (s.args().contains("lab")) {
-                exit = withTheAdaptersTicker(s, out, err);
-            } else {
-                exit = DtronCommand.run(s.args().toArray(String[]::new), new PrintWriter(out, true),
-                        new PrintWriter(err, true));
+            List<String> lateTicks;
+            try (LogCapture ticker = new LogCapture(TickerBusAdapter.class)) {
+                if (s.args().contains("lab")) {
+                    exit = withTheAdaptersTicker(s, out, err);
+                } else {
+                    exit = DtronCommand.run(s.args().toArray(String[]::new), new PrintWriter(out, true),
+                            new PrintWriter(err, true));
+                }
+                lateTicks = ticker.messages().stream().filter(m -> m.contains("this JVM was held up")).toList();
             }
             assertFalse(err.toString().contains("\tat "), "no stack trace: " + err);
-            match(s, lines(out.toString(), dir), lines(err.toString(), dir));
-            exits.add(s.shown() + ": " + exit);
+            // a busy machine may hold a real-time run's threads up longer than the model's windows allow: where the
+            // page shows PASSED, the tester then says INCONCLUSIVE naming the event that came too late, or FAILED on
+            // a tick that the ticker itself says it published late (the page's way to tell a FAILED verdict from a
+            // wrong one)
+            boolean heldUp = s.realTime() && (exit == 3 && HELD_UP.matcher(out.toString()).find()
+                    || exit == 2 && !lateTicks.isEmpty() && out.toString().contains("\nFAILED: output tick("));
+            match(s, heldUp, lines(out.toString(), dir), lines(err.toString(), dir));
+            exits.add(s.shown() + ": " + (heldUp ? 0 : exit));
         }
         // each session this test runs, by its command's first words, and its exit code: the page's verdicts
         assertEquals(List.of("check LightContr.xml: 0", "check q.xml: 0", "check decl-04.xta: 1",
@@ -150,9 +166,10 @@ class CliPageTest {
     /**
      * Every line of the session is a line of standard output or of standard error, each stream's lines in their
      * order, and nothing else is printed unless the session shows {@code ...}; in real time, the lines' beginnings
-     * up to their first number, and other lines (a warning that the machine is busy) may come between.
+     * up to their first number, and other lines (a warning that the machine is busy) may come between; an
+     * INCONCLUSIVE or FAILED verdict stands for PASSED when the run was {@code heldUp}.
      */
-    private static void match(Session s, List<String> out, List<String> err) {
+    private static void match(Session s, boolean heldUp, List<String> out, List<String> err) {
         int o = 0;
         int e = 0;
         boolean more = s.realTime();
@@ -162,7 +179,8 @@ class CliPageTest {
                 more = true;
                 continue;
             }
-            Pattern p = pattern(expected, s.realTime());
+            Pattern p = heldUp && expected.startsWith("PASSED: ") ? Pattern.compile("(INCONCLUSIVE|FAILED): .*")
+                    : pattern(expected, s.realTime());
             int atOut = find(p, out, o, more);
             int atErr = atOut >= 0 ? -1 : find(p, err, e, more);
             if (atOut >= 0) {
