@@ -119,8 +119,8 @@ class CliPageTest {
     }
 
     /**
-     * The page's sessions, with the files' names resolved in {@code dir} and the models'
-     * classes in this build; the page's {@code delta} session is {@code DeltaCommandTest}'s (it writes a file).
+     * The page's sessions, with the files' names resolved in {@code dir} and the models' classes in this build; the
+     * page's {@code delta} session is {@code DeltaCommandTest}'s (it writes a file).
      */
     private static List<Session> sessions(DocPage page, Path dir) {
         List<Session> sessions = new ArrayList<>();
