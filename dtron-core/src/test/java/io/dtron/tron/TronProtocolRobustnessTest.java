@@ -322,8 +322,10 @@ class TronProtocolRobustnessTest {
 
     @Test
     void aFrameBegunBeforeADeadlineAndNeverFinishedIsInconclusiveNotFailed() throws Exception {
-        // the lazy tester holds the lamp grasped until the model requires a level (tens of units of 1 ms); the
-        // adapter begins that output at once and never finishes it, and its frame timeout is longer than that
+        // the lazy tester holds the lamp grasped until the model requires a level (tens of units of 10 ms); the
+        // adapter begins that output at once and never finishes it, and its frame timeout is longer than that. At
+        // 10 ms per unit the grasp's window (100 units) stays wider than the margin a busy machine makes the tester
+        // keep before a window's end (at 1 ms per unit it was not, and the tester rightly sent no grasp at all)
         TronSocketAdapter.Settings settings = FAST.withFrameTimeout(Duration.ofSeconds(3));
         CompletableFuture<Void> adapter = adapter(c -> {
             c.configureLamp(LONG_RUN);
@@ -333,7 +335,7 @@ class TronProtocolRobustnessTest {
             assertTrue(c.closedByTester());
         });
         TronSocketAdapter tester = TronSocketAdapter.accept(server, lightContr, settings);
-        TestOptions options = new TestOptions(3, 1000, LONG_RUN, DelayPolicy.LAZY, 0, false);
+        TestOptions options = new TestOptions(3, 10_000, LONG_RUN, DelayPolicy.LAZY, 0, false);
         TestResult r = new OnlineTester(lightContr, tester.testInterface(), tester, options).run();
         adapter.get(10, TimeUnit.SECONDS);
         assertEquals(Verdict.INCONCLUSIVE, r.verdict(), r.explanation());
