@@ -116,6 +116,8 @@ public final class Dtron implements AutoCloseable {
     private final Map<String, MemberDelay> delays = new ConcurrentHashMap<>();
     private final List<DtronMembershipListener> membershipListeners = new CopyOnWriteArrayList<>();
     private final List<java.util.function.Consumer<BusRecord>> recordListeners = new CopyOnWriteArrayList<>();
+    private final List<java.util.function.Consumer<Map<String, ServedChannels>>> servedListeners =
+            new CopyOnWriteArrayList<>();
     private final Counters counters = new Counters();
     private final AtomicLong sequence = new AtomicLong();
     private final SerialExecutor dispatcher;
@@ -163,7 +165,7 @@ public final class Dtron implements AutoCloseable {
         this.clockSync = new ClockSync(transport.localMember(), options.isTester(), this::currentTimeNanos,
                 sequence::incrementAndGet, this::publishControl, this::offsetChanged);
         this.handshake = new ChannelHandshake(transport.localMember(), dispatcher::execute,
-                this::publishServed, this::wakeWaiters, options.isTester());
+                this::publishServed, this::othersServedChanged, options.isTester());
         this.runClock = new RunClock(transport.localMember(), this::currentTimeNanos, this::runClockOffset);
         this.lastView = transport.view();
         this.viewSubscription = transport.addViewListener(this::viewChanged);
@@ -364,6 +366,28 @@ public final class Dtron implements AutoCloseable {
      */
     public Map<String, ServedChannels> getMembersServedChannels() {
         return handshake.others();
+    }
+
+    /**
+     * Adds a listener that is told what the other members serve (as {@link #getMembersServedChannels()} returns
+     * it) whenever that changes: a member said what it serves, or one that had said it left. It is called on the
+     * thread of the {@link DtronListener}s, in order with the messages: a member's announcement comes before the
+     * messages it sent after it, and its messages before the news that it left. For a tester, which judges who
+     * sends on its channels; a listener added twice is called once.
+     */
+    public void addServedChannelsListener(java.util.function.Consumer<Map<String, ServedChannels>> listener) {
+        Objects.requireNonNull(listener, "listener");
+        synchronized (lock) {
+            requireOpen();
+            if (!servedListeners.contains(listener)) {
+                servedListeners.add(listener);
+            }
+        }
+    }
+
+    /** Removes a listener of {@link #addServedChannelsListener}; removing an unknown one does nothing. */
+    public void removeServedChannelsListener(java.util.function.Consumer<Map<String, ServedChannels>> listener) {
+        servedListeners.remove(Objects.requireNonNull(listener, "listener"));
     }
 
     /**
@@ -668,6 +692,7 @@ public final class Dtron implements AutoCloseable {
             registrations.values().forEach(r -> r.listeners().forEach(l -> l.detach(this)));
             registrations.clear();
             membershipListeners.clear();
+            servedListeners.clear();
         }
         LOG.info("Left bus '{}' as {}: {}", clusterName, getMemberId(), getStats());
     }
@@ -794,9 +819,31 @@ public final class Dtron implements AutoCloseable {
         }
     }
 
-    private void wakeWaiters() {
+    /**
+     * Called on the transport's thread, in the bus's order, when another member's announcement arrived or a member
+     * that had made one left: wakes the waiters and queues the news for the served-channels listeners.
+     */
+    private void othersServedChanged() {
         synchronized (lock) {
             lock.notifyAll();
+        }
+        if (!servedListeners.isEmpty()) {
+            Map<String, ServedChannels> served = handshake.others();
+            dispatcher.execute(() -> servedChanged(served));
+        }
+    }
+
+    /** Called on the dispatcher thread, in the bus's order. */
+    private void servedChanged(Map<String, ServedChannels> served) {
+        for (java.util.function.Consumer<Map<String, ServedChannels>> listener : servedListeners) {
+            try {
+                listener.accept(served);
+            } catch (VirtualMachineError e) {
+                throw e;
+            } catch (Throwable e) {
+                counters.listenerFailed();
+                LOG.error("Served-channels listener {} failed on {}", listener, served, e);
+            }
         }
     }
 

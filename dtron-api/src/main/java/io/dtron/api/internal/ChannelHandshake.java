@@ -16,7 +16,10 @@ import java.util.function.Consumer;
  * Not API. One member's side of the channel-serving handshake: the channels it serves (receives, by listeners, and
  * sends), announced on {@link #SERVE} whenever they change and whenever a tester's hello arrives; and the last
  * announcement of every other member on the bus. A tester announces its channels too, saying that it is a tester:
- * it serves none of them, it tests them.
+ * it serves none of them, it tests them. A channel this member starts sending on is announced before {@link
+ * #sending} returns, so that on the bus the announcement comes before the first message on it: a tester takes a
+ * message from a member that did not say it sends on that channel for another system's (see the channel owners on
+ * the tester's side).
  * Thread-safe.
  */
 public final class ChannelHandshake {
@@ -33,6 +36,8 @@ public final class ChannelHandshake {
     private volatile Map<String, ServedChannels> others = Map.of();
     private final Object othersLock = new Object();
     private final AtomicBoolean queued = new AtomicBoolean();
+    /** Held while an announcement is taken and published: announcements go out in the order they were taken. */
+    private final Object publishing = new Object();
     private boolean joinsRun;
     private boolean tester;
 
@@ -65,14 +70,19 @@ public final class ChannelHandshake {
         }
     }
 
-    /** This member sends on these channels; announced when that adds one. */
+    /**
+     * This member sends on these channels; when that adds one, announced before this returns (on the caller's thread),
+     * so that a message the caller publishes next comes after the announcement on the bus.
+     */
     public void sending(Collection<String> channels) {
         boolean changed;
         synchronized (this) {
             changed = sends.addAll(channels);
         }
         if (changed) {
-            announce();
+            synchronized (publishing) {
+                publisher.accept(own());
+            }
         }
     }
 
@@ -165,7 +175,9 @@ public final class ChannelHandshake {
         }
         executor.execute(() -> {
             queued.set(false);
-            publisher.accept(own());
+            synchronized (publishing) {
+                publisher.accept(own());
+            }
         });
     }
 }
