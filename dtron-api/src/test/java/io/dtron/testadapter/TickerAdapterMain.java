@@ -1,7 +1,11 @@
 package io.dtron.testadapter;
 
 import io.dtron.api.Dtron;
+import io.dtron.api.DtronListener;
 import io.dtron.api.DtronOptions;
+import io.dtron.api.IDtronChannelValued;
+import java.util.Set;
+import java.util.concurrent.ConcurrentHashMap;
 import java.util.concurrent.CountDownLatch;
 import java.util.concurrent.TimeUnit;
 
@@ -9,8 +13,9 @@ import java.util.concurrent.TimeUnit;
  * A ticker adapter process, using only {@code io.dtron.api}: a {@link BusTicker} on the bus. Arguments: cluster
  * name, member name, variant ({@code correct} or {@code slow}), the number of runs to serve, and optionally the NATS
  * server URLs (comma-separated) of a NATS bus. Prints
- * {@code joined} once on the bus; stops ticking whenever another member (a tester) leaves, leaves when that many
- * have left the bus, and prints {@code resets N}. Exit code 0, or 2 if they did not come and go within ten minutes.
+ * {@code joined} once on the bus; stops ticking whenever a tester that started a run here leaves, leaves when that
+ * many have left the bus, and prints {@code resets N}; other members (observers, refused testers) come and go
+ * unnoticed. Exit code 0, or 2 if they did not come and go within ten minutes.
  */
 public final class TickerAdapterMain {
     private TickerAdapterMain() {
@@ -29,10 +34,19 @@ public final class TickerAdapterMain {
         }
         try (Dtron dtron = Dtron.connect(options.build());
                 ticker) {
-            dtron.addMembershipListener((members, joined, left) -> left.forEach(member -> {
-                ticker.stop();
-                testersGone.countDown();
-            }));
+            // the listeners' thread hears a tester's run start before the news that it left
+            Set<String> runTesters = ConcurrentHashMap.newKeySet();
+            dtron.addDtronListener(new DtronListener(Dtron.RUN_START) {
+                @Override
+                public void messageReceived(IDtronChannelValued start) {
+                    runTesters.add(start.getSender());
+                }
+            });
+            dtron.addMembershipListener((members, joined, left) -> left.stream().filter(runTesters::remove)
+                    .forEach(member -> {
+                        ticker.stop();
+                        testersGone.countDown();
+                    }));
             ticker.start(dtron);
             System.out.println("joined " + dtron.getMembers());
             System.out.flush();

@@ -9,6 +9,7 @@ import io.dtron.api.DtronStats;
 import io.dtron.api.IDtronChannel;
 import io.dtron.api.IDtronChannelValued;
 import io.dtron.api.ServedChannels;
+import io.dtron.bridge.internal.ChannelOwners;
 import io.dtron.bridge.internal.InputDelays;
 import io.dtron.bridge.internal.LatencyRecorder;
 import io.dtron.engine.Adapter;
@@ -54,10 +55,16 @@ import org.slf4j.LoggerFactory;
  * (its publish time) and t2 (its receive time) are recorded: {@link #outputLatency()} and
  * {@link #inputLatency()} summarise t2 - t1.
  *
- * <p>When a member other than the bridge that was on the bus when the run started leaves during the run (it closed,
+ * <p>When a member other than the bridge that served the run when it started leaves during the run (it closed,
  * or its process died and failure detection noticed), the run ends INCONCLUSIVE naming the member: the bridge
  * cannot know which parts of the system under test that member stood for, so it assumes the model may be waiting on
- * it. A member that joined during the run never served it, and may leave.
+ * it. A member serves the run when it said in the handshake that it receives an input or sends an output of the
+ * model, or said nothing (it may serve anything). A member that joined during the run, or that serves no channel
+ * of the model (an observer, a tester refused because of this run), never served it, and may leave.
+ *
+ * <p>Each output has one owner: the member that said it sends it. When two members say so, or a member sends on it
+ * without having said so, the bridge names them ({@link #ownersConflict()} before a run) and ends a run that is
+ * going on INCONCLUSIVE, rather than judge their messages as one system's.
  */
 public final class BusBridge implements Adapter, AutoCloseable {
     private static final Logger LOG = LoggerFactory.getLogger(BusBridge.class);
@@ -78,6 +85,12 @@ public final class BusBridge implements Adapter, AutoCloseable {
     private final LatencyRecorder outputLatency = new LatencyRecorder();
     private final LatencyRecorder inputLatency = new LatencyRecorder();
     private final Set<String> watched = ConcurrentHashMap.newKeySet();
+    /** The members on the bus when the run started. */
+    private volatile Set<String> startMembers = Set.of();
+    /** Who owns the outputs (see {@link ChannelOwners}). */
+    private final ChannelOwners owners;
+    /** What the other members serve, in the bus's order with their messages (the listeners' thread keeps it). */
+    private volatile Map<String, ServedChannels> served;
     /** The adapters the tester waited for ({@link #expectAdapters}): each must still be there at the start. */
     private final Set<String> expected = ConcurrentHashMap.newKeySet();
     /** Whether every channel of the model was served by the handshake when {@link #expectAdapters} was called. */
@@ -133,6 +146,9 @@ public final class BusBridge implements Adapter, AutoCloseable {
         testInterface.inputs().forEach(c -> inputChannels.put(c.name(), channels.get(c.name())));
         this.inputs = Map.copyOf(inputChannels);
         this.outputs = Set.copyOf(testInterface.outputs().stream().map(TestInterface.ObservableChannel::name).toList());
+        this.owners = new ChannelOwners(inputs.keySet(), outputs);
+        dtron.addServedChannelsListener(this::servedChanged);
+        this.served = dtron.getMembersServedChannels();
         for (IDtronChannel channel : channels.values()) {
             dtron.addDtronListener(new DtronListener(channel) {
                 @Override
@@ -706,8 +722,11 @@ public final class BusBridge implements Adapter, AutoCloseable {
     @Override
     public void start(AdapterContext runContext) {
         startRun(runContext);
+        // what the tester checked before the start may have changed since: a member that joined in between
+        ownersConflict().ifPresent(conflict -> context.inconclusive(conflict));
         // the awaited adapters that were no longer members at the start (those that leave later are watched)
-        List<String> goneBeforeStart = expected.stream().filter(m -> !watched.contains(m)).sorted().toList();
+        Set<String> present = startMembers;
+        List<String> goneBeforeStart = expected.stream().filter(m -> !present.contains(m)).sorted().toList();
         expected.clear();
         List<String> unserved = expectedByHandshake ? unservedChannels() : List.of();
         if (!goneBeforeStart.isEmpty() && (!expectedByHandshake || !unserved.isEmpty())) {
@@ -726,7 +745,13 @@ public final class BusBridge implements Adapter, AutoCloseable {
         heldPeerInputs.clear();
         widenings.clear();
         runLeader = joining ? dtron.getTester().orElse(null) : null;
-        watched.addAll(dtron.getMembers());
+        owners.newRun();
+        Map<String, ServedChannels> servedNow = served;
+        startMembers = Set.copyOf(dtron.getMembers());
+        // a member that said it serves no channel of the model (an observer) never serves the run, and may leave;
+        // one that said nothing may serve anything
+        startMembers.stream().filter(m -> !servedNow.containsKey(m) || owners.servesTheModel(servedNow.get(m)))
+                .forEach(watched::add);
         watched.remove(dtron.getMemberId());
         watched.removeAll(testersOfOtherRuns()); // refused by this run, they leave
 
@@ -756,6 +781,37 @@ public final class BusBridge implements Adapter, AutoCloseable {
         } catch (DtronException | IllegalStateException e) {
             LOG.warn("Cannot publish the start of the run: {}", e.getMessage());
             context.inconclusive("cannot publish the start of the run on the bus: " + e.getMessage());
+        }
+    }
+
+    /**
+     * Returns what makes the owners of the model's outputs ambiguous on the bus now, in one line naming the members
+     * (see {@link ChannelOwners#conflict}): two members with one id, or an output that two members say they send
+     * (the testers of other runs left out). A tester refuses to start a run then; empty when every output has at most
+     * one owner.
+     */
+    public Optional<String> ownersConflict() {
+        return owners.conflict(dtron.getMembers(), dtron.getMembersServedChannels(), notOwners());
+    }
+
+    /** The members that own no channel of this run: this bridge and the testers of other runs. */
+    private Set<String> notOwners() {
+        Set<String> none = testersOfOtherRuns();
+        none.add(dtron.getMemberId());
+        return none;
+    }
+
+    /**
+     * Called on the bus's listener thread, in the bus's order, when what the other members serve changed: during a
+     * run, an output that two members now say they send ends it INCONCLUSIVE, naming them.
+     */
+    private void servedChanged(Map<String, ServedChannels> now) {
+        served = now;
+        if (running) {
+            owners.conflict(dtron.getMembers(), now, notOwners()).ifPresent(conflict -> {
+                LOG.warn("Channel owners: {}", conflict);
+                context.inconclusive(conflict);
+            });
         }
     }
 
@@ -1027,6 +1083,12 @@ public final class BusBridge implements Adapter, AutoCloseable {
             }
             return;
         }
+        Optional<String> notOwner = owners.notOwner(channel, message.getSender(), served, notOwners());
+        if (notOwner.isPresent()) {
+            LOG.warn("Not judged: {}: {}", message, notOwner.get());
+            context.inconclusive(notOwner.get());
+            return;
+        }
         recordOffset(message);
         if (isPeerTester(message.getSender()) && appliedByAdapter(message.getChannelName())) {
             // another tester's input, which an adapter applies: it happened where the adapter applied it, which its
@@ -1101,10 +1163,11 @@ public final class BusBridge implements Adapter, AutoCloseable {
     }
 
     /**
-     * Called on the bus's listener thread, after the messages of members that left. Only members that were on
-     * the bus when the run started count: this news may come after the start for a member that left before, and a
-     * member that joined during the run never served it (a tester refused because this run is going on, its
-     * adapters, an observer), so its leaving does not end the run.
+     * Called on the bus's listener thread, after the messages of members that left. Only members that served the run
+     * when it started count (see {@link #startRun}): this news may come after the start for a member that left
+     * before, and a member that joined during the run never served it (a tester refused because this run is going
+     * on, its adapters, an observer), nor did one that serves no channel of the model, so its leaving does not end
+     * the run.
      */
     private void membershipChanged(List<String> members, List<String> joined, List<String> left) {
         if (!joined.isEmpty()) {

@@ -374,8 +374,16 @@ class BusBridgeTest {
         }
     }
 
+    /** The adapter says it sends {@code done}, and the bridge has heard it: it serves the run. */
+    private void adapterServesDone() {
+        adapter.declareOutputs(DONE);
+        Waits.await("the adapter's channels").until(() -> bridge.servedChannels().containsKey("adapter")
+                && bridge.servedChannels().get("adapter").sends().contains("done"));
+    }
+
     @Test
     void aMemberLeavingDuringTheRunEndsItInconclusive() throws Exception {
+        adapterServesDone();
         bridge.start(context);
         adapter.close();
         String reason = context.inconclusive.poll(10, TimeUnit.SECONDS);
@@ -386,6 +394,7 @@ class BusBridgeTest {
 
     @Test
     void aMemberThatJoinedDuringTheRunAndLeftIsNoReason() throws Exception {
+        adapterServesDone();
         bridge.start(context);
         // a member that never served the run: a tester refused because this run is going on, or its adapter
         try (Dtron newcomer = Dtron.connect(DtronOptions.builder().clusterName(cluster).memberName("newcomer")
@@ -398,6 +407,57 @@ class BusBridgeTest {
         String reason = context.inconclusive.poll(10, TimeUnit.SECONDS);
         assertNotNull(reason, "no inconclusive verdict");
         assertTrue(reason.startsWith("adapter member adapter left the bus"), reason);
+    }
+
+    @Test
+    void aMemberThatServesNoChannelOfTheModelMayLeaveDuringTheRun() throws Exception {
+        adapterServesDone();
+        try (Dtron observer = Dtron.connect(DtronOptions.builder().clusterName(cluster).memberName("observer")
+                .inJvm(true).build())) {
+            // it watches an output and listens to a channel of no model: it applies no input, sends no output
+            observer.addDtronListener(new Inbox(DONE));
+            observer.addDtronListener(new Inbox(IDtronChannel.of("weather")));
+            Waits.await("the observer's channels").until(() -> bridge.servedChannels().containsKey("observer")
+                    && bridge.servedChannels().get("observer").receives().contains("weather"));
+            bridge.start(context);
+        }
+        awaitMembers(2);
+        adapter.close();
+        String reason = context.inconclusive.poll(10, TimeUnit.SECONDS);
+        assertNotNull(reason, "no inconclusive verdict");
+        assertTrue(reason.startsWith("adapter member adapter left the bus"), "the observer is no reason: " + reason);
+    }
+
+    @Test
+    void aSecondMemberSayingItSendsAnOutputDuringTheRunEndsItInconclusiveNamingBoth() throws Exception {
+        adapterServesDone();
+        assertEquals(java.util.Optional.empty(), bridge.ownersConflict());
+        bridge.start(context);
+        try (Dtron second = Dtron.connect(DtronOptions.builder().clusterName(cluster).memberName("second")
+                .inJvm(true).build())) {
+            second.send(DONE.constructValued(Map.of("amount", 1)));
+            String reason = context.inconclusive.poll(10, TimeUnit.SECONDS);
+            assertEquals("output done is sent by 2 members, adapter (receives [], sends [done]) and second (receives"
+                    + " [], sends [done]), and the tester would judge their messages as one system's", reason);
+            assertTrue(bridge.ownersConflict().isPresent(), "and a run would be refused now");
+            // its message comes after it said it sends done: the first reason is the only one, and it is no output
+            assertNull(context.outputs.poll(200, TimeUnit.MILLISECONDS), context.outputs.toString());
+        }
+        Waits.await("the second member gone").until(() -> bridge.ownersConflict().isEmpty());
+    }
+
+    @Test
+    void anOutputFromAMemberThatDidNotSayItSendsItIsNotJudged() throws Exception {
+        adapterServesDone();
+        bridge.start(context);
+        try (Transport old = JGroupsTransport.connect(BusConnector.settings(
+                DtronOptions.builder().clusterName(cluster).inJvm(true).build(), "old"))) {
+            old.publish("done", sync("done", variable("amount", 2)));
+            String reason = context.inconclusive.poll(10, TimeUnit.SECONDS);
+            assertEquals("member old, which did not say what it serves, sent output done, which adapter (receives [],"
+                    + " sends [done]) sends: the tester cannot judge their messages as one system's", reason);
+            assertTrue(context.outputs.isEmpty(), context.outputs.toString());
+        }
     }
 
     @Test
