@@ -583,8 +583,8 @@ final class RunCommand implements Callable<Integer> {
             long seconds = waitTimeout == null ? 30 : waitTimeout;
             int wanted = adaptersWanted();
             try {
-                if (wanted < 0 ? !awaitChannels(session, seconds, out, err) : !awaitMembers(session, wanted, seconds,
-                        out, err)) {
+                if ((wanted < 0 ? !awaitChannels(session, seconds, out, err) : !awaitMembers(session, wanted, seconds,
+                        out, err)) || refusedForOwners(session.bridge(), err)) {
                     return 1;
                 }
                 session.bridge().expectAdapters();
@@ -632,6 +632,9 @@ final class RunCommand implements Callable<Integer> {
             } catch (InterruptedException e) {
                 Thread.currentThread().interrupt();
                 err.println("dtron run: interrupted while preparing the run");
+                return 1;
+            }
+            if (refusedForOwners(bridge, err)) {
                 return 1;
             }
             bridge.reorderWindow(window, auto);
@@ -686,6 +689,21 @@ final class RunCommand implements Callable<Integer> {
         out.println("dtron run: every channel is served" + servedSummary(bridge));
         out.flush();
         return true;
+    }
+
+    /**
+     * Refuses the run, saying why in one line, when the owners of the model's outputs are ambiguous: two members send
+     * one output, or have one id (see {@link BusBridge#ownersConflict()}).
+     */
+    private boolean refusedForOwners(BusBridge bridge, PrintWriter err) {
+        Optional<String> conflict = bridge.ownersConflict();
+        conflict.ifPresent(reason -> {
+            err.println("dtron run: bus '" + clusterName() + "' at " + busWhere() + ": " + reason + ". Stop all but"
+                    + " one of them, or give this run a bus of its own with --cluster NAME (and its adapters the same"
+                    + " name)");
+            err.flush();
+        });
+        return conflict.isPresent();
     }
 
     /** "; members: A receives [..] sends [..], ..." for what the adapters on the bus said they serve. */

@@ -1,0 +1,185 @@
+package io.dtron.cli;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertFalse;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+import io.dtron.api.ChildJvm;
+import io.dtron.api.Dtron;
+import io.dtron.api.DtronListener;
+import io.dtron.api.DtronOptions;
+import io.dtron.api.IDtronChannelValued;
+import io.dtron.testadapter.TickerAdapterMain;
+import io.dtron.testsupport.DocPage;
+import io.dtron.testsupport.NatsServer;
+import io.dtron.testsupport.TickerRunBounds;
+import io.dtron.testsupport.Waits;
+import java.nio.file.Path;
+import java.util.ArrayList;
+import java.util.Collections;
+import java.util.List;
+import java.util.UUID;
+import java.util.concurrent.CompletableFuture;
+import java.util.concurrent.TimeUnit;
+import java.util.regex.Matcher;
+import java.util.regex.Pattern;
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.Timeout;
+import org.junit.jupiter.api.io.TempDir;
+
+/**
+ * Each output of the model has one owner on the bus, with adapters in JVMs of their own: two ticker adapters that
+ * both send {@code tick} are named and the run is refused (they were there before the start) or ends INCONCLUSIVE
+ * (the second joined during the run), never judged as one ticker; members that serve no channel of the run (an
+ * observer, a refused second tester) come and go and the run passes. The tester runs in this JVM, as {@code dtron
+ * run} on the bundled ticker model at 100 ms per time unit (the model's 2 units of jitter hold for a fresh adapter
+ * JVM on a busy machine).
+ */
+@Timeout(value = 3, unit = TimeUnit.MINUTES)
+class ChannelOwnersRunTest {
+    private static final String TICKER = Path.of("..", "models", "src", "main", "resources", "io", "dtron", "models",
+            "ticker.xml").toString();
+    private static final String TICK_OWNERS = "output tick is sent by 2 members, ticker-a (receives [reset], sends"
+            + " [tick]) and ticker-b (receives [reset], sends [tick])";
+
+    @TempDir
+    Path dir;
+
+    private final String cluster = "owners-" + UUID.randomUUID().toString().substring(0, 8);
+
+    private ChildJvm ticker(String name, String... nats) throws Exception {
+        List<String> args = new ArrayList<>(List.of(cluster, name, "correct", "1"));
+        args.addAll(List.of(nats));
+        ChildJvm jvm = ChildJvm.start(TickerAdapterMain.class, dir.resolve(name + ".log"), args.toArray(new String[0]));
+        jvm.awaitOutput("joined", Waits.TIMEOUT);
+        return jvm;
+    }
+
+    private String[] run(int timeoutUnits, String... more) {
+        List<String> args = new ArrayList<>(List.of(TICKER, "--cluster", cluster, "--timeunit", "100000", "--timeout",
+                String.valueOf(timeoutUnits), "--delay-policy", "eager", "--seed", "1"));
+        args.addAll(List.of(more));
+        return args.toArray(new String[0]);
+    }
+
+    @Test
+    void twoAdaptersSendingOneOutputBeforeTheStartAreNamedAndTheRunIsRefused() throws Exception {
+        try (ChildJvm a = ticker("ticker-a");
+                ChildJvm b = ticker("ticker-b")) {
+            CommandRun r = CommandRun.of(run(100));
+            assertRefused(r, "127.0.0.1");
+        }
+    }
+
+    @Test
+    void twoAdaptersSendingOneOutputOnNatsAreNamedAndTheRunIsRefused() throws Exception {
+        try (NatsServer nats = NatsServer.start(dir);
+                ChildJvm a = ticker("ticker-a", nats.url());
+                ChildJvm b = ticker("ticker-b", nats.url())) {
+            CommandRun r = CommandRun.of(run(100, "--bus", nats.url()));
+            assertRefused(r, nats.url());
+        }
+    }
+
+    /** The refusal is the one line adapters.md shows, on this test's bus. */
+    private void assertRefused(CommandRun r, String where) throws Exception {
+        assertEquals(1, r.exit(), r.out() + r.err());
+        String shown = DocPage.read("adapters.md").blockAfter("naming them and what they serve, with exit code 1:")
+                .code().strip();
+        assertTrue(shown.contains(TICK_OWNERS), shown);
+        assertEquals(shown.replace("bus 'lab' at 127.0.0.1:", "bus '" + cluster + "' at " + where + ":"),
+                r.err().strip());
+        assertFalse(r.out().contains("PASSED") || r.out().contains("FAILED"), "no run: " + r.out());
+    }
+
+    @Test
+    void aSecondAdapterSendingTheOutputThatJoinsDuringTheRunEndsItInconclusiveNamingIt() throws Exception {
+        try (ChildJvm a = ticker("ticker-a");
+                Watcher watcher = new Watcher(cluster)) {
+            // 60 s of test time: the second adapter's JVM joins within it, however busy the machine
+            CompletableFuture<CommandRun> first = CompletableFuture.supplyAsync(() -> CommandRun.of(run(600)));
+            Waits.await("the run's start").until(() -> watcher.saw("start"));
+            try (ChildJvm b = ticker("ticker-b")) {
+                CommandRun r = first.get(2, TimeUnit.MINUTES);
+                assertEquals(3, r.exit(), r.out() + r.err());
+                // it is named as it says it sends tick, before any tick of its comes
+                assertTrue(r.out().contains("INCONCLUSIVE: " + TICK_OWNERS), r.out());
+                assertFalse(r.out().contains("FAILED"), r.out());
+            }
+        }
+    }
+
+    @Test
+    void membersThatServeNoChannelOfTheRunComeAndGoAndItPasses() throws Exception {
+        try (ChildJvm bystander = ChildJvm.start(BystanderMain.class, dir.resolve("bystander.log"), cluster,
+                "bystander");
+                ChildJvm a = ticker("ticker-a");
+                Watcher watcher = new Watcher(cluster)) {
+            bystander.awaitOutput("joined", Waits.TIMEOUT);
+            CompletableFuture<CommandRun> first = CompletableFuture.supplyAsync(() -> CommandRun.of(run(200)));
+            Waits.await("the run's start").until(() -> watcher.saw("start"));
+            // a second tester of the same model joins, is refused, and leaves
+            CommandRun second = CommandRun.of(run(200));
+            assertEquals(1, second.exit(), second.out() + second.err());
+            assertTrue(second.err().contains("has a run in progress"), second.err());
+            Matcher id = Pattern.compile(" as (\\S+), seed").matcher(second.out());
+            assertTrue(id.find(), second.out());
+            // the observer that was there before the start leaves (its process dies)
+            bystander.kill();
+            Waits.await("the bystander gone").until(() -> watcher.saw("left bystander"));
+            CommandRun r = first.get(2, TimeUnit.MINUTES);
+            assertEquals(0, r.exit(), r.out() + r.err());
+            TickerRunBounds.assertPassed(r.out(), 200);
+            assertFalse(r.out().contains("left the bus"), r.out());
+            // both left while the run went on
+            Waits.await("the run's stop").until(() -> watcher.saw("stop"));
+            assertTrue(watcher.before("left " + id.group(1), "stop"), watcher.events().toString());
+            assertTrue(watcher.before("left bystander", "stop"), watcher.events().toString());
+        }
+    }
+
+    /** A member of the test's own that notes the run's start and stop and who left, in the bus's order. */
+    private static final class Watcher implements AutoCloseable {
+        private final Dtron dtron;
+        private final List<String> events = Collections.synchronizedList(new ArrayList<>());
+
+        Watcher(String cluster) {
+            dtron = Dtron.connect(DtronOptions.builder().clusterName(cluster).memberName("watcher").build());
+            dtron.addDtronListener(new DtronListener(Dtron.RUN_START) {
+                @Override
+                public void messageReceived(IDtronChannelValued message) {
+                    events.add("start");
+                }
+            });
+            dtron.addDtronListener(new DtronListener(Dtron.RUN_STOP) {
+                @Override
+                public void messageReceived(IDtronChannelValued message) {
+                    events.add("stop");
+                }
+            });
+            dtron.addMembershipListener((members, joined, left) -> left.forEach(m -> events.add("left " + m)));
+        }
+
+        boolean saw(String event) {
+            return events.contains(event);
+        }
+
+        boolean before(String event, String later) {
+            synchronized (events) {
+                int at = events.indexOf(event);
+                return at >= 0 && (events.indexOf(later) < 0 || at < events.indexOf(later));
+            }
+        }
+
+        List<String> events() {
+            synchronized (events) {
+                return List.copyOf(events);
+            }
+        }
+
+        @Override
+        public void close() {
+            dtron.close();
+        }
+    }
+}
