@@ -6,6 +6,9 @@ import static org.junit.jupiter.api.Assertions.assertThrows;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import io.dtron.testsupport.Waits;
+import java.util.ArrayList;
+import java.util.Collections;
+import java.util.List;
 import java.util.Map;
 import java.util.Optional;
 import java.util.Set;
@@ -77,6 +80,33 @@ class ChannelHandshakeTest {
                 assertEquals(Set.of("tick"), last.sends());
             }
             awaitServed(tester, Map::isEmpty);
+        }
+    }
+
+    @Test
+    void aChannelAMemberStartsSendingOnIsAnnouncedBeforeItsFirstMessageInTheListenersOrder() throws Exception {
+        String cluster = TestClusters.uniqueName("serve");
+        List<String> seen = Collections.synchronizedList(new ArrayList<>());
+        try (Dtron tester = Dtron.connect(TestClusters.inJvm(cluster).memberName("tester").tester(true).build())) {
+            tester.addDtronListener(new DtronListener(TICK) {
+                @Override
+                public void messageReceived(IDtronChannelValued message) {
+                    seen.add("tick from " + message.getSender());
+                }
+            });
+            tester.addServedChannelsListener(served -> seen.add("served " + Optional.ofNullable(served.get("adapter"))
+                    .map(s -> s.sends().toString()).orElse("nothing")));
+            try (Dtron adapter = Dtron.connect(TestClusters.inJvm(cluster).memberName("adapter").build())) {
+                // not declared: sending on tick serves it, and the bus orders the announcement first
+                adapter.send(TICK.constructValued(Map.of("seq", 1)));
+                Waits.await("the tick").until(() -> seen.contains("tick from adapter"));
+            }
+            Waits.await("the adapter gone").until(() -> seen.get(seen.size() - 1).equals("served nothing"));
+            synchronized (seen) {
+                int tick = seen.indexOf("tick from adapter");
+                assertTrue(tick > 0 && seen.get(tick - 1).equals("served [tick]"), seen.toString());
+                assertEquals("served nothing", seen.get(seen.size() - 1), "the member left after its tick: " + seen);
+            }
         }
     }
 
