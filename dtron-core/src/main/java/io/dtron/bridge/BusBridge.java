@@ -794,10 +794,18 @@ public final class BusBridge implements Adapter, AutoCloseable {
         return owners.conflict(dtron.getMembers(), dtron.getMembersServedChannels(), notOwners());
     }
 
-    /** The members that own no channel of this run: this bridge and the testers of other runs. */
+    /**
+     * The members that own no channel of this run: this bridge and the testers of other runs; during a run also the
+     * testers that joined the bus after it started (ready for the next run, they take no part in this one).
+     */
     private Set<String> notOwners() {
         Set<String> none = testersOfOtherRuns();
         none.add(dtron.getMemberId());
+        if (running) {
+            Set<String> atStart = startMembers;
+            served.values().stream().filter(s -> (s.joinsRun() || s.tester()) && !atStart.contains(s.member()))
+                    .forEach(s -> none.add(s.member()));
+        }
         return none;
     }
 
