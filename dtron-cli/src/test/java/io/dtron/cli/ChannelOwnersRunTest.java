@@ -51,7 +51,12 @@ class ChannelOwnersRunTest {
         List<String> args = new ArrayList<>(List.of(cluster, name, "correct", "1"));
         args.addAll(List.of(nats));
         ChildJvm jvm = ChildJvm.start(TickerAdapterMain.class, dir.resolve(name + ".log"), args.toArray(new String[0]));
-        jvm.awaitOutput("joined", Waits.TIMEOUT);
+        try {
+            jvm.awaitOutput("joined", Waits.TIMEOUT);
+        } catch (Throwable e) {
+            jvm.close();
+            throw e;
+        }
         return jvm;
     }
 
