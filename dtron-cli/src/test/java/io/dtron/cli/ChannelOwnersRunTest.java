@@ -107,7 +107,7 @@ class ChannelOwnersRunTest {
             try (ChildJvm b = ticker("ticker-b")) {
                 CommandRun r = first.get(2, TimeUnit.MINUTES);
                 assertEquals(3, r.exit(), r.out() + r.err());
-                // it is named as it says it sends tick, before any tick of its comes
+                // named at the first tick after it said it sends tick, whichever ticker sent it: never judged
                 assertTrue(r.out().contains("INCONCLUSIVE: " + TICK_OWNERS), r.out());
                 assertFalse(r.out().contains("FAILED"), r.out());
             }

@@ -63,8 +63,9 @@ import org.slf4j.LoggerFactory;
  * of the model (an observer, a tester refused because of this run), never served it, and may leave.
  *
  * <p>Each output has one owner: the member that said it sends it. When two members say so, or a member sends on it
- * without having said so, the bridge names them ({@link #ownersConflict()} before a run) and ends a run that is
- * going on INCONCLUSIVE, rather than judge their messages as one system's.
+ * without having said so, the bridge names them: before a run in {@link #ownersConflict()}, at its start and at the
+ * next message on that output during it, which ends the run INCONCLUSIVE rather than judge their messages as one
+ * system's. Members whose messages carry another run's id own nothing of this one.
  */
 public final class BusBridge implements Adapter, AutoCloseable {
     private static final Logger LOG = LoggerFactory.getLogger(BusBridge.class);
@@ -85,6 +86,8 @@ public final class BusBridge implements Adapter, AutoCloseable {
     private final LatencyRecorder outputLatency = new LatencyRecorder();
     private final LatencyRecorder inputLatency = new LatencyRecorder();
     private final Set<String> watched = ConcurrentHashMap.newKeySet();
+    /** The members whose messages carried another run's id: they serve that run, not this bridge's. */
+    private final Set<String> otherRunMembers = ConcurrentHashMap.newKeySet();
     /** The members on the bus when the run started. */
     private volatile Set<String> startMembers = Set.of();
     /** Who owns the outputs (see {@link ChannelOwners}). */
@@ -795,12 +798,14 @@ public final class BusBridge implements Adapter, AutoCloseable {
     }
 
     /**
-     * The members that own no channel of this run: this bridge and the testers of other runs; during a run also the
-     * testers that joined the bus after it started (ready for the next run, they take no part in this one).
+     * The members that own no channel of this run: this bridge, the testers of other runs and the members whose
+     * messages carried another run's id; during a run also the testers that joined the bus after it started (ready
+     * for the next run, they take no part in this one).
      */
     private Set<String> notOwners() {
         Set<String> none = testersOfOtherRuns();
         none.add(dtron.getMemberId());
+        none.addAll(otherRunMembers);
         if (running) {
             Set<String> atStart = startMembers;
             served.values().stream().filter(s -> (s.joinsRun() || s.tester()) && !atStart.contains(s.member()))
@@ -810,17 +815,11 @@ public final class BusBridge implements Adapter, AutoCloseable {
     }
 
     /**
-     * Called on the bus's listener thread, in the bus's order, when what the other members serve changed: during a
-     * run, an output that two members now say they send ends it INCONCLUSIVE, naming them.
+     * Called on the bus's listener thread, in the bus's order, when what the other members serve changed: the
+     * outputs that come after it are judged by it (see {@link #received}).
      */
     private void servedChanged(Map<String, ServedChannels> now) {
         served = now;
-        if (running) {
-            owners.conflict(dtron.getMembers(), now, notOwners()).ifPresent(conflict -> {
-                LOG.warn("Channel owners: {}", conflict);
-                context.inconclusive(conflict);
-            });
-        }
     }
 
     /**
@@ -1004,6 +1003,7 @@ public final class BusBridge implements Adapter, AutoCloseable {
             return false; // senders that know no run id (older adapters) are taken as this run's
         }
         otherRuns.incrementAndGet();
+        otherRunMembers.add(message.getSender());
         LOG.debug("Ignored {} of run {}: this bridge's run is {}", message, id, runId);
         return true;
     }

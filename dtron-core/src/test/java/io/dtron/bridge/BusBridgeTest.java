@@ -429,7 +429,7 @@ class BusBridgeTest {
     }
 
     @Test
-    void aSecondMemberSayingItSendsAnOutputDuringTheRunEndsItInconclusiveNamingBoth() throws Exception {
+    void aSecondMemberSendingAnOutputDuringTheRunEndsItInconclusiveNamingBoth() throws Exception {
         adapterServesDone();
         assertEquals(java.util.Optional.empty(), bridge.ownersConflict());
         bridge.start(context);
@@ -440,7 +440,7 @@ class BusBridgeTest {
             assertEquals("output done is sent by 2 members, adapter (receives [], sends [done]) and second (receives"
                     + " [], sends [done]), and the tester would judge their messages as one system's", reason);
             assertTrue(bridge.ownersConflict().isPresent(), "and a run would be refused now");
-            // its message comes after it said it sends done: the first reason is the only one, and it is no output
+            // its message came after it said it sends done: named, and no output
             assertNull(context.outputs.poll(200, TimeUnit.MILLISECONDS), context.outputs.toString());
         }
         Waits.await("the second member gone").until(() -> bridge.ownersConflict().isEmpty());

@@ -127,6 +127,7 @@ public final class ChannelOwners {
                 owners.add(s);
             }
         }
+        owners.sort(java.util.Comparator.comparing(ServedChannels::member));
         return owners;
     }
 }
