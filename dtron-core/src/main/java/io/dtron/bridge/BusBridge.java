@@ -1074,6 +1074,9 @@ public final class BusBridge implements Adapter, AutoCloseable {
         }
         if (!outputs.contains(channel)) {
             LOG.warn("Ignored {}: '{}' is an input, which only the tester publishes", message, channel);
+            if (running && !notOwners().contains(message.getSender()) && !isPeerTester(message.getSender())) {
+                context.inconclusive(ChannelOwners.inputSent(channel, message.getSender(), served));
+            }
             return;
         }
         outputLatency.record(message);

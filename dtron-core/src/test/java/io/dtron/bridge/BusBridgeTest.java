@@ -461,6 +461,16 @@ class BusBridgeTest {
     }
 
     @Test
+    void anInputFromAnotherMemberDuringTheRunEndsItInconclusiveNamingIt() throws Exception {
+        bridge.start(context);
+        adapter.send(MOVE.constructValued(Map.of("amount", 2)));
+        String reason = context.inconclusive.poll(10, TimeUnit.SECONDS);
+        assertEquals("adapter (receives [], sends [move]) sent input move, which only the tester sends: the system"
+                + " under test may have applied an input the model did not choose", reason);
+        assertTrue(context.outputs.isEmpty(), context.outputs.toString());
+    }
+
+    @Test
     void membersLeavingBeforeTheStartOrAfterTheStopAreNoReason() throws Exception {
         try (Dtron early = Dtron.connect(DtronOptions.builder().clusterName(cluster).inJvm(true).build())) {
             assertTrue(bridge.awaitAdapters(2, WAIT));

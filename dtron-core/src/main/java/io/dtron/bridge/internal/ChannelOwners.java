@@ -11,7 +11,7 @@ import java.util.TreeSet;
 
 /**
  * Not API. Who owns the output channels of a tester's model: the members that said in the handshake that they send
- * on them. An output has one owner, since the tester judges its messages as one system's: two members that say
+ * on them (the inputs are the tester's own). An output has one owner, since the tester judges its messages as one system's: two members that say
  * they send it, two members with one id, or a member that sends on it without having said so (while another said
  * it does, or after another member that said nothing sent on it first) are named, one line. The tester's own
  * messages and the members it leaves out (the testers of other runs) own nothing; a member that left owns nothing
@@ -94,6 +94,17 @@ public final class ChannelOwners {
         }
         return Optional.of("output " + output + " is sent by 2 members, " + first + " and " + sender + " (neither said"
                 + " what it serves), and the tester would judge their messages as one system's");
+    }
+
+    /**
+     * Why a message on an input from a member other than the tester (and the other testers of its run) spoils the
+     * run: an input is the tester's to choose, and the member's message may have been applied as one.
+     */
+    public static String inputSent(String input, String sender, Map<String, ServedChannels> served) {
+        ServedChannels own = served.get(sender);
+        return (own == null ? "member " + sender + ", which did not say what it serves," : describe(own)) + " sent input "
+                + input + ", which only the tester sends: the system under test may have applied an input the model"
+                + " did not choose";
     }
 
     /**
