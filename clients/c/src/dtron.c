@@ -790,7 +790,7 @@ int dtron_connect(const dtron_options *options, dtron_bus **out, char *err, size
     }
     dtron_bus *bus = calloc(1, sizeof *bus);
     if (secret != NULL) {
-        bus->guard = dtron_guard_create(secret, secret_length);
+        bus->guard = dtron_guard_create(secret, secret_length, (uint64_t)dtron_now_ns());
         OPENSSL_cleanse(secret, secret_length);
         free(secret);
     }

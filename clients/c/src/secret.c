@@ -241,10 +241,11 @@ void dtron_message_code(const uint8_t key[32], const char *subject, const char *
 
 /* ---- the guard ---- */
 
-dtron_guard *dtron_guard_create(const uint8_t *secret, size_t length) {
+dtron_guard *dtron_guard_create(const uint8_t *secret, size_t length, uint64_t first_number) {
     dtron_guard *guard = calloc(1, sizeof *guard);
     if (guard != NULL) {
         dtron_mac_key(secret, length, guard->key);
+        guard->sequence = first_number - 1;
     }
     return guard;
 }

@@ -41,8 +41,12 @@ void dtron_message_code(const uint8_t key[32], const char *subject, const char *
                         const char *time, const char *presence, const char *joined, const void *data, size_t length,
                         char code[65]);
 
-/** A guard with the key made from secret; NULL if out of memory. */
-dtron_guard *dtron_guard_create(const uint8_t *secret, size_t length);
+/**
+ * A guard with the key made from secret, whose first message gets number first_number (the wall clock at connecting,
+ * in ns, so that a member started again under the same id goes on above the numbers it used before); NULL if out of
+ * memory.
+ */
+dtron_guard *dtron_guard_create(const uint8_t *secret, size_t length, uint64_t first_number);
 
 void dtron_guard_free(dtron_guard *guard);
 

@@ -295,7 +295,7 @@ static void test_known_answers(void) {
     CHECK(secret && length == strlen(SECRET) && memcmp(secret, SECRET, length) == 0);
     free(secret);
     /* the window of numbers takes each number once, and nothing 4096 or more below the highest */
-    dtron_guard *guard = dtron_guard_create((const uint8_t *)SECRET, strlen(SECRET));
+    dtron_guard *guard = dtron_guard_create((const uint8_t *)SECRET, strlen(SECRET), 1);
     static const uint64_t numbers[] = {1, 3, 2, 3, 1, 5000, 5000 - 4095, 5000 - 4096, 4, 0};
     static const int expected[] = {0, 0, 0, 2, 2, 0, 0, 2, 2, 2};
     int64_t now = dtron_now_ns();
@@ -773,6 +773,26 @@ static void test_a_replayed_message_is_dropped(void) {
     dtron_close(a);
 }
 
+static void test_a_member_started_again_under_its_id_is_heard(void) {
+    static record rb = {.lock = PTHREAD_MUTEX_INITIALIZER};
+    static const char *const expected[] = {"a:1", "a:2"};
+    dtron_bus *b = member("again", "b", NULL, 0);
+    CHECK(dtron_listen(b, "order", ORDER_VARS, 1, recorded, &rb, 1) == DTRON_OK);
+    for (int n = 1; n <= 2; n++) {
+        dtron_bus *a = member("again", "a", NULL, 0);
+        UNTIL(dtron_member_count(b) == 2);
+        CHECK(dtron_member_count(b) == 2);
+        send_order(a, n);
+        UNTIL(seen_is(&rb, n, expected));
+        dtron_close(a);
+        UNTIL(dtron_member_count(b) == 1);
+    }
+    CHECK(seen_is(&rb, 2, expected));
+    dtron_stats stats = dtron_get_stats(b);
+    CHECK(stats.unauthenticated == 0 && stats.replayed == 0 && stats.stale == 0);
+    dtron_close(b);
+}
+
 static void test_a_stale_message_is_dropped(void) {
     static record rb = {.lock = PTHREAD_MUTEX_INITIALIZER};
     static const int64_t shifts_s[] = {-200, 200, -121, 0};
@@ -979,6 +999,7 @@ int main(int argc, char **argv) {
     test_handshake_clock_and_acknowledgements();
     test_a_stranger_is_refused();
     test_a_replayed_message_is_dropped();
+    test_a_member_started_again_under_its_id_is_heard();
     test_a_stale_message_is_dropped();
     test_an_insecure_member_and_a_secure_one_do_not_hear_each_other();
     test_python_and_c_members_talk(argc > 1 ? argv[1] : NULL, argc > 2 ? argv[2] : NULL);

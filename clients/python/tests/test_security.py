@@ -105,6 +105,18 @@ def test_connect_refuses_a_bad_key_file_before_it_connects(tmp_path: Path, dtron
     assert not dtron_home.exists()  # a member given a key file makes none
 
 
+def test_a_member_numbers_its_messages_from_its_clock_at_start() -> None:
+    before = time.time_ns()
+    guard = secret.Guard(SECRET)
+    after = time.time_ns()
+    first = guard.sign("s", {"Dtron-Sender": "m"}, b"x", 5)
+    second = guard.sign("s", {"Dtron-Sender": "m"}, b"x", 6)
+    assert before <= int(first["Dtron-Seq"]) <= after and int(second["Dtron-Seq"]) == int(first["Dtron-Seq"]) + 1
+    assert first["Dtron-Time"] == "5" and first["Dtron-Sender"] == "m"
+    expected = Signer(SECRET, "m").headers("s", b"x", time_ns=5, seq=int(first["Dtron-Seq"]))
+    assert first == expected
+
+
 def test_the_window_of_numbers_takes_each_number_once() -> None:
     guard = secret.Guard(SECRET)
     signer = Signer(SECRET, "m")
@@ -211,6 +223,24 @@ def test_a_replayed_message_is_dropped_as_replayed(nats_url: str, caplog: pytest
 
     run(test)
     assert len(dropped_lines(caplog, "a", "REPLAYED")) == 2  # once by a (its own message), once by b
+
+
+def test_a_member_started_again_under_its_id_is_heard(nats_url: str) -> None:
+    async def test() -> None:
+        b = await dtron.connect(nats_url, bus="again", member="b")
+        got: list[str] = []
+        b.add_listener(ORDER, lambda m: got.append(f"{m.sender}:{m.variables['n']}"))
+        for n in (1, 2):
+            a = await dtron.connect(nats_url, bus="again", member="a")
+            await until(lambda: b.members == ["b", "a"])
+            await a.send(ORDER.value(n=n))
+            await until(lambda: len(got) == n)
+            await a.close()
+            await until(lambda: b.members == ["b"])
+        assert got == ["a:1", "a:2"] and b.stats.rejected == {}
+        await b.close()
+
+    run(test)
 
 
 def test_a_stale_message_is_dropped_as_stale(nats_url: str, dtron_home: Path) -> None:

@@ -15,6 +15,7 @@ import os
 import secrets
 import stat
 import struct
+import time
 from pathlib import Path
 from typing import Mapping, Optional, Union
 
@@ -170,9 +171,11 @@ class _Window:
 class Guard:
     """Signs the messages one member publishes and checks the ones it reads."""
 
-    def __init__(self, secret: bytes) -> None:
+    def __init__(self, secret: bytes, first_number: Optional[int] = None) -> None:
+        """``first_number``: of this member's first message, by default the wall clock now in nanoseconds, so that
+        a member started again under the same id goes on above the numbers it used before."""
         self._key = mac_key(secret)
-        self._sequence = 0
+        self._sequence = (time.time_ns() if first_number is None else first_number) - 1
         self._windows: dict[str, _Window] = {}
         self._forget_at = 0
 
