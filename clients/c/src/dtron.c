@@ -802,6 +802,8 @@ int dtron_connect(const dtron_options *options, dtron_bus **out, char *err, size
     sprintf(bus->prefix, "dtron.%s.c.", name);
     bus->presence = malloc(strlen(name) + 16);
     sprintf(bus->presence, "dtron.%s.p", name);
+    /* from the clock: a member started again under the same id within the duplicate window is stored */
+    bus->msg_ids = (uint64_t)dtron_now_ns();
     bus->members[0].name = copy(generated);
     bus->members[0].last_seen = INT64_MAX / 2;
     bus->nmembers = 1;

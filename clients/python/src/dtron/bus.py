@@ -100,7 +100,8 @@ class Bus:
         self._registrations: dict[str, _Registration] = {}
         self._sends: set[str] = set()
         self._sequence = 0
-        self._msg_ids = 0
+        # from the clock: a member started again under the same id within the stream's duplicate window is stored
+        self._msg_ids = wall_clock_ns()
         self._outbox: asyncio.Queue[Optional[tuple[str, dict[str, str], bytes, Optional[asyncio.Future[None]]]]] = \
             asyncio.Queue()
         self._inbox: asyncio.Queue[Optional[Callable[[], Awaitable[None]]]] = asyncio.Queue()
