@@ -4,7 +4,7 @@
  * the numbering from when it was applied; the run's end stops it. Ticks are scheduled on the run clock (the tester's
  * time). Variant "correct" ticks every 10 time units, "slow" every 13 (a faulty ticker).
  *
- *   dtron-ticker --bus nats://127.0.0.1:4222 --cluster ticker [--variant slow] [--runs 1]
+ *   dtron-ticker --bus nats://127.0.0.1:4222 --cluster ticker [--variant slow] [--runs 1] [--key-file PATH]
  */
 #define _POSIX_C_SOURCE 200809L
 #include <dtron.h>
@@ -72,8 +72,10 @@ int main(int argc, char **argv) {
         else if (strcmp(argv[i], "--cluster") == 0) options.bus = argv[i + 1];
         else if (strcmp(argv[i], "--variant") == 0) variant = argv[i + 1];
         else if (strcmp(argv[i], "--runs") == 0) runs = atoi(argv[i + 1]);
+        else if (strcmp(argv[i], "--key-file") == 0) options.key_file = argv[i + 1]; /* default ~/.dtron/bus.key */
         else {
-            fprintf(stderr, "usage: %s [--bus URLS] [--cluster NAME] [--variant correct|slow] [--runs N]\n", argv[0]);
+            fprintf(stderr, "usage: %s [--bus URLS] [--cluster NAME] [--variant correct|slow] [--runs N]"
+                            " [--key-file PATH]\n", argv[0]);
             return 1;
         }
     }

@@ -2,6 +2,13 @@
  * DTRON's C client: a member of a DTRON bus on NATS JetStream, speaking the protocol of DTRON's Java API (channels
  * with integer variables, the run clock and clock offsets, acknowledgements, the channel-serving handshake).
  *
+ * Every member holds the bus's secret: by default the key file ~/.dtron/bus.key ($DTRON_HOME/bus.key when DTRON_HOME
+ * is set), which the first member on a machine makes; copy it to the other machines, or name one in key_file. Every
+ * message published carries a code made with it, and every message read is checked before anything else: one
+ * without a valid code (unauthenticated), one accepted before (replayed) or one whose time is more than 120 s away
+ * from when the stream stored it (stale) is dropped, counted, and the first of each sender and reason named on
+ * standard error.
+ *
  * Thread-safety: every function may be called from any thread. Listeners are called on one receive thread, one
  * message at a time, in the bus's order, without locks held: a listener may send.
  */
@@ -21,7 +28,8 @@ enum {
     DTRON_ERR_ARGUMENT = -1,  /**< a bad argument: name, variables, or a channel only DTRON sends on */
     DTRON_ERR_BUS = -2,       /**< the NATS servers did not take the message or the connection */
     DTRON_ERR_CLOSED = -3,    /**< the bus is closed */
-    DTRON_ERR_DUPLICATE = -4  /**< acknowledged before */
+    DTRON_ERR_DUPLICATE = -4, /**< acknowledged before */
+    DTRON_ERR_KEY = -5        /**< the key file cannot be used: missing (when named), empty, or open to others */
 };
 
 /** A member of a bus. */
@@ -62,11 +70,15 @@ typedef struct {
     const char *creds_file;     /**< NATS credentials file */
     const char *tls_ca_file;    /**< PEM file of certificate authorities: TLS to the servers */
     int replicas;               /**< the stream's replicas if this member creates it (default 1) */
+    const char *key_file;       /**< the file with the bus's secret, never made (default: see above, made if missing) */
+    int insecure;               /**< 1: neither sign nor check messages (a bus with the original DTRON's adapters);
+                                     anyone who reaches the NATS servers can then speak on the bus */
 } dtron_options;
 
-/** Counters of a member. */
+/** Counters of a member: published, accepted, and rejected messages by reason. */
 typedef struct {
     uint64_t published, accepted, malformed, unknown_channel, unknown_variables, missing_variables;
+    uint64_t unauthenticated, replayed, stale; /**< dropped by the bus's secret */
 } dtron_stats;
 
 /** The channel on which the tester starts a run, with variable "timeunit" (microseconds per unit). */
@@ -74,7 +86,10 @@ typedef struct {
 /** The channel on which the tester ends a run. */
 #define DTRON_RUN_STOP "dtron_stop"
 
-/** Joins a bus. On failure returns an error and writes a one-line reason into err (if given). */
+/**
+ * Joins a bus. On failure returns an error and writes a one-line reason into err (if given); DTRON_ERR_KEY names the
+ * key file and why it cannot be used.
+ */
 int dtron_connect(const dtron_options *options, dtron_bus **bus, char *err, size_t errlen);
 
 /**

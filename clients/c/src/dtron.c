@@ -1,12 +1,14 @@
 /*
  * DTRON's C client on libnats and protobuf-c. The bus is the JetStream stream DTRON_<bus> (subjects dtron.<bus>.>):
  * channel messages on dtron.<bus>.c.<channel> (a Sync, header Dtron-Sender), presence (join, alive every second,
- * leave) on dtron.<bus>.p; every member reads the stream from an ordered consumer, so all see one order.
+ * leave) on dtron.<bus>.p; every member reads the stream from an ordered consumer, so all see one order. Every
+ * message is signed with the bus's secret and every message read is checked before anything else (secret.h).
  */
 #define _POSIX_C_SOURCE 200809L
 #include "dtron.h"
 
 #include <nats/nats.h>
+#include <openssl/crypto.h>
 #include <pthread.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -16,6 +18,7 @@
 #include <unistd.h>
 
 #include "Sync.pb-c.h"
+#include "secret.h"
 
 #define HEARTBEAT_NS 1000000000LL
 #define SILENCE_NS 4000000000LL
@@ -27,6 +30,7 @@
 #define MAX_MEMBERS 256
 #define PUBLISH_WAIT_MS 2000
 #define RETRIES 150
+#define NAMED_DROPS 1024
 
 typedef struct channel {
     char *name;
@@ -74,6 +78,12 @@ struct dtron_bus {
     int64_t start_tester_ns, unit_us;
     uint64_t generation;
     dtron_stats stats;
+    dtron_guard *guard; /* NULL: insecure */
+    struct {
+        char *sender;
+        int reason;
+    } named[NAMED_DROPS]; /* the senders and reasons of drops named on standard error */
+    size_t nnamed;
 };
 
 int64_t dtron_now_ns(void) {
@@ -89,6 +99,7 @@ const char *dtron_strerror(int code) {
     case DTRON_ERR_BUS: return "the bus did not take it";
     case DTRON_ERR_CLOSED: return "closed";
     case DTRON_ERR_DUPLICATE: return "acknowledged before";
+    case DTRON_ERR_KEY: return "the key file cannot be used";
     default: return "unknown error";
     }
 }
@@ -194,7 +205,8 @@ static channel *template_of(dtron_bus *bus, const char *name, const char *const 
 
 static int publish(dtron_bus *bus, const char *subject, const char *presence, const uint8_t *data, size_t len) {
     natsMsg *msg = NULL;
-    char id[200];
+    char id[200], joined[32];
+    const char *joined_header = NULL;
     if (natsMsg_Create(&msg, subject, NULL, (const char *)data, (int)len) != NATS_OK) {
         return DTRON_ERR_BUS;
     }
@@ -204,10 +216,18 @@ static int publish(dtron_bus *bus, const char *subject, const char *presence, co
     if (presence != NULL) {
         natsMsgHeader_Set(msg, "Dtron-Presence", presence);
         if (strcmp(presence, "alive") == 0 && bus->own_join > 0) {
-            char joined[32];
             snprintf(joined, sizeof joined, "%llu", (unsigned long long)bus->own_join);
             natsMsgHeader_Set(msg, "Dtron-Joined", joined);
+            joined_header = joined;
         }
+    }
+    if (bus->guard != NULL) { /* signed once: publish_failed publishes the same message again */
+        char seq[24], sent_at[24], code[65];
+        dtron_guard_sign(bus->guard, subject, bus->member, presence, joined_header, data, len, dtron_now_ns(), seq,
+                         sent_at, code);
+        natsMsgHeader_Set(msg, "Dtron-Seq", seq);
+        natsMsgHeader_Set(msg, "Dtron-Time", sent_at);
+        natsMsgHeader_Set(msg, "Dtron-Mac", code);
     }
     jsPubOptions options;
     jsPubOptions_Init(&options);
@@ -388,6 +408,29 @@ static void membership(dtron_bus *bus, uint64_t sequence, int64_t stream_ns, con
 
 /* ---- receiving ---- */
 
+/* Counts a message the bus's secret drops, and names the first of each sender and reason (lock held). */
+static void drop(dtron_bus *bus, const char *subject, const char *sender, int reason) {
+    static const char *const why[] = {"", "no valid code of the bus's secret", "its Dtron-Seq was accepted before",
+                                      "its Dtron-Time is more than 120 s away from when the stream stored it"};
+    uint64_t *counter = reason == DTRON_DROP_REPLAYED ? &bus->stats.replayed
+                        : reason == DTRON_DROP_STALE  ? &bus->stats.stale
+                                                      : &bus->stats.unauthenticated;
+    (*counter)++;
+    for (size_t i = 0; i < bus->nnamed; i++) {
+        if (bus->named[i].reason == reason && strcmp(bus->named[i].sender, sender) == 0) {
+            return;
+        }
+    }
+    if (bus->nnamed == NAMED_DROPS) {
+        return;
+    }
+    bus->named[bus->nnamed].sender = copy(sender);
+    bus->named[bus->nnamed++].reason = reason;
+    const char *because = bus->guard ? why[reason] : "it carries a message code, and this member is insecure";
+    warn(bus, "dropped a message on %s from '%s', %s: %s (further ones are counted only)", subject, sender,
+         dtron_drop_reason(reason), because);
+}
+
 static void count_rejected(dtron_bus *bus, uint64_t *counter, const char *channel, const char *why) {
     (*counter)++;
     warn(bus, "rejected a message on channel '%s': %s", channel, why);
@@ -481,25 +524,46 @@ static void on_message(natsConnection *nc, natsSubscription *sub, natsMsg *msg, 
     int64_t received = dtron_now_ns();
     const char *subject = natsMsg_GetSubject(msg);
     const char *sender = NULL, *presence = NULL, *joined = NULL;
+    const char *seq = NULL, *sent_at = NULL, *mac = NULL;
     jsMsgMetaData *meta = NULL;
     (void)nc;
     (void)sub;
     natsMsgHeader_Get(msg, "Dtron-Sender", &sender);
+    natsMsgHeader_Get(msg, "Dtron-Presence", &presence);
+    natsMsgHeader_Get(msg, "Dtron-Joined", &joined);
+    natsMsgHeader_Get(msg, "Dtron-Seq", &seq);
+    natsMsgHeader_Get(msg, "Dtron-Time", &sent_at);
+    natsMsgHeader_Get(msg, "Dtron-Mac", &mac);
     pthread_mutex_lock(&bus->lock);
     if (bus->closed) {
         pthread_mutex_unlock(&bus->lock);
         natsMsg_Destroy(msg);
         return;
     }
-    int is_presence = strcmp(subject, bus->presence) == 0;
-    if (is_presence) {
-        natsMsgHeader_Get(msg, "Dtron-Presence", &presence);
-        natsMsgHeader_Get(msg, "Dtron-Joined", &joined);
+    if (natsMsg_GetMetaData(&meta, msg) != NATS_OK) {
+        warn(bus, "dropped a message on %s without its stream's metadata", subject);
+        pthread_mutex_unlock(&bus->lock);
+        natsMsg_Destroy(msg);
+        return;
     }
-    if (natsMsg_GetMetaData(&meta, msg) == NATS_OK) {
-        membership(bus, meta->Sequence.Stream, meta->Timestamp, sender, presence, joined);
+    /* before anything else: an insecure member does not read a secure one's messages, which it cannot check */
+    int dropped = bus->guard == NULL
+                      ? (mac != NULL ? DTRON_DROP_UNAUTHENTICATED : DTRON_DROP_NONE)
+                      : dtron_guard_check(bus->guard, subject, sender, seq, sent_at, presence, joined, mac,
+                                          natsMsg_GetData(msg), (size_t)natsMsg_GetDataLength(msg), meta->Timestamp);
+    if (dropped != DTRON_DROP_NONE) {
+        drop(bus, subject, sender ? sender : "", dropped);
         jsMsgMetaData_Destroy(meta);
+        pthread_mutex_unlock(&bus->lock);
+        natsMsg_Destroy(msg);
+        return;
     }
+    int is_presence = strcmp(subject, bus->presence) == 0;
+    if (!is_presence) {
+        presence = joined = NULL;
+    }
+    membership(bus, meta->Sequence.Stream, meta->Timestamp, sender, presence, joined);
+    jsMsgMetaData_Destroy(meta);
     size_t prefix = strlen(bus->prefix);
     if (is_presence || strncmp(subject, bus->prefix, prefix) != 0) {
         pthread_mutex_unlock(&bus->lock);
@@ -651,6 +715,10 @@ static void free_bus(dtron_bus *bus) {
     free(bus->tester);
     free(bus->run_tester);
     free(bus->run_id);
+    for (size_t i = 0; i < bus->nnamed; i++) {
+        free(bus->named[i].sender);
+    }
+    dtron_guard_free(bus->guard);
     pthread_mutex_destroy(&bus->lock);
     pthread_cond_destroy(&bus->joined_cond);
     free(bus);
@@ -670,7 +738,10 @@ static void publish_failed(jsCtx *js, jsPubAckErr *pae, void *closure) {
     if (natsMsgHeader_Get(pae->Msg, "Dtron-Tries", &tries_text) == NATS_OK) {
         tries = atoi(tries_text);
     }
-    if (transient && !bus->closed && tries < RETRIES) {
+    const char *sent_text = NULL;
+    int stale = natsMsgHeader_Get(pae->Msg, "Dtron-Time", &sent_text) == NATS_OK
+                && dtron_now_ns() - strtoll(sent_text, NULL, 10) > DTRON_STALE_NS; /* everyone would drop it */
+    if (transient && !bus->closed && tries < RETRIES && !stale) {
         char next[16];
         struct timespec pause = {0, 100000000L};
         nanosleep(&pause, NULL);
@@ -704,7 +775,25 @@ int dtron_connect(const dtron_options *options, dtron_bus **out, char *err, size
         srand((unsigned)(dtron_now_ns() ^ getpid()));
         snprintf(generated, sizeof generated, "dtron-c-%d-%08x", (int)getpid(), (unsigned)rand());
     }
+    uint8_t *secret = NULL;
+    size_t secret_length = 0;
+    if (options && options->insecure) {
+        if (options->key_file) {
+            fail(err, errlen, "key_file and insecure exclude each other%s", "");
+            return DTRON_ERR_ARGUMENT;
+        }
+        fprintf(stderr, "dtron %s: INSECURE: member %s on bus '%s' neither signs nor checks messages: anyone who can "
+                        "reach the NATS servers can speak on this bus and change a verdict\n", generated, generated,
+                name);
+    } else if (dtron_load_secret(options ? options->key_file : NULL, &secret, &secret_length, err, errlen) != 0) {
+        return DTRON_ERR_KEY;
+    }
     dtron_bus *bus = calloc(1, sizeof *bus);
+    if (secret != NULL) {
+        bus->guard = dtron_guard_create(secret, secret_length, (uint64_t)dtron_now_ns());
+        OPENSSL_cleanse(secret, secret_length);
+        free(secret);
+    }
     pthread_mutex_init(&bus->lock, NULL);
     pthread_cond_init(&bus->joined_cond, NULL);
     bus->bus = copy(name);
@@ -713,6 +802,8 @@ int dtron_connect(const dtron_options *options, dtron_bus **out, char *err, size
     sprintf(bus->prefix, "dtron.%s.c.", name);
     bus->presence = malloc(strlen(name) + 16);
     sprintf(bus->presence, "dtron.%s.p", name);
+    /* from the clock: a member started again under the same id within the duplicate window is stored */
+    bus->msg_ids = (uint64_t)dtron_now_ns();
     bus->members[0].name = copy(generated);
     bus->members[0].last_seen = INT64_MAX / 2;
     bus->nmembers = 1;

@@ -5,7 +5,7 @@ from 1; an input reset restarts the period and the numbering from when it was ap
 ticks are scheduled on the run clock (the tester's time), so a start message that arrives late here, or a host clock
 that is off, does not move them. Variant ``correct`` ticks every 10 time units, ``slow`` every 13 (a faulty ticker).
 
-    python ticker.py --bus nats://127.0.0.1:4222 --cluster ticker [--variant slow] [--runs 1]
+    python ticker.py --bus nats://127.0.0.1:4222 --cluster ticker [--variant slow] [--runs 1] [--key-file PATH]
 """
 
 from __future__ import annotations
@@ -64,9 +64,10 @@ async def main() -> None:
     parser.add_argument("--cluster", default="dtron", help="the bus name (dtron run --cluster)")
     parser.add_argument("--variant", default="correct", choices=sorted(PERIODS))
     parser.add_argument("--runs", type=int, default=0, help="exit after this many runs (0: never)")
+    parser.add_argument("--key-file", help="the bus's secret (default ~/.dtron/bus.key, made if there is none)")
     args = parser.parse_args()
     logging.basicConfig(level=logging.INFO, format="%(asctime)s %(levelname)s %(message)s")
-    async with await dtron.connect(args.bus, bus=args.cluster) as bus:
+    async with await dtron.connect(args.bus, bus=args.cluster, key_file=args.key_file) as bus:
         Ticker(bus, PERIODS[args.variant])
         runs_over = asyncio.Event()
         stops = 0
@@ -83,4 +84,7 @@ async def main() -> None:
 
 
 if __name__ == "__main__":
-    asyncio.run(main())
+    try:
+        asyncio.run(main())
+    except (ValueError, ConnectionError) as e:  # a key file, bus or server that cannot be used: one line
+        raise SystemExit(f"ticker: {e}")

@@ -1,15 +1,19 @@
 """A nats-server with JetStream on a free loopback port and a store in a temporary folder, for the tests that need
-one: skipped when nats-server is not installed, unless DTRON_REQUIRE_NATS=1 (as in CI) makes that a failure."""
+one: skipped when nats-server is not installed, unless DTRON_REQUIRE_NATS=1 (as in CI) makes that a failure. Every
+test has a DTRON_HOME of its own (so the bus's key file is made there, never in ~/.dtron), and a signer of messages
+made apart from the client's, after the page "Security: the bus's secret"."""
 
 from __future__ import annotations
 
+import hashlib
+import hmac
 import os
 import shutil
 import socket
 import subprocess
 import time
 from pathlib import Path
-from typing import Iterator
+from typing import Iterator, Optional
 
 import pytest
 
@@ -23,6 +27,45 @@ def free_port() -> int:
     with socket.socket() as s:
         s.bind(("127.0.0.1", 0))
         return s.getsockname()[1]
+
+
+@pytest.fixture(autouse=True)
+def dtron_home(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Path:
+    """DTRON_HOME in the test's temporary folder (not made yet: the first member makes it)."""
+    home = tmp_path / "dtron-home"
+    monkeypatch.setenv("DTRON_HOME", str(home))
+    return home
+
+
+class Signer:
+    """Makes the headers of a member holding ``secret``: Dtron-Sender, Dtron-Seq, Dtron-Time and Dtron-Mac, with
+    ``M`` built here from the page, not by the client's code."""
+
+    def __init__(self, secret: bytes, sender: str) -> None:
+        self.key = hmac.new(secret, b"dtron-bus-mac-v1", hashlib.sha256).digest()
+        self.sender = sender
+        self.seq = 0
+
+    def headers(self, subject: str, data: bytes, presence: Optional[str] = None, joined: Optional[str] = None,
+                time_ns: Optional[int] = None, seq: Optional[int] = None) -> dict[str, str]:
+        if seq is None:
+            self.seq += 1
+            seq = self.seq
+        headers = {"Dtron-Sender": self.sender, "Dtron-Seq": str(seq),
+                   "Dtron-Time": str(time.time_ns() if time_ns is None else time_ns)}
+        if presence is not None:
+            headers["Dtron-Presence"] = presence
+        if joined is not None:
+            headers["Dtron-Joined"] = joined
+        items = [subject, self.sender, headers["Dtron-Seq"], headers["Dtron-Time"], presence or "", joined or ""]
+        m = b"".join(len(b).to_bytes(4, "big") + b for b in [i.encode() for i in items] + [data])
+        headers["Dtron-Mac"] = hmac.new(self.key, m, hashlib.sha256).hexdigest()
+        return headers
+
+
+def bus_secret(home: Path) -> bytes:
+    """The secret of the key file the members made in ``home``."""
+    return (home / "bus.key").read_text().strip().encode()
 
 
 @pytest.fixture

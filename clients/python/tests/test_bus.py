@@ -1,16 +1,18 @@
 """Python members on a real nats-server: order, membership, the handshake, clock offsets, acknowledgements and
-rejected input, against a tester played by the test with raw NATS messages."""
+rejected input, against a tester played by the test with raw NATS messages, signed with the bus's secret."""
 
 from __future__ import annotations
 
 import asyncio
 import time
+from pathlib import Path
 from typing import Any, Callable, Coroutine
 
 import nats
 import pytest
 
 import dtron
+from conftest import Signer, bus_secret
 from dtron._proto import Sync_pb2
 
 ORDER = dtron.Channel("order", "n")
@@ -32,8 +34,9 @@ async def until(condition: Callable[[], bool], seconds: float = 10) -> None:
 class FakeTester:
     """A tester played with raw NATS: publishes Sync messages and records what the others publish."""
 
-    def __init__(self, nc: Any, bus: str, clock_shift_ns: int = 0) -> None:
+    def __init__(self, nc: Any, bus: str, home: Path, clock_shift_ns: int = 0) -> None:
         self.nc = nc
+        self.signer = Signer(bus_secret(home), "tester")
         self.js = nc.jetstream()
         self.bus = bus
         self.shift = clock_shift_ns
@@ -58,9 +61,11 @@ class FakeTester:
                              publish_time_ns=time.time_ns() + self.shift, **fields)
         for name, value in (variables or {}).items():
             sync.variables.add(name=name, value=value)
-        await self.js.publish(f"dtron.{self.bus}.c.{channel}", sync.SerializeToString(),
-                              headers={"Dtron-Sender": "tester"})
+        await self.publish_raw(f"dtron.{self.bus}.c.{channel}", sync.SerializeToString())
         return sync
+
+    async def publish_raw(self, subject: str, data: bytes) -> None:
+        await self.js.publish(subject, data, headers=self.signer.headers(subject, data))
 
     def on(self, channel: str) -> list[Any]:
         return [sync for name, sync in self.seen if name == channel]
@@ -95,11 +100,11 @@ def test_members_see_one_order_and_each_other_join_and_leave(nats_url: str) -> N
     run(test)
 
 
-def test_the_handshake_the_clock_offset_and_acknowledgements(nats_url: str) -> None:
+def test_the_handshake_the_clock_offset_and_acknowledgements(nats_url: str, dtron_home: Path) -> None:
     async def test() -> None:
         nc = await nats.connect(nats_url)
         adapter = await dtron.connect(nats_url, bus="hand", member="adapter")
-        tester = FakeTester(nc, "hand", clock_shift_ns=50_000_000)
+        tester = FakeTester(nc, "hand", dtron_home, clock_shift_ns=50_000_000)
         await tester.start()
         adapter.declare_outputs(TICK)
         resets: list[dtron.Message] = []
@@ -129,14 +134,14 @@ def test_the_handshake_the_clock_offset_and_acknowledgements(nats_url: str) -> N
     run(test)
 
 
-def test_bad_input_is_rejected_and_counted_and_the_rest_delivered(nats_url: str) -> None:
+def test_bad_input_is_rejected_and_counted_and_the_rest_delivered(nats_url: str, dtron_home: Path) -> None:
     async def test() -> None:
         nc = await nats.connect(nats_url)
         adapter = await dtron.connect(nats_url, bus="bad", member="adapter")
         got: list[dtron.Message] = []
         adapter.add_listener(ORDER, got.append)
-        tester = FakeTester(nc, "bad")
-        await tester.js.publish("dtron.bad.c.order", b"\xff\x01\x02")
+        tester = FakeTester(nc, "bad", dtron_home)
+        await tester.publish_raw("dtron.bad.c.order", b"\xff\x01\x02")
         await tester.publish("order", {"n": 1, "m": 2})
         await tester.publish("order", {})
         await tester.publish("order", {"n": 7})

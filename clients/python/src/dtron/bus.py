@@ -4,7 +4,8 @@ The bus is one JetStream stream per bus name (``DTRON_<bus>``, subjects ``dtron.
 into it and delivers it from an ordered consumer, so that all members, in any language, see one order. A channel
 message travels on ``dtron.<bus>.c.<channel>`` as a protobuf ``Sync`` with header ``Dtron-Sender``; presence (join,
 alive every second, leave) travels on ``dtron.<bus>.p``, so that the tester sees this member join and notices when
-it is gone.
+it is gone. Every message carries a code made with the bus's secret (:mod:`dtron.secret`), and every message read is
+checked before anything else: one without a valid code, a replayed or a stale one is dropped and counted.
 """
 
 from __future__ import annotations
@@ -26,6 +27,7 @@ from nats.js.errors import APIError, NotFoundError
 from dtron._proto import Sync_pb2
 from dtron.channel import RESERVED, Channel, InvalidMessage, Message
 from dtron.clock import ClockOffset, OffsetEstimator, RunClock, wall_clock_ns
+from dtron.secret import MAC, UNAUTHENTICATED, Guard, PathLike, load_secret
 
 LOG = logging.getLogger("dtron")
 
@@ -46,13 +48,18 @@ RETRY_FOR_S = 30.0
 _BUS_NAME = re.compile(r"[A-Za-z0-9_-]{1,64}\Z")
 _MEMBER_NAME = re.compile(r"[\x21-\x7e]{1,128}\Z")
 _CONTROL = frozenset({"dtron_hello", "dtron_ping", "dtron_pong", "dtron_serve"})
+_NAMED_DROPS = 1024
 
 Listener = Callable[[Message], Union[None, Awaitable[None]]]
 
 
 @dataclass
 class Stats:
-    """This member's counters: published messages, accepted and rejected ones by reason, listener failures."""
+    """This member's counters: published messages, accepted and rejected ones by reason, listener failures.
+
+    Reasons: UNAUTHENTICATED, REPLAYED and STALE for messages dropped by the bus's secret (:mod:`dtron.secret`);
+    MALFORMED, UNKNOWN_CHANNEL, UNKNOWN_VARIABLES and MISSING_VARIABLES for ones that do not fit their channel.
+    """
 
     published: int = 0
     accepted: int = 0
@@ -79,8 +86,10 @@ class Bus:
     ``auto_ack=False``: then call :meth:`acknowledge`).
     """
 
-    def __init__(self, nc: Any, js: Any, bus: str, member: str) -> None:
+    def __init__(self, nc: Any, js: Any, bus: str, member: str, guard: Optional[Guard]) -> None:
         self._nc = nc
+        self._guard = guard
+        self._named_drops: set[tuple[str, str]] = set()
         self._js = js
         self.bus = bus
         #: This member's id on the bus.
@@ -91,7 +100,8 @@ class Bus:
         self._registrations: dict[str, _Registration] = {}
         self._sends: set[str] = set()
         self._sequence = 0
-        self._msg_ids = 0
+        # from the clock: a member started again under the same id within the stream's duplicate window is stored
+        self._msg_ids = wall_clock_ns()
         self._outbox: asyncio.Queue[Optional[tuple[str, dict[str, str], bytes, Optional[asyncio.Future[None]]]]] = \
             asyncio.Queue()
         self._inbox: asyncio.Queue[Optional[Callable[[], Awaitable[None]]]] = asyncio.Queue()
@@ -290,6 +300,8 @@ class Bus:
         over is published again with the same ``Nats-Msg-Id``, so that the stream stores it once."""
         self._msg_ids += 1
         headers = dict(headers, **{"Nats-Msg-Id": f"{self.member}-{self._msg_ids}"})
+        if self._guard is not None:  # signed once: a message published again keeps its number, time and code
+            headers = self._guard.sign(subject, headers, payload, wall_clock_ns())
         loop = asyncio.get_running_loop()
         deadline = loop.time() + RETRY_FOR_S
         while True:
@@ -374,13 +386,36 @@ class Bus:
         presence = msg.subject == self._presence_subject
         try:
             meta = msg.metadata
-            self._membership(meta.sequence.stream, meta.timestamp.timestamp() * 1e9, sender,
-                             headers if presence else None)
+            stream_ns = int(meta.timestamp.timestamp() * 1e9)
+        except Exception as e:
+            LOG.warning("a message on %s without its stream's metadata was dropped: %s", msg.subject, e)
+            return
+        if self._guard is not None:
+            dropped = self._guard.check(msg.subject, headers, msg.data, stream_ns)
+        else:  # an insecure member does not read a secure one's messages, which it cannot check
+            dropped = UNAUTHENTICATED if MAC in headers else None
+        if dropped is not None:
+            self._drop(msg.subject, sender or "", dropped)
+            return
+        try:
+            self._membership(meta.sequence.stream, stream_ns, sender, headers if presence else None)
         except Exception as e:
             LOG.warning("membership update failed: %s", e)
         if presence or not msg.subject.startswith(self._prefix):
             return
         self._message(msg.subject[len(self._prefix):], msg.data, sender or "", received_ns)
+
+    def _drop(self, subject: str, sender: str, reason: str) -> None:
+        """Counts a message the bus's secret drops, and names the first of each sender and reason in the log."""
+        self.stats.rejected[reason] = self.stats.rejected.get(reason, 0) + 1
+        if (sender, reason) not in self._named_drops and len(self._named_drops) < _NAMED_DROPS:
+            self._named_drops.add((sender, reason))
+            why = ("it carries a message code, and this member is insecure" if self._guard is None
+                   else {"UNAUTHENTICATED": "no valid code of the bus's secret",
+                         "REPLAYED": "its Dtron-Seq was accepted before", "STALE": "its Dtron-Time is more than "
+                         "120 s away from when the stream stored it"}.get(reason, reason))
+            LOG.warning("%s dropped a message on %s from %r, %s: %s (further ones are counted only)", self.member,
+                        subject, sender, reason, why)
 
     def _membership(self, sequence: int, stream_ns: float, sender: Optional[str],
                     presence: Optional[dict[str, str]]) -> None:
@@ -556,8 +591,13 @@ def generate_member_name() -> str:
 async def connect(servers: Union[str, Sequence[str]] = "nats://127.0.0.1:4222", bus: str = "dtron",
                   member: Optional[str] = None, *, user: Optional[str] = None, password: Optional[str] = None,
                   token: Optional[str] = None, creds: Optional[str] = None, nkey_seed_file: Optional[str] = None,
-                  tls_ca: Optional[str] = None, replicas: int = 1) -> Bus:
+                  tls_ca: Optional[str] = None, replicas: int = 1, key_file: Optional[PathLike] = None,
+                  insecure: bool = False) -> Bus:
     """Joins a DTRON bus on NATS servers.
+
+    Every member of a bus holds its secret: by default the key file ``~/.dtron/bus.key`` (``$DTRON_HOME/bus.key``
+    when ``DTRON_HOME`` is set), which the first member on a machine makes; copy it to the other machines, or name
+    a file with ``key_file``.
 
     :param servers: ``nats://HOST:PORT`` (or ``tls://``), one or a list, or comma-separated
     :param bus: the bus (the tester's ``--cluster``): stream ``DTRON_<bus>``
@@ -568,7 +608,12 @@ async def connect(servers: Union[str, Sequence[str]] = "nats://127.0.0.1:4222", 
     :param nkey_seed_file: a file with an nkey seed
     :param tls_ca: a PEM file of certificate authorities: TLS to the servers
     :param replicas: the stream's replicas if this member creates it
+    :param key_file: the file with the bus's secret (never made; by default the one above, made if missing)
+    :param insecure: neither sign nor check messages, for a bus with adapters of the original DTRON: anyone who
+        reaches the NATS servers can then speak on the bus
     :raises ValueError: for a bad bus or member name
+    :raises dtron.secret.KeyFileError: (a ValueError) for a key file that is missing, empty, or open to group or
+        others, naming the file
     :raises ConnectionError: if the bus cannot be joined
     """
     if not _BUS_NAME.match(bus):
@@ -576,6 +621,14 @@ async def connect(servers: Union[str, Sequence[str]] = "nats://127.0.0.1:4222", 
     member = member or generate_member_name()
     if not _MEMBER_NAME.match(member):
         raise ValueError(f"a member id is 1 to 128 printable characters without spaces: {member!r}")
+    if insecure:
+        if key_file is not None:
+            raise ValueError("key_file and insecure=True exclude each other")
+        LOG.warning("INSECURE: member %s on bus %r neither signs nor checks messages: anyone who can reach the NATS "
+                    "servers can speak on this bus and change a verdict", member, bus)
+        guard = None
+    else:
+        guard = Guard(load_secret(key_file))
     urls = [s.strip() for s in (servers.split(",") if isinstance(servers, str) else servers)]
     # a first connection fails after two tries of each server; once connected, reconnecting never stops (below)
     options: dict[str, Any] = {"servers": urls, "name": member, "max_reconnect_attempts": 2,
@@ -628,7 +681,7 @@ async def connect(servers: Union[str, Sequence[str]] = "nats://127.0.0.1:4222", 
                 await js.add_stream(config)
             except Exception:
                 await js.stream_info(stream)  # created by another member meanwhile
-        member_bus = Bus(nc, js, bus, member)
+        member_bus = Bus(nc, js, bus, member, guard)
         loop = asyncio.get_running_loop()
         member_bus._tasks = [loop.create_task(member_bus._publisher()), loop.create_task(member_bus._dispatcher())]
         member_bus._sub = await js.subscribe(f"dtron.{bus}.>", cb=member_bus._received, ordered_consumer=True,
