@@ -20,6 +20,8 @@ import java.util.regex.Pattern;
  * @param nkeyFile        a file holding an nkey seed ({@code SU...}) for nkey authentication
  * @param tlsCaFile       a PEM file of the certificate authorities to trust: TLS to the servers
  * @param replicas        the stream's replicas, when this member creates it (1, or up to 5 in a cluster)
+ * @param codes           the codes of the bus's secret, which every message sent carries and every message received
+ *                        must carry (security.md); empty on an insecure bus, whose messages carry none
  */
 public record NatsSettings(
         String busName,
@@ -31,7 +33,8 @@ public record NatsSettings(
         Optional<Path> credentialsFile,
         Optional<Path> nkeyFile,
         Optional<Path> tlsCaFile,
-        int replicas) {
+        int replicas,
+        Optional<MessageCodes> codes) {
 
     /** Bus names: one NATS subject token that is also a stream name. */
     public static final Pattern BUS_NAME = Pattern.compile("[A-Za-z0-9_-]{1,64}");
@@ -64,6 +67,7 @@ public record NatsSettings(
         Objects.requireNonNull(credentialsFile, "credentialsFile");
         Objects.requireNonNull(nkeyFile, "nkeyFile");
         Objects.requireNonNull(tlsCaFile, "tlsCaFile");
+        Objects.requireNonNull(codes, "codes");
         if (!BUS_NAME.matcher(busName).matches()) {
             throw new IllegalArgumentException("a NATS bus name is 1 to 64 letters, digits, '_' or '-': '" + busName
                     + "'");
@@ -108,6 +112,7 @@ public record NatsSettings(
         return "NatsSettings[bus=" + busName + ", member=" + memberName + ", servers=" + servers
                 + (user.isPresent() ? ", user=" + user.get() : "") + (token.isPresent() ? ", token" : "")
                 + credentialsFile.map(f -> ", creds=" + f).orElse("") + nkeyFile.map(f -> ", nkey=" + f).orElse("")
-                + tlsCaFile.map(f -> ", tlsCa=" + f).orElse("") + ", replicas=" + replicas + "]";
+                + tlsCaFile.map(f -> ", tlsCa=" + f).orElse("") + ", replicas=" + replicas
+                + (codes.isPresent() ? "" : ", insecure") + "]";
     }
 }
