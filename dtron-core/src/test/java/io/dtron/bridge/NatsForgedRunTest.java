@@ -73,6 +73,8 @@ class NatsForgedRunTest {
     void withoutTheSecretTheSameMessagesSpoilACorrectRun() throws Exception {
         Outcome outcome = runWithForgeries(false);
         assertNotEquals(Verdict.PASSED, outcome.result().verdict(), outcome.result().explanation());
+        assertEquals(0, outcome.stats().getRejected(Reason.UNAUTHENTICATED) + outcome.stats()
+                .getRejected(Reason.REPLAYED), "nothing on this bus carries a code: " + outcome.stats());
     }
 
     private record Outcome(TestResult result, DtronStats stats, String tester, List<String> members) {
