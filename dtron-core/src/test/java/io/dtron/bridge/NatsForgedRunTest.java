@@ -20,6 +20,7 @@ import io.dtron.model.Network;
 import io.dtron.model.TestInterface;
 import io.dtron.testadapter.TickerAdapterMain;
 import io.dtron.testsupport.NatsServer;
+import io.dtron.testsupport.Waits;
 import io.nats.client.Connection;
 import io.nats.client.JetStream;
 import io.nats.client.Message;
@@ -108,6 +109,9 @@ class NatsForgedRunTest {
                     assertTrue(tick != null, "a tick during the run");
                     forge(raw.jetStream(), bus, tick, bridge.memberId());
                     TestResult result = run.get(2, TimeUnit.MINUTES);
+                    // the forged messages came long before the end; still, the tester's receive thread has its pace
+                    Waits.await("the tester read the forged messages").until(
+                            () -> bridge.stats().getRejectedTotal() >= (secure ? 6 : 0));
                     return new Outcome(result, bridge.stats(), bridge.memberId(), bridge.members());
                 }
             }
