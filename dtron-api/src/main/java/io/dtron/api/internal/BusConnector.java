@@ -35,7 +35,7 @@ public final class BusConnector {
         return new NatsSettings(options.getClusterName(), memberName, options.getNatsServers(), options.getNatsUser(),
                 options.getNatsPassword(), options.getNatsToken(), options.getNatsCredentialsFile(),
                 options.getNatsNkeyFile(), options.getNatsTlsCaFile(), options.getNatsReplicas(),
-                options.getSecret().map(secret -> MessageCodes.forSecret(secret.getBytes(StandardCharsets.UTF_8))));
+                options.getSecret().map(secret -> MessageCodes.key(secret.getBytes(StandardCharsets.UTF_8))));
     }
 
     /**

@@ -37,16 +37,32 @@ public final class MessageCodes {
     }
 
     /**
-     * Derives the codes' key {@code K = HMAC-SHA256(secret, "dtron-bus-mac-v1")} from the bus's secret.
+     * Returns the codes of the key {@code K} (security.md).
+     *
+     * @throws IllegalArgumentException if the key is empty
+     */
+    public static MessageCodes forKey(byte[] key) {
+        if (Objects.requireNonNull(key, "key").length == 0) {
+            throw new IllegalArgumentException("the key of the codes is empty");
+        }
+        return new MessageCodes(key.clone());
+    }
+
+    /**
+     * Returns the codes' key {@code K = HMAC-SHA256(secret, "dtron-bus-mac-v1")} of the bus's secret.
      *
      * @throws IllegalArgumentException if the secret is empty
      */
-    public static MessageCodes forSecret(byte[] secret) {
+    public static byte[] key(byte[] secret) {
         if (Objects.requireNonNull(secret, "secret").length == 0) {
             throw new IllegalArgumentException("the bus's secret is empty");
         }
-        Mac mac = mac(new SecretKeySpec(secret, ALGORITHM));
-        return new MessageCodes(mac.doFinal(LABEL));
+        return mac(new SecretKeySpec(secret, ALGORITHM)).doFinal(LABEL);
+    }
+
+    /** Returns the codes of the bus's secret: {@code forKey(key(secret))}. */
+    public static MessageCodes forSecret(byte[] secret) {
+        return forKey(key(secret));
     }
 
     private static Mac mac(SecretKeySpec key) {

@@ -20,8 +20,8 @@ import java.util.regex.Pattern;
  * @param nkeyFile        a file holding an nkey seed ({@code SU...}) for nkey authentication
  * @param tlsCaFile       a PEM file of the certificate authorities to trust: TLS to the servers
  * @param replicas        the stream's replicas, when this member creates it (1, or up to 5 in a cluster)
- * @param codes           the codes of the bus's secret, which every message sent carries and every message received
- *                        must carry (security.md); empty on an insecure bus, whose messages carry none
+ * @param macKey          the key K of the messages' codes ({@link BusKeys#macKey}, 32 bytes); empty for an insecure
+ *                        member
  */
 public record NatsSettings(
         String busName,
@@ -34,7 +34,7 @@ public record NatsSettings(
         Optional<Path> nkeyFile,
         Optional<Path> tlsCaFile,
         int replicas,
-        Optional<MessageCodes> codes) {
+        Optional<byte[]> macKey) {
 
     /** Bus names: one NATS subject token that is also a stream name. */
     public static final Pattern BUS_NAME = Pattern.compile("[A-Za-z0-9_-]{1,64}");
@@ -67,7 +67,6 @@ public record NatsSettings(
         Objects.requireNonNull(credentialsFile, "credentialsFile");
         Objects.requireNonNull(nkeyFile, "nkeyFile");
         Objects.requireNonNull(tlsCaFile, "tlsCaFile");
-        Objects.requireNonNull(codes, "codes");
         if (!BUS_NAME.matcher(busName).matches()) {
             throw new IllegalArgumentException("a NATS bus name is 1 to 64 letters, digits, '_' or '-': '" + busName
                     + "'");
@@ -85,6 +84,13 @@ public record NatsSettings(
         if (replicas < 1 || replicas > 5) {
             throw new IllegalArgumentException("stream replicas must be in 1..5: " + replicas);
         }
+        macKey = Objects.requireNonNull(macKey, "macKey").map(byte[]::clone);
+    }
+
+    /** Returns a copy of the key of the messages' codes, if this member is not insecure. */
+    @Override
+    public Optional<byte[]> macKey() {
+        return macKey.map(byte[]::clone);
     }
 
     /** The stream of the bus. */
@@ -113,6 +119,6 @@ public record NatsSettings(
                 + (user.isPresent() ? ", user=" + user.get() : "") + (token.isPresent() ? ", token" : "")
                 + credentialsFile.map(f -> ", creds=" + f).orElse("") + nkeyFile.map(f -> ", nkey=" + f).orElse("")
                 + tlsCaFile.map(f -> ", tlsCa=" + f).orElse("") + ", replicas=" + replicas
-                + (codes.isPresent() ? "" : ", insecure") + "]";
+                + (macKey.isPresent() ? ", secure" : ", INSECURE") + "]";
     }
 }

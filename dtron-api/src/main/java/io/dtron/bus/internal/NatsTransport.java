@@ -72,7 +72,7 @@ import org.slf4j.LoggerFactory;
  * {@link NatsSettings#SILENCE} older (by the stream's timestamps) than the message at hand has left; a presence
  * message of a member not in the view adds it. A view's id is the stream sequence of the message that changed it.
  *
- * <p>On a secure bus ({@link NatsSettings#codes()}) every message carries {@value MessageCodes#SEQ}, {@value
+ * <p>On a secure bus ({@link NatsSettings#macKey()}) every message carries {@value MessageCodes#SEQ}, {@value
  * MessageCodes#TIME} and {@value MessageCodes#MAC} (security.md), and a received message without a valid code, or
  * replayed, or stale, is dropped before membership and delivery see it, and counted in {@link #drops()}. On an
  * insecure bus messages carry no code, and one that carries a code (a secure member's) is dropped.
@@ -108,6 +108,8 @@ public final class NatsTransport implements Transport {
      * (ns), each further one the next number, so that a member of the same name started later has higher numbers.
      */
     private final AtomicLong published = new AtomicLong(EpochClock.nowNanos() - 1);
+    /** The codes of the bus's secret; null on an insecure bus. */
+    private final MessageCodes codes;
     /** The check of received messages on a secure bus, on the receive thread only; null on an insecure one. */
     private final MessageCodes.Check check;
     private final Map<DropReason, LongAdder> drops = new EnumMap<>(DropReason.class);
@@ -142,7 +144,8 @@ public final class NatsTransport implements Transport {
         this.jetStream = connection.jetStream();
         this.channelPrefix = "dtron." + settings.busName() + ".c.";
         this.view = new MembershipView(0, List.of(settings.memberName()));
-        this.check = settings.codes().map(MessageCodes::check).orElse(null);
+        this.codes = settings.macKey().map(MessageCodes::forKey).orElse(null);
+        this.check = codes == null ? null : codes.check();
         for (DropReason reason : DropReason.values()) {
             drops.put(reason, new LongAdder());
         }
@@ -415,10 +418,10 @@ public final class NatsTransport implements Transport {
         synchronized (sendLock) { // the ids and the connection's order agree
             String seq = Long.toString(published.incrementAndGet());
             headers.put("Nats-Msg-Id", settings.memberName() + "-" + seq);
-            if (settings.codes().isPresent()) {
+            if (codes != null) {
                 String time = Long.toString(EpochClock.nowNanos());
                 headers.put(MessageCodes.SEQ, seq).put(MessageCodes.TIME, time);
-                headers.put(MessageCodes.MAC, settings.codes().get().code(subject, headers.getFirst(SENDER), seq, time,
+                headers.put(MessageCodes.MAC, codes.code(subject, headers.getFirst(SENDER), seq, time,
                         headers.getFirst(PRESENCE), headers.getFirst(JOINED), payload));
             }
             Message message = NatsMessage.builder().subject(subject).headers(headers).data(payload).build();

@@ -27,7 +27,7 @@ class MessageCodesTest {
     @Test
     void theVectorsOfSecurityMd() {
         assertEquals("f28112d382ab034e8ca1f42619cae5d0c5e52dc410ee18ab708c3612f228a321",
-                HexFormat.of().formatHex(keyOf(SECRET)), "K");
+                HexFormat.of().formatHex(MessageCodes.key(SECRET)), "K");
         assertEquals("5f724ebae3c605c2e2c63bd6f1cbc45de0d29bae2ef962c34a367bd024442564",
                 CODES.code("dtron.lab.c.tick", "ticker", "1764201600000000000", "1764201600000000123", null, null,
                         TICK), "a channel message");
@@ -37,17 +37,6 @@ class MessageCodesTest {
         assertEquals("f1ff465197706229fb063521b2ac769d2e034557e04734bba05391ed34ad7c6e",
                 CODES.code("dtron.lab.p", "tester", "1764201600000000001", "1764201600000000002", "join", null,
                         null), "a join");
-    }
-
-    /** K as the codes derive it: the code of the label with the secret as key, computed here the long way. */
-    private static byte[] keyOf(byte[] secret) {
-        try {
-            javax.crypto.Mac mac = javax.crypto.Mac.getInstance("HmacSHA256");
-            mac.init(new javax.crypto.spec.SecretKeySpec(secret, "HmacSHA256"));
-            return mac.doFinal("dtron-bus-mac-v1".getBytes(StandardCharsets.UTF_8));
-        } catch (java.security.GeneralSecurityException e) {
-            throw new AssertionError(e);
-        }
     }
 
     @Test
@@ -62,8 +51,9 @@ class MessageCodesTest {
     }
 
     @Test
-    void anEmptySecretIsRefused() {
+    void anEmptySecretOrKeyIsRefused() {
         assertThrows(IllegalArgumentException.class, () -> MessageCodes.forSecret(new byte[0]));
+        assertThrows(IllegalArgumentException.class, () -> MessageCodes.forKey(new byte[0]));
     }
 
     /** Checks a message of {@code sender} whose code the codes made, stored at {@code stored}. */
