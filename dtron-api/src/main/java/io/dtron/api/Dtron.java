@@ -663,7 +663,7 @@ public final class Dtron implements AutoCloseable {
 
     /** Returns a snapshot of this member's counters. */
     public DtronStats getStats() {
-        return counters.snapshot();
+        return counters.snapshot(transport.drops());
     }
 
     /**

@@ -9,7 +9,9 @@ import java.util.Objects;
 /**
  * What one {@link Dtron} has done so far: an immutable snapshot of its counters. They count channel messages,
  * {@link Dtron#RUN_START} and {@link Dtron#RUN_STOP} included; acknowledgements ({@link Dtron#ACK}) and the
- * messages by which members estimate their clock offsets are not counted.
+ * messages by which members estimate their clock offsets are not counted. Messages the bus dropped because they
+ * carry no valid code of the bus's secret ({@link Reason#UNAUTHENTICATED}, {@link Reason#REPLAYED},
+ * {@link Reason#STALE}) are counted as rejected whatever they are, since nothing of them can be trusted.
  */
 public final class DtronStats {
     private final long published;

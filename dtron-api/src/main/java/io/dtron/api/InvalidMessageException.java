@@ -15,7 +15,13 @@ public final class InvalidMessageException extends IllegalArgumentException {
         /** The message carries variables the channel does not have. */
         UNKNOWN_VARIABLES,
         /** The message lacks variables the channel has. */
-        MISSING_VARIABLES
+        MISSING_VARIABLES,
+        /** The message carries no valid code of the bus's secret (security.md); dropped by the transport. */
+        UNAUTHENTICATED,
+        /** The message was published again (its sender's counter was used already); dropped by the transport. */
+        REPLAYED,
+        /** The message's sender time is too far from the bus's time of it; dropped by the transport. */
+        STALE
     }
 
     private final Reason reason;

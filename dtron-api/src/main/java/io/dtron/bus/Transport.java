@@ -1,6 +1,7 @@
 package io.dtron.bus;
 
 import java.io.IOException;
+import java.util.Map;
 import java.util.function.Consumer;
 
 /**
@@ -57,6 +58,14 @@ public interface Transport extends AutoCloseable {
      * @return the subscription, whose {@link Subscription#close()} stops the calls
      */
     Subscription addViewListener(Consumer<MembershipView> listener);
+
+    /**
+     * Returns how many received messages the transport dropped before any handler or view saw them, by reason
+     * (messages without a valid code of the bus's secret); reasons left out count 0.
+     */
+    default Map<DropReason, Long> drops() {
+        return Map.of();
+    }
 
     /** Leaves the bus and releases its resources; closing twice does nothing. */
     @Override

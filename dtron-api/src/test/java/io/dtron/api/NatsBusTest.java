@@ -189,18 +189,21 @@ class NatsBusTest {
     void badInputIsRejectedAndCounted() throws Exception {
         try (NatsServer server = NatsServer.start(dir)) {
             String cluster = TestClusters.uniqueName("bad");
-            try (Dtron tester = Dtron.connect(nats(server, cluster, "tester").channels(List.of(ORDER)).build());
+            try (Dtron tester = Dtron.connect(nats(server, cluster, "tester").secret(NatsSecurityTest.SECRET)
+                    .channels(List.of(ORDER)).build());
                     io.nats.client.Connection raw = io.nats.client.Nats.connect(server.url())) {
                 Inbox inbox = new Inbox(ORDER);
                 tester.addDtronListener(inbox);
+                // a client with the bus's secret, publishing by hand
                 io.nats.client.JetStream js = raw.jetStream();
-                js.publish("dtron." + cluster + ".c.order", new byte[] {(byte) 0xFF, 1, 2});
-                js.publish("dtron." + cluster + ".c.nosuch", io.dtron.api.internal.SyncCodec.encode("nosuch",
-                        Map.of(), "raw", 1, 1));
-                js.publish("dtron." + cluster + ".c.order", io.dtron.api.internal.SyncCodec.encode("order",
-                        Map.of("n", 1, "m", 2), "raw", 2, 1));
-                js.publish("dtron." + cluster + ".c.order", io.dtron.api.internal.SyncCodec.encode("order",
-                        Map.of("n", 7), "raw", 3, 1));
+                NatsSecurityTest.publishSigned(js, "dtron." + cluster + ".c.order", "raw", 1,
+                        new byte[] {(byte) 0xFF, 1, 2});
+                NatsSecurityTest.publishSigned(js, "dtron." + cluster + ".c.nosuch", "raw", 2,
+                        io.dtron.api.internal.SyncCodec.encode("nosuch", Map.of(), "raw", 1, 1));
+                NatsSecurityTest.publishSigned(js, "dtron." + cluster + ".c.order", "raw", 3,
+                        io.dtron.api.internal.SyncCodec.encode("order", Map.of("n", 1, "m", 2), "raw", 2, 1));
+                NatsSecurityTest.publishSigned(js, "dtron." + cluster + ".c.order", "raw", 4,
+                        io.dtron.api.internal.SyncCodec.encode("order", Map.of("n", 7), "raw", 3, 1));
                 IDtronChannelValued good = inbox.take();
                 assertEquals(7, good.getVariables().get("n"));
                 assertEquals("raw", good.getSender());

@@ -19,6 +19,7 @@ import java.time.Duration;
 import java.util.EnumMap;
 import java.util.List;
 import java.util.Map;
+import java.util.Optional;
 import java.util.UUID;
 import java.util.concurrent.TimeUnit;
 
@@ -38,7 +39,8 @@ import java.util.concurrent.TimeUnit;
  * <p>Arguments (all optional): the time unit in microseconds (default 1000: a tick every 10 ms), the number
  * of ticks to measure (default 10,000), the ticker model (default
  * {@code ../models/src/main/resources/io/dtron/models/ticker.xml}, from {@code dtron-core}), and the NATS server
- * URLs of a NATS bus (default: none, the embedded JGroups bus), so that the two buses are measured alike.
+ * URLs of a NATS bus (default: none, the embedded JGroups bus), so that the two buses are measured alike, and the
+ * secret of a NATS bus (default: none; every message then carries a code of it, security.md).
  */
 public final class BusLatencyBench {
     private static final Duration WARM_UP = Duration.ofSeconds(20);
@@ -57,6 +59,7 @@ public final class BusLatencyBench {
         Path modelFile = Path.of(args.length > 2 ? args[2]
                 : "../models/src/main/resources/io/dtron/models/ticker.xml");
         List<String> nats = args.length > 3 ? List.of(args[3].split(",")) : List.of();
+        Optional<String> secret = args.length > 4 ? Optional.of(args[4]) : Optional.empty();
         Network network = ModelLoader.load(modelFile);
         TestInterface testInterface = TestInterface.fromNames(network);
         String cluster = "bench-" + UUID.randomUUID().toString().substring(0, 8);
@@ -66,18 +69,20 @@ public final class BusLatencyBench {
                 TickerAdapterMain.class.getName(), cluster, "bench-adapter", "correct", "2"));
         if (!nats.isEmpty()) {
             command.add(String.join(",", nats));
+            secret.ifPresent(command::add);
         }
         Process adapter = new ProcessBuilder(command)
                 .redirectErrorStream(true).redirectOutput(adapterLog.toFile()).start();
         try {
-            System.out.println((nats.isEmpty() ? "JGroups bus" : "NATS bus " + nats) + ", ticker model, " + unit
+            System.out.println((nats.isEmpty() ? "JGroups bus" : "NATS bus " + nats)
+                    + (secret.isPresent() ? " with message codes" : "") + ", ticker model, " + unit
                     + " us per time unit (a tick every " + 10 * unit
                     + " us), adapter in another JVM; warming up for " + WARM_UP.toSeconds() + " s with a tick every "
                     + 10 * WARM_UP_UNIT + " us");
-            measure(warmUpModel(modelFile), testInterface, options(cluster, nats), WARM_UP_UNIT,
+            measure(warmUpModel(modelFile), testInterface, options(cluster, nats, secret), WARM_UP_UNIT,
                     System.nanoTime() + WARM_UP.toNanos(), Integer.MAX_VALUE);
             System.out.println("measuring " + ticks + " ticks");
-            measure(network, testInterface, options(cluster, nats), unit, Long.MAX_VALUE, ticks);
+            measure(network, testInterface, options(cluster, nats, secret), unit, Long.MAX_VALUE, ticks);
             if (!adapter.waitFor(30, TimeUnit.SECONDS)) {
                 System.out.println("the adapter did not leave; its output:\n" + Files.readString(adapterLog));
             }
@@ -87,9 +92,13 @@ public final class BusLatencyBench {
         }
     }
 
-    private static DtronOptions.Builder options(String cluster, List<String> nats) {
+    private static DtronOptions.Builder options(String cluster, List<String> nats, Optional<String> secret) {
         DtronOptions.Builder options = DtronOptions.builder().clusterName(cluster);
-        return nats.isEmpty() ? options : options.natsServers(nats);
+        if (nats.isEmpty()) {
+            return options;
+        }
+        secret.ifPresent(options::secret);
+        return options.natsServers(nats);
     }
 
     /**

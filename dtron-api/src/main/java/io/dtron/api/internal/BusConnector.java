@@ -4,8 +4,10 @@ import io.dtron.api.DtronOptions;
 import io.dtron.bus.Transport;
 import io.dtron.bus.internal.JGroupsSettings;
 import io.dtron.bus.internal.JGroupsTransport;
+import io.dtron.bus.internal.MessageCodes;
 import io.dtron.bus.internal.NatsSettings;
 import io.dtron.bus.internal.NatsTransport;
+import java.nio.charset.StandardCharsets;
 import java.util.HexFormat;
 import java.util.concurrent.ThreadLocalRandom;
 
@@ -32,7 +34,8 @@ public final class BusConnector {
     public static NatsSettings natsSettings(DtronOptions options, String memberName) {
         return new NatsSettings(options.getClusterName(), memberName, options.getNatsServers(), options.getNatsUser(),
                 options.getNatsPassword(), options.getNatsToken(), options.getNatsCredentialsFile(),
-                options.getNatsNkeyFile(), options.getNatsTlsCaFile(), options.getNatsReplicas());
+                options.getNatsNkeyFile(), options.getNatsTlsCaFile(), options.getNatsReplicas(),
+                options.getSecret().map(secret -> MessageCodes.key(secret.getBytes(StandardCharsets.UTF_8))));
     }
 
     /**

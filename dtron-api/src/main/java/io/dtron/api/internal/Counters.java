@@ -2,6 +2,7 @@ package io.dtron.api.internal;
 
 import io.dtron.api.DtronStats;
 import io.dtron.api.InvalidMessageException.Reason;
+import io.dtron.bus.DropReason;
 import java.util.EnumMap;
 import java.util.Map;
 import java.util.concurrent.atomic.LongAdder;
@@ -40,10 +41,11 @@ public final class Counters {
         listenerFailures.increment();
     }
 
-    /** Returns the current counts. */
-    public DtronStats snapshot() {
+    /** Returns the current counts, with the messages the transport dropped ({@code drops}) as rejected. */
+    public DtronStats snapshot(Map<DropReason, Long> drops) {
         Map<Reason, Long> rejectedCounts = new EnumMap<>(Reason.class);
         rejected.forEach((reason, count) -> rejectedCounts.put(reason, count.sum()));
+        drops.forEach((reason, count) -> rejectedCounts.merge(Reason.valueOf(reason.name()), count, Long::sum));
         return new DtronStats(published.sum(), accepted.sum(), rejectedCounts, listenerFailures.sum());
     }
 }

@@ -1,6 +1,7 @@
 package io.dtron.bus.internal;
 
 import io.dtron.bus.BusMessage;
+import io.dtron.bus.DropReason;
 import io.dtron.bus.MembershipView;
 import io.dtron.bus.Subscription;
 import io.dtron.bus.Transport;
@@ -35,10 +36,13 @@ import java.time.Duration;
 import java.time.Instant;
 import java.util.ArrayList;
 import java.util.Comparator;
+import java.util.EnumMap;
 import java.util.HashMap;
+import java.util.HashSet;
 import java.util.List;
 import java.util.Map;
 import java.util.Objects;
+import java.util.Set;
 import java.util.concurrent.CountDownLatch;
 import java.util.concurrent.ExecutorService;
 import java.util.concurrent.Executors;
@@ -48,6 +52,7 @@ import java.util.concurrent.TimeUnit;
 import java.util.concurrent.atomic.AtomicBoolean;
 import java.util.concurrent.atomic.AtomicInteger;
 import java.util.concurrent.atomic.AtomicLong;
+import java.util.concurrent.atomic.LongAdder;
 import javax.net.ssl.SSLContext;
 import javax.net.ssl.TrustManagerFactory;
 import org.slf4j.Logger;
@@ -66,6 +71,11 @@ import org.slf4j.LoggerFactory;
  * stream order, so all compute the same views: a member whose last message in the stream is more than
  * {@link NatsSettings#SILENCE} older (by the stream's timestamps) than the message at hand has left; a presence
  * message of a member not in the view adds it. A view's id is the stream sequence of the message that changed it.
+ *
+ * <p>On a secure bus ({@link NatsSettings#macKey()}) every message carries {@value MessageCodes#SEQ}, {@value
+ * MessageCodes#TIME} and {@value MessageCodes#MAC} (security.md), and a received message without a valid code, or
+ * replayed, or stale, is dropped before membership and delivery see it, and counted in {@link #drops()}. On an
+ * insecure bus messages carry no code, and one that carries a code (a secure member's) is dropped.
  */
 public final class NatsTransport implements Transport {
     /** Header naming the member that published a message. */
@@ -81,6 +91,8 @@ public final class NatsTransport implements Transport {
     private static final Duration RETRY_FOR = Duration.ofSeconds(30);
     private static final long RETRY_PAUSE_MILLIS = 100;
     private static final long CLOSE_WAIT_MILLIS = 3_000;
+    /** How many (sender, reason) pairs of dropped messages are logged, one line each, before logging stops. */
+    private static final int DROPS_LOGGED = 256;
 
     private final Connection connection;
     private final NatsSettings settings;
@@ -91,7 +103,20 @@ public final class NatsTransport implements Transport {
     private final Object sendLock = new Object();
     private final AtomicInteger inFlight = new AtomicInteger();
     private final ExecutorService retries;
-    private final AtomicLong published = new AtomicLong();
+    /**
+     * This member's message counter, {@value MessageCodes#SEQ}: its first message has the wall clock at its start
+     * (ns), each further one the next number, so that a member of the same name started later has higher numbers.
+     */
+    private final AtomicLong published = new AtomicLong(EpochClock.nowNanos() - 1);
+    /** The codes of the bus's secret; null on an insecure bus. */
+    private final MessageCodes codes;
+    /** The check of received messages on a secure bus, on the receive thread only; null on an insecure one. */
+    private final MessageCodes.Check check;
+    private final Map<DropReason, LongAdder> drops = new EnumMap<>(DropReason.class);
+    /** The (sender, reason) pairs of dropped messages logged so far, on the receive thread only. */
+    private final Set<String> dropsLogged = new HashSet<>();
+    /** Why this member dropped its own message last, if it did: a join that does not come back says why. */
+    private volatile DropReason ownDropped;
     private final CountDownLatch joined = new CountDownLatch(1);
     /** Membership state, touched on the receive thread only: last stream time (ns) and join sequence per member. */
     private final Map<String, Long> lastSeen = new HashMap<>();
@@ -119,6 +144,11 @@ public final class NatsTransport implements Transport {
         this.jetStream = connection.jetStream();
         this.channelPrefix = "dtron." + settings.busName() + ".c.";
         this.view = new MembershipView(0, List.of(settings.memberName()));
+        this.codes = settings.macKey().map(MessageCodes::forKey).orElse(null);
+        this.check = codes == null ? null : codes.check();
+        for (DropReason reason : DropReason.values()) {
+            drops.put(reason, new LongAdder());
+        }
         this.presence = Executors.newSingleThreadScheduledExecutor(task -> {
             Thread thread = new Thread(task, "dtron-nats-presence-" + settings.memberName());
             thread.setDaemon(true);
@@ -283,8 +313,12 @@ public final class NatsTransport implements Transport {
         }
         publishPresence("join");
         if (!joined.await(CONNECT_TIMEOUT_MILLIS, TimeUnit.MILLISECONDS)) {
+            DropReason dropped = ownDropped;
             throw new IOException("this member's join did not come back from stream " + settings.streamName()
-                    + " within " + CONNECT_TIMEOUT_MILLIS + " ms");
+                    + " within " + CONNECT_TIMEOUT_MILLIS + " ms" + (dropped == null ? ""
+                    : "; it dropped its own messages as " + dropped.name().toLowerCase(java.util.Locale.ROOT)
+                    + (dropped == DropReason.STALE ? " (this machine's clock is more than 120 s from the NATS"
+                            + " server's)" : "")));
         }
         long period = NatsSettings.HEARTBEAT.toMillis();
         presence.scheduleAtFixedRate(() -> {
@@ -375,11 +409,21 @@ public final class NatsTransport implements Transport {
      * Hands a message to the connection, which sends the messages in the order they were handed over, and does not
      * wait for the stream's acknowledgement. A message the stream did not acknowledge (a server failing over) is
      * published again by the retry thread, with the same {@code Nats-Msg-Id}, so that the stream stores it once;
-     * while a server fails over, a message published again may come after later ones of the same member.
+     * while a server fails over, a message published again may come after later ones of the same member. On a secure
+     * bus the message is signed here, once: a message published again keeps its number, time and code, within the
+     * retries' 30 s well inside the 120 s a receiver allows, and a copy the stream stored twice is dropped as
+     * replayed.
      */
     private void send(String subject, Headers headers, byte[] payload) throws IOException {
         synchronized (sendLock) { // the ids and the connection's order agree
-            headers.put("Nats-Msg-Id", settings.memberName() + "-" + published.incrementAndGet());
+            String seq = Long.toString(published.incrementAndGet());
+            headers.put("Nats-Msg-Id", settings.memberName() + "-" + seq);
+            if (codes != null) {
+                String time = Long.toString(EpochClock.nowNanos());
+                headers.put(MessageCodes.SEQ, seq).put(MessageCodes.TIME, time);
+                headers.put(MessageCodes.MAC, codes.code(subject, headers.getFirst(SENDER), seq, time,
+                        headers.getFirst(PRESENCE), headers.getFirst(JOINED), payload));
+            }
             Message message = NatsMessage.builder().subject(subject).headers(headers).data(payload).build();
             try {
                 inFlight.incrementAndGet();
@@ -559,6 +603,11 @@ public final class NatsTransport implements Transport {
         Headers headers = message.getHeaders();
         String sender = headers == null ? null : headers.getFirst(SENDER);
         String subject = message.getSubject();
+        DropReason drop = screen(subject, headers, message.getData(), streamTime);
+        if (drop != null) {
+            dropped(drop, sender, subject);
+            return;
+        }
         boolean presenceMessage = subject.equals(settings.presenceSubject());
         try {
             membership(sequence, streamTime, sender, presenceMessage ? headers : null);
@@ -579,6 +628,60 @@ public final class NatsTransport implements Transport {
         byte[] data = message.getData();
         subscribers.deliver(new BusMessage(group, data == null ? new byte[0] : data, sender == null ? "" : sender,
                 receivedAt));
+    }
+
+    /** Why a received message is dropped (security.md), or null when it passes. */
+    private DropReason screen(String subject, Headers headers, byte[] data, long streamTime) {
+        String mac = headers == null ? null : headers.getFirst(MessageCodes.MAC);
+        if (check == null) {
+            return mac == null ? null : DropReason.UNAUTHENTICATED;
+        }
+        if (headers == null) {
+            return DropReason.UNAUTHENTICATED;
+        }
+        return check.check(subject, headers.getFirst(SENDER), headers.getFirst(MessageCodes.SEQ),
+                headers.getFirst(MessageCodes.TIME), headers.getFirst(PRESENCE), headers.getFirst(JOINED), data, mac,
+                streamTime);
+    }
+
+    /** Counts a dropped message; the first of each reason from each sender is logged, in one line. */
+    private void dropped(DropReason reason, String sender, String subject) {
+        drops.get(reason).increment();
+        if (settings.memberName().equals(sender)) {
+            ownDropped = reason;
+        }
+        String who = sender == null ? "a sender without " + SENDER : printable(sender);
+        if (dropsLogged.size() > DROPS_LOGGED || !dropsLogged.add(reason + " " + who)) {
+            return;
+        }
+        String why = switch (reason) {
+            case UNAUTHENTICATED -> check == null
+                    ? "it carries a code of a secret and this member is insecure (--insecure)"
+                    : "it carries no valid code of the bus's secret";
+            case REPLAYED -> "its " + MessageCodes.SEQ + " was accepted already (a message published again)";
+            case STALE -> "its " + MessageCodes.TIME + " is more than 120 s from when the stream stored it";
+        };
+        LOG.warn("{}: dropped a message on {} from {}, {}: {}; more such are counted, not logged",
+                settings.memberName(), printable(subject), who, reason.name().toLowerCase(java.util.Locale.ROOT), why);
+        if (dropsLogged.size() > DROPS_LOGGED) {
+            LOG.warn("{}: dropped messages of more than {} senders and reasons; no more are logged, all are"
+                    + " counted", settings.memberName(), DROPS_LOGGED);
+        }
+    }
+
+    /** A header or subject fit for one log line: printable ASCII, at most 128 characters. */
+    private static String printable(String text) {
+        StringBuilder out = new StringBuilder();
+        text.codePoints().limit(128).forEach(c -> out.append(c >= 0x20 && c < 0x7F ? (char) c : '?'));
+        return text.length() > 128 ? out + "..." : out.toString();
+    }
+
+    /** How many received messages this member dropped (security.md), by reason. */
+    @Override
+    public Map<DropReason, Long> drops() {
+        Map<DropReason, Long> counts = new EnumMap<>(DropReason.class);
+        drops.forEach((reason, count) -> counts.put(reason, count.sum()));
+        return counts;
     }
 
     /**

@@ -1,0 +1,147 @@
+package io.dtron.bridge;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertNotEquals;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+import io.dtron.api.ChildJvm;
+import io.dtron.api.DtronOptions;
+import io.dtron.api.DtronStats;
+import io.dtron.api.InvalidMessageException.Reason;
+import io.dtron.api.internal.proto.Sync;
+import io.dtron.bus.internal.NatsTransport;
+import io.dtron.engine.DelayPolicy;
+import io.dtron.engine.OnlineTester;
+import io.dtron.engine.TestOptions;
+import io.dtron.engine.TestResult;
+import io.dtron.engine.Verdict;
+import io.dtron.model.ModelLoader;
+import io.dtron.model.Network;
+import io.dtron.model.TestInterface;
+import io.dtron.testadapter.TickerAdapterMain;
+import io.dtron.testsupport.NatsServer;
+import io.dtron.testsupport.Waits;
+import io.nats.client.Connection;
+import io.nats.client.JetStream;
+import io.nats.client.Message;
+import io.nats.client.Nats;
+import io.nats.client.Subscription;
+import io.nats.client.impl.Headers;
+import io.nats.client.impl.NatsMessage;
+import java.nio.file.Path;
+import java.time.Duration;
+import java.util.ArrayList;
+import java.util.List;
+import java.util.Set;
+import java.util.UUID;
+import java.util.concurrent.CompletableFuture;
+import java.util.concurrent.TimeUnit;
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.Timeout;
+import org.junit.jupiter.api.io.TempDir;
+
+/**
+ * Issue 23, "a bus no one else can speak on": while the bundled ticker model runs in real time on a NATS bus
+ * against the ticker adapter (another JVM), a client of the same server publishes a copy of a real tick with
+ * another sequence, the same tick again, a reset input in the tester's name, the tester's and the adapter's leave
+ * and a stranger's join. On a bus with a secret the run passes, and the tester counts exactly these messages as
+ * rejected, without changing its members; on a bus without one the same messages end a correct run otherwise.
+ */
+@Timeout(value = 3, unit = TimeUnit.MINUTES)
+class NatsForgedRunTest {
+    private static final Path MODEL = Path.of("../models/src/main/resources/io/dtron/models/ticker.xml");
+    private static final String SECRET = "0123456789abcdef0123456789abcdef0123456789abcdef0123456789abcdef";
+    /** 60 units of 100 ms: the ticker's tolerance of 2 units (200 ms) holds for a fresh JVM on a loaded machine. */
+    private static final long UNIT_MICROS = 100_000;
+    private static final long UNITS = 60;
+
+    @TempDir
+    Path dir;
+
+    @Test
+    void withTheSecretTheForgedMessagesAreRejectedAndTheRunPasses() throws Exception {
+        Outcome outcome = runWithForgeries(true);
+        assertEquals(Verdict.PASSED, outcome.result().verdict(), outcome.result().explanation());
+        DtronStats stats = outcome.stats();
+        assertEquals(5, stats.getRejected(Reason.UNAUTHENTICATED), stats.toString());
+        assertEquals(1, stats.getRejected(Reason.REPLAYED), stats.toString());
+        assertEquals(6, stats.getRejectedTotal(), stats.toString());
+        assertEquals(Set.of(outcome.tester(), "ticker"), Set.copyOf(outcome.members()), "members unchanged");
+    }
+
+    /** The control: the same messages are an attack that works on a bus without the secret. */
+    @Test
+    void withoutTheSecretTheSameMessagesSpoilACorrectRun() throws Exception {
+        Outcome outcome = runWithForgeries(false);
+        assertNotEquals(Verdict.PASSED, outcome.result().verdict(), outcome.result().explanation());
+        assertEquals(0, outcome.stats().getRejected(Reason.UNAUTHENTICATED) + outcome.stats()
+                .getRejected(Reason.REPLAYED), "nothing on this bus carries a code: " + outcome.stats());
+    }
+
+    private record Outcome(TestResult result, DtronStats stats, String tester, List<String> members) {
+    }
+
+    private Outcome runWithForgeries(boolean secure) throws Exception {
+        Network network = ModelLoader.load(MODEL);
+        TestInterface testInterface = TestInterface.fromNames(network);
+        String bus = "forged-" + UUID.randomUUID().toString().substring(0, 8);
+        try (NatsServer server = NatsServer.start(dir);
+                Connection raw = Nats.connect(server.url())) {
+            List<String> args = new ArrayList<>(List.of(bus, "ticker", "correct", "1", server.url()));
+            if (secure) {
+                args.add(SECRET);
+            }
+            Path log = dir.resolve("ticker.log");
+            try (ChildJvm ticker = ChildJvm.start(TickerAdapterMain.class, log, args.toArray(String[]::new))) {
+                ticker.awaitOutput("joined", Duration.ofSeconds(60));
+                DtronOptions.Builder options = DtronOptions.builder().clusterName(bus).natsServers(server.url());
+                if (secure) {
+                    options.secret(SECRET);
+                }
+                try (BusBridge bridge = BusBridge.connect(testInterface, options)) {
+                    assertTrue(bridge.awaitAdapters(1, Duration.ofSeconds(60)), "the ticker joined");
+                    Subscription ticks = raw.subscribe("dtron." + bus + ".c.tick");
+                    raw.flush(Duration.ofSeconds(10));
+                    CompletableFuture<TestResult> run = CompletableFuture.supplyAsync(() -> new OnlineTester(network,
+                            testInterface, bridge, new TestOptions(1, UNIT_MICROS, UNITS, DelayPolicy.EAGER, 0, false))
+                            .run());
+                    Message tick = ticks.nextMessage(Duration.ofSeconds(60)); // the run is under way
+                    assertTrue(tick != null, "a tick during the run");
+                    forge(raw.jetStream(), bus, tick, bridge.memberId());
+                    TestResult result = run.get(2, TimeUnit.MINUTES);
+                    // the forged messages came long before the end; still, the tester's receive thread has its pace
+                    Waits.await("the tester read the forged messages").until(
+                            () -> bridge.stats().getRejectedTotal() >= (secure ? 6 : 0));
+                    return new Outcome(result, bridge.stats(), bridge.memberId(), bridge.members());
+                }
+            }
+        }
+    }
+
+    /** What a client of the server without the secret publishes: five forged messages and one replayed. */
+    private static void forge(JetStream js, String bus, Message tick, String tester) throws Exception {
+        String ticker = tick.getHeaders().getFirst(NatsTransport.SENDER);
+        Sync real = Sync.parseFrom(tick.getData());
+        String channels = "dtron." + bus + ".c.";
+        String presence = "dtron." + bus + ".p";
+        // the tick again, as another message of the ticker's
+        publish(js, tick.getSubject(), new Headers().put(NatsTransport.SENDER, ticker),
+                real.toBuilder().setSequence(real.getSequence() + 1_000_000).build().toByteArray());
+        // the tick as it was, under another Nats-Msg-Id so that the stream stores it again
+        publish(js, tick.getSubject(), new Headers(tick.getHeaders()).put("Nats-Msg-Id", "replayed"), tick.getData());
+        // a reset in the tester's name, which would restart the ticker
+        long now = System.currentTimeMillis() * 1_000_000L;
+        publish(js, channels + "reset", new Headers().put(NatsTransport.SENDER, tester), Sync.newBuilder()
+                .setName("reset").setSender(tester).setSequence(1_000_000).setPublishTimeNs(now).setEventTimeNs(now)
+                .setRunId(real.getRunId()).build().toByteArray());
+        // the tester leaving (the ticker stops when a member leaves), the ticker leaving, and a stranger joining
+        for (String[] who : new String[][] {{tester, "leave"}, {ticker, "leave"}, {"stranger", "join"}}) {
+            publish(js, presence, new Headers().put(NatsTransport.SENDER, who[0]).put(NatsTransport.PRESENCE, who[1]),
+                    new byte[0]);
+        }
+    }
+
+    private static void publish(JetStream js, String subject, Headers headers, byte[] data) throws Exception {
+        js.publish(NatsMessage.builder().subject(subject).headers(headers).data(data).build());
+    }
+}
