@@ -102,11 +102,15 @@ public final class Dtron implements AutoCloseable {
     /** The channels only Dtron itself sends on and listens to. */
     private static final Set<String> CONTROL = Set.of(ClockSync.HELLO, ClockSync.PING, ClockSync.PONG,
             ChannelHandshake.SERVE);
+    /** The channel of the message {@code Dtron} hands its own dispatcher when it starts; never on the bus. */
+    private static final DtronChannel WARM_UP = new DtronChannel("dtron_warm_up", List.of());
     /** How many acknowledged messages a member remembers, so as to acknowledge each once. */
     private static final int ACKED_MEMORY = 65_536;
 
     private static final Logger LOG = LoggerFactory.getLogger(Dtron.class);
     private static final Duration CLOSE_TIMEOUT = Duration.ofSeconds(5);
+    /** How long {@link #connect} waits at most for the warm-up of the run clock's code (see RunClock.warmUp). */
+    private static final Duration RUN_CLOCK_WARM_UP = Duration.ofMillis(200);
 
     private final Transport transport;
     private final String clusterName;
@@ -174,6 +178,8 @@ public final class Dtron implements AutoCloseable {
                 ? List.of()
                 : List.of(RUN_START.getChannelName(), RUN_STOP.getChannelName(), ClockSync.HELLO, ClockSync.PING,
                         ClockSync.PONG, ChannelHandshake.SERVE).stream().map(group -> transport.subscribe(group, this::received)).toList();
+        // a message's way to the listeners, taken once now rather than by a run's first message: no listener hears it
+        dispatch(WARM_UP.constructValued(Map.of()), false);
         clockSync.start();
     }
 
@@ -225,6 +231,7 @@ public final class Dtron implements AutoCloseable {
     public static Dtron connect(DtronOptions options) {
         Objects.requireNonNull(options, "options");
         SyncCodec.warmUp();
+        RunClock.warmUp(RUN_CLOCK_WARM_UP);
         Transport transport;
         try {
             transport = BusConnector.connect(options);
@@ -587,8 +594,29 @@ public final class Dtron implements AutoCloseable {
      * @throws InterruptedException if the thread was interrupted while waiting
      */
     public Set<String> probe(Collection<String> members, Duration timeout) throws InterruptedException {
+        return probe(members, timeout, false);
+    }
+
+    /**
+     * Probes members as {@link #probe} does, through the path of an input, for a tester warming its adapters up
+     * before a run: a member built on this API answers on the thread of its listeners, in order with the messages
+     * they hear, and with the {@linkplain #ACK acknowledgement} it publishes when it applied an input, but calls
+     * none of its listeners (the system under test does not hear of it). So a fresh process runs that path for the
+     * first time before the run, and the round trip is that of an input. A member that does not know this probe (an
+     * older API, another language's client) answers it as any ping, which counts as well. Not for telling whether a
+     * member is there: a listener that is busy holds the answer up.
+     *
+     * @return the members of {@code members} that answered
+     * @throws InterruptedException if the thread was interrupted while waiting
+     */
+    public Set<String> probeAsInput(Collection<String> members, Duration timeout) throws InterruptedException {
+        return probe(members, timeout, true);
+    }
+
+    private Set<String> probe(Collection<String> members, Duration timeout, boolean asInput)
+            throws InterruptedException {
         long deadline = System.nanoTime() + timeout.toNanos();
-        Set<String> answered = new LinkedHashSet<>(clockSync.probe(members, timeout));
+        Set<String> answered = new LinkedHashSet<>(clockSync.probe(members, timeout, asInput));
         answered.retainAll(members);
         // what the members sent before their answers is delivered once the listeners' queue has passed this point
         CountDownLatch delivered = new CountDownLatch(1);
@@ -619,7 +647,7 @@ public final class Dtron implements AutoCloseable {
      * bound from the same estimate.
      */
     public long getClockOffsetNanos() {
-        return clockSync.estimate().map(ClockOffset::offsetNanos).orElse(0L);
+        return runClockOffset();
     }
 
     /**
@@ -721,11 +749,12 @@ public final class Dtron implements AutoCloseable {
         Objects.requireNonNull(message, "message");
         requireOpen();
         String name = message.getChannelName();
+        Registration registration = registrations.get(name);
         DtronChannel template = RESERVED.containsKey(name)
                 ? RESERVED.get(name)
                 : declared.isPresent()
                         ? declared.get().get(name)
-                        : Optional.ofNullable(registrations.get(name)).map(Registration::template).orElse(null);
+                        : registration == null ? null : registration.template();
         if (name.equals(ACK.getChannelName()) || CONTROL.contains(name)) {
             throw new IllegalArgumentException("only DTRON publishes on channel '" + name + "'"
                     + (name.equals(ACK.getChannelName()) ? "; use acknowledge" : ""));
@@ -791,15 +820,15 @@ public final class Dtron implements AutoCloseable {
         return true;
     }
 
-    /** Publishes a message of the clock-offset protocol; not counted. Called on the clock's thread. */
+    /** Publishes a message of the clock-offset protocol; not counted. Called on the clock's or a probing thread. */
     private void publishControl(String channel, long seq, long publishTimeNanos, long eventTimeNanos,
-            String ackedSender, long ackedSequence) {
+            String ackedSender, long ackedSequence, boolean asInput) {
         if (closed) {
             return;
         }
         try {
-            transport.publish(channel, SyncCodec.encode(channel, Map.of(),
-                    stamp(seq, publishTimeNanos, eventTimeNanos, ackedSender, ackedSequence)));
+            transport.publish(channel, SyncCodec.encodeControl(channel,
+                    stamp(seq, publishTimeNanos, eventTimeNanos, ackedSender, ackedSequence), asInput));
         } catch (IOException | RuntimeException e) {
             LOG.debug("{} cannot publish on {}: {}", getMemberId(), channel, e.toString());
         }
@@ -848,7 +877,10 @@ public final class Dtron implements AutoCloseable {
     }
 
     private long runClockOffset() {
-        return clockSync.estimate().map(ClockOffset::offsetNanos).orElse(0L);
+        // no lambda: the run clock's thread first reads this at time 0 of a fresh process's first run, and a lambda's
+        // first call there costs milliseconds
+        Optional<ClockOffset> estimate = clockSync.estimate();
+        return estimate.isPresent() ? estimate.get().offsetNanos() : 0;
     }
 
     private void offsetChanged() {
@@ -900,6 +932,10 @@ public final class Dtron implements AutoCloseable {
         } else if (group.equals(RUN_STOP.getChannelName())) {
             runStopped();
         }
+        if (group.equals(ACK.getChannelName())
+                && clockSync.probeAnswered(value.getSender(), value.getAckedSender(), value.getAckedSequence())) {
+            return; // the answer to a probe sent as an input (probeAsInput), not an input's acknowledgement
+        }
         if ((declared.isPresent() || registration != null) && !group.equals(ACK.getChannelName())) {
             counters.accepted();
         }
@@ -908,8 +944,16 @@ public final class Dtron implements AutoCloseable {
             boolean acknowledge = !RESERVED.containsKey(group) && value.getSequence() > 0
                     && (value.getSender().equals(runTester) || isJoiningTester(value.getSender()))
                     && !value.getSender().equals(getMemberId());
-            dispatcher.execute(() -> deliver(value, acknowledge));
+            dispatch(value, acknowledge);
         }
+    }
+
+    /**
+     * Queues a message for the listeners, in the bus's order; an input (or a probe sent as one) to be acknowledged
+     * when they return.
+     */
+    private void dispatch(IDtronChannelValued value, boolean acknowledge) {
+        dispatcher.execute(() -> deliver(value, acknowledge));
     }
 
     /**
@@ -979,8 +1023,21 @@ public final class Dtron implements AutoCloseable {
                 handshake.servedReceived(new ServedChannels(stamp.sender(), Set.copyOf(sync.getReceivesList()),
                         Set.copyOf(sync.getSendsList()), sync.getJoinsRun(), sync.getTester()));
             }
-            case ClockSync.PING -> clockSync.pingReceived(stamp.sender(), stamp.sequence(), receiveTime,
-                    isJoiningTester(stamp.sender()));
+            case ClockSync.PING -> {
+                boolean peerTester = isJoiningTester(stamp.sender());
+                if (sync.getAsInput() && !clockSync.isTester() && stamp.sequence() > 0
+                        && clockSync.answersPingOf(stamp.sender(), peerTester)) {
+                    // the tester warms this member's path of an input up: answered as an input is, heard by no one
+                    try {
+                        dispatch(SyncCodec.decode(RESERVED.get(ClockSync.PING), sync, message.sender(), receiveTime),
+                                true);
+                    } catch (InvalidMessageException e) {
+                        reject(message, e);
+                    }
+                } else {
+                    clockSync.pingReceived(stamp.sender(), stamp.sequence(), receiveTime, peerTester);
+                }
+            }
             case ClockSync.PONG -> clockSync.pongReceived(stamp.sender(), stamp.ackedSender(), stamp.ackedSequence(),
                     stamp.effectiveEventTimeNanos(), receiveTime);
             default -> throw new IllegalStateException("not a control channel: " + message.group());
@@ -1057,15 +1114,19 @@ public final class Dtron implements AutoCloseable {
                 message.payloadLength(), reason.getReason(), reason.getMessage());
     }
 
-    /** Called on the dispatcher thread, in the bus's order; acknowledges the message after its listeners. */
+    /**
+     * Called on the dispatcher thread, in the bus's order; acknowledges the message after its listeners. A probe sent
+     * as an input ({@link #probeAsInput}) takes the same way, but no listener hears it.
+     */
     private void deliver(IDtronChannelValued value, boolean acknowledge) {
-        Registration registration = registrations.get(value.getChannelName());
-        if (registration == null) {
+        boolean probe = value.getChannelName().equals(ClockSync.PING);
+        Registration registration = value.getChannel() == WARM_UP ? null : registrations.get(value.getChannelName());
+        if (registration == null && !probe) {
             return;
         }
-        boolean called = false;
+        boolean called = probe;
         boolean automatic = true;
-        for (DtronListener listener : registration.listeners()) {
+        for (DtronListener listener : probe ? List.<DtronListener>of() : registration.listeners()) {
             called = true;
             try {
                 listener.messageReceived(value);

@@ -1,9 +1,12 @@
 package io.dtron.api;
 
+import io.dtron.bus.internal.EpochClock;
+import java.time.Duration;
 import java.util.ArrayList;
 import java.util.List;
 import java.util.Objects;
 import java.util.PriorityQueue;
+import java.util.concurrent.CountDownLatch;
 import java.util.concurrent.TimeUnit;
 import java.util.concurrent.atomic.AtomicBoolean;
 import java.util.concurrent.atomic.AtomicLong;
@@ -51,7 +54,7 @@ public final class RunClock {
     private final ReentrantLock lock = new ReentrantLock();
     private final Condition changed = lock.newCondition();
     private final PriorityQueue<Entry> queue = new PriorityQueue<>();
-    private Thread thread;
+    private final Thread thread;
     private Entry executing;
     private boolean closed;
     private final AtomicLong entries = new AtomicLong();
@@ -122,6 +125,10 @@ public final class RunClock {
         this.member = member;
         this.wallClock = wallClock;
         this.offset = offset;
+        // started now, not by the first task of a run, when the adapter may have a few milliseconds to act
+        this.thread = new Thread(this::loop, "dtron-run-clock-" + member);
+        thread.setDaemon(true);
+        thread.start();
     }
 
     /** Returns whether a run is under way: its {@code RUN_START} arrived, and it has not stopped. */
@@ -238,6 +245,30 @@ public final class RunClock {
 
     // ---- called by Dtron
 
+    /**
+     * Runs a clock of its own through a run: started, read, tasks scheduled and cancelled, one run on its thread,
+     * stopped and closed. So a fresh process loads and first runs this code when it joins the bus, not at time 0 of
+     * its first run, when an adapter may have a few milliseconds to act. Waits at most {@code limit} for the task;
+     * touches no other clock.
+     */
+    static void warmUp(Duration limit) {
+        RunClock clock = new RunClock("warm-up", EpochClock::nowNanos, () -> 0);
+        try {
+            clock.start(EpochClock.nowNanos(), 1_000, "");
+            clock.nowUnits();
+            clock.scheduleAt(1e9, () -> { }).cancel();
+            clock.scheduleAtFixedRate(1e9, 1, () -> { }).cancel();
+            CountDownLatch ran = new CountDownLatch(1);
+            clock.scheduleAt(0, ran::countDown);
+            ran.await(limit.toNanos(), TimeUnit.NANOSECONDS);
+            clock.stop();
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+        } finally {
+            clock.close();
+        }
+    }
+
     /** A run started: its time 0 on the tester's clock. Cancels the tasks of the one before. */
     void start(long testerTimeZero, long timeUnitMicros, String runId) {
         lock.lock();
@@ -286,19 +317,17 @@ public final class RunClock {
 
     /** Stops the run and the thread. */
     void close() {
-        Thread stopping;
         lock.lock();
         try {
             stop();
             closed = true;
             changed.signalAll();
-            stopping = thread;
         } finally {
             lock.unlock();
         }
-        if (stopping != null && stopping != Thread.currentThread()) {
+        if (thread != Thread.currentThread()) {
             try {
-                stopping.join(TimeUnit.SECONDS.toMillis(5));
+                thread.join(TimeUnit.SECONDS.toMillis(5));
             } catch (InterruptedException e) {
                 Thread.currentThread().interrupt();
             }
@@ -347,11 +376,6 @@ public final class RunClock {
                 return entry;
             }
             queue.add(entry);
-            if (thread == null) {
-                thread = new Thread(this::loop, "dtron-run-clock-" + member);
-                thread.setDaemon(true);
-                thread.start();
-            }
             changed.signalAll();
             return entry;
         } finally {

@@ -10,6 +10,8 @@ import io.dtron.testsupport.Inbox;
 import java.time.Duration;
 import java.util.List;
 import java.util.Map;
+import java.util.Set;
+import java.util.concurrent.CopyOnWriteArrayList;
 import java.util.concurrent.BlockingQueue;
 import java.util.concurrent.LinkedBlockingQueue;
 import java.util.concurrent.TimeUnit;
@@ -188,6 +190,48 @@ class AcknowledgementTest {
         IDtronChannelValued ack = acks.take();
         assertEquals(acknowledgedAt.poll(10, TimeUnit.SECONDS), ack.getEventTimeNanos());
         assertNull(acks.poll(APPLYING_MILLIS + 300), "not acknowledged again when the listener returned");
+    }
+
+    @Test
+    void aProbeAsAnInputIsAnsweredOnTheListenersThreadInOrderWithoutReachingAListener() throws Exception {
+        Applier applier = new Applier(true);
+        adapter.addDtronListener(applier);
+        List<BusRecord> records = new CopyOnWriteArrayList<>();
+        tester.addRecordListener(records::add);
+        ClockOffsetTest.awaitOffset(adapter);
+        startRun();
+        tester.send(MOVE.constructValued(Map.of("amount", 1)));
+        // the probe comes while the listener applies the move: its answer waits for it, as an input would
+        assertEquals(Set.of("adapter"), tester.probeAsInput(List.of("adapter"), Duration.ofSeconds(10)));
+        long moveApplied = applier.returnedAt.poll(10, TimeUnit.SECONDS);
+
+        BusRecord ping = records.stream().filter(r -> r.channel().equals("dtron_ping") && r.sender().equals("tester"))
+                .reduce((first, last) -> last).orElseThrow();
+        List<BusRecord> answers = records.stream().filter(r -> r.ackedSender().equals("tester")
+                && r.ackedSequence() == ping.sequence()).toList();
+        assertEquals(1, answers.size(), answers.toString());
+        BusRecord answer = answers.get(0);
+        assertEquals(Dtron.ACK.getChannelName(), answer.channel(), "answered as an input is: acknowledged, no pong");
+        assertEquals("adapter", answer.sender());
+        assertTrue(answer.eventTimeNanos() >= moveApplied, "answered on the listeners' thread, after the move");
+        assertTrue(answer.clockErrorNanos() > 0, "the answer carries the adapter's clock offset, as an input's does");
+
+        assertEquals(1, applier.received.size(), "no listener heard the probe");
+        IDtronChannelValued moveAck = acks.take();
+        assertEquals("tester", moveAck.getAckedSender());
+        assertTrue(moveAck.getAckedSequence() != ping.sequence());
+        assertNull(acks.poll(300), "the probe's answer is no input's acknowledgement: the tester's listeners miss it");
+        assertEquals(0, tester.getStats().getRejectedTotal(), tester.getStats().toString());
+        assertEquals(0, adapter.getStats().getRejectedTotal(), adapter.getStats().toString());
+    }
+
+    @Test
+    void aMemberThatAnswersPingsWithPongsAnswersAProbeAsAnInput() throws Exception {
+        // a tester answers every ping with a pong, as an adapter built against an older API does
+        try (Dtron other = Dtron.connect(TestClusters.inJvm(cluster).memberName("other").tester(true).build())) {
+            assertTrue(tester.awaitMembers(3, Duration.ofSeconds(10)));
+            assertEquals(Set.of("other"), tester.probeAsInput(List.of("other"), Duration.ofSeconds(10)));
+        }
     }
 
     @Test

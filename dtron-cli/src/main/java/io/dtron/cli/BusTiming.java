@@ -58,15 +58,16 @@ final class BusTiming {
     }
 
     /**
-     * The line printed after the probes before time 0: how many rounds, for how long, and why they stopped
-     * (steady, or the time limit), with the longest round trip of the last rounds; {@code warmedUp} when the engine
-     * warmed up meanwhile.
+     * The line printed after the probes before time 0: how many rounds, for how long, that each took the way of an
+     * input, and why they stopped (steady, or the time limit), with the longest round trip of the last rounds;
+     * {@code warmedUp} when the engine warmed up meanwhile.
      */
     static String probingLine(BusBridge.Probing probing, boolean warmedUp) {
         if (probing.rounds() == 0) {
             return "dtron run: no adapter on the bus to probe before the run";
         }
-        return String.format(Locale.ROOT, "dtron run: probed the adapters in %d rounds over %.2f s%s, %s (the last"
+        return String.format(Locale.ROOT, "dtron run: probed the adapters in %d rounds over %.2f s%s, each probe an"
+                + " input that reaches no listener, %s (the last"
                 + " rounds' round trips up to %s); each input is aimed at least its adapters' round trip inside the end"
                 + " of its window, or the 99th percentile of its channel's delays once inputs are acknowledged",
                 probing.rounds(), probing.millis() / 1000.0, warmedUp ? " while the engine warmed up" : "",

@@ -57,8 +57,9 @@ class RacingTest {
         for (CommandRun r : runs("correct")) {
             assertNotEquals(2, r.exit(), r.out() + r.err());
             assertTrue(r.out().matches("(?s).*dtron run: probed the adapters in \\d+ rounds over [0-9.]+ s while the"
-                    + " engine warmed up, until (their round trips were steady|the limit, their round trips still"
-                    + " uneven) \\(the last rounds' round trips up to [0-9.]+ ms\\).*"), r.out());
+                    + " engine warmed up, each probe an input that reaches no listener, until (their round trips were"
+                    + " steady|the limit, their round trips still uneven) \\(the last rounds' round trips up to [0-9.]+"
+                    + " ms\\).*"), r.out());
             assertTrue(r.out().contains("inside the end of their windows, and each input channel's delay to its"
                     + " adapter further inside"), r.out());
         }

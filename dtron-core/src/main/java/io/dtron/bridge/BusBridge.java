@@ -617,9 +617,11 @@ public final class BusBridge implements Adapter, AutoCloseable {
      * Probes every adapter member in rounds, {@code spacing} apart, for at least {@code minimum} (while this process
      * warms up, say) and until the round trips of the last rounds are steady ({@link InputDelays#steady}), or
      * {@code limit} has passed: a fresh JVM's first compilations and collections, here and in the adapters, then
-     * happen before the run, not in it. Each member's longest round trip in the last rounds is taken as the delay of
-     * the inputs it receives until the run's acknowledgements say more ({@link #inputDelayMicros}). Nothing to probe
-     * (no adapter member) returns at once.
+     * happen before the run, not in it. Each probe takes the way of an input ({@link Dtron#probeAsInput}): through
+     * the adapter's listeners' thread and its acknowledgement, without reaching a listener, so that the adapter's
+     * first input of the run does not take that way for the first time. Each member's longest round trip in the last
+     * rounds is taken as the delay of the inputs it receives until the run's acknowledgements say more ({@link
+     * #inputDelayMicros}). Nothing to probe (no adapter member) returns at once.
      *
      * @throws InterruptedException if the thread was interrupted while waiting
      */
@@ -636,7 +638,7 @@ public final class BusBridge implements Adapter, AutoCloseable {
             long round = 0;
             for (String member : adapters) {
                 long sent = System.nanoTime();
-                Set<String> answered = dtron.probe(Set.of(member), PROBE_TIMEOUT);
+                Set<String> answered = dtron.probeAsInput(Set.of(member), PROBE_TIMEOUT);
                 long micros = answered.contains(member) ? (System.nanoTime() - sent) / 1000 : PROBE_TIMEOUT.toNanos()
                         / 1000;
                 byMember.computeIfAbsent(member, m -> new ArrayList<>()).add(micros);

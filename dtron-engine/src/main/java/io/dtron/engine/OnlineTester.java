@@ -219,6 +219,11 @@ public final class OnlineTester {
         long uncertainty;
         /** For an input: whether its adapter acknowledged it. */
         boolean acknowledged;
+        /**
+         * For an input: whether the model allowed it only within {@link #uncertainty} of where it was applied, not
+         * there: it may have come after the environment's window closed.
+         */
+        boolean doubtful;
         StateSet after;
         long afterMicros;
 
@@ -260,6 +265,8 @@ public final class OnlineTester {
         private Held held;
         /** How the last output observed was understood (the edges it was taken as), until the next input. */
         private String lastTaken;
+        /** The last committed input the model allowed only within its clock error ({@link Pending#doubtful}). */
+        private Pending doubtCommitted;
         /** How many acknowledgements of inputs came in this run. */
         private long acknowledgements;
         private long performed;
@@ -492,6 +499,9 @@ public final class OnlineTester {
                 committedMicros = p.afterMicros;
                 if (p.input) {
                     committedInputs.put(p.ordinal, p);
+                    if (p.doubtful) {
+                        doubtCommitted = p;
+                    }
                 }
             }
             committedInputs.values().removeIf(p -> p.sentMicros < horizon - window());
@@ -630,6 +640,10 @@ public final class OnlineTester {
                 if (missed != null) {
                     return missed;
                 }
+                TestResult doubt = doubtfulInput(event, at);
+                if (doubt != null) {
+                    return doubt;
+                }
                 return result(Verdict.FAILED, afterLastTaken() + "output " + event + " observed at " + time(at)
                         + " is too late: "
                         + plan().explainOutputs(this::time, lastMicros));
@@ -648,6 +662,10 @@ public final class OnlineTester {
                 return null;
             }
             if (!moves.isEmpty()) {
+                TestResult doubt = doubtfulInput(event, at);
+                if (doubt != null) {
+                    return doubt;
+                }
                 return result(Verdict.FAILED, afterLastTaken() + "output " + event + " observed at " + time(at)
                         + " carries values the"
                         + " model does not allow then: it allowed " + allowedValues(channel, moves) + " ("
@@ -661,6 +679,10 @@ public final class OnlineTester {
             TestResult missed = missedInput(event, at, uncertainty);
             if (missed != null) {
                 return missed;
+            }
+            TestResult doubt = doubtfulInput(event, at);
+            if (doubt != null) {
+                return doubt;
             }
             Plan plan = plan();
             return result(Verdict.FAILED, afterLastTaken() + "output " + event + " observed at " + time(at)
@@ -686,6 +708,29 @@ public final class OnlineTester {
                     + time(deadline) + ", when the environment's window for an input closed, and the tester had"
                     + " applied none by then (input executed too late). " + plan.explainInputs(this::time,
                     lastMicros));
+        }
+
+        /**
+         * INCONCLUSIVE when an input before output {@code event} at {@code at} was allowed only within its clock error
+         * of where its adapter applied it ({@link Pending#doubtful}): the model was followed as if it came in time,
+         * but it may have come after the environment's window closed, and the output that contradicts the model then
+         * may be its consequence. Else null.
+         */
+        private TestResult doubtfulInput(Event event, long at) {
+            Pending doubt = doubtCommitted;
+            for (Pending p : pending) {
+                if (p.input && p.doubtful && p.micros <= at) {
+                    doubt = p;
+                }
+            }
+            if (doubt == null) {
+                return null;
+            }
+            return result(Verdict.INCONCLUSIVE, "output " + event + " observed at " + time(at) + " is not what the"
+                    + " model allows after input " + doubt.event + ", which was applied at " + time(doubt.micros)
+                    + " give or take " + Plan.units(doubt.uncertainty, unit) + " time units: the environment allowed"
+                    + " it only within that clock error, so it may have come after its window closed (input executed"
+                    + " too late)");
         }
 
         /**
@@ -742,6 +787,12 @@ public final class OnlineTester {
                 return result(Verdict.INCONCLUSIVE, "input " + p.event + " was executed at " + time(p.micros)
                         + ", when the environment no longer allowed it, after the events that happened before it"
                         + " (input executed too late)." + late + " " + plan().explainInputs(this::time, lastMicros));
+            }
+            // allowed within the clocks' error of where it was applied, but not there: it may have come too late
+            p.doubtful = p.uncertainty > 0;
+            for (StateSet.Successor s : p.doubtful ? afterDelay(p.micros, 0).successors(channel.channel())
+                    : List.<StateSet.Successor>of()) {
+                p.doubtful &= !valuesOf(channel, s.state()).equals(p.event.values());
             }
             set = atTime.of(next);
             lastMicros = p.micros;

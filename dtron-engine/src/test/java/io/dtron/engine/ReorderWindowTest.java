@@ -379,6 +379,57 @@ class ReorderWindowTest {
         }
     }
 
+    /**
+     * Acknowledges input y as applied at {@code appliedAt} give or take {@code error} units (its clock's error bound),
+     * and reports output x as happened at {@code xAt}.
+     */
+    private static final class AppliedWithinError implements Adapter {
+        private final double appliedAt;
+        private final double error;
+        private final double xAt;
+        private AdapterContext context;
+
+        AppliedWithinError(double appliedAt, double error, double xAt) {
+            this.appliedAt = appliedAt;
+            this.error = error;
+            this.xAt = xAt;
+        }
+
+        @Override
+        public void start(AdapterContext context) {
+            this.context = context;
+        }
+
+        @Override
+        public void perform(Event input) {
+            long now = context.clock().nowMicros();
+            context.clock().schedule(micros(appliedAt) - now, () -> context.inputApplied(1, micros(appliedAt),
+                    micros(error)));
+            context.clock().schedule(micros(xAt) - now, () -> context.report(Event.of("x"), micros(xAt)));
+        }
+
+        @Override
+        public boolean acknowledgesInputs() {
+            return true;
+        }
+    }
+
+    @Test
+    void anOutputAfterAnInputTheEnvironmentAllowedOnlyWithinItsClockErrorIsInconclusiveNotFailed() throws Exception {
+        // y must come at 10; its acknowledgement says 10.8 give or take 1: in time only within the error. x at 11.5
+        // is not allowed after y, but y may have come after its window closed: the test left the environment's
+        // assumptions, and the system is not to blame
+        TestResult doubtful = run(crossing(10), new AppliedWithinError(10.8, 1, 11.5), 2);
+        assertEquals(Verdict.INCONCLUSIVE, doubtful.verdict(), doubtful.explanation());
+        assertTrue(doubtful.explanation().startsWith("output x() observed at t=11.500 is not what the model allows"
+                + " after input y(), which was applied at t=10.800 give or take 1.000 time units: the environment"
+                + " allowed it only within that clock error, so it may have come after its window closed (input"
+                + " executed too late)"), doubtful.explanation());
+        // applied at 10 give or take 1, where the environment allows it: x after it fails the system
+        TestResult inTime = run(crossing(10), new AppliedWithinError(10, 1, 11.5), 2);
+        assertEquals(Verdict.FAILED, inTime.verdict(), inTime.explanation());
+    }
+
     @Test
     void anInputIsNotCommittedWhileItsAcknowledgementIsExpected() throws Exception {
         // applied 3 units after it was sent (window 2): an adapter that acknowledges inputs is waited for, and the

@@ -57,9 +57,11 @@ public final class ClockSync implements AutoCloseable {
          * @param eventTimeNanos   its event time
          * @param ackedSender      on a pong the ping's sender, else ""
          * @param ackedSequence    on a pong the ping's sequence number, else 0
+         * @param asInput          on a ping of a {@link #probe}: whether the members are asked to answer it as they
+         *                         acknowledge an input (field {@code as_input} of {@code Sync}), else false
          */
         void publish(String channel, long sequence, long publishTimeNanos, long eventTimeNanos, String ackedSender,
-                long ackedSequence);
+                long ackedSequence, boolean asInput);
     }
 
     private final String me;
@@ -220,30 +222,25 @@ public final class ClockSync implements AutoCloseable {
      * the same way.
      */
     public void pingReceived(String from, long sequence, long receiveTimeNanos, boolean fromPeerTester) {
-        if (from.equals(me)) {
+        if (!answersPingOf(from, fromPeerTester)) {
             return;
         }
-        synchronized (this) {
-            if (!selfTester && !from.equals(tester) && !fromPeerTester) {
-                return;
-            }
-        }
         submit(() -> publisher.publish(PONG, nextSequence.getAsLong(), clock.getAsLong(), receiveTimeNanos, from,
-                sequence));
+                sequence, false));
+    }
+
+    /**
+     * Returns whether this member answers a ping of {@code from}: the tester answers every other member's, a member
+     * its tester's and those of another tester of the run ({@code fromPeerTester}).
+     */
+    public synchronized boolean answersPingOf(String from, boolean fromPeerTester) {
+        return !from.equals(me) && (selfTester || from.equals(tester) || fromPeerTester);
     }
 
     /** Called when a pong arrived: one of this member's pings answered by its tester gives a sample. */
     public void pongReceived(String from, String ackedSender, long ackedSequence, long testerTimeNanos,
             long receiveTimeNanos) {
-        if (!ackedSender.equals(me)) {
-            return;
-        }
-        Set<String> answered = probes.get(ackedSequence);
-        if (answered != null) {
-            synchronized (answered) {
-                answered.add(from);
-                answered.notifyAll();
-            }
+        if (!ackedSender.equals(me) || probeAnswered(from, ackedSender, ackedSequence)) {
             return;
         }
         Optional<ClockOffset> before;
@@ -274,20 +271,42 @@ public final class ClockSync implements AutoCloseable {
     }
 
     /**
+     * Called when a pong or an acknowledgement arrived: whether it answers one of this member's {@linkplain #probe
+     * probes} (which then counts {@code from} as answered).
+     */
+    public boolean probeAnswered(String from, String ackedSender, long ackedSequence) {
+        if (!ackedSender.equals(me)) {
+            return false;
+        }
+        Set<String> answered = probes.get(ackedSequence);
+        if (answered == null) {
+            return false;
+        }
+        synchronized (answered) {
+            answered.add(from);
+            answered.notifyAll();
+        }
+        return true;
+    }
+
+    /**
      * Pings every member and waits until each of {@code expected} answered, or the timeout passed: a member whose
      * tester this member is answers a ping as the tester answers theirs. Messages are delivered in each member's
-     * order, so an answer also means that everything the member sent before it has arrived.
+     * order, so an answer also means that everything the member sent before it has arrived. With {@code asInput} the
+     * ping asks the members to answer it as they acknowledge an input (see {@link #probeAnswered}); a member that
+     * does not know how answers with a pong, which counts as well.
      *
      * @return the members that answered
      * @throws InterruptedException if the thread was interrupted while waiting
      */
-    public Set<String> probe(Collection<String> expected, Duration timeout) throws InterruptedException {
+    public Set<String> probe(Collection<String> expected, Duration timeout, boolean asInput)
+            throws InterruptedException {
         long sequence = nextSequence.getAsLong();
         long now = clock.getAsLong();
         Set<String> answered = new LinkedHashSet<>();
         probes.put(sequence, answered);
         try {
-            publisher.publish(PING, sequence, now, now, "", 0);
+            publisher.publish(PING, sequence, now, now, "", 0, asInput);
             long deadline = System.nanoTime() + timeout.toNanos();
             synchronized (answered) {
                 while (!answered.containsAll(expected)) {
@@ -348,13 +367,13 @@ public final class ClockSync implements AutoCloseable {
             pinging = schedule(() -> ping(generation, count + 1),
                     count + 1 < BURST ? BURST_SPACING_MILLIS : PING_PERIOD_MILLIS);
         }
-        publisher.publish(PING, sequence, sentAt, sentAt, "", 0);
+        publisher.publish(PING, sequence, sentAt, sentAt, "", 0, false);
     }
 
     private void hello() {
         if (isTester()) {
             long now = clock.getAsLong();
-            publisher.publish(HELLO, nextSequence.getAsLong(), now, now, "", 0);
+            publisher.publish(HELLO, nextSequence.getAsLong(), now, now, "", 0, false);
         }
     }
 

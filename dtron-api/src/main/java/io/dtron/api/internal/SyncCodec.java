@@ -7,6 +7,7 @@ import io.dtron.api.internal.proto.Sync;
 import io.dtron.api.internal.proto.Variable;
 import java.util.Collection;
 import java.util.LinkedHashMap;
+import java.util.List;
 import java.util.Map;
 
 /** Not API. Encodes and decodes {@code Sync} messages and checks them against a channel template. */
@@ -47,6 +48,14 @@ public final class SyncCodec {
     }
 
     /**
+     * Encodes a message of the clock-offset protocol, without variables; {@code asInput} (on a ping) asks the members
+     * to answer it as they acknowledge an input.
+     */
+    public static byte[] encodeControl(String channelName, Stamp stamp, boolean asInput) {
+        return builder(channelName, Map.of(), stamp).setAsInput(asInput).build().toByteArray();
+    }
+
+    /**
      * Encodes a {@code dtron_serve} message of the channel-serving handshake: no variables, the channels the sender
      * receives and sends.
      */
@@ -64,11 +73,14 @@ public final class SyncCodec {
     }
 
     /**
-     * Encodes and parses one message, so that the protocol-buffer classes are loaded and initialised (tens of
-     * milliseconds in a fresh JVM) before the first real message.
+     * Encodes, parses and decodes one message and makes a value to send, so that the protocol-buffer classes and the
+     * code of a channel's values are loaded and first run (tens of milliseconds in a fresh JVM) before the first
+     * real message, not when a run's first messages have milliseconds to arrive.
      */
     public static void warmUp() {
-        parse(encode("warm_up", Map.of("v", 1), "", 1, 1));
+        DtronChannel channel = new DtronChannel("warm_up", List.of("v"));
+        decode(channel, parse(encode(channel.getChannelName(), Map.of("v", 1), "", 1, 1)), "", 1);
+        DtronChannelValued.published(channel, channel.constructValued(Map.of("v", 1)).getVariables(), Stamp.NONE);
     }
 
     /**
