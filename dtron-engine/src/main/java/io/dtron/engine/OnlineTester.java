@@ -304,6 +304,14 @@ public final class OnlineTester {
             return Plan.of(set, semantics, partition, testInterface, unit, ticksCeil(timeoutMicros - lastMicros));
         }
 
+        /**
+         * Whether the plan's output deadline is one the run judges: the tester's wait past it (one tick after it)
+         * begins before the run's end.
+         */
+        private boolean deadlineBeforeTheEnd(Plan plan) {
+            return plan.hasDeadline() && lastMicros + micros(plan.deadline() + 1) < timeoutMicros;
+        }
+
         TestResult loop() {
             while (true) {
                 long now = clock.nowMicros();
@@ -331,7 +339,9 @@ public final class OnlineTester {
                     continue;
                 }
                 commit(now - window());
-                if (now >= timeoutMicros) {
+                // a deadline before the end is judged even when the wait for messages in transit after it (a reorder
+                // window widened while the tester waited) took the run past its end
+                if (now >= timeoutMicros && !deadlineBeforeTheEnd(plan())) {
                     RunClock.TimedEvent last = now >= timeoutMicros + window() ? clock.drain() : null;
                     if (last != null) {
                         // reported (or due) before the end: judged before the verdict
@@ -363,8 +373,7 @@ public final class OnlineTester {
                 long at = lastMicros + micros(choice.ticks());
                 // a deadline within the test is declared missed only when the outputs stamped before it had the
                 // reorder window to arrive
-                boolean deadline = !choice.isInput() && plan.hasDeadline() && choice.ticks() > plan.deadline()
-                        && at < timeoutMicros;
+                boolean deadline = !choice.isInput() && choice.ticks() > plan.deadline() && deadlineBeforeTheEnd(plan);
                 long target = choice.isInput() ? at : deadline ? at + window() : Math.min(timeoutMicros, at);
                 announceWait(now, target, choice, plan);
                 RunClock.TimedEvent event = clock.awaitUntil(target);

@@ -286,6 +286,27 @@ class ReorderWindowTest {
         assertEquals(Verdict.PASSED, r.verdict(), r.explanation());
     }
 
+    @Test
+    void aDeadlineIsJudgedWhenTheWindowWidensPastTheRunsEnd() throws Exception {
+        // x never comes; while the tester waits out the window after the deadline at 5, the adapter widens the
+        // window to 30 units (at 5.5) and to 40 (at 34), so that the wait ends past the run's end at 20: the deadline
+        // is still judged there, not forgotten by the end of the run
+        Adapter widening = new Adapter() {
+            @Override
+            public void start(AdapterContext context) {
+                context.clock().schedule(micros(5.5), () -> context.widenReorderWindow(micros(30)));
+                context.clock().schedule(micros(34), () -> context.widenReorderWindow(micros(40)));
+            }
+
+            @Override
+            public void perform(Event input) {
+            }
+        };
+        TestResult r = run(DEADLINE, widening, 1);
+        assertEquals(Verdict.FAILED, r.verdict(), r.explanation());
+        assertTrue(r.explanation().contains("no output came by t=5"), r.explanation());
+    }
+
     /** The environment must answer output x with input y 2 to 3 units after it. */
     private static final String ANSWER = """
             chan o_x, i_y;
