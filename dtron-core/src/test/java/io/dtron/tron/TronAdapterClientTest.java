@@ -14,6 +14,7 @@ import io.dtron.engine.Verdict;
 import io.dtron.model.ModelLoader;
 import io.dtron.model.Network;
 import io.dtron.model.TestInterface;
+import io.dtron.testsupport.OwnThreads;
 import java.io.DataInputStream;
 import java.io.DataOutputStream;
 import java.net.InetAddress;
@@ -81,7 +82,7 @@ class TronAdapterClientTest {
             } catch (Exception e) {
                 throw new IllegalStateException(e);
             }
-        });
+        }, OwnThreads.named("adapter-client"));
     }
 
     /** A reactive system in virtual time with TRON's acknowledgements: answers each ping before acknowledging it. */

@@ -12,6 +12,7 @@ import io.dtron.engine.TestResult;
 import io.dtron.engine.Verdict;
 import io.dtron.model.ModelLoader;
 import io.dtron.model.Network;
+import io.dtron.testsupport.OwnThreads;
 import java.net.InetAddress;
 import java.net.ServerSocket;
 import java.nio.file.Path;
@@ -74,7 +75,7 @@ class TronProtocolRobustnessTest {
             } catch (Exception e) {
                 throw new IllegalStateException(e);
             }
-        });
+        }, OwnThreads.named("adapter-script"));
     }
 
     private TronProtocolException configurationFails(Script script) throws Exception {
@@ -337,10 +338,10 @@ class TronProtocolRobustnessTest {
         TronSocketAdapter tester = TronSocketAdapter.accept(server, lightContr, settings);
         TestOptions options = new TestOptions(3, 10_000, LONG_RUN, DelayPolicy.LAZY, 0, false);
         TestResult r = new OnlineTester(lightContr, tester.testInterface(), tester, options).run();
-        adapter.get(10, TimeUnit.SECONDS);
         assertEquals(Verdict.INCONCLUSIVE, r.verdict(), r.explanation());
         assertTrue(r.explanation().contains("truncated frame: value 1 of 1 of an event on 'level' did not arrive"
                 + " within 3000 ms"), r.explanation());
+        adapter.get(10, TimeUnit.SECONDS);
     }
 
     @Test
