@@ -20,6 +20,8 @@ import java.util.regex.Pattern;
  * @param nkeyFile        a file holding an nkey seed ({@code SU...}) for nkey authentication
  * @param tlsCaFile       a PEM file of the certificate authorities to trust: TLS to the servers
  * @param replicas        the stream's replicas, when this member creates it (1, or up to 5 in a cluster)
+ * @param macKey          the key K of the messages' codes ({@link BusKeys#macKey}, 32 bytes); empty for an insecure
+ *                        member
  */
 public record NatsSettings(
         String busName,
@@ -31,7 +33,8 @@ public record NatsSettings(
         Optional<Path> credentialsFile,
         Optional<Path> nkeyFile,
         Optional<Path> tlsCaFile,
-        int replicas) {
+        int replicas,
+        Optional<byte[]> macKey) {
 
     /** Bus names: one NATS subject token that is also a stream name. */
     public static final Pattern BUS_NAME = Pattern.compile("[A-Za-z0-9_-]{1,64}");
@@ -81,6 +84,13 @@ public record NatsSettings(
         if (replicas < 1 || replicas > 5) {
             throw new IllegalArgumentException("stream replicas must be in 1..5: " + replicas);
         }
+        macKey = Objects.requireNonNull(macKey, "macKey").map(byte[]::clone);
+    }
+
+    /** Returns a copy of the key of the messages' codes, if this member is not insecure. */
+    @Override
+    public Optional<byte[]> macKey() {
+        return macKey.map(byte[]::clone);
     }
 
     /** The stream of the bus. */
@@ -108,6 +118,7 @@ public record NatsSettings(
         return "NatsSettings[bus=" + busName + ", member=" + memberName + ", servers=" + servers
                 + (user.isPresent() ? ", user=" + user.get() : "") + (token.isPresent() ? ", token" : "")
                 + credentialsFile.map(f -> ", creds=" + f).orElse("") + nkeyFile.map(f -> ", nkey=" + f).orElse("")
-                + tlsCaFile.map(f -> ", tlsCa=" + f).orElse("") + ", replicas=" + replicas + "]";
+                + tlsCaFile.map(f -> ", tlsCa=" + f).orElse("") + ", replicas=" + replicas
+                + (macKey.isPresent() ? ", secure" : ", INSECURE") + "]";
     }
 }
