@@ -1,0 +1,194 @@
+package io.dtron.cli;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertFalse;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+import static org.junit.jupiter.api.Assumptions.assumeTrue;
+
+import io.dtron.api.ChildJvm;
+import io.dtron.testadapter.TickerAdapterMain;
+import io.dtron.testsupport.DocPage;
+import io.dtron.testsupport.ListeningSockets;
+import io.dtron.testsupport.ListeningSockets.Listener;
+import io.dtron.testsupport.TickerRunBounds;
+import java.io.ByteArrayOutputStream;
+import java.io.DataOutputStream;
+import java.io.IOException;
+import java.net.InetSocketAddress;
+import java.net.Socket;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.nio.file.attribute.PosixFilePermissions;
+import java.time.Duration;
+import java.util.ArrayList;
+import java.util.List;
+import java.util.Random;
+import java.util.UUID;
+import java.util.concurrent.TimeUnit;
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.Timeout;
+import org.junit.jupiter.api.io.TempDir;
+
+/**
+ * The bus's secret on real processes: {@code dtron run} of the bundled ticker model in one JVM, the ticker adapter in
+ * another, both with the default key file (the build's {@code DTRON_HOME}), and a stranger in a third JVM without
+ * the secret (a key file of its own, or {@code --insecure}) forging ticks and resets all along. The run passes, the
+ * stranger is never a member, what it sends never reaches the tester (nothing rejected), and it cannot hold the bus
+ * up even when it started first on the bus's first port. Frames announcing 2 GB and random bytes on every listening
+ * port of the run's members leave the verdict as it was, the tester's heap under 200 MB (its {@code -Xmx}), and no
+ * stack trace. An insecure tester says so and does not hear the secure adapter.
+ */
+@Timeout(value = 3, unit = TimeUnit.MINUTES)
+class BusSecretTest {
+    private static final Path TICKER = Path.of("..", "models", "src", "main", "resources", "io", "dtron", "models",
+            "ticker.xml");
+    private static final Duration WAIT = Duration.ofSeconds(90);
+    /** The heap the tester and the adapter may use: a frame believed to hold 2 GB would not fit. */
+    private static final List<String> SMALL_HEAP = List.of("-Xmx200m");
+    private static final String DROPPED = "dropped a frame from";
+
+    @TempDir
+    Path dir;
+
+    private final String cluster = "secret-" + UUID.randomUUID().toString().substring(0, 8);
+
+    /**
+     * The ticker run at 100 ms per time unit for 100 units: the model tolerates 2 units of jitter, 200 ms, which a
+     * freshly started adapter JVM keeps on a busy machine (as DtronJarIT's runs that expect PASSED).
+     */
+    private ChildJvm dtron(String... more) throws IOException {
+        List<String> args = new ArrayList<>(List.of("run", TICKER.toString(), "--cluster", cluster,
+                "--wait-for-adapters", "1", "--delay-policy", "eager", "--seed", "1", "--timeunit", "100000",
+                "--timeout", "100"));
+        args.addAll(List.of(more));
+        return ChildJvm.start(SMALL_HEAP, DtronCommand.class, dir.resolve("dtron.log"), args.toArray(new String[0]));
+    }
+
+    private ChildJvm adapter() throws IOException {
+        return ChildJvm.start(SMALL_HEAP, TickerAdapterMain.class, dir.resolve("adapter.log"), cluster,
+                "ticker-adapter", "correct", "1");
+    }
+
+    /** A stranger with a key file of its own, mode 600: another secret. */
+    private ChildJvm stranger() throws IOException {
+        Path key = dir.resolve("stranger.key");
+        if (!Files.exists(key)) {
+            Files.writeString(key, "not-the-bus-secret\n");
+            Files.setPosixFilePermissions(key, PosixFilePermissions.fromString("rw-------"));
+        }
+        return ChildJvm.start(StrangerMain.class, dir.resolve("stranger.log"), cluster, key.toString());
+    }
+
+    /** The run passed, heard nothing of the stranger, printed no stack trace and at most one line of dropped frames. */
+    private static void assertPassedUntouched(ChildJvm dtron, ChildJvm adapter, ChildJvm stranger) throws Exception {
+        assertEquals(0, dtron.waitFor(WAIT), dtron.output() + adapter.output());
+        String out = dtron.output();
+        TickerRunBounds.assertPassed(out, 100);
+        assertTrue(out.contains(", rejected 0, "), "nothing of the stranger reached the tester: " + out);
+        assertFalse(out.contains("stranger"), "the stranger is never a member: " + out);
+        assertQuiet(out);
+        assertQuiet(adapter.output());
+        if (stranger != null) {
+            for (String line : stranger.output().lines().filter(l -> l.startsWith("members ")).toList()) {
+                assertEquals("members [stranger]", line, "the stranger sees no one: " + stranger.output());
+            }
+        }
+    }
+
+    private static void assertQuiet(String out) {
+        assertFalse(out.contains("\tat ") || out.contains("Exception"), "no stack trace: " + out);
+        assertTrue(out.lines().filter(l -> l.contains(DROPPED)).count() <= 1, "one line at most: " + out);
+    }
+
+    @Test
+    void aStrangerForgingTicksAndResetsDuringTheRunIsNeitherSeenNorHeard() throws Exception {
+        try (ChildJvm dtron = dtron(); ChildJvm adapter = adapter()) {
+            dtron.awaitOutput("dtron run: members [", WAIT);
+            try (ChildJvm stranger = stranger()) {
+                stranger.awaitOutput("members [", WAIT);
+                assertPassedUntouched(dtron, adapter, stranger);
+            }
+        }
+    }
+
+    @Test
+    void aSquatterThatStartedFirstOnTheBusPortsHoldsNoOneUp() throws Exception {
+        try (ChildJvm squatter = stranger()) {
+            squatter.awaitOutput("members [", WAIT);
+            try (ChildJvm dtron = dtron(); ChildJvm adapter = adapter()) {
+                assertPassedUntouched(dtron, adapter, squatter);
+            }
+        }
+    }
+
+    @Test
+    void hugeFramesAndGarbageOnEveryListeningPortChangeNothing() throws Exception {
+        assumeTrue(ListeningSockets.available(), "needs Linux's /proc");
+        try (ChildJvm dtron = dtron(); ChildJvm adapter = adapter()) {
+            dtron.awaitOutput("dtron run: members [", WAIT);
+            List<Integer> ports = new ArrayList<>();
+            for (ChildJvm member : List.of(dtron, adapter)) {
+                for (Listener listener : ListeningSockets.of(member.toHandle().pid())) {
+                    ports.add(listener.port());
+                }
+            }
+            assertFalse(ports.isEmpty(), "the members listen");
+            byte[] garbage = new byte[64 * 1024];
+            new Random(23).nextBytes(garbage);
+            for (int port : ports) {
+                sendQuietly(port, hugeFrame());
+                sendQuietly(port, garbage);
+            }
+            assertPassedUntouched(dtron, adapter, null);
+        }
+    }
+
+    /** 78 bytes: a length of 2 GB - 1, and the start of what it announces. */
+    private static byte[] hugeFrame() throws IOException {
+        ByteArrayOutputStream bytes = new ByteArrayOutputStream();
+        DataOutputStream out = new DataOutputStream(bytes);
+        out.writeInt(Integer.MAX_VALUE);
+        out.write(new byte[74]);
+        return bytes.toByteArray();
+    }
+
+    private static void sendQuietly(int port, byte[] bytes) {
+        try (Socket socket = new Socket()) {
+            socket.connect(new InetSocketAddress("127.0.0.1", port), 2_000);
+            socket.getOutputStream().write(bytes);
+            socket.getOutputStream().flush();
+        } catch (IOException e) {
+            // the member closed the connection before it took everything: what it should do
+        }
+    }
+
+    @Test
+    void aKeyFileOthersMayReadStopsTheRunWithTheLineCliMdShows() throws Exception {
+        String shown = DocPage.read("cli.md").blockAfter("stops the command with one line (exit 1):").code().strip();
+        Path key = Files.writeString(dir.resolve("bus.key"), "s3cret\n");
+        Files.setPosixFilePermissions(key, PosixFilePermissions.fromString("rw-r--r--"));
+        // the page's bus: the key file is read before any socket is opened
+        CommandRun run = CommandRun.of("run", TICKER.toString(), "--key-file", key.toString(), "--wait-timeout", "1");
+        assertEquals(1, run.exit(), run.out() + run.err());
+        assertEquals(shown.replace("/home/ann/bus.key", key.toString()), run.err().strip());
+        CommandRun both = CommandRun.of("run", TICKER.toString(), "--key-file", key.toString(), "--insecure");
+        assertEquals(1, both.exit(), both.err());
+        assertTrue(both.err().startsWith("dtron run: --insecure uses no secret: leave out --key-file"), both.err());
+    }
+
+    @Test
+    void anInsecureTesterSaysSoAndDoesNotHearASecureAdapter() throws Exception {
+        try (ChildJvm adapter = adapter()) {
+            adapter.awaitOutput("joined", WAIT);
+            try (ChildJvm dtron = dtron("--insecure", "--wait-timeout", "5")) {
+                assertEquals(1, dtron.waitFor(WAIT), dtron.output());
+                String out = dtron.output();
+                assertTrue(out.contains("INSECURE: member "), "the warning: " + out);
+                assertFalse(out.contains("ticker-adapter"), "the secure adapter is never a member: " + out);
+                assertFalse(out.contains("\tat "), out);
+            }
+            assertEquals("joined [ticker-adapter]", adapter.output().lines().filter(l -> l.startsWith("joined"))
+                    .findFirst().orElse(""), adapter.output());
+        }
+    }
+}
