@@ -457,8 +457,8 @@ final class RunCommand implements Callable<Integer> {
             throw usage("--testers must be 1 or more: " + testers);
         }
         if (port != null && (port < 1 || port > 65535) || portRange != null && (portRange < 1 || portRange > 65535)) {
-            throw usage("--port must be 1 to 65535 and --port-range 1 to 65535 (the bus ports: one for each member"
-                    + " on this address, and a member listens on one)");
+            throw usage("--port must be 1 to 65535 and --port-range 1 to 65535 (the bus ports: a run needs one for the"
+                    + " tester and one for each adapter on this address)");
         }
         int first = port != null ? port : DtronOptions.DEFAULT_PORT;
         int range = portRange != null ? portRange : DtronOptions.DEFAULT_PORT_RANGE;

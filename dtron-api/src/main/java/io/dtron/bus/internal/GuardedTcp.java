@@ -6,6 +6,8 @@ import java.net.InetAddress;
 import java.security.GeneralSecurityException;
 import java.security.MessageDigest;
 import java.util.Arrays;
+import java.util.Collection;
+import java.util.HashSet;
 import java.util.Set;
 import java.util.concurrent.ConcurrentHashMap;
 import java.util.concurrent.atomic.LongAdder;
@@ -13,6 +15,7 @@ import javax.crypto.Mac;
 import javax.crypto.ShortBufferException;
 import javax.crypto.spec.SecretKeySpec;
 import org.jgroups.Address;
+import org.jgroups.blocks.cs.Connection;
 import org.jgroups.stack.IpAddress;
 import org.jgroups.protocols.TCP;
 import org.slf4j.Logger;
@@ -58,6 +61,7 @@ public final class GuardedTcp extends TCP {
     private final ThreadLocal<Mac> macs;
     private final LongAdder rejected = new LongAdder();
     private final Set<String> namedHosts = ConcurrentHashMap.newKeySet();
+    private final Set<Address> incoming = ConcurrentHashMap.newKeySet();
     private final String busName;
 
     /** A transport whose codes are made with the code key {@code macKey}; {@code busName} names the bus in logs. */
@@ -88,6 +92,34 @@ public final class GuardedTcp extends TCP {
         super.start();
         // see the class comment: a connection is known by its socket's address, not by one its peer claims
         srv.usePeerConnections(false);
+    }
+
+    /** Notes the connections other members opened to this one: their keys are their sockets' addresses. */
+    @Override
+    public void connectionEstablished(Connection conn) {
+        super.connectionEstablished(conn);
+        Address local = conn.localAddress();
+        if (local instanceof IpAddress ip && ip.getPort() == getBindPort()) {
+            incoming.add(conn.peerAddress());
+        }
+    }
+
+    @Override
+    public void connectionClosed(Connection conn) {
+        incoming.remove(conn.peerAddress());
+        super.connectionClosed(conn);
+    }
+
+    /**
+     * Closes the connections this member opened to members that left, as JGroups does at every view; keeps the
+     * connections other members opened to it (which JGroups, knowing only members' addresses, would close too): their
+     * peers close them when they leave, or they end when their processes die.
+     */
+    @Override
+    public void retainAll(Collection<Address> members) {
+        Set<Address> keep = new HashSet<>(members);
+        keep.addAll(incoming);
+        super.retainAll(keep);
     }
 
     @Override
