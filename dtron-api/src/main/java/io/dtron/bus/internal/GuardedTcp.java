@@ -39,7 +39,8 @@ import org.slf4j.LoggerFactory;
  * cuts DTRON's messages into fragments of 60,000 bytes) ends its connection before anything is allocated for it;
  * a frame is read into a buffer of its announced length and parsed from there, so no length inside an unchecked
  * frame is ever believed. A dropped frame or connection is counted ({@link #rejectedFrames()}); the first from each
- * host is logged as one line, without a stack trace, and the connection is closed quietly (as a peer's close is).
+ * host is logged as one line, once for all members of the bus in this JVM, without a stack trace, and the
+ * connection is closed quietly (as a peer's close is).
  *
  * <p><b>Connections.</b> Connections carry no peer address (JGroups' "peer connections" are off): a member sends on
  * the connections it opened to the others' bus ports, and reads on those the others opened to it, each known by its
@@ -60,7 +61,8 @@ public final class GuardedTcp extends TCP {
     private final SecretKeySpec key;
     private final ThreadLocal<Mac> macs;
     private final LongAdder rejected = new LongAdder();
-    private final Set<String> namedHosts = ConcurrentHashMap.newKeySet();
+    /** The bus and host of every dropped frame logged in this JVM: its members of one bus log each host once. */
+    private static final Set<String> NAMED = ConcurrentHashMap.newKeySet();
     private final Set<Address> incoming = ConcurrentHashMap.newKeySet();
     private final String busName;
 
@@ -172,7 +174,7 @@ public final class GuardedTcp extends TCP {
     private void reject(Address sender, String what) {
         rejected.increment();
         String host = host(sender);
-        if (namedHosts.add(host)) {
+        if (NAMED.add(busName + "\n" + host)) {
             LOG.warn("Bus '{}': dropped a frame from {} that {}, as every frame without this bus's code is dropped"
                     + " (its sender lacks the bus's secret, or one of the two was started with --insecure); not logged"
                     + " again for host {}", busName, sender == null ? "a connection" : sender, what, host);
