@@ -5,12 +5,14 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import io.dtron.testsupport.FreePorts;
 import io.dtron.testsupport.Inbox;
+import io.dtron.testsupport.LogCapture;
 import java.time.Duration;
 import java.util.List;
 import java.util.Map;
 import java.util.Set;
 import java.util.concurrent.CopyOnWriteArrayList;
 import java.util.concurrent.TimeUnit;
+import org.jgroups.protocols.SYM_ENCRYPT;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.Timeout;
 
@@ -60,14 +62,27 @@ class TcpBusTest {
         assertStrangerUnseen(options().insecure(true).build());
     }
 
-    /** The stranger joins first and speaks; two members with the secret see only each other and hear only each other. */
+    /** With encryption, a stranger that started first used to make every member log errors about its messages. */
+    @Test
+    void encryptedMembersLogNothingAboutAStrangerWithAnotherSecret() throws Exception {
+        try (LogCapture encryption = new LogCapture(SYM_ENCRYPT.class)) {
+            assertStrangerUnseen(options().secret("guess").encrypt(true).build(), true);
+            assertEquals(List.of(), encryption.messages());
+        }
+    }
+
     private void assertStrangerUnseen(DtronOptions strangerOptions) throws Exception {
+        assertStrangerUnseen(strangerOptions, false);
+    }
+
+    /** The stranger joins first and speaks; two members with the secret see only each other and hear only each other. */
+    private void assertStrangerUnseen(DtronOptions strangerOptions, boolean encrypt) throws Exception {
         List<List<String>> views = new CopyOnWriteArrayList<>();
         try (Dtron stranger = Dtron.connect(strangerOptions);
-                Dtron a = Dtron.connect(options().secret("s3cret").build())) {
+                Dtron a = Dtron.connect(options().secret("s3cret").encrypt(encrypt).build())) {
             a.addMembershipListener((members, joined, left) -> views.add(members));
             views.add(a.getMembers());
-            try (Dtron b = Dtron.connect(options().secret("s3cret").build())) {
+            try (Dtron b = Dtron.connect(options().secret("s3cret").encrypt(encrypt).build())) {
                 assertTrue(a.awaitMembers(2, WAIT), () -> "members: " + a.getMembers());
                 Inbox inbox = new Inbox(move);
                 b.addDtronListener(inbox);
