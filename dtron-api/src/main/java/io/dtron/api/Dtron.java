@@ -16,6 +16,7 @@ import io.dtron.bus.MembershipView;
 import io.dtron.bus.Subscription;
 import io.dtron.bus.Transport;
 import io.dtron.bus.internal.BindAddressException;
+import io.dtron.bus.internal.BusKeys;
 import io.dtron.bus.internal.EpochClock;
 import io.dtron.bus.internal.PortsInUseException;
 import java.io.IOException;
@@ -224,8 +225,8 @@ public final class Dtron implements AutoCloseable {
      * Joins the bus.
      *
      * @throws DtronException if the bus cannot be joined, for instance because the
-     *                        members refused this member's secret, or because the
-     *                        ports of the options are in use or the bind address is not
+     *                        key file cannot be read or created, the ports of the
+     *                        options are in use or the bind address is not
      *                        this host's (the message says which, in one line)
      */
     public static Dtron connect(DtronOptions options) {
@@ -235,11 +236,8 @@ public final class Dtron implements AutoCloseable {
         Transport transport;
         try {
             transport = BusConnector.connect(options);
-        } catch (SecurityException e) {
-            throw new DtronException("the members of bus '" + options.getClusterName()
-                    + "' refused this member: " + e.getMessage(), e);
-        } catch (PortsInUseException | BindAddressException e) {
-            // the message says it all, in one line: which ports, and which options choose others
+        } catch (PortsInUseException | BindAddressException | BusKeys.KeyFileException e) {
+            // the message says it all, in one line: which ports or key file, and what to do
             throw new DtronException("cannot join bus '" + options.getClusterName() + "': " + e.getMessage(), null);
         } catch (Exception e) {
             throw new DtronException("cannot join bus " + options, e);

@@ -17,19 +17,25 @@ import java.util.Optional;
  *
  * <p>The defaults need no configuration on one host: every socket of the bus
  * listens on the loopback interface, and members find each other by probing
- * the bus ports there. A member uses two ports of {@code port .. port+portRange}:
- * a bus port P of the lower half, {@code port .. port+(portRange+1)/2-1} (the
- * ports probed), and {@code P + (portRange+1)/2} for failure detection; by
- * default 7800..7830 and 7831..7861, 31 members per address. When no bus port
- * is free with its failure detection port, {@link Dtron#connect(DtronOptions)}
- * throws a {@link DtronException} naming the ports in use. For a LAN, give the
+ * the bus ports there. A member listens on one port of {@code port .. port+portRange}
+ * (the bus ports, all probed): by default 7800..7861, 62 members per address.
+ * When no bus port is free, {@link Dtron#connect(DtronOptions)} throws a
+ * {@link DtronException} naming the ports in use. For a LAN, give the
  * {@linkplain Builder#bindAddress interface} to bind to and the
  * {@linkplain Builder#initialMembers hosts} where to look for members (each
- * probed over the same bus ports). A {@linkplain Builder#secret shared
- * secret} makes members prove it before joining;
- * {@linkplain Builder#encrypt encryption} encrypts all traffic with a key
- * derived from it. {@linkplain Builder#inJvm In-JVM mode} joins only members
- * of the same JVM, without sockets.
+ * probed over the same bus ports).
+ *
+ * <p>Only holders of the bus's secret speak on it: every message carries a code
+ * made with the secret, and members drop messages without a valid one, so a
+ * process without the secret is never a member (see the site's security page).
+ * The secret is the {@linkplain Builder#secret one given}, else the content of
+ * the {@linkplain Builder#keyFile key file given}, else of the default key file
+ * {@code $DTRON_HOME/bus.key} or {@code ~/.dtron/bus.key}, which the first member
+ * that needs it creates (mode 600): on one host, members share it with no set-up.
+ * {@linkplain Builder#insecure Insecure} members use no secret and talk only to
+ * insecure members. {@linkplain Builder#encrypt Encryption} encrypts all traffic
+ * with a key derived from the secret. {@linkplain Builder#inJvm In-JVM mode}
+ * joins only members of the same JVM, without sockets and without the secret.
  */
 public final class DtronOptions {
     /** The cluster name used when none is given. */
@@ -37,8 +43,8 @@ public final class DtronOptions {
     /** The first port probed and bound to when none is given. */
     public static final int DEFAULT_PORT = 7800;
     /**
-     * How many ports above the first a member may use when not told otherwise: 61, so that the bus ports 7800..7830
-     * (31 members per address) and their failure detection ports 7831..7861 fit.
+     * How many ports above the first are bus ports too when not told otherwise: 61, the bus ports 7800..7861 (62
+     * members per address).
      */
     public static final int DEFAULT_PORT_RANGE = 61;
 
@@ -49,6 +55,8 @@ public final class DtronOptions {
     private final int portRange;
     private final List<InetSocketAddress> initialMembers;
     private final Optional<String> secret;
+    private final Optional<Path> keyFile;
+    private final boolean insecure;
     private final boolean encrypt;
     private final boolean inJvm;
     private final Optional<Map<String, IDtronChannel>> channels;
@@ -71,6 +79,8 @@ public final class DtronOptions {
         portRange = b.portRange;
         initialMembers = b.initialMembers;
         secret = b.secret;
+        keyFile = b.keyFile;
+        insecure = b.insecure;
         encrypt = b.encrypt;
         inJvm = b.inJvm;
         channels = b.channels;
@@ -111,7 +121,7 @@ public final class DtronOptions {
         return port;
     }
 
-    /** Returns how many ports above {@link #getPort()} a member may use: the bus's half, failure detection's half. */
+    /** Returns how many ports above {@link #getPort()} are bus ports too. */
     public int getPortRange() {
         return portRange;
     }
@@ -121,9 +131,19 @@ public final class DtronOptions {
         return initialMembers;
     }
 
-    /** Returns the shared secret that members must prove to join, if any. */
+    /** Returns the bus's secret, if given; otherwise it is read from the key file. */
     public Optional<String> getSecret() {
         return secret;
+    }
+
+    /** Returns the key file holding the bus's secret, if given; otherwise the default key file is used. */
+    public Optional<Path> getKeyFile() {
+        return keyFile;
+    }
+
+    /** Returns whether this member uses no secret: it then talks only to other insecure members. */
+    public boolean isInsecure() {
+        return insecure;
     }
 
     /** Returns whether traffic between members is encrypted. */
@@ -198,7 +218,7 @@ public final class DtronOptions {
     public String toString() {
         if (!natsServers.isEmpty()) {
             return "DtronOptions[cluster=" + clusterName + memberName.map(n -> ", member=" + n).orElse("")
-                    + ", nats=" + natsServers + natsUser.map(u -> ", user=" + u).orElse("")
+                    + ", nats=" + natsServers + ", " + keyDescription() + natsUser.map(u -> ", user=" + u).orElse("")
                     + (natsToken.isPresent() ? ", token" : "")
                     + natsCredentialsFile.map(f -> ", creds=" + f).orElse("")
                     + natsNkeyFile.map(f -> ", nkey=" + f).orElse("") + natsTlsCaFile.map(f -> ", tlsCa=" + f).orElse("")
@@ -208,9 +228,15 @@ public final class DtronOptions {
         return "DtronOptions[cluster=" + clusterName + memberName.map(n -> ", member=" + n).orElse("")
                 + (inJvm ? ", in-JVM" : ", bind=" + bindAddress.getHostAddress() + ", port=" + port + "+" + portRange
                         + (initialMembers.isEmpty() ? "" : ", initialMembers=" + initialMembers))
-                + ", auth=" + secret.isPresent() + ", encrypt=" + encrypt
+                + (inJvm ? "" : ", " + keyDescription()) + ", encrypt=" + encrypt
                 + channels.map(c -> ", channels=" + c.keySet()).orElse("") + (tester ? ", tester" : "")
                 + (clockShift.isZero() ? "" : ", clockShift=" + clockShift) + "]";
+    }
+
+    /** Where the secret comes from, for {@link #toString()}; never the secret itself. */
+    private String keyDescription() {
+        return insecure ? "INSECURE" : secret.isPresent() ? "secret given" : keyFile.map(f -> "key file " + f)
+                .orElse("default key file");
     }
 
     /** Builds {@link DtronOptions}. Not thread-safe. */
@@ -222,6 +248,8 @@ public final class DtronOptions {
         private int portRange = DEFAULT_PORT_RANGE;
         private List<InetSocketAddress> initialMembers = List.of();
         private Optional<String> secret = Optional.empty();
+        private Optional<Path> keyFile = Optional.empty();
+        private boolean insecure;
         private boolean encrypt;
         private boolean inJvm;
         private Optional<Map<String, IDtronChannel>> channels = Optional.empty();
@@ -346,8 +374,8 @@ public final class DtronOptions {
         }
 
         /**
-         * Sets how many ports above the first a member may use (default {@value DtronOptions#DEFAULT_PORT_RANGE}): the
-         * lower half are bus ports (bound to and probed), the upper half failure detection ports; at least 1 over TCP.
+         * Sets how many ports above the first are bus ports too (default {@value DtronOptions#DEFAULT_PORT_RANGE}): a
+         * member listens on one of them, and looks for the others on all of them.
          */
         public Builder portRange(int range) {
             if (range < 0) {
@@ -363,12 +391,35 @@ public final class DtronOptions {
             return this;
         }
 
-        /** Requires every member to prove this shared secret before joining (default: none). */
+        /**
+         * Sets the bus's secret, which every member of the bus must hold (default: the content of the key file);
+         * every message carries a code made with it.
+         */
         public Builder secret(String sharedSecret) {
             if (Objects.requireNonNull(sharedSecret, "sharedSecret").isEmpty()) {
                 throw new IllegalArgumentException("secret is empty");
             }
             secret = Optional.of(sharedSecret);
+            return this;
+        }
+
+        /**
+         * Reads the bus's secret from this key file when joining (default: {@code $DTRON_HOME/bus.key}, else
+         * {@code ~/.dtron/bus.key}, created when missing). The file is never created; joining fails when it is
+         * missing, empty, or may be read or written by group or others.
+         */
+        public Builder keyFile(Path file) {
+            keyFile = Optional.of(Objects.requireNonNull(file, "file"));
+            return this;
+        }
+
+        /**
+         * Uses no secret (default: off): this member's messages carry no code that secure members accept, and it
+         * accepts only insecure members' messages. For a bus shared with adapters written without the secret; it
+         * says so at a warning when it joins.
+         */
+        public Builder insecure(boolean on) {
+            insecure = on;
             return this;
         }
 
@@ -432,8 +483,9 @@ public final class DtronOptions {
         /**
          * Builds the options.
          *
-         * @throws IllegalStateException if encryption is on without a secret, the port range exceeds 65535 or is 0
-         *                               over TCP, or NATS credentials come without NATS servers
+         * @throws IllegalStateException if a secret and a key file are both given, insecure comes with either or with
+         *                               encryption, the ports exceed 65535, or NATS credentials come without NATS
+         *                               servers
          */
         public DtronOptions build() {
             if (natsServers.isEmpty() && (natsUser.isPresent() || natsToken.isPresent()
@@ -443,15 +495,18 @@ public final class DtronOptions {
             if (!natsServers.isEmpty() && inJvm) {
                 throw new IllegalStateException("in-JVM mode is for the JGroups bus, not NATS");
             }
-            if (encrypt && secret.isEmpty()) {
-                throw new IllegalStateException("encryption needs a secret");
+            if (secret.isPresent() && keyFile.isPresent()) {
+                throw new IllegalStateException("give the bus's secret or its key file, not both");
+            }
+            if (insecure && (secret.isPresent() || keyFile.isPresent() || encrypt)) {
+                throw new IllegalStateException("an insecure member has no secret: leave out the secret, the key file"
+                        + " and encryption");
+            }
+            if (encrypt && inJvm && secret.isEmpty()) {
+                throw new IllegalStateException("encryption of in-JVM members needs a secret");
             }
             if (port + portRange > 65535) {
                 throw new IllegalStateException("ports " + port + ".." + (port + portRange) + " exceed 65535");
-            }
-            if (portRange < 1 && natsServers.isEmpty() && !inJvm) {
-                throw new IllegalStateException("a port range of 0 leaves no port for failure detection: each member"
-                        + " listens on two ports (give a port range of 1 or more)");
             }
             return new DtronOptions(this);
         }

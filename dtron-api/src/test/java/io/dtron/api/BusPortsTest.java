@@ -24,12 +24,12 @@ import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.Timeout;
 
 /**
- * Which sockets a member over TCP listens on: only at the bind address, only on ports of its port range (a bus port
- * in the lower half, its failure detection port in the upper half); ports in use give an error naming them.
+ * Which sockets a member over TCP listens on: one only, at the bind address, on a bus port of its port range; ports
+ * in use give an error naming them.
  */
 @Timeout(value = 60, unit = TimeUnit.SECONDS)
 class BusPortsTest {
-    private static final int RANGE = 5; // bus ports P..P+2, failure detection P+3..P+5
+    private static final int RANGE = 5; // bus ports P..P+5
     private final String cluster = TestClusters.uniqueName("ports");
     private final List<ServerSocket> held = new ArrayList<>();
 
@@ -57,14 +57,13 @@ class BusPortsTest {
     }
 
     @Test
-    void membersListenOnlyAtTheBindAddressOnTheirBusAndFailureDetectionPorts() throws Exception {
+    void membersListenOnlyAtTheBindAddressOnTheirBusPorts() throws Exception {
         assumeTrue(ListeningSockets.available(), "needs Linux's /proc");
         InetAddress bind = InetAddress.getByName("127.0.0.2");
         int p = FreePorts.range(RANGE, bind);
         try (Dtron a = Dtron.connect(options(bind, p)); Dtron b = Dtron.connect(options(bind, p))) {
             assertTrue(a.awaitMembers(2, Duration.ofSeconds(15)), () -> "members: " + a.getMembers());
-            assertEquals(Set.of("tcp 127.0.0.2:" + p, "tcp 127.0.0.2:" + (p + 1), "tcp 127.0.0.2:" + (p + 3),
-                    "tcp 127.0.0.2:" + (p + 4)), listenersIn(p));
+            assertEquals(Set.of("tcp 127.0.0.2:" + p, "tcp 127.0.0.2:" + (p + 1)), listenersIn(p));
             List<Listener> wildcard = ListeningSockets.of(ProcessHandle.current().pid()).stream()
                     .filter(l -> l.address().isAnyLocalAddress()).toList();
             assertEquals(List.of(), wildcard, "no socket of this JVM listens on every interface");
@@ -72,16 +71,15 @@ class BusPortsTest {
     }
 
     @Test
-    void aMemberWhoseFailureDetectionPortIsTakenMovesToTheNextBusPort() throws Exception {
+    void aMemberWhoseFirstBusPortIsTakenMovesToTheNext() throws Exception {
         assumeTrue(ListeningSockets.available(), "needs Linux's /proc");
         InetAddress loopback = InetAddress.getLoopbackAddress();
         int p = FreePorts.range(RANGE);
-        hold(loopback, p + 3); // failure detection of bus port p
+        hold(loopback, p);
         try (Dtron a = Dtron.connect(options(loopback, p))) {
             Set<String> listening = listenersIn(p);
-            assertTrue(listening.contains("tcp 127.0.0.1:" + (p + 1)), listening.toString());
-            assertTrue(listening.contains("tcp 127.0.0.1:" + (p + 4)), listening.toString());
-            assertFalse(listening.contains("tcp 127.0.0.1:" + p), listening.toString());
+            listening.remove("tcp 127.0.0.1:" + p); // the held one
+            assertEquals(Set.of("tcp 127.0.0.1:" + (p + 1)), listening);
         }
     }
 
@@ -89,15 +87,14 @@ class BusPortsTest {
     void portsInUseGiveOneLineNamingThemAndTheOptions() throws Exception {
         InetAddress loopback = InetAddress.getLoopbackAddress();
         int p = FreePorts.range(RANGE);
-        hold(loopback, p);
-        hold(loopback, p + 4);
-        hold(loopback, p + 5);
+        for (int port = p; port <= p + RANGE; port++) {
+            hold(loopback, port);
+        }
         DtronException e = assertThrows(DtronException.class, () -> Dtron.connect(options(loopback, p)).close());
-        assertEquals("cannot join bus '" + cluster + "': no free ports for the bus on 127.0.0.1 in " + p + ".."
-                + (p + RANGE) + " (port " + p + ", port range " + RANGE + "): a member needs a free port P of " + p
-                + ".." + (p + 2) + " and P + 3 for failure detection, and ports " + p + ", " + (p + 4) + "-" + (p + 5)
-                + " are in use; choose free ones with the port and port range options (dtron: --port, --port-range)",
-                e.getMessage());
+        assertEquals("cannot join bus '" + cluster + "': no free port for the bus on 127.0.0.1 in " + p + ".."
+                + (p + RANGE) + " (port " + p + ", port range " + RANGE + "): a member needs one, and ports " + p + "-"
+                + (p + RANGE) + " are in use; choose free ones with the port and port range options (dtron: --port,"
+                + " --port-range)", e.getMessage());
         assertNull(e.getCause(), "the message is the whole story");
     }
 
@@ -113,10 +110,12 @@ class BusPortsTest {
     }
 
     @Test
-    void aPortRangeOfZeroIsRefusedOverTcpOnly() {
-        IllegalStateException e = assertThrows(IllegalStateException.class,
-                () -> DtronOptions.builder().portRange(0).build());
-        assertTrue(e.getMessage().contains("failure detection"), e.getMessage());
-        assertEquals(0, DtronOptions.builder().portRange(0).inJvm(true).build().getPortRange());
+    void aPortRangeOfZeroIsOneBusPort() throws Exception {
+        int p = FreePorts.range(1);
+        DtronOptions one = DtronOptions.builder().clusterName(cluster).port(p).portRange(0).build();
+        try (Dtron a = Dtron.connect(one)) {
+            DtronException e = assertThrows(DtronException.class, () -> Dtron.connect(one).close());
+            assertTrue(e.getMessage().contains("ports " + p + " are in use"), e.getMessage());
+        }
     }
 }

@@ -16,7 +16,7 @@ public final class FreePorts {
     private static final int LOWEST = 10_000;
     private static final int HIGHEST = 32_000;
 
-    /** The port range of a test's bus: 4 bus ports and their 4 failure detection ports. */
+    /** The port range of a test's bus: 8 bus ports. */
     public static final int BUS_RANGE = 7;
 
     private FreePorts() {

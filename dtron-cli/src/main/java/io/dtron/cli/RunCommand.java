@@ -115,9 +115,9 @@ final class RunCommand implements Callable<Integer> {
     private Integer port;
 
     @Option(names = "--port-range", paramLabel = "N",
-            description = "Bus mode: how many ports above --port a member may use (default: "
-                    + DtronOptions.DEFAULT_PORT_RANGE + "): a bus port P in the lower half (the ports probed) and"
-                    + " P + (N+1)/2 for failure detection, all on the bind address.")
+            description = "Bus mode: how many ports above --port are bus ports too (default: "
+                    + DtronOptions.DEFAULT_PORT_RANGE + "): each member listens on one of them, on the bind address,"
+                    + " and looks for the others on all of them.")
     private Integer portRange;
 
     @Option(names = "--testers", paramLabel = "N",
@@ -129,6 +129,17 @@ final class RunCommand implements Callable<Integer> {
             description = "Bus mode: take part in the run another tester (with --testers) starts on this bus, judging"
                     + " this model's channels on that tester's clock.")
     private boolean join;
+
+    @Option(names = "--key-file", paramLabel = "FILE",
+            description = "Bus mode: the file holding the bus's secret, which every member of the bus holds (default:"
+                    + " $DTRON_HOME/bus.key, else ~/.dtron/bus.key, made when missing); it must be readable by its"
+                    + " owner only (chmod 600).")
+    private Path keyFile;
+
+    @Option(names = "--insecure",
+            description = "Bus mode: use no secret, for adapters that have none; this run then hears insecure members"
+                    + " only, and anyone who can reach the bus may speak on it.")
+    private boolean insecure;
 
     @Mixin
     private NatsBusOptions nats;
@@ -431,10 +442,13 @@ final class RunCommand implements Callable<Integer> {
         }
         if (!busMode && (cluster != null || waitForAdapters != null || waitTimeout != null
                 || !adapterClasses.isEmpty() || !members.isEmpty() || port != null || portRange != null
-                || testers != null || join || deltaReport != null)) {
+                || testers != null || join || deltaReport != null || keyFile != null || insecure)) {
             throw usage("--cluster, --members, --port, --port-range, --testers, --join, --wait-for-adapters,"
-                    + " --wait-timeout, --delta-report and --adapter are for testing the adapters on a bus, without"
-                    + " --sut or --tron-adapter");
+                    + " --wait-timeout, --delta-report, --key-file, --insecure and --adapter are for testing the"
+                    + " adapters on a bus, without --sut or --tron-adapter");
+        }
+        if (keyFile != null && insecure) {
+            throw usage("--insecure uses no secret: leave out --key-file");
         }
         if (join && testers != null) {
             throw usage("--testers is for the tester that starts a run; a tester that joins it (--join) leaves it out");
@@ -443,8 +457,8 @@ final class RunCommand implements Callable<Integer> {
             throw usage("--testers must be 1 or more: " + testers);
         }
         if (port != null && (port < 1 || port > 65535) || portRange != null && (portRange < 1 || portRange > 65535)) {
-            throw usage("--port must be 1 to 65535 and --port-range 1 to 65535 (each member of the bus listens on two"
-                    + " ports: a bus port and one for failure detection)");
+            throw usage("--port must be 1 to 65535 and --port-range 1 to 65535 (the bus ports: a run needs one for the"
+                    + " tester and one for each adapter on this address)");
         }
         int first = port != null ? port : DtronOptions.DEFAULT_PORT;
         int range = portRange != null ? portRange : DtronOptions.DEFAULT_PORT_RANGE;
@@ -1001,13 +1015,21 @@ final class RunCommand implements Callable<Integer> {
         return nats.given() ? String.join(",", nats.servers(this::usage)) : bindAddress().getHostAddress();
     }
 
-    /** Makes the options of the members of this JVM on the bus; reads the secret files once, now. */
+    /**
+     * Makes the options of the members of this JVM on the bus, with the bus's secret of {@code --key-file} or the
+     * default key file, or none ({@code --insecure}); reads the NATS secret files once, now.
+     */
     private Supplier<DtronOptions.Builder> busOptions() {
         String cluster = clusterName();
-        if (!nats.given()) {
-            return this::jgroupsOptions;
-        }
-        return nats.memberOptions(cluster, this::usage);
+        Supplier<DtronOptions.Builder> transport = nats.given() ? nats.memberOptions(cluster, this::usage)
+                : this::jgroupsOptions;
+        return () -> {
+            DtronOptions.Builder options = transport.get();
+            if (keyFile != null) {
+                options.keyFile(keyFile);
+            }
+            return options.insecure(insecure);
+        };
     }
 
     /** {@code --bind}, else loopback: the bus's interface, or where {@code --tron-adapter PORT} listens. */

@@ -12,14 +12,16 @@ import java.util.Optional;
  *
  * @param clusterName    the JGroups cluster; members of different clusters never see each other
  * @param memberName     this member's logical name, unique in the cluster
- * @param bindAddress    the interface every socket of the member listens on (the bus and failure detection)
- * @param port           the first port of the member's ports
- * @param portRange      how many ports above {@code port} the member may use: the lower half for the bus (and
- *                       probed at each initial member), the upper half for failure detection; at least 1 over TCP
+ * @param bindAddress    the interface the member listens on
+ * @param port           the first of the bus ports
+ * @param portRange      how many ports above {@code port} are bus ports too: the member listens on one of them, and
+ *                       looks for the others on all of them at each initial member
  * @param initialMembers where to look for other members; empty means {@code bindAddress:port} and the bus ports
  *                       above it
- * @param secret         shared secret for authentication (and the encryption key), if any
- * @param encrypt        whether to encrypt all messages between members (needs a secret)
+ * @param secret         the bus's secret ({@link BusKeys}): the key of the codes every frame carries over TCP
+ *                       ({@link GuardedTcp}) and of the encryption; empty for an insecure member, whose codes are
+ *                       made with a public key, so that it talks only to insecure members
+ * @param encrypt        whether to encrypt all messages between members (needs the secret)
  * @param inJvm          whether to use the in-JVM transport without sockets instead of TCP
  */
 public record JGroupsSettings(
@@ -49,22 +51,19 @@ public record JGroupsSettings(
         if (encrypt && secret.isEmpty()) {
             throw new IllegalArgumentException("encryption needs a shared secret");
         }
-        if (!inJvm && portRange < 1) {
-            throw new IllegalArgumentException(NO_ROOM_FOR_FAILURE_DETECTION);
-        }
     }
 
-    /** Why a port range of 0 does not do over TCP. */
-    static final String NO_ROOM_FOR_FAILURE_DETECTION = "a port range of 0 leaves no port for failure detection:"
-            + " each member listens on two ports (give a port range of 1 or more)";
-
     /**
-     * Returns how many bus ports there are, {@code port .. port+busPorts()-1}: how many members one address holds.
-     * A member listening for the bus on port P listens for failure detection on {@code P + busPorts()}, so that
-     * every port a member uses lies in {@code port .. port+portRange}.
+     * Returns how many bus ports there are, {@code port .. port+portRange}: how many members one address holds. A
+     * member listens on one of them only.
      */
     public int busPorts() {
-        return (portRange + 1) / 2;
+        return portRange + 1;
+    }
+
+    /** Returns the key of the codes of this member's frames: the bus's, or the public one of insecure members. */
+    byte[] macKey() {
+        return BusKeys.macKey(secret.orElse(BusKeys.INSECURE_SECRET));
     }
 
     /**
@@ -89,6 +88,6 @@ public record JGroupsSettings(
         return "JGroupsSettings[cluster=" + clusterName + ", member=" + memberName
                 + (inJvm ? ", in-JVM" : ", bind=" + bindAddress.getHostAddress() + ":" + port + "+" + portRange
                         + (initialMembers.isEmpty() ? "" : ", initialMembers=" + initialMembers))
-                + ", auth=" + secret.isPresent() + ", encrypt=" + encrypt + "]";
+                + (inJvm ? "" : secret.isPresent() ? ", secure" : ", INSECURE") + ", encrypt=" + encrypt + "]";
     }
 }

@@ -8,9 +8,7 @@ import javax.crypto.SecretKey;
 import javax.crypto.SecretKeyFactory;
 import javax.crypto.spec.PBEKeySpec;
 import javax.crypto.spec.SecretKeySpec;
-import org.jgroups.protocols.AUTH;
 import org.jgroups.protocols.FD_ALL3;
-import org.jgroups.protocols.FD_SOCK2;
 import org.jgroups.protocols.FRAG2;
 import org.jgroups.protocols.MERGE3;
 import org.jgroups.protocols.MFC;
@@ -18,7 +16,6 @@ import org.jgroups.protocols.SEQUENCER;
 import org.jgroups.protocols.SHARED_LOOPBACK;
 import org.jgroups.protocols.SHARED_LOOPBACK_PING;
 import org.jgroups.protocols.SYM_ENCRYPT;
-import org.jgroups.protocols.TCP;
 import org.jgroups.protocols.TCPPING;
 import org.jgroups.protocols.UFC;
 import org.jgroups.protocols.UNICAST3;
@@ -32,26 +29,34 @@ import org.jgroups.stack.Protocol;
  * Not API. Builds DTRON's JGroups protocol stack in code, bottom (transport) first.
  *
  * <pre>
- *  TCP (bind address, one bus port P)        | SHARED_LOOPBACK        (in-JVM mode)
+ *  GuardedTcp (bind address, one bus port)   | SHARED_LOOPBACK        (in-JVM mode)
  *  TCPPING (initial members, the bus ports)  | SHARED_LOOPBACK_PING
  *  MERGE3                                      heals partitions
- *  FD_SOCK2 (TCP only: bind address, P + busPorts), FD_ALL3, VERIFY_SUSPECT2   failure detection
+ *  FD_ALL3, VERIFY_SUSPECT2                    failure detection (with GuardedTcp's closed connections)
  *  SYM_ENCRYPT                                 optional: AES, key derived from the secret
  *  NAKACK2, UNICAST3, STABLE                   reliable FIFO multicast and unicast
- *  AUTH                                        optional: members must prove the secret to join
  *  GMS                                         membership views
  *  MFC, UFC                                    flow control
  *  SEQUENCER                                   total order: every multicast goes through the coordinator
  *  FRAG2                                       large messages
  * </pre>
  *
- * <p><b>Ports.</b> Every socket listens on the bind address, none on the
- * wildcard address, and every port lies in {@code port..port+range}: the lower
- * half ({@link JGroupsSettings#busPorts()} ports) holds the members' bus ports,
- * the upper half their failure detection ports, FD_SOCK2's server of the member
- * with bus port P listening on {@code P + busPorts()} (where the other members
- * look for it). {@link JGroupsTransport} picks P. JGroups' diagnostics (a UDP
- * listener) stay off, as JGroups' default has them.
+ * <p><b>Ports.</b> A member listens on one socket, on the bind address (none on
+ * the wildcard address), at a bus port of {@code port..port+range}, which
+ * {@link JGroupsTransport} picks. JGroups' diagnostics (a UDP listener) stay
+ * off, as JGroups' default has them.
+ *
+ * <p><b>The bus's secret.</b> Over TCP every frame carries a code made with the
+ * bus's secret, and every frame read is checked, and its length bounded, before
+ * anything is parsed from it ({@link GuardedTcp}): discovery, joins, merges,
+ * heartbeats and messages of a process without the secret never reach a
+ * protocol. That makes JGroups' AUTH redundant (a join request without the
+ * secret never reaches GMS), so the stack has none. Failure detection has no
+ * sockets of its own: FD_SOCK2 listened on a second port and read frames
+ * without codes; instead a member whose TCP connection closes without JGroups'
+ * graceful close (its process died) is suspected at once, VERIFY_SUSPECT2
+ * confirms it over the guarded bus within 1.5 s, and FD_ALL3's heartbeats find
+ * a member that hangs within 15 s. In-JVM members have no sockets and no codes.
  *
  * <p><b>Discovery.</b> Members find each other with TCPPING over the bus ports:
  * every member listens on a free bus port and
@@ -61,8 +66,9 @@ import org.jgroups.stack.Protocol;
  * shared directory and no daemon; probing a closed loopback port fails at
  * once. On a LAN, the same range is probed at every given initial member
  * (a connection attempt gives up after 300 ms). Members of other clusters in
- * the range answer nothing: JGroups drops messages whose cluster name differs.
- * The bus ports bound how many members one address can hold (31 by default).
+ * the range answer nothing: JGroups drops messages whose cluster name differs,
+ * and members with another secret (or none) are dropped before that.
+ * The bus ports bound how many members one address can hold (62 by default).
  * Alternatives that were not taken: UDP multicast discovery (blocked in many
  * sandboxes and containers, even on loopback) and FILE_PING (needs a
  * directory shared by all users of the bus and leaves stale entries of
@@ -88,10 +94,7 @@ final class JGroupsStack {
     private JGroupsStack() {
     }
 
-    /**
-     * Returns the stack of a member; over TCP, its bus port is {@code busPort} (in JGroupsSettings' bus ports) and
-     * its failure detection port {@code busPort + settings.busPorts()}.
-     */
+    /** Returns the stack of a member; over TCP, its bus port is {@code busPort} (in JGroupsSettings' bus ports). */
     static List<Protocol> build(JGroupsSettings settings, int busPort) {
         List<Protocol> stack = new ArrayList<>();
         if (settings.inJvm()) {
@@ -101,7 +104,7 @@ final class JGroupsStack {
             stack.add(loopback.logDiscardMsgs(false));
             stack.add(new SHARED_LOOPBACK_PING());
         } else {
-            TCP tcp = new TCP();
+            GuardedTcp tcp = new GuardedTcp(settings.macKey(), settings.clusterName());
             tcp.setSockConnTimeout(300);
             // without TCP_NODELAY, Nagle's algorithm holds small messages back until the previous one is
             // acknowledged, and with delayed acknowledgements that costs up to 40 ms per message
@@ -121,11 +124,6 @@ final class JGroupsStack {
             stack.add(new TCPPING().setInitialHosts(settings.discoveryAddresses()).setPortRange(0));
         }
         stack.add(new MERGE3().setMinInterval(1_000).setMaxInterval(5_000));
-        if (!settings.inJvm()) {
-            // FD_SOCK2 listens on every interface, at the bus port + 100..103, unless told otherwise
-            stack.add(new FD_SOCK2().setBindAddress(settings.bindAddress()).setOffset(settings.busPorts())
-                    .setPortRange(0));
-        }
         stack.add(new FD_ALL3().setTimeout(15_000).setInterval(3_000));
         stack.add(new VERIFY_SUSPECT2().setTimeout(1_500));
         settings.secret().filter(secret -> settings.encrypt()).ifPresent(secret -> {
@@ -135,12 +133,6 @@ final class JGroupsStack {
         stack.add(new NAKACK2().useMcastXmit(false));
         stack.add(new UNICAST3());
         stack.add(new STABLE());
-        settings.secret().ifPresent(secret -> {
-            AUTH auth = new AUTH();
-            SharedSecretToken token = new SharedSecretToken(secret, settings.clusterName());
-            token.setAuth(auth);
-            stack.add(auth.setAuthToken(token));
-        });
         stack.add(new GMS().printLocalAddress(false).setJoinTimeout(1_000));
         stack.add(new MFC());
         stack.add(new UFC());

@@ -42,16 +42,12 @@ public final class JGroupsTransport implements Transport, Receiver {
     }
 
     /**
-     * Joins the cluster described by the settings. Over TCP the member takes the
-     * first bus port P whose failure detection port {@code P + busPorts()} is
-     * free too (both on the bind address); a port another process takes between
-     * the check and the bind moves it on to the next.
+     * Joins the cluster described by the settings. Over TCP the member takes the first free bus port (on the bind
+     * address); a port another process takes between the check and the bind moves it on to the next.
      *
      * @throws BindAddressException when nothing can listen on the bind address
-     * @throws PortsInUseException  when no bus port is free with its failure detection port
-     * @throws Exception           whatever JGroups throws when the stack cannot start or
-     *                             the cluster refuses this member ({@link SecurityException}
-     *                             when authentication fails)
+     * @throws PortsInUseException  when no bus port is free
+     * @throws Exception           whatever JGroups throws when the stack cannot start
      */
     public static JGroupsTransport connect(JGroupsSettings settings) throws Exception {
         if (settings.inJvm()) {
@@ -63,37 +59,32 @@ public final class JGroupsTransport implements Transport, Receiver {
             throw new BindAddressException(settings.bindAddress(), e);
         }
         List<Integer> inUse = new ArrayList<>();
-        int busPorts = settings.busPorts();
-        for (int port = settings.port(); port < settings.port() + busPorts; port++) {
-            List<Integer> taken = taken(settings.bindAddress(), port, port + busPorts);
-            if (taken.isEmpty()) {
-                try {
-                    return join(settings, port);
-                } catch (Exception e) {
-                    taken = taken(settings.bindAddress(), port, port + busPorts);
-                    if (taken.isEmpty() && !failedToBind(e)) {
-                        throw e;
-                    }
-                    taken = taken.isEmpty() ? List.of(port, port + busPorts) : taken;
-                    LOG.debug("Port {} taken while joining ({}); trying the next", taken, e.toString());
-                }
+        for (int port = settings.port(); port < settings.port() + settings.busPorts(); port++) {
+            if (taken(settings.bindAddress(), port)) {
+                inUse.add(port);
+                continue;
             }
-            inUse.addAll(taken);
+            try {
+                return join(settings, port);
+            } catch (Exception e) {
+                if (!taken(settings.bindAddress(), port) && !failedToBind(e)) {
+                    throw e;
+                }
+                LOG.debug("Port {} taken while joining ({}); trying the next", port, e.toString());
+                inUse.add(port);
+            }
         }
         throw new PortsInUseException(settings, inUse);
     }
 
-    /** Returns those of the ports that cannot be listened on at the address now. */
-    private static List<Integer> taken(InetAddress address, int... ports) {
-        List<Integer> taken = new ArrayList<>();
-        for (int port : ports) {
-            try {
-                bind(address, port);
-            } catch (IOException e) {
-                taken.add(port);
-            }
+    /** Returns whether the port cannot be listened on at the address now. */
+    private static boolean taken(InetAddress address, int port) {
+        try {
+            bind(address, port);
+            return false;
+        } catch (IOException e) {
+            return true;
         }
-        return taken;
     }
 
     /**
@@ -109,13 +100,12 @@ public final class JGroupsTransport implements Transport, Receiver {
     }
 
     /**
-     * Whether joining failed for a port in use: a socket's bind, or FD_SOCK2's server, which says so only in its
-     * message (a port in TIME_WAIT may refuse JGroups' bind yet let the check above bind it).
+     * Whether joining failed for a port in use (a port in TIME_WAIT may refuse JGroups' bind yet let the check above
+     * bind it).
      */
     private static boolean failedToBind(Throwable e) {
         for (Throwable t = e; t != null; t = t.getCause()) {
-            if (t instanceof BindException || t instanceof IllegalStateException && t.getMessage() != null
-                    && t.getMessage().contains("failed to find an available port")) {
+            if (t instanceof BindException) {
                 return true;
             }
         }
@@ -135,6 +125,15 @@ public final class JGroupsTransport implements Transport, Receiver {
         }
         LOG.debug("Joined {} as {}: {}", settings, settings.memberName(), transport.view);
         return transport;
+    }
+
+    /**
+     * Returns how many frames, and connections, this member dropped for a missing or wrong code or length (see
+     * {@link GuardedTcp}); 0 in-JVM.
+     */
+    public long rejectedFrames() {
+        GuardedTcp tcp = channel.getProtocolStack().findProtocol(GuardedTcp.class);
+        return tcp == null ? 0 : tcp.rejectedFrames();
     }
 
     @Override

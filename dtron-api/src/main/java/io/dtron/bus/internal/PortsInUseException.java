@@ -4,19 +4,18 @@ import java.io.IOException;
 import java.util.List;
 
 /**
- * Not API. No bus port of the settings was free together with its failure detection port: the message names the
- * ports in use and the options that choose others.
+ * Not API. No bus port of the settings was free: the message names the ports in use and the options that choose
+ * others.
  */
 public final class PortsInUseException extends IOException {
     private static final long serialVersionUID = 1L;
 
     PortsInUseException(JGroupsSettings settings, List<Integer> inUse) {
-        super("no free ports for the bus on " + settings.bindAddress().getHostAddress() + " in "
+        super("no free port for the bus on " + settings.bindAddress().getHostAddress() + " in "
                 + settings.port() + ".." + (settings.port() + settings.portRange()) + " (port "
-                + settings.port() + ", port range " + settings.portRange() + "): a member needs a free port P of "
-                + settings.port() + ".." + (settings.port() + settings.busPorts() - 1) + " and P + "
-                + settings.busPorts() + " for failure detection, and ports " + ranges(inUse)
-                + " are in use; choose free ones with the port and port range options (dtron: --port, --port-range)");
+                + settings.port() + ", port range " + settings.portRange() + "): a member needs one, and ports "
+                + ranges(inUse) + " are in use; choose free ones with the port and port range options (dtron: --port,"
+                + " --port-range)");
     }
 
     /** The ports as ascending runs: {@code 7800-7802, 7815}. */

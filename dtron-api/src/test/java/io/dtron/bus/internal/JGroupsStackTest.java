@@ -12,7 +12,6 @@ import java.net.InetSocketAddress;
 import java.util.Arrays;
 import java.util.List;
 import java.util.Optional;
-import org.jgroups.protocols.FD_SOCK2;
 import org.jgroups.protocols.TCP;
 import org.jgroups.protocols.TP;
 import org.jgroups.util.PassRegularMessagesUpDirectly;
@@ -34,9 +33,10 @@ class JGroupsStackTest {
     @Test
     void defaultStackIsTcpOnLoopbackWithTotalOrder() {
         List<Protocol> stack = JGroupsStack.build(settings(Optional.empty(), false, false), 7805);
-        assertEquals(List.of("TCP", "TCPPING", "MERGE3", "FD_SOCK2", "FD_ALL3", "VERIFY_SUSPECT2", "NAKACK2",
+        assertEquals(List.of("GuardedTcp", "TCPPING", "MERGE3", "FD_ALL3", "VERIFY_SUSPECT2", "NAKACK2",
                 "UNICAST3", "STABLE", "GMS", "MFC", "UFC", "SEQUENCER", "FRAG2"), names(stack));
         TCP tcp = (TCP) stack.get(0);
+        assertTrue(tcp.enableSuspectEvents(), "a member whose connection breaks is suspected at once");
         assertEquals(LOOPBACK, tcp.getBindAddress());
         assertEquals(7805, tcp.getBindPort(), "the bus port the transport chose");
         assertEquals(0, tcp.getPortRange());
@@ -44,32 +44,23 @@ class JGroupsStackTest {
         assertInstanceOf(PassRegularMessagesUpDirectly.class, tcp.getMessageProcessingPolicy(),
                 "the reading thread passes messages up");
         TCPPING ping = (TCPPING) stack.get(1);
-        assertEquals(31, ping.getInitialHosts().size(), "the lower half of the range, the bus ports, is probed");
+        assertEquals(62, ping.getInitialHosts().size(), "the whole range, the bus ports, is probed");
         assertEquals(0, ping.getPortRange());
         List<InetSocketAddress> probed = settings(Optional.empty(), false, false).discoveryAddresses();
         assertEquals(new InetSocketAddress(LOOPBACK, 7800), probed.get(0));
-        assertEquals(new InetSocketAddress(LOOPBACK, 7830), probed.get(30));
-        FD_SOCK2 fd = (FD_SOCK2) stack.get(3);
-        assertEquals(LOOPBACK, fd.getBindAddress(), "failure detection listens on the bind address, not on all");
-        assertEquals(31, fd.getOffset(), "at the bus port + 31, in the upper half of the range");
-        assertEquals(0, fd.getPortRange(), "on that one port, where the other members look for it");
+        assertEquals(new InetSocketAddress(LOOPBACK, 7861), probed.get(61));
     }
 
     @Test
-    void aPortRangeOfZeroLeavesNoRoomForFailureDetectionOverTcp() {
-        IllegalArgumentException e = assertThrows(IllegalArgumentException.class, () -> new JGroupsSettings("c", "m",
-                LOOPBACK, 7800, 0, List.of(), Optional.empty(), false, false));
-        assertTrue(e.getMessage().contains("failure detection"), e.getMessage());
-        assertEquals(0, new JGroupsSettings("c", "m", LOOPBACK, 7800, 0, List.of(), Optional.empty(), false, true)
-                .portRange(), "in-JVM members have no sockets");
-        assertEquals(1, new JGroupsSettings("c", "m", LOOPBACK, 7800, 1, List.of(), Optional.empty(), false, false)
-                .busPorts(), "one bus port, 7800, and 7801 for failure detection");
+    void aPortRangeOfZeroIsOneBusPort() {
+        assertEquals(1, new JGroupsSettings("c", "m", LOOPBACK, 7800, 0, List.of(), Optional.empty(), false, false)
+                .busPorts());
     }
 
     @Test
     void eachInitialMemberIsProbedOverTheRange() throws Exception {
         InetAddress other = InetAddress.getByName("127.0.0.2");
-        JGroupsSettings lan = new JGroupsSettings("c", "m", LOOPBACK, 7800, 5,
+        JGroupsSettings lan = new JGroupsSettings("c", "m", LOOPBACK, 7800, 2,
                 List.of(new InetSocketAddress(other, 9000), new InetSocketAddress(LOOPBACK, 7800)), Optional.empty(),
                 false, false);
         assertEquals(List.of(new InetSocketAddress(other, 9000), new InetSocketAddress(other, 9001),
@@ -79,13 +70,12 @@ class JGroupsStackTest {
     }
 
     @Test
-    void authenticationSitsRightBelowMembershipAndEncryptionBelowReliability() {
+    void encryptionSitsBelowReliabilityAndNoStackHasAuth() {
         List<String> names = names(JGroupsStack.build(settings(Optional.of("s3cret"), true, false), 7800));
-        assertEquals(names.indexOf("GMS") - 1, names.indexOf("AUTH"));
         assertEquals(names.indexOf("NAKACK2") - 1, names.indexOf("SYM_ENCRYPT"));
-        List<String> authOnly = names(JGroupsStack.build(settings(Optional.of("s3cret"), false, false), 7800));
-        assertTrue(authOnly.contains("AUTH"));
-        assertFalse(authOnly.contains("SYM_ENCRYPT"));
+        assertFalse(names.contains("AUTH"), "the codes of GuardedTcp keep out joins without the secret");
+        List<String> codesOnly = names(JGroupsStack.build(settings(Optional.of("s3cret"), false, false), 7800));
+        assertFalse(codesOnly.contains("SYM_ENCRYPT"));
     }
 
     @Test
@@ -95,7 +85,6 @@ class JGroupsStackTest {
         TP loopback = (TP) JGroupsStack.build(settings(Optional.empty(), false, true), 0).get(0);
         assertEquals("no-bundler", loopback.getBundlerType(), "as over TCP: the sending thread delivers");
         assertInstanceOf(PassRegularMessagesUpDirectly.class, loopback.getMessageProcessingPolicy());
-        assertFalse(names.contains("FD_SOCK2"));
         assertTrue(names.contains("SEQUENCER"));
     }
 

@@ -4,6 +4,7 @@ import ch.qos.logback.classic.spi.ILoggingEvent;
 import ch.qos.logback.classic.spi.IThrowableProxy;
 import ch.qos.logback.core.filter.Filter;
 import ch.qos.logback.core.spi.FilterReply;
+import java.util.Set;
 
 /**
  * Not API. Drops the two events JGroups' TCP transport logs when a member leaves the bus while a connection of its
@@ -14,15 +15,17 @@ import ch.qos.logback.core.spi.FilterReply;
  * thread that delivers it) reads again from the connection the member has just closed. The member is leaving
  * anyway, and the run's results are printed by then. No close order avoids the second: it comes from whichever
  * member leaves while another is still on the bus. Every other event passes, including other failures of the same
- * message. Referenced from {@code logback.xml}.
+ * message. JGroups logs its transport's events under the transport's class: DTRON's {@code GuardedTcp}, or TCP.
+ * Referenced from {@code logback.xml}.
  */
 public final class ClosingNoiseFilter extends Filter<ILoggingEvent> {
-    private static final String TCP_LOGGER = "org.jgroups.protocols.TCP";
+    private static final Set<String> TCP_LOGGERS = Set.of("io.dtron.bus.internal.GuardedTcp",
+            "org.jgroups.protocols.TCP");
 
     @Override
     public FilterReply decide(ILoggingEvent event) {
         String message = event.getFormattedMessage();
-        if (!TCP_LOGGER.equals(event.getLoggerName()) || message == null) {
+        if (!TCP_LOGGERS.contains(event.getLoggerName()) || message == null) {
             return FilterReply.NEUTRAL;
         }
         if (message.contains("failed sending graceful close")) {

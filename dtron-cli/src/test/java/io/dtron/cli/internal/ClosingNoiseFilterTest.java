@@ -29,6 +29,9 @@ class ClosingNoiseFilterTest {
                 "127.0.0.1:7801: failed sending graceful close to 127.0.0.1:7800: Socket closed"));
         assertEquals(FilterReply.NEUTRAL, decide("org.jgroups.protocols.TCP", "127.0.0.1:7801: failed connecting"));
         assertEquals(FilterReply.NEUTRAL, decide("io.dtron.api.Dtron", "failed sending graceful close"));
+        assertEquals(FilterReply.DENY, decide("io.dtron.bus.internal.GuardedTcp",
+                "127.0.0.1:7801: failed sending graceful close to 127.0.0.1:7800: Socket closed"),
+                "DTRON's transport is JGroups' TCP, logging under its own name");
     }
 
     /** What JGroups 5.5 logs, with a stack trace, when a leaving member reads from the connection it closed. */

@@ -155,14 +155,14 @@ class DistributedRunTest {
         InetAddress address = InetAddress.getByName("127.0.0.3");
         int port = FreePorts.range(1, address);
         try (ServerSocket bus = new ServerSocket(port, 1, address);
-                ServerSocket failureDetection = new ServerSocket(port + 1, 1, address);
+                ServerSocket otherBus = new ServerSocket(port + 1, 1, address);
                 ChildJvm relay = ChildJvm.start(RelayAdapters.class, dir.resolve("relay.log"), cluster(),
                         "127.0.0.3", "127.0.0.3", "correct", Integer.toString(port), "1")) {
             assertEquals(1, relay.waitFor(WAIT), relay.output());
             String output = relay.output();
             String error = output.lines().filter(l -> l.startsWith("RelayAdapters: ")).findFirst()
                     .orElseThrow(() -> new AssertionError(output));
-            assertTrue(error.contains(": no free ports for the bus on 127.0.0.3 in " + port + ".." + (port + 1)),
+            assertTrue(error.contains(": no free port for the bus on 127.0.0.3 in " + port + ".." + (port + 1)),
                     error);
             assertTrue(error.contains("ports " + port + "-" + (port + 1) + " are in use"), error);
             assertTrue(error.endsWith("(dtron: --port, --port-range)"), error);
