@@ -209,7 +209,7 @@ class NatsSecurityTest {
         try (NatsServer server = NatsServer.start(dir)) {
             String bus = TestClusters.uniqueName("mixed");
             DtronOptions.Builder insecure = DtronOptions.builder().clusterName(bus).memberName("insecure")
-                    .natsServers(server.url());
+                    .natsServers(server.url()).insecure(true);
             try (Dtron secure = Dtron.connect(member(server, bus, "secure").build());
                     Dtron none = Dtron.connect(insecure.build());
                     Dtron other = Dtron.connect(member(server, bus, "other").secret("another secret").build())) {

@@ -12,7 +12,8 @@ import java.util.concurrent.TimeUnit;
 /**
  * A ticker adapter process, using only {@code io.dtron.api}: a {@link BusTicker} on the bus. Arguments: cluster
  * name, member name, variant ({@code correct} or {@code slow}), the number of runs to serve, and optionally the NATS
- * server URLs (comma-separated) of a NATS bus and the bus's secret (a test's, so on the command line). Prints
+ * server URLs (comma-separated) of a NATS bus and the bus's secret (a test's, so on the command line; {@code insecure}
+ * for none). Prints
  * {@code joined} once on the bus; stops ticking whenever a tester that started a run here leaves, leaves when that
  * many have left the bus, and prints {@code resets N}; other members (observers, refused testers) come and go
  * unnoticed. Exit code 0, or 2 if they did not come and go within ten minutes.
@@ -32,7 +33,9 @@ public final class TickerAdapterMain {
         if (args.length > 4) {
             options.natsServers(java.util.List.of(args[4].split(",")));
         }
-        if (args.length > 5) {
+        if (args.length > 5 && args[5].equals("insecure")) {
+            options.insecure(true);
+        } else if (args.length > 5) {
             options.secret(args[5]);
         }
         try (Dtron dtron = Dtron.connect(options.build());

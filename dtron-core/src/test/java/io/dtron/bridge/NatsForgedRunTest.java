@@ -88,15 +88,15 @@ class NatsForgedRunTest {
         try (NatsServer server = NatsServer.start(dir);
                 Connection raw = Nats.connect(server.url())) {
             List<String> args = new ArrayList<>(List.of(bus, "ticker", "correct", "1", server.url()));
-            if (secure) {
-                args.add(SECRET);
-            }
+            args.add(secure ? SECRET : "insecure");
             Path log = dir.resolve("ticker.log");
             try (ChildJvm ticker = ChildJvm.start(TickerAdapterMain.class, log, args.toArray(String[]::new))) {
                 ticker.awaitOutput("joined", Duration.ofSeconds(60));
                 DtronOptions.Builder options = DtronOptions.builder().clusterName(bus).natsServers(server.url());
                 if (secure) {
                     options.secret(SECRET);
+                } else {
+                    options.insecure(true);
                 }
                 try (BusBridge bridge = BusBridge.connect(testInterface, options)) {
                     assertTrue(bridge.awaitAdapters(1, Duration.ofSeconds(60)), "the ticker joined");

@@ -9,15 +9,12 @@ import java.nio.file.Path;
 import java.nio.file.attribute.FileAttribute;
 import java.nio.file.attribute.PosixFilePermission;
 import java.nio.file.attribute.PosixFilePermissions;
-import java.security.GeneralSecurityException;
 import java.security.SecureRandom;
 import java.util.EnumSet;
 import java.util.HexFormat;
 import java.util.Map;
 import java.util.Optional;
 import java.util.Set;
-import javax.crypto.Mac;
-import javax.crypto.spec.SecretKeySpec;
 
 /**
  * Not API. The bus's secret and the key of its message codes ({@code src/site/markdown/security.md}): the secret
@@ -33,8 +30,6 @@ public final class BusKeys {
     public static final String DTRON_HOME = "DTRON_HOME";
     /** The default key file's name in its directory. */
     public static final String KEY_FILE_NAME = "bus.key";
-    /** The data of the code key: {@code K = HMAC-SHA256(key = secret, data = this)}. */
-    public static final String MAC_KEY_LABEL = "dtron-bus-mac-v1";
     /**
      * The secret of insecure JGroups members: public, so their codes prove nothing, but a secure member (whose key
      * differs) drops their messages and they drop a secure member's.
@@ -45,7 +40,6 @@ public final class BusKeys {
 
     private static final Set<PosixFilePermission> SHARED = EnumSet.of(PosixFilePermission.GROUP_READ,
             PosixFilePermission.GROUP_WRITE, PosixFilePermission.OTHERS_READ, PosixFilePermission.OTHERS_WRITE);
-    private static final String HMAC = "HmacSHA256";
 
     private BusKeys() {
     }
@@ -160,14 +154,8 @@ public final class BusKeys {
         }
     }
 
-    /** Returns the key of the message codes: {@code HMAC-SHA256(key = secret as UTF-8, data = MAC_KEY_LABEL)}. */
+    /** Returns the key of the message codes of a secret (its UTF-8 bytes): {@link MessageCodes#key(byte[])}. */
     public static byte[] macKey(String secret) {
-        try {
-            Mac mac = Mac.getInstance(HMAC);
-            mac.init(new SecretKeySpec(secret.getBytes(StandardCharsets.UTF_8), HMAC));
-            return mac.doFinal(MAC_KEY_LABEL.getBytes(StandardCharsets.UTF_8));
-        } catch (GeneralSecurityException e) {
-            throw new IllegalStateException("HMAC-SHA256 is missing from this Java runtime", e);
-        }
+        return MessageCodes.key(secret.getBytes(StandardCharsets.UTF_8));
     }
 }
