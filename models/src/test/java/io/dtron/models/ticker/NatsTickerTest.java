@@ -5,9 +5,12 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import io.dtron.cli.DtronCommand;
 import io.dtron.testsupport.NatsServer;
+import io.dtron.testsupport.Waits;
 import java.io.PrintWriter;
 import java.io.StringWriter;
+import java.nio.file.Files;
 import java.nio.file.Path;
+import java.nio.file.attribute.PosixFilePermissions;
 import java.util.List;
 import java.util.UUID;
 import java.util.concurrent.TimeUnit;
@@ -19,7 +22,8 @@ import org.junit.jupiter.api.io.TempDir;
  * The ticker through a NATS bus ({@code dtron run --bus nats://...} on a nats-server of the test's): the Java bus
  * adapter, the Python adapter ({@code clients/python/examples/ticker.py}) and the C adapter each pass, and their slow
  * variants fail. The Python adapter runs with {@code $DTRON_PYTHON} (a Python with the {@code dtron} package
- * installed; {@code scripts/test} makes one), else {@code python3} if it has the package.
+ * installed; {@code scripts/test} makes one), else {@code python3} if it has the package. Python and C members
+ * without the bus's secret, on the bus through a whole run, change nothing.
  */
 @Timeout(value = 2, unit = TimeUnit.MINUTES)
 class NatsTickerTest {
@@ -117,6 +121,62 @@ class NatsTickerTest {
             Run failed = against(server, "c-slow", List.of(ticker, "--variant", "slow"));
             assertEquals(2, failed.exit(), failed.shown());
             assertTrue(failed.out().contains("FAILED"), failed.shown());
+        }
+    }
+
+    /**
+     * A stranger in Python: the dtron package with a key file of its own (not the bus's), publishing {@code
+     * tick(seq=1)} every 50 ms for 30 s, far longer than the run. argv: server, bus, key file.
+     */
+    private static final String FORGER = """
+            import asyncio, sys
+            import dtron
+
+            async def main(url, bus, key_file):
+                async with await dtron.connect(url, bus=bus, key_file=key_file) as member:
+                    tick = dtron.Channel("tick", "seq")
+                    member.declare_outputs(tick)
+                    print("forging as", member.member, flush=True)
+                    for _ in range(600):
+                        await member.send(tick.value(seq=1))
+                        await asyncio.sleep(0.05)
+
+            asyncio.run(main(sys.argv[1], sys.argv[2], sys.argv[3]))
+            """;
+
+    @Test
+    void membersWithoutTheSecretInPythonAndCCannotChangeTheVerdict() throws Exception {
+        // the correct Python ticker has the bus's secret (DTRON_HOME, inherited); a Python forger of ticks and a C
+        // ticker hold another key: were their messages taken, the forged ticks would FAIL the run ("too early") or
+        // end it INCONCLUSIVE as a second owner of tick; without the secret they are dropped, and the run PASSES
+        String python = NatsClients.python();
+        Path ticker = NatsClients.PYTHON.resolve("examples/ticker.py").toAbsolutePath().normalize();
+        Path stranger = dir.resolve("stranger.key");
+        Files.writeString(stranger, "f".repeat(64) + "\n");
+        Files.setPosixFilePermissions(stranger, PosixFilePermissions.fromString("rw-------"));
+        Path forger = Files.writeString(dir.resolve("forger.py"), FORGER);
+        try (NatsServer server = NatsServer.start(dir)) {
+            String cluster = cluster("strangers");
+            Process forging = adapter("forger", List.of(python, forger.toString(), server.url(), cluster,
+                    stranger.toString()));
+            Process cTicker = adapter("c-stranger", List.of(NatsClients.cProgram("dtron-ticker").toString(),
+                    "--bus", server.url(), "--cluster", cluster, "--key-file", stranger.toString()));
+            Process pyTicker = adapter("py", List.of(python, ticker.toString(), "--bus", server.url(), "--cluster",
+                    cluster, "--runs", "1"));
+            try {
+                Waits.await("the forger publishes").atMost(java.time.Duration.ofSeconds(60))
+                        .until(() -> log("forger").contains("forging as"));
+                Run run = Run.of(server.url(), cluster);
+                String shown = run.shown() + "\nforger:\n" + log("forger") + "\nC stranger:\n" + log("c-stranger");
+                assertEquals(0, run.exit(), shown);
+                assertTrue(run.out().contains("PASSED"), shown);
+                assertTrue(run.out().contains("unauthenticated"), shown);
+                assertTrue(forging.isAlive(), "the forger was still forging at the verdict: " + shown);
+            } finally {
+                forging.destroyForcibly();
+                cTicker.destroyForcibly();
+                pyTicker.destroyForcibly();
+            }
         }
     }
 
