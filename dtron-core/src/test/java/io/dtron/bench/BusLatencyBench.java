@@ -70,7 +70,7 @@ public final class BusLatencyBench {
                 TickerAdapterMain.class.getName(), cluster, "bench-adapter", "correct", "2"));
         if (!nats.isEmpty()) {
             command.add(String.join(",", nats));
-            secret.ifPresent(command::add);
+            command.add(secret.orElse("insecure"));
         }
         Process adapter = new ProcessBuilder(command)
                 .redirectErrorStream(true).redirectOutput(adapterLog.toFile()).start();
