@@ -7,6 +7,7 @@ import io.dtron.api.internal.ClockSync;
 import io.dtron.api.internal.Counters;
 import io.dtron.api.internal.DtronChannel;
 import io.dtron.api.internal.DtronChannelValued;
+import io.dtron.api.internal.HostClock;
 import io.dtron.api.internal.SerialExecutor;
 import io.dtron.api.internal.Stamp;
 import io.dtron.api.internal.SyncCodec;
@@ -131,6 +132,8 @@ public final class Dtron implements AutoCloseable {
     private final Optional<Subscription> allGroups;
     private final List<Subscription> ownGroups;
     private final long clockShiftNanos;
+    /** The id of the wall clock this member reads ({@link HostClock}), or "" when it is shifted for a test. */
+    private final String hostClock;
     private final ClockSync clockSync;
     private final ChannelHandshake handshake;
     /** The other members that said they are testers while on the bus (see {@link #wasTester}); only grows. */
@@ -167,7 +170,8 @@ public final class Dtron implements AutoCloseable {
         });
         this.dispatcher = new SerialExecutor("dtron-listeners-" + transport.localMember());
         this.clockShiftNanos = options.getClockShiftForTesting().toNanos();
-        this.clockSync = new ClockSync(transport.localMember(), options.isTester(), this::currentTimeNanos,
+        this.hostClock = clockShiftNanos == 0 ? HostClock.id() : "";
+        this.clockSync = new ClockSync(transport.localMember(), hostClock, options.isTester(), this::currentTimeNanos,
                 sequence::incrementAndGet, this::publishControl, this::offsetChanged);
         this.handshake = new ChannelHandshake(transport.localMember(), dispatcher::execute,
                 this::publishServed, this::othersServedChanged, options.isTester());
@@ -826,7 +830,7 @@ public final class Dtron implements AutoCloseable {
         }
         try {
             transport.publish(channel, SyncCodec.encodeControl(channel,
-                    stamp(seq, publishTimeNanos, eventTimeNanos, ackedSender, ackedSequence), asInput));
+                    stamp(seq, publishTimeNanos, eventTimeNanos, ackedSender, ackedSequence), asInput, hostClock));
         } catch (IOException | RuntimeException e) {
             LOG.debug("{} cannot publish on {}: {}", getMemberId(), channel, e.toString());
         }
@@ -1037,7 +1041,7 @@ public final class Dtron implements AutoCloseable {
                 }
             }
             case ClockSync.PONG -> clockSync.pongReceived(stamp.sender(), stamp.ackedSender(), stamp.ackedSequence(),
-                    stamp.effectiveEventTimeNanos(), receiveTime);
+                    stamp.effectiveEventTimeNanos(), receiveTime, sync.getHostClock());
             default -> throw new IllegalStateException("not a control channel: " + message.group());
         }
     }

@@ -48,6 +48,12 @@ public final class RunClock {
         boolean isCancelled();
     }
 
+    /**
+     * How long before a task's time the clock's thread stops waiting and spins: a timed wait of this machine's
+     * threads may end milliseconds late when its CPU was idle, a spin of this length does not.
+     */
+    static final long SPIN_NANOS = 300_000;
+
     private final String member;
     private final LongSupplier wallClock;
     private final LongSupplier offset;
@@ -56,7 +62,9 @@ public final class RunClock {
     private final PriorityQueue<Entry> queue = new PriorityQueue<>();
     private final Thread thread;
     private Entry executing;
-    private boolean closed;
+    private volatile boolean closed;
+    /** Counts the signals of {@link #changed}, so that a spinning thread sees them too. */
+    private volatile int changes;
     private final AtomicLong entries = new AtomicLong();
     // the current or last run, written with the lock held and read without it
     private volatile Run run;
@@ -91,7 +99,7 @@ public final class RunClock {
                 lock.lock();
                 try {
                     queue.remove(this);
-                    changed.signalAll();
+                    signalChanged();
                 } finally {
                     lock.unlock();
                 }
@@ -309,7 +317,7 @@ public final class RunClock {
     void offsetChanged() {
         lock.lock();
         try {
-            changed.signalAll();
+            signalChanged();
         } finally {
             lock.unlock();
         }
@@ -321,7 +329,7 @@ public final class RunClock {
         try {
             stop();
             closed = true;
-            changed.signalAll();
+            signalChanged();
         } finally {
             lock.unlock();
         }
@@ -376,7 +384,7 @@ public final class RunClock {
                 return entry;
             }
             queue.add(entry);
-            changed.signalAll();
+            signalChanged();
             return entry;
         } finally {
             lock.unlock();
@@ -391,7 +399,7 @@ public final class RunClock {
         if (executing != null && executing.periodNanos > 0) {
             executing.cancelled.set(true); // runs to its end, and no more
         }
-        changed.signalAll();
+        signalChanged();
     }
 
     private void loop() {
@@ -405,8 +413,20 @@ public final class RunClock {
                     continue;
                 }
                 long wait = next.due - now(current);
+                if (wait > SPIN_NANOS) {
+                    changed.awaitNanos(wait - SPIN_NANOS);
+                    continue;
+                }
                 if (wait > 0) {
-                    changed.awaitNanos(wait);
+                    // a timed wait here wakes up to milliseconds late (an idle CPU of a virtual machine): the last
+                    // stretch is spun, with the lock let go so that tasks can be scheduled and cancelled meanwhile
+                    int seen = changes;
+                    lock.unlock();
+                    try {
+                        spinUntil(next.due, current, seen);
+                    } finally {
+                        lock.lock();
+                    }
                     continue;
                 }
                 queue.poll();
@@ -436,6 +456,22 @@ public final class RunClock {
             Thread.currentThread().interrupt();
         } finally {
             lock.unlock();
+        }
+    }
+
+    /** Called with the lock held: wakes the clock's thread, waiting or spinning. */
+    private void signalChanged() {
+        changes++;
+        changed.signalAll();
+    }
+
+    /**
+     * Spins until run time {@code dueNanos} of {@code current}, or until the queue, the run or the offset changed
+     * since {@code seen} was read.
+     */
+    private void spinUntil(long dueNanos, Run current, int seen) {
+        while (changes == seen && now(current) < dueNanos) {
+            Thread.onSpinWait();
         }
     }
 

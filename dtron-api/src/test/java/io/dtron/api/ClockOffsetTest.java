@@ -158,6 +158,30 @@ class ClockOffsetTest {
         }
     }
 
+    /**
+     * A member in a JVM of its own on this host reads the tester's very clock (one kernel, one boot id): its offset
+     * is exactly 0, give or take the clock's microsecond, from its first estimate on, and its messages say so.
+     */
+    @Test
+    void aMemberOnTheTestersHostHasAnExactOffset(@TempDir Path dir) throws Exception {
+        String cluster = TestClusters.uniqueName("offsetHost");
+        int port = FreePorts.range(FreePorts.BUS_RANGE);
+        try (Dtron tester = Dtron.connect(DtronOptions.builder().clusterName(cluster).memberName("tester")
+                .port(port).portRange(FreePorts.BUS_RANGE).tester(true).build())) {
+            Inbox estimates = new Inbox(ClockMemberMain.ESTIMATED);
+            tester.addDtronListener(estimates);
+            try (ChildJvm member = ChildJvm.start(ClockMemberMain.class, dir.resolve("member.log"), cluster, "member",
+                    "0", Integer.toString(port))) {
+                IDtronChannelValued estimate = estimates.take();
+                assertEquals(0, estimate.getClockOffsetNanos(), member.output());
+                assertEquals(1_000, estimate.getClockErrorNanos(), member.output());
+                assertEquals(Map.of("offset_us", 0, "error_us", 1), estimate.getVariables());
+                tester.send(ClockMemberMain.QUIT.constructValued(Map.of()));
+                assertEquals(0, member.waitFor(Duration.ofSeconds(30)), member.output());
+            }
+        }
+    }
+
     /** Sanity check of the test's own reading: unshifted members read the same clock as the test. */
     @Test
     void currentTimeIsTheWallClockPlusTheShift() {

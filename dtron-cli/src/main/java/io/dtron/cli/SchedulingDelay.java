@@ -1,6 +1,7 @@
 package io.dtron.cli;
 
 import io.dtron.engine.ObservableWindow;
+import io.dtron.engine.SchedulingLateness;
 import io.dtron.engine.TestOptions;
 import io.dtron.model.Network;
 import io.dtron.model.TestInterface;
@@ -9,14 +10,12 @@ import java.util.ArrayList;
 import java.util.List;
 import java.util.Locale;
 import java.util.Optional;
-import java.util.concurrent.LinkedBlockingQueue;
-import java.util.concurrent.TimeUnit;
 import java.util.function.Consumer;
 import java.util.function.ToLongFunction;
 
 /**
- * How late this machine wakes the tester's thread, measured before a real-time run the way the tester waits (a
- * timed poll of a queue), and the input margin that lateness needs: an input is aimed that far inside the end of its
+ * How late this machine wakes the tester's thread, measured before a real-time run the way the tester waits
+ * ({@link SchedulingLateness}), and the input margin that lateness needs: an input is aimed that far inside the end of its
  * window, so that the tester never picks a time it cannot meet.
  *
  * @param worstMicros the latest wake-up measured, in microseconds
@@ -28,22 +27,9 @@ record SchedulingDelay(long worstMicros, long marginMicros) {
     private static final long[] WAITS_MICROS = {500, 500, 500, 500, 2000, 5000, 500, 500, 10_000, 500, 500, 20_000};
     private static final int ROUNDS = 4;
 
-    /** Measures: {@value #ROUNDS} rounds of waits of 0.5 to 20 ms, about 160 ms in all. */
+    /** Measures: {@value #ROUNDS} rounds of waits of 0.5 to 20 ms, about 160 ms in all, as the tester waits. */
     static SchedulingDelay measure() {
-        LinkedBlockingQueue<Object> never = new LinkedBlockingQueue<>();
-        long worst = 0;
-        try {
-            for (int round = 0; round < ROUNDS; round++) {
-                for (long wait : WAITS_MICROS) {
-                    long start = System.nanoTime();
-                    never.poll(wait, TimeUnit.MICROSECONDS);
-                    worst = Math.max(worst, (System.nanoTime() - start) / 1000 - wait);
-                }
-            }
-        } catch (InterruptedException e) {
-            Thread.currentThread().interrupt();
-        }
-        return of(worst);
+        return of(SchedulingLateness.worstMicros(WAITS_MICROS, ROUNDS));
     }
 
     /**

@@ -64,7 +64,14 @@ public final class ClockSync implements AutoCloseable {
                 long ackedSequence, boolean asInput);
     }
 
+    /**
+     * How far a tester's clock reading may lie outside a ping's round trip while the two clocks are still taken as
+     * one (the clocks' resolution is a microsecond).
+     */
+    static final long SAME_CLOCK_SLACK_NANOS = 1_000;
+
     private final String me;
+    private final String hostClock;
     private final boolean announced;
     private final LongSupplier clock;
     private final LongSupplier nextSequence;
@@ -80,6 +87,13 @@ public final class ClockSync implements AutoCloseable {
     };
     private String tester;
     private boolean selfTester;
+    /**
+     * Whether the tester said it reads this member's very clock ({@link HostClock}) and no round trip has
+     * contradicted it: the offset is then 0 within the clock's resolution.
+     */
+    private boolean sameClock;
+    /** Whether a round trip contradicted the tester's claim to read this member's clock. */
+    private boolean sameClockRefuted;
     /** The members other than this one that announced themselves as the tester, while they are on the bus. */
     private final Set<String> otherTesters = new LinkedHashSet<>();
     /** The members that answered each of this member's probes, by the probe's sequence number. */
@@ -93,15 +107,18 @@ public final class ClockSync implements AutoCloseable {
      * Creates the member's side; {@link #start} begins it.
      *
      * @param me              this member's id
+     * @param hostClock       the id of the wall clock {@code clock} reads ({@link HostClock#id()}), or "" when it
+     *                        is not that clock alone (shifted for a test)
      * @param tester          whether this member is the tester from the start (and says so with hellos)
      * @param clock           this member's wall clock, ns since the epoch
      * @param nextSequence    hands out this member's sequence numbers
      * @param publisher       publishes control messages
      * @param estimateChanged called (on any thread, without locks held) when {@link #estimate()} changed
      */
-    public ClockSync(String me, boolean tester, LongSupplier clock, LongSupplier nextSequence,
+    public ClockSync(String me, String hostClock, boolean tester, LongSupplier clock, LongSupplier nextSequence,
             ControlPublisher publisher, Runnable estimateChanged) {
         this.me = me;
+        this.hostClock = hostClock;
         this.announced = tester;
         this.clock = clock;
         this.nextSequence = nextSequence;
@@ -166,7 +183,7 @@ public final class ClockSync implements AutoCloseable {
                 selfTester = true;
                 tester = me;
                 stopPinging();
-                estimator.clear();
+                forgetSamples();
                 estimate = Optional.of(new ClockOffset(me, 0, 0));
                 LOG.debug("{} is the tester now", me);
             } else {
@@ -180,7 +197,7 @@ public final class ClockSync implements AutoCloseable {
                 }
                 selfTester = false;
                 tester = member;
-                estimator.clear();
+                forgetSamples();
                 estimate = Optional.empty();
                 startPinging();
                 LOG.debug("{} learned the tester {}; estimating the clock offset", me, member);
@@ -202,7 +219,7 @@ public final class ClockSync implements AutoCloseable {
                 LOG.debug("{}: the tester {} left; no clock offset any more", me, tester);
                 tester = null;
                 stopPinging();
-                estimator.clear();
+                forgetSamples();
                 estimate = Optional.empty();
                 forgot = true;
             }
@@ -237,9 +254,14 @@ public final class ClockSync implements AutoCloseable {
         return !from.equals(me) && (selfTester || from.equals(tester) || fromPeerTester);
     }
 
-    /** Called when a pong arrived: one of this member's pings answered by its tester gives a sample. */
+    /**
+     * Called when a pong arrived: one of this member's pings answered by its tester gives a sample. A tester whose
+     * {@code testerHostClock} is this member's own reads the same clock: the offset is 0, give or take the clock's
+     * resolution, as long as every round trip agrees (the tester's reading lies within it); else the estimate is the
+     * round trips'.
+     */
     public void pongReceived(String from, String ackedSender, long ackedSequence, long testerTimeNanos,
-            long receiveTimeNanos) {
+            long receiveTimeNanos, String testerHostClock) {
         if (!ackedSender.equals(me) || probeAnswered(from, ackedSender, ackedSequence)) {
             return;
         }
@@ -255,7 +277,17 @@ public final class ClockSync implements AutoCloseable {
             }
             before = estimate;
             Optional<Estimate> sampled = estimator.add(sentAt, testerTimeNanos, receiveTimeNanos);
-            after = sampled.map(e -> new ClockOffset(from, e.offsetNanos(), e.errorNanos()));
+            boolean within = testerTimeNanos >= sentAt - SAME_CLOCK_SLACK_NANOS
+                    && testerTimeNanos <= receiveTimeNanos + SAME_CLOCK_SLACK_NANOS;
+            if (!within && sameClock) {
+                LOG.warn("The tester {} said it reads this member's clock, but a round trip contradicts it ({} ns"
+                        + " outside); the clock offset is estimated from round trips", from,
+                        testerTimeNanos < sentAt ? sentAt - testerTimeNanos : testerTimeNanos - receiveTimeNanos);
+            }
+            sameClockRefuted |= !within;
+            sameClock = within && !sameClockRefuted && !hostClock.isEmpty() && hostClock.equals(testerHostClock);
+            after = sameClock ? Optional.of(new ClockOffset(from, 0, SAME_CLOCK_SLACK_NANOS))
+                    : sampled.map(e -> new ClockOffset(from, e.offsetNanos(), e.errorNanos()));
             estimate = after;
         }
         if (!after.equals(before)) {
@@ -321,6 +353,13 @@ public final class ClockSync implements AutoCloseable {
         } finally {
             probes.remove(sequence);
         }
+    }
+
+    /** Called with the lock held: forgets the samples of a tester, and whether it reads this member's clock. */
+    private void forgetSamples() {
+        estimator.clear();
+        sameClock = false;
+        sameClockRefuted = false;
     }
 
     /** Stops pinging and greeting; closing twice does nothing. */

@@ -49,10 +49,11 @@ public final class SyncCodec {
 
     /**
      * Encodes a message of the clock-offset protocol, without variables; {@code asInput} (on a ping) asks the members
-     * to answer it as they acknowledge an input.
+     * to answer it as they acknowledge an input; {@code hostClock} is the sender's {@link HostClock} id, or "".
      */
-    public static byte[] encodeControl(String channelName, Stamp stamp, boolean asInput) {
-        return builder(channelName, Map.of(), stamp).setAsInput(asInput).build().toByteArray();
+    public static byte[] encodeControl(String channelName, Stamp stamp, boolean asInput, String hostClock) {
+        return builder(channelName, Map.of(), stamp).setAsInput(asInput).setHostClock(hostClock).build()
+                .toByteArray();
     }
 
     /**

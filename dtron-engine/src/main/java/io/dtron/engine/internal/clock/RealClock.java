@@ -1,7 +1,13 @@
 package io.dtron.engine.internal.clock;
 
-/** Real time: microseconds of {@link System#nanoTime()} since the start of the run. */
+/**
+ * Real time: microseconds of {@link System#nanoTime()} since the start of the run. A wait sleeps until {@value
+ * #SPIN_MICROS} us before its target and spins the rest, so that the tester acts on time even where a timed sleep
+ * wakes up late.
+ */
 public final class RealClock extends RunClock {
+    /** How long before a target the clock stops sleeping and spins, in microseconds. */
+    public static final long SPIN_MICROS = 300;
     private volatile long start = System.nanoTime();
     private volatile long worstLateness;
 
@@ -49,8 +55,16 @@ public final class RealClock extends RunClock {
                 return true;
             }
             slept = true;
+            if (remaining <= SPIN_MICROS) {
+                // a timed wait may end milliseconds late on an idle CPU (of a virtual machine above all): the last
+                // stretch before the target is spun, watching for outputs
+                while (!hasOutput() && nowMicros() < targetMicros) {
+                    Thread.onSpinWait();
+                }
+                continue;
+            }
             try {
-                awaitOutput(remaining * 1000);
+                awaitOutput((remaining - SPIN_MICROS) * 1000);
             } catch (InterruptedException e) {
                 Thread.currentThread().interrupt();
                 return true;
