@@ -79,6 +79,11 @@ final class RunCommand implements Callable<Integer> {
      * engine warms up meanwhile) and until their round trips are steady, or {@link #PROBE_LIMIT} passed.
      */
     private static final Duration DELAY_PROBE_SPACING = Duration.ofMillis(20);
+    /**
+     * The probes before a run come this far apart: a hundred rounds and more in {@link #PROBE_MINIMUM}, so that the
+     * JIT compiler of a fresh JVM compiles the path of an input, here and in the adapters, before time 0.
+     */
+    private static final Duration WARM_UP_PROBE_SPACING = Duration.ofMillis(2);
     private static final Duration PROBE_MINIMUM = Duration.ofMillis(400);
     private static final Duration PROBE_LIMIT = Duration.ofSeconds(3);
     /** How far ahead a run of several testers is started, so that every tester starts its engine at time 0. */
@@ -963,7 +968,7 @@ final class RunCommand implements Callable<Integer> {
             measuring.start();
         }
         if (!join) {
-            out.println(BusTiming.probingLine(bridge.probeUntilSteady(DELAY_PROBE_SPACING, warm ? PROBE_MINIMUM
+            out.println(BusTiming.probingLine(bridge.probeUntilSteady(WARM_UP_PROBE_SPACING, warm ? PROBE_MINIMUM
                     : Duration.ZERO, PROBE_LIMIT), warm));
             out.flush();
         }
