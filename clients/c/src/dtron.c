@@ -31,6 +31,8 @@
 #define PUBLISH_WAIT_MS 2000
 #define RETRIES 150
 #define NAMED_DROPS 1024
+/* how far a tester's reading may lie outside a ping's round trip while the two clocks are still taken as one */
+#define SAME_CLOCK_SLACK_NS 1000LL
 
 typedef struct channel {
     char *name;
@@ -69,6 +71,10 @@ struct dtron_bus {
     size_t nsamples, next_sample;
     int has_estimate;
     int64_t offset_ns, error_ns;
+    /* the id of the clock dtron_now_ns reads (the kernel's boot id), "" if unknown; whether a round trip
+       contradicted a tester that said it reads the same clock */
+    char host_clock[64];
+    int same_clock_refuted;
     uint64_t ping_seq[PENDING_PINGS];
     int64_t ping_sent[PENDING_PINGS];
     size_t next_ping_slot;
@@ -322,6 +328,24 @@ static void announce(dtron_bus *bus) {
     }
 }
 
+/* The id of the wall clock dtron_now_ns reads: "linux-boot:" and the kernel's boot id (members with equal ids read
+   one and the same CLOCK_REALTIME), or "" where it cannot be read. */
+static void read_host_clock(char *out, size_t size) {
+    char id[48] = "";
+    out[0] = '\0';
+    FILE *f = fopen("/proc/sys/kernel/random/boot_id", "r");
+    if (f == NULL) {
+        return;
+    }
+    if (fgets(id, sizeof id, f) != NULL) {
+        id[strcspn(id, "\r\n")] = '\0';
+        if (id[0] != '\0') {
+            snprintf(out, size, "linux-boot:%s", id);
+        }
+    }
+    fclose(f);
+}
+
 /* ---- membership and the tester (lock held) ---- */
 
 static void forget_tester(dtron_bus *bus) {
@@ -330,6 +354,7 @@ static void forget_tester(dtron_bus *bus) {
     replace(&bus->run_id, NULL);
     bus->nsamples = 0;
     bus->has_estimate = 0;
+    bus->same_clock_refuted = 0;
     bus->running = 0;
 }
 
@@ -340,6 +365,7 @@ static void learn_tester(dtron_bus *bus, const char *tester) {
     replace(&bus->tester, tester);
     bus->nsamples = 0;
     bus->has_estimate = 0;
+    bus->same_clock_refuted = 0;
     bus->pings_sent = 0;
     bus->next_ping_ns = 0; /* at once */
 }
@@ -512,6 +538,14 @@ static void control(dtron_bus *bus, const char *name, const Dtron__Sync *sync, c
                 }
                 bus->offset_ns = bus->samples[best][0];
                 bus->error_ns = (bus->samples[best][1] + 1) / 2 > 0 ? (bus->samples[best][1] + 1) / 2 : 1;
+                /* a tester that reads this member's very clock: offset 0, while every round trip agrees */
+                int within = tester_time >= t0 - SAME_CLOCK_SLACK_NS && tester_time <= received + SAME_CLOCK_SLACK_NS;
+                bus->same_clock_refuted |= !within;
+                if (within && !bus->same_clock_refuted && bus->host_clock[0] != '\0' && sync->host_clock != NULL
+                    && strcmp(sync->host_clock, bus->host_clock) == 0) {
+                    bus->offset_ns = 0;
+                    bus->error_ns = SAME_CLOCK_SLACK_NS;
+                }
                 bus->has_estimate = 1;
                 return;
             }
@@ -798,6 +832,7 @@ int dtron_connect(const dtron_options *options, dtron_bus **out, char *err, size
     pthread_cond_init(&bus->joined_cond, NULL);
     bus->bus = copy(name);
     bus->member = copy(generated);
+    read_host_clock(bus->host_clock, sizeof bus->host_clock);
     bus->prefix = malloc(strlen(name) + 16);
     sprintf(bus->prefix, "dtron.%s.c.", name);
     bus->presence = malloc(strlen(name) + 16);

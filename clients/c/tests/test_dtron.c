@@ -455,6 +455,9 @@ typedef struct {
     int64_t ack_offset, ack_error;
     uint64_t sequence;
     signer signer; /* with the bus's secret */
+    const char *bus;        /* NULL: "hand" */
+    int64_t shift;          /* how far the tester's clock is ahead of this host's */
+    const char *host_clock; /* what its hellos and pongs say of its clock, NULL: nothing */
 } fake_tester;
 
 static void tester_publish(fake_tester *t, const char *channel, const char *variable, int value, const char *acked,
@@ -469,7 +472,10 @@ static void tester_publish(fake_tester *t, const char *channel, const char *vari
     sync.name = (char *)channel;
     sync.sender = "tester";
     sync.sequence = sequence;
-    sync.publish_time_ns = dtron_now_ns() + 50000000LL; /* the tester's clock is 50 ms ahead */
+    sync.publish_time_ns = dtron_now_ns() + t->shift;
+    if (t->host_clock != NULL && (strcmp(channel, "dtron_pong") == 0 || strcmp(channel, "dtron_hello") == 0)) {
+        sync.host_clock = (char *)t->host_clock;
+    }
     sync.event_time_ns = event_ns;
     sync.acked_sender = (char *)(acked ? acked : "");
     sync.acked_sequence = acked_sequence;
@@ -481,7 +487,7 @@ static void tester_publish(fake_tester *t, const char *channel, const char *vari
     }
     uint8_t buffer[512];
     size_t length = dtron__sync__pack(&sync, buffer);
-    snprintf(subject, sizeof subject, "dtron.hand.c.%s", channel);
+    snprintf(subject, sizeof subject, "dtron.%s.c.%s", t->bus ? t->bus : "hand", channel);
     natsMsg *msg = NULL;
     natsMsg_Create(&msg, subject, NULL, (const char *)buffer, (int)length);
     pthread_mutex_lock(&t->lock);
@@ -512,7 +518,7 @@ static void tester_received(natsConnection *nc, natsSubscription *sub, natsMsg *
             pthread_mutex_lock(&t->lock);
             t->pings++;
             pthread_mutex_unlock(&t->lock);
-            tester_publish(t, "dtron_pong", NULL, 0, sync->sender, sync->sequence, dtron_now_ns() + 50000000LL, NULL);
+            tester_publish(t, "dtron_pong", NULL, 0, sync->sender, sync->sequence, dtron_now_ns() + t->shift, NULL);
         } else if (strcmp(channel, "dtron_ack") == 0) {
             pthread_mutex_lock(&t->lock);
             t->acks++;
@@ -546,7 +552,7 @@ static int field(fake_tester *t, int *value) {
 
 static void test_handshake_clock_and_acknowledgements(void) {
     static const char *const tick_vars[] = {"seq"};
-    static fake_tester t = {.lock = PTHREAD_MUTEX_INITIALIZER};
+    static fake_tester t = {.lock = PTHREAD_MUTEX_INITIALIZER, .shift = 50000000LL}; /* its clock 50 ms ahead */
     natsSubscription *sub = NULL;
     dtron_options options = {.servers = url, .bus = "hand", .member = "adapter"};
     dtron_bus *adapter = NULL;
@@ -663,6 +669,54 @@ static int lines_with(const char *path, const char *text) {
         fclose(f);
     }
     return count;
+}
+
+/* A member of a tester that says it reads this host's clock: the offset once the first pong came. */
+static void offset_with(fake_tester *t, const char *bus, int64_t *offset, int64_t *error) {
+    char subject[64], err[256];
+    natsSubscription *sub = NULL;
+    dtron_options options = {.servers = url, .bus = bus, .member = "adapter"};
+    dtron_bus *adapter = NULL;
+    t->bus = bus;
+    snprintf(subject, sizeof subject, "dtron.%s.c.>", bus);
+    CHECK(natsConnection_ConnectTo(&t->nc, url) == NATS_OK);
+    CHECK(natsConnection_Subscribe(&sub, t->nc, subject, tester_received, t) == NATS_OK);
+    natsConnection_Flush(t->nc);
+    CHECK(dtron_connect(&options, &adapter, err, sizeof err) == DTRON_OK);
+    if (adapter == NULL) {
+        fprintf(stderr, "connect: %s\n", err);
+        exit(1);
+    }
+    signer_of_bus(&t->signer, "tester");
+    tester_publish(t, "dtron_hello", NULL, 0, NULL, 0, 0, NULL);
+    UNTIL(dtron_clock_offset(adapter, offset, error));
+    CHECK(dtron_clock_offset(adapter, offset, error));
+    dtron_close(adapter);
+    natsSubscription_Destroy(sub);
+    natsConnection_Destroy(t->nc);
+}
+
+/* A tester on this host (the kernel's boot id) gives the offset 0 +/- 1 us; one that says so while its readings lie
+   50 ms outside the round trips is estimated from them. */
+static void test_a_tester_reading_this_hosts_clock(void) {
+    static char host[64];
+    static fake_tester same = {.lock = PTHREAD_MUTEX_INITIALIZER};
+    static fake_tester liar = {.lock = PTHREAD_MUTEX_INITIALIZER, .shift = 50000000LL};
+    char id[48] = "";
+    FILE *f = fopen("/proc/sys/kernel/random/boot_id", "r");
+    CHECK(f != NULL && fgets(id, sizeof id, f) != NULL);
+    if (f) {
+        fclose(f);
+    }
+    id[strcspn(id, "\n")] = '\0';
+    snprintf(host, sizeof host, "linux-boot:%s", id);
+    same.host_clock = host;
+    liar.host_clock = host;
+    int64_t offset = -1, error = -1;
+    offset_with(&same, "samehost", &offset, &error);
+    CHECK(offset == 0 && error == 1000);
+    offset_with(&liar, "liarhost", &offset, &error);
+    CHECK(error > 1000 && llabs(offset - 50000000LL) <= error);
 }
 
 static void test_a_stranger_is_refused(void) {
@@ -998,6 +1052,7 @@ int main(int argc, char **argv) {
     test_key_file();
     test_order_and_membership();
     test_handshake_clock_and_acknowledgements();
+    test_a_tester_reading_this_hosts_clock();
     test_a_stranger_is_refused();
     test_a_replayed_message_is_dropped();
     test_a_member_started_again_under_its_id_is_heard();

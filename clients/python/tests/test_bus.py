@@ -34,8 +34,9 @@ async def until(condition: Callable[[], bool], seconds: float = 10) -> None:
 class FakeTester:
     """A tester played with raw NATS: publishes Sync messages and records what the others publish."""
 
-    def __init__(self, nc: Any, bus: str, home: Path, clock_shift_ns: int = 0) -> None:
+    def __init__(self, nc: Any, bus: str, home: Path, clock_shift_ns: int = 0, host_clock: str = "") -> None:
         self.nc = nc
+        self.host_clock = host_clock
         self.signer = Signer(bus_secret(home), "tester")
         self.js = nc.jetstream()
         self.bus = bus
@@ -53,7 +54,7 @@ class FakeTester:
         self.seen.append((channel, sync))
         if channel == "dtron_ping" and sync.sender != "tester":
             await self.publish("dtron_pong", event_time_ns=time.time_ns() + self.shift, acked_sender=sync.sender,
-                               acked_sequence=sync.sequence)
+                               acked_sequence=sync.sequence, host_clock=self.host_clock)
 
     async def publish(self, channel: str, variables: dict[str, int] | None = None, **fields: Any) -> Sync_pb2.Sync:
         self.sequence += 1
@@ -129,6 +130,34 @@ def test_the_handshake_the_clock_offset_and_acknowledgements(nats_url: str, dtro
         await tester.publish("dtron_stop")
         await until(lambda: not adapter.run_clock.running)
         await adapter.close()
+        await nc.close()
+
+    run(test)
+
+
+def test_a_tester_reading_this_hosts_clock_gives_an_exact_offset_while_round_trips_agree(nats_url: str,
+                                                                                         dtron_home: Path) -> None:
+    async def test() -> None:
+        nc = await nats.connect(nats_url)
+        host = dtron.clock.host_clock_id()
+        assert host.startswith("linux-boot:")
+        # a tester on this host says so on its pongs: offset 0, give or take the clock's microsecond
+        same = await dtron.connect(nats_url, bus="same", member="adapter")
+        tester = FakeTester(nc, "same", dtron_home, host_clock=host)
+        await tester.start()
+        await tester.publish("dtron_hello", host_clock=host)
+        await until(lambda: same.clock_offset is not None)
+        assert same.clock_offset == dtron.ClockOffset("tester", 0, 1_000)
+        # one that says so but whose readings lie 50 ms outside the round trips is estimated from them
+        liar = await dtron.connect(nats_url, bus="liar", member="adapter")
+        shifted = FakeTester(nc, "liar", dtron_home, clock_shift_ns=50_000_000, host_clock=host)
+        await shifted.start()
+        await shifted.publish("dtron_hello", host_clock=host)
+        await until(lambda: liar.clock_offset is not None)
+        offset = liar.clock_offset
+        assert offset.error_ns > 1_000 and abs(offset.offset_ns - 50_000_000) <= offset.error_ns, offset
+        await same.close()
+        await liar.close()
         await nc.close()
 
     run(test)

@@ -26,7 +26,7 @@ from nats.js.errors import APIError, NotFoundError
 
 from dtron._proto import Sync_pb2
 from dtron.channel import RESERVED, Channel, InvalidMessage, Message
-from dtron.clock import ClockOffset, OffsetEstimator, RunClock, wall_clock_ns
+from dtron.clock import SAME_CLOCK_SLACK_NS, ClockOffset, OffsetEstimator, RunClock, host_clock_id, same_clock, wall_clock_ns
 from dtron.secret import MAC, UNAUTHENTICATED, Guard, PathLike, load_secret
 
 LOG = logging.getLogger("dtron")
@@ -115,6 +115,9 @@ class Bus:
         self._run_id = ""
         self._estimator = OffsetEstimator()
         self._estimate: Optional[ClockOffset] = None
+        # the tester said it reads this member's very clock, and no round trip contradicted it (then offset 0)
+        self._host_clock = host_clock_id()
+        self._same_clock_refuted = False
         self._pending_pings: dict[int, int] = {}
         self._pinging: Optional[asyncio.Task[None]] = None
         self._acked: dict[tuple[str, int], None] = {}
@@ -467,6 +470,7 @@ class Bus:
         self._run_tester = None
         self._run_id = ""
         self._estimator.clear()
+        self._same_clock_refuted = False
         self._estimate = None
         self._pending_pings.clear()
         self.run_clock.stop()
@@ -476,6 +480,7 @@ class Bus:
             return
         self._tester = tester
         self._estimator.clear()
+        self._same_clock_refuted = False
         self._estimate = None
         self._pending_pings.clear()
         if self._pinging:
@@ -556,6 +561,11 @@ class Bus:
                 return
             tester_time = sync.event_time_ns or sync.publish_time_ns
             estimate = self._estimator.add(sent, tester_time, received_ns)
+            within = same_clock(sent, tester_time, received_ns)
+            self._same_clock_refuted |= not within
+            if within and not self._same_clock_refuted and self._host_clock and sync.host_clock == self._host_clock:
+                # the tester reads this very clock: offset 0, give or take its resolution
+                estimate = (0, SAME_CLOCK_SLACK_NS)
             if estimate is not None:
                 first = self._estimate is None
                 self._estimate = ClockOffset(sender, estimate[0], estimate[1])

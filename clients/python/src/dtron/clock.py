@@ -140,3 +140,23 @@ class RunClock:
 def wall_clock_ns() -> int:
     """This host's wall clock, nanoseconds since the epoch."""
     return time.time_ns()
+
+
+#: How far a tester's reading may lie outside a ping's round trip while the two clocks are still taken as one.
+SAME_CLOCK_SLACK_NS = 1_000
+
+
+def host_clock_id(boot_id: str = "/proc/sys/kernel/random/boot_id") -> str:
+    """The id of the wall clock :func:`wall_clock_ns` reads: members with equal ids read one and the same clock (one
+    running Linux kernel, named by its boot id), so their offset is 0; "" where it cannot be told."""
+    try:
+        with open(boot_id, encoding="ascii") as f:
+            value = f.read().strip()
+    except (OSError, ValueError):
+        return ""
+    return "linux-boot:" + value if value else ""
+
+
+def same_clock(sent_ns: int, tester_ns: int, received_ns: int) -> bool:
+    """Whether a ping's round trip agrees with the tester reading this member's clock: its reading lies within it."""
+    return sent_ns - SAME_CLOCK_SLACK_NS <= tester_ns <= received_ns + SAME_CLOCK_SLACK_NS
