@@ -1,10 +1,12 @@
 package io.dtron.bus.internal;
 
 import io.dtron.bus.DropReason;
+import java.io.BufferedInputStream;
 import java.io.DataInput;
 import java.io.DataInputStream;
 import java.io.EOFException;
 import java.io.IOException;
+import java.io.InputStream;
 import java.lang.invoke.MethodHandles;
 import java.lang.invoke.VarHandle;
 import java.net.InetAddress;
@@ -158,7 +160,7 @@ public final class GuardedTcp extends TCP {
     public void connectionEstablished(Connection conn) {
         super.connectionEstablished(conn);
         Address local = conn.localAddress();
-        DataInput in = input(conn);
+        DataInput in = quietInput(conn);
         if (local instanceof IpAddress ip && ip.getPort() == getBindPort()) {
             Accepted connection = new Accepted(conn, nonce());
             accepted.put(in, connection);
@@ -192,6 +194,20 @@ public final class GuardedTcp extends TCP {
      */
     private static DataInput input(Connection conn) {
         return (DataInput) CONNECTION_INPUT.get((TcpConnection) conn);
+    }
+
+    /**
+     * Puts a buffer that closes quietly between a new connection and its socket (before its reader starts), and
+     * returns the connection's new stream. JGroups' own buffer (turned off in {@link JGroupsStack}) failed its reader
+     * with "Stream closed", which JGroups logs as a WARN with a stack trace, when the thread that closes the
+     * connection (installing a view without its peer) closed it as the reader was taking the peer's end of stream:
+     * whenever a member left. This one fails it as a closed socket does, which JGroups takes quietly.
+     */
+    private static DataInput quietInput(Connection conn) {
+        DataInputStream socket = (DataInputStream) CONNECTION_INPUT.get((TcpConnection) conn);
+        DataInputStream quiet = new DataInputStream(new QuietBuffer(socket));
+        CONNECTION_INPUT.set((TcpConnection) conn, quiet);
+        return quiet;
     }
 
     private static VarHandle connectionInput() {
@@ -479,6 +495,38 @@ public final class GuardedTcp extends TCP {
             }
             link.code(frame, frame.length - CODE_LENGTH);
             connection.send(frame, 0, frame.length);
+        }
+    }
+
+    /** A connection's read buffer: once closed, it fails its reader as a closed socket does. */
+    private static final class QuietBuffer extends BufferedInputStream {
+        /** JGroups' own buffer's size. */
+        private static final int SIZE = 64 * 1024;
+
+        QuietBuffer(InputStream socket) {
+            super(socket, SIZE);
+        }
+
+        @Override
+        public int read() throws IOException {
+            try {
+                return super.read();
+            } catch (IOException e) {
+                throw closed(e);
+            }
+        }
+
+        @Override
+        public int read(byte[] b, int off, int len) throws IOException {
+            try {
+                return super.read(b, off, len);
+            } catch (IOException e) {
+                throw closed(e);
+            }
+        }
+
+        private IOException closed(IOException e) {
+            return buf == null ? new SocketException("Socket closed") : e;
         }
     }
 

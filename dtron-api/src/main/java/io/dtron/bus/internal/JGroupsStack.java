@@ -115,10 +115,7 @@ final class JGroupsStack {
             // about 3 ms to about 0.35 ms (src/site/markdown/benchmarks.md).
             tcp.setBundlerType(NO_BUNDLER);
             tcp.setMessageProcessingPolicy(DIRECT);
-            // frames are read straight from the socket: JGroups' buffer around it, closed by the thread that closes
-            // a connection (a view without its peer) while the connection's reader takes the peer's end of stream,
-            // made the reader fail with "Stream closed" and JGroups log a WARN with a stack trace whenever a member
-            // left; a closed socket ends its reader quietly
+            // GuardedTcp puts a buffer of its own on each connection, one that closes quietly (see its quietInput)
             tcp.setBufferedInputStreamSize(0);
             stack.add(tcp
                     .setBindAddress(settings.bindAddress())
