@@ -24,10 +24,13 @@ import java.io.IOException;
 import java.nio.charset.StandardCharsets;
 import java.nio.file.Path;
 import java.time.Duration;
+import java.util.ArrayDeque;
+import java.util.Deque;
 import java.util.List;
 import java.util.Map;
 import java.util.concurrent.CopyOnWriteArrayList;
 import java.util.concurrent.TimeUnit;
+import org.junit.jupiter.api.AfterEach;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.Timeout;
 import org.junit.jupiter.api.io.TempDir;
@@ -79,41 +82,26 @@ class NatsSecurityTest {
                 data);
     }
 
-    /**
-     * A test's own {@code nats-server} and bus: a tester with the secret that listens to {@code order} into an
-     * inbox, an adapter with the secret (when asked for), and a raw client of the server, without the secret, with
-     * its JetStream context. Closed in the reverse order.
-     */
-    private static final class SecureBus implements AutoCloseable {
-        final NatsServer server;
-        final String name;
-        final Inbox inbox = new Inbox(ORDER);
-        final Dtron tester;
-        final Dtron adapter;
-        final Connection raw;
-        final JetStream js;
+    /** What a test opened, closed after it, the last first. */
+    private final Deque<AutoCloseable> opened = new ArrayDeque<>();
 
-        SecureBus(Path dir, String what, boolean withAdapter) throws Exception {
-            server = NatsServer.start(dir);
-            name = TestClusters.uniqueName(what);
-            Dtron testerMember = null;
-            Dtron adapterMember = null;
-            Connection client = null;
-            try {
-                testerMember = Dtron.connect(member(server, name, "tester").channels(List.of(ORDER)).build());
-                adapterMember = withAdapter ? Dtron.connect(member(server, name, "adapter").build()) : null;
-                client = Nats.connect(server.url());
-                testerMember.addDtronListener(inbox);
-            } catch (Exception | Error e) {
-                closeAll(client, adapterMember, testerMember, server);
-                throw e;
-            }
-            tester = testerMember;
-            adapter = adapterMember;
-            raw = client;
-            js = raw.jetStream();
+    private <T extends AutoCloseable> T opened(T closeable) {
+        opened.push(closeable);
+        return closeable;
+    }
+
+    @AfterEach
+    void closeOpened() throws Exception {
+        while (!opened.isEmpty()) {
+            opened.pop().close();
         }
+    }
 
+    /**
+     * A test's own {@code nats-server} and bus: a tester with the secret that listens to {@code order} into
+     * {@code inbox}, an adapter with the secret (or null), and a raw client of the server without the secret.
+     */
+    private record SecureBus(String name, Inbox inbox, Dtron tester, Dtron adapter, Connection raw, JetStream js) {
         /** The subject of channel {@code order} on this bus. */
         String channel() {
             return "dtron." + name + ".c.order";
@@ -123,40 +111,26 @@ class NatsSecurityTest {
         String presence() {
             return "dtron." + name + ".p";
         }
+    }
 
-        @Override
-        public void close() throws Exception {
-            closeAll(raw, adapter, tester, server);
-        }
-
-        private static void closeAll(AutoCloseable... all) throws Exception {
-            Exception first = null;
-            for (AutoCloseable closeable : all) {
-                try {
-                    if (closeable != null) {
-                        closeable.close();
-                    }
-                } catch (Exception e) {
-                    if (first == null) {
-                        first = e;
-                    } else {
-                        first.addSuppressed(e);
-                    }
-                }
-            }
-            if (first != null) {
-                throw first;
-            }
-        }
+    private SecureBus secureBus(String what, boolean withAdapter) throws Exception {
+        NatsServer server = opened(NatsServer.start(dir));
+        String name = TestClusters.uniqueName(what);
+        Inbox inbox = new Inbox(ORDER);
+        Dtron tester = opened(Dtron.connect(member(server, name, "tester").channels(List.of(ORDER)).build()));
+        tester.addDtronListener(inbox);
+        Dtron adapter = withAdapter ? opened(Dtron.connect(member(server, name, "adapter").build())) : null;
+        Connection raw = opened(Nats.connect(server.url()));
+        return new SecureBus(name, inbox, tester, adapter, raw, raw.jetStream());
     }
 
     @Test
     void forgedMessagesOfAClientWithoutTheSecretAreDroppedCountedAndChangeNoView() throws Exception {
-        try (LogCapture log = new LogCapture(NatsTransport.class);
-                SecureBus bus = new SecureBus(dir, "forged", true)) {
-            Dtron tester = bus.tester;
-            Dtron adapter = bus.adapter;
-            JetStream js = bus.js;
+        try (LogCapture log = new LogCapture(NatsTransport.class)) {
+            SecureBus bus = secureBus("forged", true);
+            Dtron tester = bus.tester();
+            Dtron adapter = bus.adapter();
+            JetStream js = bus.js();
             String channel = bus.channel();
             String presence = bus.presence();
             assertTrue(tester.awaitMembers(2, Duration.ofSeconds(30)), tester.getMembers().toString());
@@ -181,7 +155,7 @@ class NatsSecurityTest {
                     "leave"), new byte[0]);
 
             adapter.send(ORDER.constructValued(Map.of("n", 7)));
-            IDtronChannelValued first = bus.inbox.take(); // after every forged one in the stream's order
+            IDtronChannelValued first = bus.inbox().take(); // after every forged one in the stream's order
             assertEquals(7, first.getVariables().get("n"), "no forged order came through: " + first);
             assertEquals("adapter", first.getSender());
             DtronStats stats = tester.getStats();
@@ -201,62 +175,60 @@ class NatsSecurityTest {
 
     @Test
     void aValidMessagePublishedAgainIsDroppedAsReplayed() throws Exception {
-        try (SecureBus bus = new SecureBus(dir, "replay", true)) {
-            Dtron tester = bus.tester;
-            Dtron adapter = bus.adapter;
-            Connection raw = bus.raw;
-            Inbox inbox = bus.inbox;
-            io.nats.client.Subscription capture = raw.subscribe(bus.channel());
-            raw.flush(Duration.ofSeconds(10));
-            adapter.send(ORDER.constructValued(Map.of("n", 1)));
-            assertEquals(1, inbox.take().getVariables().get("n"));
-            Message captured = capture.nextMessage(Duration.ofSeconds(20));
-            assertTrue(captured != null && captured.hasHeaders(), "the subscriber saw the message");
-            JetStream js = bus.js;
-            // as it was: the stream itself recognises its Nats-Msg-Id and does not store it again
-            assertTrue(publish(js, captured.getSubject(), captured.getHeaders(), captured.getData())
-                    .isDuplicate());
-            // with another id, stored again: the members drop it
-            Headers again = new Headers(captured.getHeaders()).put("Nats-Msg-Id", "replay-1");
-            assertFalse(publish(js, captured.getSubject(), again, captured.getData()).isDuplicate());
+        SecureBus bus = secureBus("replay", true);
+        Dtron tester = bus.tester();
+        Dtron adapter = bus.adapter();
+        Connection raw = bus.raw();
+        Inbox inbox = bus.inbox();
+        io.nats.client.Subscription capture = raw.subscribe(bus.channel());
+        raw.flush(Duration.ofSeconds(10));
+        adapter.send(ORDER.constructValued(Map.of("n", 1)));
+        assertEquals(1, inbox.take().getVariables().get("n"));
+        Message captured = capture.nextMessage(Duration.ofSeconds(20));
+        assertTrue(captured != null && captured.hasHeaders(), "the subscriber saw the message");
+        JetStream js = bus.js();
+        // as it was: the stream itself recognises its Nats-Msg-Id and does not store it again
+        assertTrue(publish(js, captured.getSubject(), captured.getHeaders(), captured.getData())
+                .isDuplicate());
+        // with another id, stored again: the members drop it
+        Headers again = new Headers(captured.getHeaders()).put("Nats-Msg-Id", "replay-1");
+        assertFalse(publish(js, captured.getSubject(), again, captured.getData()).isDuplicate());
 
-            adapter.send(ORDER.constructValued(Map.of("n", 2)));
-            assertEquals(2, inbox.take().getVariables().get("n"), "the replayed 1 was not delivered again");
-            DtronStats stats = tester.getStats();
-            assertEquals(1, stats.getRejected(Reason.REPLAYED), stats.toString());
-            assertEquals(1, stats.getRejectedTotal(), stats.toString());
-            // the adapter's receive thread reads the stream at its own pace
-            Waits.await("the adapter drops its own message replayed").until(
-                    () -> adapter.getStats().getRejected(Reason.REPLAYED) >= 1);
-            assertEquals(1, adapter.getStats().getRejectedTotal(), adapter.getStats().toString());
-        }
+        adapter.send(ORDER.constructValued(Map.of("n", 2)));
+        assertEquals(2, inbox.take().getVariables().get("n"), "the replayed 1 was not delivered again");
+        DtronStats stats = tester.getStats();
+        assertEquals(1, stats.getRejected(Reason.REPLAYED), stats.toString());
+        assertEquals(1, stats.getRejectedTotal(), stats.toString());
+        // the adapter's receive thread reads the stream at its own pace
+        Waits.await("the adapter drops its own message replayed").until(
+                () -> adapter.getStats().getRejected(Reason.REPLAYED) >= 1);
+        assertEquals(1, adapter.getStats().getRejectedTotal(), adapter.getStats().toString());
     }
 
     @Test
     void aMessageWhoseSenderTimeIsTenMinutesOffIsStale() throws Exception {
-        try (SecureBus bus = new SecureBus(dir, "stale", false)) {
-            Dtron tester = bus.tester;
-            Inbox inbox = bus.inbox;
-            JetStream js = bus.js;
-            MessageCodes codes = MessageCodes.forSecret(SECRET.getBytes(StandardCharsets.UTF_8));
-            String channel = bus.channel();
-            long tenMinutes = TimeUnit.MINUTES.toNanos(10);
-            long now = System.currentTimeMillis() * 1_000_000L;
-            publish(js, channel, signed(codes, channel, "holder", 1, now - tenMinutes, null, order(1, "holder")),
-                    order(1, "holder"));
-            publish(js, channel, signed(codes, channel, "holder", 2, now + tenMinutes, null, order(2, "holder")),
-                    order(2, "holder"));
-            // the same holder of the secret, on time: delivered (the test's codes are the members')
-            now = System.currentTimeMillis() * 1_000_000L;
-            publish(js, channel, signed(codes, channel, "holder", 3, now, null, order(3, "holder")),
-                    order(3, "holder"));
-            IDtronChannelValued first = inbox.take();
-            assertEquals(3, first.getVariables().get("n"), "the stale ones were not delivered");
-            assertEquals("holder", first.getSender());
-            DtronStats stats = tester.getStats();
-            assertEquals(2, stats.getRejected(Reason.STALE), stats.toString());
-            assertEquals(2, stats.getRejectedTotal(), stats.toString());
-        }
+        SecureBus bus = secureBus("stale", false);
+        Dtron tester = bus.tester();
+        Inbox inbox = bus.inbox();
+        JetStream js = bus.js();
+        MessageCodes codes = MessageCodes.forSecret(SECRET.getBytes(StandardCharsets.UTF_8));
+        String channel = bus.channel();
+        long tenMinutes = TimeUnit.MINUTES.toNanos(10);
+        long now = System.currentTimeMillis() * 1_000_000L;
+        publish(js, channel, signed(codes, channel, "holder", 1, now - tenMinutes, null, order(1, "holder")),
+                order(1, "holder"));
+        publish(js, channel, signed(codes, channel, "holder", 2, now + tenMinutes, null, order(2, "holder")),
+                order(2, "holder"));
+        // the same holder of the secret, on time: delivered (the test's codes are the members')
+        now = System.currentTimeMillis() * 1_000_000L;
+        publish(js, channel, signed(codes, channel, "holder", 3, now, null, order(3, "holder")),
+                order(3, "holder"));
+        IDtronChannelValued first = inbox.take();
+        assertEquals(3, first.getVariables().get("n"), "the stale ones were not delivered");
+        assertEquals("holder", first.getSender());
+        DtronStats stats = tester.getStats();
+        assertEquals(2, stats.getRejected(Reason.STALE), stats.toString());
+        assertEquals(2, stats.getRejectedTotal(), stats.toString());
     }
 
     /**
