@@ -365,8 +365,9 @@ public final class GuardedTcp extends TCP {
                         + " again; not logged again for host {}", busName, sender, what, host);
             } else {
                 LOG.warn("Bus '{}': dropped a frame from {} that {}, as every frame without this bus's code is dropped"
-                        + " (its sender lacks the bus's secret, or one of the two was started with --insecure); not"
-                        + " logged again for host {}", busName, sender == null ? "a connection" : sender, what, host);
+                        + " (its sender lacks the bus's secret, one of the two was started with --insecure, or its"
+                        + " DTRON is older than the handshake of connections); not logged again for host {}", busName,
+                        sender == null ? "a connection" : sender, what, host);
             }
         }
     }
