@@ -73,6 +73,9 @@ import org.slf4j.LoggerFactory;
  * socket's address. A process that claims a member's address when it connects therefore cannot take the place of
  * that member's connection. A member whose connection closes without JGroups' graceful close (its process died)
  * is suspected at once (JGroups' {@code enable_suspect_events}), which VERIFY_SUSPECT2 confirms over the bus.
+ * A member leaving leaves no warning nor error in any member's log: connections are read through a buffer that
+ * closes quietly ({@link #quietInput}), and JGroups' failure to write its graceful close on a connection both ends
+ * closed at once is logged at debug level ({@link ClosingQuietLog}).
  */
 public final class GuardedTcp extends TCP {
     /** The largest frame read, code included. */
@@ -150,6 +153,7 @@ public final class GuardedTcp extends TCP {
         super.start();
         // see the class comment: a connection is known by its socket's address, not by one its peer claims
         srv.usePeerConnections(false);
+        srv.log(new ClosingQuietLog(log));
     }
 
     /**

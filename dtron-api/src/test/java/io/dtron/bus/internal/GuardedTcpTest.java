@@ -200,7 +200,7 @@ class GuardedTcpTest {
     }
 
     @Test
-    void membersThatLeaveWhileMessagesGoLeaveNoWarningBehind() throws Exception {
+    void membersThatLeaveWhileMessagesGoLogNoWarningNorError() throws Exception {
         try (LogCapture log = new LogCapture(GuardedTcp.class);
                 JGroupsTransport stays = member("stays", Optional.of("s3cret"))) {
             stays.subscribe("move", message -> { });
@@ -218,6 +218,9 @@ class GuardedTcpTest {
                 Waits.await("the member left").until(() -> stays.view().members().size() == 1);
             }
             assertEquals(List.of(), log.events(Level.WARN).stream().map(e -> e.getFormattedMessage()).toList());
+            // nor in the leaving members' own: JGroups failed to write its graceful close on a socket the other end
+            // of the connection had closed at once, in up to 4 of 30 leaves, and logged an ERROR
+            assertEquals(List.of(), log.events(Level.ERROR).stream().map(e -> e.getFormattedMessage()).toList());
             assertEquals(0, stays.rejectedFrames());
         }
     }
