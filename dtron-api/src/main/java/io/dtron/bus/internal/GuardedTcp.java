@@ -74,8 +74,8 @@ import org.slf4j.LoggerFactory;
  * that member's connection. A member whose connection closes without JGroups' graceful close (its process died)
  * is suspected at once (JGroups' {@code enable_suspect_events}), which VERIFY_SUSPECT2 confirms over the bus.
  * A member leaving leaves no warning nor error in any member's log: connections are read through a buffer that
- * closes quietly ({@link #quietInput}), and JGroups' failure to write its graceful close on a connection both ends
- * closed at once is logged at debug level ({@link ClosingQuietLog}).
+ * closes quietly ({@code quietInput}), and JGroups' failure to write its graceful close on a connection both ends
+ * closed at once is logged at debug level ({@code ClosingQuietLog}).
  */
 public final class GuardedTcp extends TCP {
     /** The largest frame read, code included. */
