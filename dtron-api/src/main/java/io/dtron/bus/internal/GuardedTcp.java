@@ -185,8 +185,10 @@ public final class GuardedTcp extends TCP {
     @Override
     public void connectionClosed(Connection conn) {
         DataInput in = input(conn);
-        accepted.remove(in);
-        openedByInput.remove(in);
+        if (in != null) { // null: the connection closed before it was connected
+            accepted.remove(in);
+            openedByInput.remove(in);
+        }
         opened.remove(conn);
         super.connectionClosed(conn);
     }
