@@ -103,8 +103,10 @@ int dtron_listen(dtron_bus *bus, const char *channel, const char *const *vars, s
 int dtron_declare_output(dtron_bus *bus, const char *channel, const char *const *vars, size_t nvars);
 
 /**
- * Publishes a message on a declared channel; event_time_ns (0: now) is when its event happened on this host's
- * clock. Returns once the message is handed to the connection, in order.
+ * Publishes a message on a declared or listened channel; event_time_ns (0: now) is when its event happened on this
+ * host's clock. Returns once the message is handed to the connection, in order. The first message on a channel that
+ * was only listened to is preceded by the announcement that this member sends it (as dtron_declare_output makes):
+ * a tester ends a run on a message from a member that did not say it sends its channel.
  */
 int dtron_send(dtron_bus *bus, const char *channel, const dtron_var *vars, size_t nvars, int64_t event_time_ns);
 

@@ -1014,6 +1014,12 @@ int dtron_send(dtron_bus *bus, const char *name, const dtron_var *vars, size_t n
         pthread_mutex_unlock(&bus->lock);
         return DTRON_ERR_ARGUMENT; /* declare the channel first, and give exactly its variables */
     }
+    if (!c->sending && !is_reserved(name)) {
+        /* a channel only listened to so far: say that this member sends it before its first message, as
+           dtron_declare_output does (a tester ends a run on a message from a member that did not say so) */
+        c->sending = 1;
+        announce(bus);
+    }
     int result = publish_sync(bus, name, vars, nvars, event_time_ns, NULL, 0, NULL);
     if (result == DTRON_OK) {
         bus->stats.published++;

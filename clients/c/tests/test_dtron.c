@@ -543,6 +543,13 @@ static void on_reset(dtron_bus *bus, const dtron_message *message, void *closure
     resets += strcmp(message->sender, "tester") == 0;
 }
 
+static int field_of(pthread_mutex_t *lock, int *value) {
+    pthread_mutex_lock(lock);
+    int copy = *value;
+    pthread_mutex_unlock(lock);
+    return copy;
+}
+
 static int field(fake_tester *t, int *value) {
     pthread_mutex_lock(&t->lock);
     int copy = *value;
@@ -1034,6 +1041,75 @@ static void test_tls(void) {
     }
 }
 
+/* ---- a member sending on a channel it only listened to announces it first ---- */
+
+typedef struct {
+    pthread_mutex_t lock;
+    int announced;      /* dtron_serve messages of the member that say it sends reset */
+    int resets;         /* its messages on reset */
+    int before;         /* of those, the ones that came before it said it sends reset */
+} announcements;
+
+static void announcement_received(natsConnection *nc, natsSubscription *sub, natsMsg *msg, void *closure) {
+    announcements *a = closure;
+    const char *channel = strrchr(natsMsg_GetSubject(msg), '.') + 1;
+    Dtron__Sync *sync = dtron__sync__unpack(NULL, (size_t)natsMsg_GetDataLength(msg),
+                                            (const uint8_t *)natsMsg_GetData(msg));
+    (void)nc;
+    (void)sub;
+    if (sync != NULL && strcmp(sync->sender, "listener") == 0) {
+        pthread_mutex_lock(&a->lock);
+        if (strcmp(channel, "dtron_serve") == 0) {
+            for (size_t i = 0; i < sync->n_sends; i++) {
+                a->announced += strcmp(sync->sends[i], "reset") == 0;
+            }
+        } else if (strcmp(channel, "reset") == 0) {
+            a->resets++;
+            a->before += a->announced == 0;
+        }
+        pthread_mutex_unlock(&a->lock);
+    }
+    if (sync) {
+        dtron__sync__free_unpacked(sync, NULL);
+    }
+    natsMsg_Destroy(msg);
+}
+
+static void ignore(dtron_bus *bus, const dtron_message *message, void *closure) {
+    (void)bus;
+    (void)message;
+    (void)closure;
+}
+
+static void test_sending_on_a_listened_channel_announces_it_first(void) {
+    static announcements seen = {.lock = PTHREAD_MUTEX_INITIALIZER};
+    natsConnection *nc = NULL;
+    natsSubscription *sub = NULL;
+    dtron_options options = {.servers = url, .bus = "listens", .member = "listener"};
+    dtron_bus *bus = NULL;
+    char err[256];
+    CHECK(natsConnection_ConnectTo(&nc, url) == NATS_OK);
+    CHECK(natsConnection_Subscribe(&sub, nc, "dtron.listens.c.>", announcement_received, &seen) == NATS_OK);
+    natsConnection_Flush(nc);
+    CHECK(dtron_connect(&options, &bus, err, sizeof err) == DTRON_OK);
+    if (bus == NULL) {
+        fprintf(stderr, "connect: %s\n", err);
+        exit(1);
+    }
+    CHECK(dtron_listen(bus, "reset", NULL, 0, ignore, NULL, 0) == DTRON_OK);
+    CHECK(dtron_send(bus, "reset", NULL, 0, 0) == DTRON_OK);
+    CHECK(dtron_send(bus, "reset", NULL, 0, 0) == DTRON_OK);
+    UNTIL(field_of(&seen.lock, &seen.resets) == 2);
+    pthread_mutex_lock(&seen.lock);
+    CHECK(seen.resets == 2);
+    CHECK(seen.before == 0);    /* said before the first message */
+    CHECK(seen.announced == 1); /* and once */
+    pthread_mutex_unlock(&seen.lock);
+    dtron_close(bus);
+    natsSubscription_Destroy(sub);
+    natsConnection_Destroy(nc);
+}
+
 int main(int argc, char **argv) {
     char home[96];
     snprintf(scratch, sizeof scratch, "/tmp/dtron-c-secret-XXXXXX");
@@ -1058,6 +1134,7 @@ int main(int argc, char **argv) {
     test_a_member_started_again_under_its_id_is_heard();
     test_a_stale_message_is_dropped();
     test_an_insecure_member_and_a_secure_one_do_not_hear_each_other();
+    test_sending_on_a_listened_channel_announces_it_first();
     test_python_and_c_members_talk(argc > 1 ? argv[1] : NULL, argc > 2 ? argv[2] : NULL);
     stop_server(&plain);
     test_token();

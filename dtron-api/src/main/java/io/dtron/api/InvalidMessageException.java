@@ -18,7 +18,10 @@ public final class InvalidMessageException extends IllegalArgumentException {
         MISSING_VARIABLES,
         /** The message carries no valid code of the bus's secret (security.md); dropped by the transport. */
         UNAUTHENTICATED,
-        /** The message was published again (its sender's counter was used already); dropped by the transport. */
+        /**
+         * The message was sent again (over NATS its sender's counter was used already, over JGroups its connection
+         * was recorded earlier); dropped by the transport.
+         */
         REPLAYED,
         /** The message's sender time is too far from the bus's time of it; dropped by the transport. */
         STALE

@@ -5,9 +5,15 @@ package io.dtron.bus;
  * (security.md). A dropped message reaches no handler and changes no membership view.
  */
 public enum DropReason {
-    /** No code, or not the code of the message: not made by a holder of the bus's secret. */
+    /**
+     * No code, or not the code of the message (over JGroups: for its place in its connection): not made by a holder
+     * of the bus's secret, or not for here.
+     */
     UNAUTHENTICATED,
-    /** A message counter its sender already used (a message published again), or none. */
+    /**
+     * Sent again: over NATS, a message counter its sender already used, or none; over JGroups, a connection recorded
+     * earlier (its hello was made for another connection).
+     */
     REPLAYED,
     /** Its sender's time is too far from the time the bus stored it. */
     STALE

@@ -24,10 +24,13 @@ import java.io.IOException;
 import java.nio.charset.StandardCharsets;
 import java.nio.file.Path;
 import java.time.Duration;
+import java.util.ArrayDeque;
+import java.util.Deque;
 import java.util.List;
 import java.util.Map;
 import java.util.concurrent.CopyOnWriteArrayList;
 import java.util.concurrent.TimeUnit;
+import org.junit.jupiter.api.AfterEach;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.Timeout;
 import org.junit.jupiter.api.io.TempDir;
@@ -79,125 +82,153 @@ class NatsSecurityTest {
                 data);
     }
 
+    /** What a test opened, closed after it, the last first. */
+    private final Deque<AutoCloseable> opened = new ArrayDeque<>();
+
+    private <T extends AutoCloseable> T opened(T closeable) {
+        opened.push(closeable);
+        return closeable;
+    }
+
+    @AfterEach
+    void closeOpened() throws Exception {
+        while (!opened.isEmpty()) {
+            opened.pop().close();
+        }
+    }
+
+    /**
+     * A test's own {@code nats-server} and bus: a tester with the secret that listens to {@code order} into
+     * {@code inbox}, an adapter with the secret (or null), and a raw client of the server without the secret.
+     */
+    private record SecureBus(String name, Inbox inbox, Dtron tester, Dtron adapter, Connection raw, JetStream js) {
+        /** The subject of channel {@code order} on this bus. */
+        String channel() {
+            return "dtron." + name + ".c.order";
+        }
+
+        /** The subject of presence on this bus. */
+        String presence() {
+            return "dtron." + name + ".p";
+        }
+    }
+
+    private SecureBus secureBus(String what, boolean withAdapter) throws Exception {
+        NatsServer server = opened(NatsServer.start(dir));
+        String name = TestClusters.uniqueName(what);
+        Inbox inbox = new Inbox(ORDER);
+        Dtron tester = opened(Dtron.connect(member(server, name, "tester").channels(List.of(ORDER)).build()));
+        tester.addDtronListener(inbox);
+        Dtron adapter = withAdapter ? opened(Dtron.connect(member(server, name, "adapter").build())) : null;
+        Connection raw = opened(Nats.connect(server.url()));
+        return new SecureBus(name, inbox, tester, adapter, raw, raw.jetStream());
+    }
+
     @Test
     void forgedMessagesOfAClientWithoutTheSecretAreDroppedCountedAndChangeNoView() throws Exception {
-        try (NatsServer server = NatsServer.start(dir);
-                LogCapture log = new LogCapture(NatsTransport.class)) {
-            String bus = TestClusters.uniqueName("forged");
-            Inbox inbox = new Inbox(ORDER);
-            try (Dtron tester = Dtron.connect(member(server, bus, "tester").channels(List.of(ORDER)).build());
-                    Dtron adapter = Dtron.connect(member(server, bus, "adapter").build());
-                    Connection raw = Nats.connect(server.url())) {
-                tester.addDtronListener(inbox);
-                assertTrue(tester.awaitMembers(2, Duration.ofSeconds(30)), tester.getMembers().toString());
-                List<List<String>> changes = new CopyOnWriteArrayList<>();
-                tester.addMembershipListener((members, joined, left) -> changes.add(List.of(String.join(",", joined),
-                        String.join(",", left))));
-                JetStream js = raw.jetStream();
-                String channel = "dtron." + bus + ".c.order";
-                String presence = "dtron." + bus + ".p";
-                long now = System.currentTimeMillis() * 1_000_000L;
-                // an output in the adapter's name, without a code
-                publish(js, channel, new Headers().put(NatsTransport.SENDER, "adapter"), order(666, "adapter"));
-                // with a code made up
-                publish(js, channel, new Headers().put(NatsTransport.SENDER, "adapter")
-                        .put(MessageCodes.SEQ, "1").put(MessageCodes.TIME, Long.toString(now))
-                        .put(MessageCodes.MAC, "0".repeat(64)), order(667, "adapter"));
-                // with the code of a guessed secret
-                MessageCodes guess = MessageCodes.forSecret("guess".getBytes(StandardCharsets.UTF_8));
-                publish(js, channel, signed(guess, channel, "adapter", 2, now, null, order(668, "adapter")),
-                        order(668, "adapter"));
-                // a member joining that is none, and a real member leaving
-                publish(js, presence, new Headers().put(NatsTransport.SENDER, "ghost").put(NatsTransport.PRESENCE,
-                        "join"), new byte[0]);
-                publish(js, presence, new Headers().put(NatsTransport.SENDER, "adapter").put(NatsTransport.PRESENCE,
-                        "leave"), new byte[0]);
+        try (LogCapture log = new LogCapture(NatsTransport.class)) {
+            SecureBus bus = secureBus("forged", true);
+            Dtron tester = bus.tester();
+            Dtron adapter = bus.adapter();
+            JetStream js = bus.js();
+            String channel = bus.channel();
+            String presence = bus.presence();
+            assertTrue(tester.awaitMembers(2, Duration.ofSeconds(30)), tester.getMembers().toString());
+            List<List<String>> changes = new CopyOnWriteArrayList<>();
+            tester.addMembershipListener((members, joined, left) -> changes.add(List.of(String.join(",", joined),
+                    String.join(",", left))));
+            long now = System.currentTimeMillis() * 1_000_000L;
+            // an output in the adapter's name, without a code
+            publish(js, channel, new Headers().put(NatsTransport.SENDER, "adapter"), order(666, "adapter"));
+            // with a code made up
+            publish(js, channel, new Headers().put(NatsTransport.SENDER, "adapter")
+                    .put(MessageCodes.SEQ, "1").put(MessageCodes.TIME, Long.toString(now))
+                    .put(MessageCodes.MAC, "0".repeat(64)), order(667, "adapter"));
+            // with the code of a guessed secret
+            MessageCodes guess = MessageCodes.forSecret("guess".getBytes(StandardCharsets.UTF_8));
+            publish(js, channel, signed(guess, channel, "adapter", 2, now, null, order(668, "adapter")),
+                    order(668, "adapter"));
+            // a member joining that is none, and a real member leaving
+            publish(js, presence, new Headers().put(NatsTransport.SENDER, "ghost").put(NatsTransport.PRESENCE,
+                    "join"), new byte[0]);
+            publish(js, presence, new Headers().put(NatsTransport.SENDER, "adapter").put(NatsTransport.PRESENCE,
+                    "leave"), new byte[0]);
 
-                adapter.send(ORDER.constructValued(Map.of("n", 7)));
-                IDtronChannelValued first = inbox.take(); // after every forged one in the stream's order
-                assertEquals(7, first.getVariables().get("n"), "no forged order came through: " + first);
-                assertEquals("adapter", first.getSender());
-                DtronStats stats = tester.getStats();
-                assertEquals(5, stats.getRejected(Reason.UNAUTHENTICATED), stats.toString());
-                assertEquals(5, stats.getRejectedTotal(), stats.toString());
-                assertTrue(stats.toString().contains("unauthenticated 5"), stats.toString());
-                assertEquals(List.of("tester", "adapter"), tester.getMembers());
-                assertFalse(changes.stream().anyMatch(c -> c.get(0).contains("ghost") || c.get(1).contains("adapter")),
-                        "the forged presence changed the view: " + changes);
-                List<String> lines = log.messages().stream().filter(m -> m.startsWith("tester: dropped")).toList();
-                assertEquals(2, lines.size(), "one line per sender and reason: " + lines);
-                assertTrue(lines.get(0).contains("from adapter, unauthenticated"), lines.get(0));
-                assertTrue(lines.get(1).contains("from ghost, unauthenticated"), lines.get(1));
-                assertFalse(log.anyStackTrace());
-            }
+            adapter.send(ORDER.constructValued(Map.of("n", 7)));
+            IDtronChannelValued first = bus.inbox().take(); // after every forged one in the stream's order
+            assertEquals(7, first.getVariables().get("n"), "no forged order came through: " + first);
+            assertEquals("adapter", first.getSender());
+            DtronStats stats = tester.getStats();
+            assertEquals(5, stats.getRejected(Reason.UNAUTHENTICATED), stats.toString());
+            assertEquals(5, stats.getRejectedTotal(), stats.toString());
+            assertTrue(stats.toString().contains("unauthenticated 5"), stats.toString());
+            assertEquals(List.of("tester", "adapter"), tester.getMembers());
+            assertFalse(changes.stream().anyMatch(c -> c.get(0).contains("ghost") || c.get(1).contains("adapter")),
+                    "the forged presence changed the view: " + changes);
+            List<String> lines = log.messages().stream().filter(m -> m.startsWith("tester: dropped")).toList();
+            assertEquals(2, lines.size(), "one line per sender and reason: " + lines);
+            assertTrue(lines.get(0).contains("from adapter, unauthenticated"), lines.get(0));
+            assertTrue(lines.get(1).contains("from ghost, unauthenticated"), lines.get(1));
+            assertFalse(log.anyStackTrace());
         }
     }
 
     @Test
     void aValidMessagePublishedAgainIsDroppedAsReplayed() throws Exception {
-        try (NatsServer server = NatsServer.start(dir)) {
-            String bus = TestClusters.uniqueName("replay");
-            Inbox inbox = new Inbox(ORDER);
-            try (Dtron tester = Dtron.connect(member(server, bus, "tester").channels(List.of(ORDER)).build());
-                    Dtron adapter = Dtron.connect(member(server, bus, "adapter").build());
-                    Connection raw = Nats.connect(server.url())) {
-                tester.addDtronListener(inbox);
-                io.nats.client.Subscription capture = raw.subscribe("dtron." + bus + ".c.order");
-                raw.flush(Duration.ofSeconds(10));
-                adapter.send(ORDER.constructValued(Map.of("n", 1)));
-                assertEquals(1, inbox.take().getVariables().get("n"));
-                Message captured = capture.nextMessage(Duration.ofSeconds(20));
-                assertTrue(captured != null && captured.hasHeaders(), "the subscriber saw the message");
-                JetStream js = raw.jetStream();
-                // as it was: the stream itself recognises its Nats-Msg-Id and does not store it again
-                assertTrue(publish(js, captured.getSubject(), captured.getHeaders(), captured.getData())
-                        .isDuplicate());
-                // with another id, stored again: the members drop it
-                Headers again = new Headers(captured.getHeaders()).put("Nats-Msg-Id", "replay-1");
-                assertFalse(publish(js, captured.getSubject(), again, captured.getData()).isDuplicate());
+        SecureBus bus = secureBus("replay", true);
+        Dtron tester = bus.tester();
+        Dtron adapter = bus.adapter();
+        Connection raw = bus.raw();
+        Inbox inbox = bus.inbox();
+        io.nats.client.Subscription capture = raw.subscribe(bus.channel());
+        raw.flush(Duration.ofSeconds(10));
+        adapter.send(ORDER.constructValued(Map.of("n", 1)));
+        assertEquals(1, inbox.take().getVariables().get("n"));
+        Message captured = capture.nextMessage(Duration.ofSeconds(20));
+        assertTrue(captured != null && captured.hasHeaders(), "the subscriber saw the message");
+        JetStream js = bus.js();
+        // as it was: the stream itself recognises its Nats-Msg-Id and does not store it again
+        assertTrue(publish(js, captured.getSubject(), captured.getHeaders(), captured.getData())
+                .isDuplicate());
+        // with another id, stored again: the members drop it
+        Headers again = new Headers(captured.getHeaders()).put("Nats-Msg-Id", "replay-1");
+        assertFalse(publish(js, captured.getSubject(), again, captured.getData()).isDuplicate());
 
-                adapter.send(ORDER.constructValued(Map.of("n", 2)));
-                assertEquals(2, inbox.take().getVariables().get("n"), "the replayed 1 was not delivered again");
-                DtronStats stats = tester.getStats();
-                assertEquals(1, stats.getRejected(Reason.REPLAYED), stats.toString());
-                assertEquals(1, stats.getRejectedTotal(), stats.toString());
-                // the adapter's receive thread reads the stream at its own pace
-                Waits.await("the adapter drops its own message replayed").until(
-                        () -> adapter.getStats().getRejected(Reason.REPLAYED) >= 1);
-                assertEquals(1, adapter.getStats().getRejectedTotal(), adapter.getStats().toString());
-            }
-        }
+        adapter.send(ORDER.constructValued(Map.of("n", 2)));
+        assertEquals(2, inbox.take().getVariables().get("n"), "the replayed 1 was not delivered again");
+        DtronStats stats = tester.getStats();
+        assertEquals(1, stats.getRejected(Reason.REPLAYED), stats.toString());
+        assertEquals(1, stats.getRejectedTotal(), stats.toString());
+        // the adapter's receive thread reads the stream at its own pace
+        Waits.await("the adapter drops its own message replayed").until(
+                () -> adapter.getStats().getRejected(Reason.REPLAYED) >= 1);
+        assertEquals(1, adapter.getStats().getRejectedTotal(), adapter.getStats().toString());
     }
 
     @Test
     void aMessageWhoseSenderTimeIsTenMinutesOffIsStale() throws Exception {
-        try (NatsServer server = NatsServer.start(dir)) {
-            String bus = TestClusters.uniqueName("stale");
-            Inbox inbox = new Inbox(ORDER);
-            try (Dtron tester = Dtron.connect(member(server, bus, "tester").channels(List.of(ORDER)).build());
-                    Connection raw = Nats.connect(server.url())) {
-                tester.addDtronListener(inbox);
-                JetStream js = raw.jetStream();
-                MessageCodes codes = MessageCodes.forSecret(SECRET.getBytes(StandardCharsets.UTF_8));
-                String channel = "dtron." + bus + ".c.order";
-                long tenMinutes = TimeUnit.MINUTES.toNanos(10);
-                long now = System.currentTimeMillis() * 1_000_000L;
-                publish(js, channel, signed(codes, channel, "holder", 1, now - tenMinutes, null, order(1, "holder")),
-                        order(1, "holder"));
-                publish(js, channel, signed(codes, channel, "holder", 2, now + tenMinutes, null, order(2, "holder")),
-                        order(2, "holder"));
-                // the same holder of the secret, on time: delivered (the test's codes are the members')
-                now = System.currentTimeMillis() * 1_000_000L;
-                publish(js, channel, signed(codes, channel, "holder", 3, now, null, order(3, "holder")),
-                        order(3, "holder"));
-                IDtronChannelValued first = inbox.take();
-                assertEquals(3, first.getVariables().get("n"), "the stale ones were not delivered");
-                assertEquals("holder", first.getSender());
-                DtronStats stats = tester.getStats();
-                assertEquals(2, stats.getRejected(Reason.STALE), stats.toString());
-                assertEquals(2, stats.getRejectedTotal(), stats.toString());
-            }
-        }
+        SecureBus bus = secureBus("stale", false);
+        Dtron tester = bus.tester();
+        Inbox inbox = bus.inbox();
+        JetStream js = bus.js();
+        MessageCodes codes = MessageCodes.forSecret(SECRET.getBytes(StandardCharsets.UTF_8));
+        String channel = bus.channel();
+        long tenMinutes = TimeUnit.MINUTES.toNanos(10);
+        long now = System.currentTimeMillis() * 1_000_000L;
+        publish(js, channel, signed(codes, channel, "holder", 1, now - tenMinutes, null, order(1, "holder")),
+                order(1, "holder"));
+        publish(js, channel, signed(codes, channel, "holder", 2, now + tenMinutes, null, order(2, "holder")),
+                order(2, "holder"));
+        // the same holder of the secret, on time: delivered (the test's codes are the members')
+        now = System.currentTimeMillis() * 1_000_000L;
+        publish(js, channel, signed(codes, channel, "holder", 3, now, null, order(3, "holder")),
+                order(3, "holder"));
+        IDtronChannelValued first = inbox.take();
+        assertEquals(3, first.getVariables().get("n"), "the stale ones were not delivered");
+        assertEquals("holder", first.getSender());
+        DtronStats stats = tester.getStats();
+        assertEquals(2, stats.getRejected(Reason.STALE), stats.toString());
+        assertEquals(2, stats.getRejectedTotal(), stats.toString());
     }
 
     /**

@@ -115,6 +115,8 @@ final class JGroupsStack {
             // about 3 ms to about 0.35 ms (src/site/markdown/benchmarks.md).
             tcp.setBundlerType(NO_BUNDLER);
             tcp.setMessageProcessingPolicy(DIRECT);
+            // GuardedTcp puts a buffer of its own on each connection, one that closes quietly (see its quietInput)
+            tcp.setBufferedInputStreamSize(0);
             stack.add(tcp
                     .setBindAddress(settings.bindAddress())
                     .setBindPort(busPort)

@@ -1,6 +1,7 @@
 package io.dtron.bus.internal;
 
 import io.dtron.bus.BusMessage;
+import io.dtron.bus.DropReason;
 import io.dtron.bus.MembershipView;
 import io.dtron.bus.Subscription;
 import io.dtron.bus.Transport;
@@ -11,6 +12,7 @@ import java.net.InetSocketAddress;
 import java.net.Socket;
 import java.util.ArrayList;
 import java.util.List;
+import java.util.Map;
 import java.util.Objects;
 import java.util.function.Consumer;
 import org.jgroups.Address;
@@ -128,12 +130,19 @@ public final class JGroupsTransport implements Transport, Receiver {
     }
 
     /**
-     * Returns how many frames, and connections, this member dropped for a missing or wrong code or length (see
-     * {@link GuardedTcp}); 0 in-JVM.
+     * Returns how many frames this member dropped (each ending its connection) for a missing or wrong code or length
+     * (see {@link GuardedTcp}); 0 in-JVM.
      */
     public long rejectedFrames() {
         GuardedTcp tcp = channel.getProtocolStack().findProtocol(GuardedTcp.class);
         return tcp == null ? 0 : tcp.rejectedFrames();
+    }
+
+    /** The frames this member dropped, by reason (see {@link GuardedTcp}); none in-JVM. */
+    @Override
+    public Map<DropReason, Long> drops() {
+        GuardedTcp tcp = channel.getProtocolStack().findProtocol(GuardedTcp.class);
+        return tcp == null ? Map.of() : tcp.drops();
     }
 
     @Override
