@@ -444,7 +444,7 @@ public final class OnlineTester {
                     if (now >= timeoutMicros + window()) {
                         if (stoppedBy != null) {
                             return result(Verdict.PASSED, "the stop condition " + until + " was met at "
-                                    + time(timeoutMicros) + " (" + stoppedBy + ") after " + inputs + " inputs and "
+                                    + time(timeoutMicros) + " by " + stoppedBy + ", after " + inputs + " inputs and "
                                     + outputs + " outputs, all as the model allows");
                         }
                         return result(Verdict.PASSED, "the timeout of " + options.timeout() + " time units was"
