@@ -166,11 +166,7 @@ public final class OnlineTester {
         } catch (PartitionException e) {
             throw new UnsupportedModelException(e.getMessage());
         }
-        List<String> unknownTraps = Recorder.notTraps(network, traps);
-        if (!unknownTraps.isEmpty()) {
-            throw new IllegalArgumentException("no bool variable or array called " + String.join(", ", unknownTraps)
-                    + " to count as a trap");
-        }
+        io.dtron.engine.coverage.Traps.of(network, traps); // refuses names that are no bool variables
         Coverable coverable;
         try {
             coverable = coverableBudget.isZero() ? Coverable.unchecked(network)
@@ -833,7 +829,7 @@ public final class OnlineTester {
                 }
             }
             if (!matching.isEmpty()) {
-                lastStep = coverage.step(taken);
+                lastStep = coverage.step(set.states(), taken);
                 set = atTime.of(matching);
                 lastMicros = at;
                 lastTaken = "output " + event + " at " + time(at) + " was taken as " + edgesTaken(channel, event, moves);
@@ -975,7 +971,7 @@ public final class OnlineTester {
                     : List.<StateSet.Successor>of()) {
                 p.doubtful &= !valuesOf(channel, s.state()).equals(p.event.values());
             }
-            lastStep = coverage.step(taken);
+            lastStep = coverage.step(set.states(), taken);
             set = atTime.of(next);
             lastMicros = p.micros;
             return null;
@@ -1007,13 +1003,14 @@ public final class OnlineTester {
                 }
             }
             Event event = new Event(channel.name(), values);
+            Recorder.Step step = coverage.step(set.states(), taken);
             set = atTime.of(next);
             lastMicros = now;
             lastTaken = null;
             Pending p = new Pending(event, true, ++performed, now);
             p.after = set;
             p.afterMicros = now;
-            p.taken = coverage.step(taken);
+            p.taken = step;
             pending.add(p);
             inputs++;
             countInstant(now);

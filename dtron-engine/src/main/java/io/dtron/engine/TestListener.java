@@ -22,7 +22,7 @@ public interface TestListener {
     /**
      * The tester committed to {@code event} (an input when {@code input}) at {@code micros}: the edges it took for
      * certain (every state kept after it took them), and those it possibly took (some did, or the delays and internal
-     * moves before it may have), as {@code Lamp: off -> low}. For coverage in traces.
+     * moves before it may have), as {@code Lamp: off -> low i_press?}. For coverage in traces.
      */
     default void edgesTaken(Event event, boolean input, long micros, java.util.List<String> certainly,
                             java.util.List<String> possibly) {

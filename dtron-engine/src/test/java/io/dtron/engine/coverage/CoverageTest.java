@@ -178,6 +178,45 @@ class CoverageTest {
         assertTrue(c.unreachable().isEmpty());
     }
 
+    /** relay.xta's implementation: done two units after go. */
+    static final class Relay implements Adapter {
+        private AdapterContext context;
+
+        @Override
+        public void start(AdapterContext context) {
+            this.context = context;
+        }
+
+        @Override
+        public void perform(Event input) {
+            context.clock().schedule(2 * context.timeUnitMicros(), () -> context.report(Event.of("done")));
+        }
+    }
+
+    @Test
+    void anInternalEdgeThatIsTheOnlyWayIsTakenForCertain() throws Exception {
+        OnlineTester t = tester(model("relay.xta"), new Relay(), 1, 100);
+        t.until(StopCondition.parse("inputs(2)"), Goals.NONE);
+        List<String> steps = new ArrayList<>();
+        t.addListener(new TestListener() {
+            @Override
+            public void edgesTaken(Event event, boolean input, long micros, List<String> certainly,
+                                   List<String> possibly) {
+                steps.add(event + " " + certainly + " " + possibly);
+            }
+        });
+        Coverage c = t.run().coverage();
+        // go: A -> B; done: B -> C (the only internal edge out of B, and into C but for D -> C), C -> A; the
+        // detour C -> D -> C may have happened or not
+        assertEquals("done() [Impl: B -> C, Impl: C -> A o_done!, Env: E -> E o_done?] [Impl: C -> D, Impl: D -> C]", steps.get(1));
+        assertEquals(Coverage.Taken.CERTAINLY, edge(c, "Impl", 1).taken());
+        assertEquals(Coverage.Taken.POSSIBLY, edge(c, "Impl", 2).taken());
+        assertEquals(Coverage.Taken.POSSIBLY, edge(c, "Impl", 3).taken());
+        assertEquals(new Coverage.Figure(3, 5), c.edges(false));
+        assertEquals(Coverage.Taken.POSSIBLY, location(c, "Impl", "D").taken());
+        assertEquals(new Coverage.Figure(4, 5), c.locations());
+    }
+
     @Test
     void theListenersHearTheEdgesOfEveryStep() throws Exception {
         OnlineTester t = tester(model("press.xta"), new PressLamp(), 1, 100);
@@ -191,9 +230,9 @@ class CoverageTest {
             }
         });
         t.run();
-        assertEquals(List.of("press() [Lamp: Off -> Dimming, User: Idle -> Idle] []",
-                "on(level=5) [Lamp: Dimming -> On, User: Idle -> Idle] []",
-                "press() [Lamp: On -> Off, User: Idle -> Idle] []"), steps);
+        assertEquals(List.of("press() [Lamp: Off -> Dimming i_press?, User: Idle -> Idle i_press!] []",
+                "on(level=5) [Lamp: Dimming -> On o_on!, User: Idle -> Idle o_on?] []",
+                "press() [Lamp: On -> Off i_press?, User: Idle -> Idle i_press!] []"), steps);
     }
 
     @Test

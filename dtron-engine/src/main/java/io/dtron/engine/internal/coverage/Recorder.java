@@ -65,6 +65,12 @@ public final class Recorder implements RunCoverage {
     private final Consumer<Semantics.Move> internalMoves = this::internalMove;
     /** Per edge, how many of the successors being summed up took it (scratch of {@link #step}). */
     private final int[] counts;
+    /**
+     * Per process and location, the one edge that may leave it (or enter it) without an observable channel, or -1
+     * when there are none or several: a process the closure moved away from (or into) the location took it.
+     */
+    private final int[][] uniqueOut;
+    private final int[][] uniqueIn;
 
     /**
      * What one event took: edge numbers taken for certain and possibly (not for certain).
@@ -115,18 +121,33 @@ public final class Recorder implements RunCoverage {
                 locationsCoverable += coverable.location(p.index(), l.index()) ? 1 : 0;
             }
         }
+        uniqueOut = new int[n][];
+        uniqueIn = new int[n][];
+        for (Process p : network.processes()) {
+            uniqueOut[p.index()] = new int[p.locations().size()];
+            uniqueIn[p.index()] = new int[p.locations().size()];
+            Arrays.fill(uniqueOut[p.index()], -1);
+            Arrays.fill(uniqueIn[p.index()], -1);
+            int[] outs = new int[p.locations().size()];
+            int[] ins = new int[p.locations().size()];
+            for (Edge e : p.edges()) {
+                if (!surelyObservable(network, partition, e)) {
+                    outs[e.source()]++;
+                    ins[e.target()]++;
+                    uniqueOut[p.index()][e.source()] = e.index();
+                    uniqueIn[p.index()][e.target()] = e.index();
+                }
+            }
+            for (int l = 0; l < outs.length; l++) {
+                uniqueOut[p.index()][l] = outs[l] == 1 ? uniqueOut[p.index()][l] : -1;
+                uniqueIn[p.index()][l] = ins[l] == 1 ? uniqueIn[p.index()][l] : -1;
+            }
+        }
         edgeTaken = new byte[edgeBase[n]];
         locationTaken = new byte[locationBase[n]];
         counts = new int[edgeBase[n]];
         List<Integer> slots = new ArrayList<>();
-        for (Variable v : network.variables()) {
-            String simple = v.name().substring(v.name().lastIndexOf('.') + 1);
-            boolean named = extraTraps.contains(v.name()) || extraTraps.contains(simple)
-                    || simple.startsWith("trap") || simple.startsWith("t_");
-            if (named && isBool(v.type())) {
-                elements(v.name(), v.type(), v.offset(), slots);
-            }
-        }
+        traps(network, extraTraps, trapNames, slots);
         trapSlots = slots.stream().mapToInt(Integer::intValue).toArray();
         trapTaken = new byte[trapSlots.length];
         for (TestInterface.ObservableChannel c : testInterface.inputs()) {
@@ -160,14 +181,33 @@ public final class Recorder implements RunCoverage {
         return t instanceof Type.Bool;
     }
 
-    private void elements(String name, Type type, int offset, List<Integer> slots) {
+    /** The trap names of {@code network}, in state-vector order (see {@link io.dtron.engine.coverage.Traps}). */
+    public static List<String> trapNames(Network network, Collection<String> extraTraps) {
+        List<String> names = new ArrayList<>();
+        traps(network, extraTraps, names, new ArrayList<>());
+        return names;
+    }
+
+    private static void traps(Network network, Collection<String> extraTraps, List<String> names,
+                              List<Integer> slots) {
+        for (Variable v : network.variables()) {
+            String simple = v.name().substring(v.name().lastIndexOf('.') + 1);
+            boolean named = extraTraps.contains(v.name()) || extraTraps.contains(simple)
+                    || simple.startsWith("trap") || simple.startsWith("t_");
+            if (named && isBool(v.type())) {
+                elements(v.name(), v.type(), v.offset(), names, slots);
+            }
+        }
+    }
+
+    private static void elements(String name, Type type, int offset, List<String> names, List<Integer> slots) {
         if (type instanceof Type.Array a) {
             int size = a.element().slots();
             for (int i = 0; i < a.length(); i++) {
-                elements(name + "[" + (a.firstIndex() + i) + "]", a.element(), offset + i * size, slots);
+                elements(name + "[" + (a.firstIndex() + i) + "]", a.element(), offset + i * size, names, slots);
             }
         } else {
-            trapNames.add(name);
+            names.add(name);
             slots.add(offset);
         }
     }
@@ -193,8 +233,36 @@ public final class Recorder implements RunCoverage {
         }
     }
 
-    /** What the event judged since {@link #begin} took, given the moves of the successors the tester keeps. */
-    public Step step(List<StateSet.Successor> successors) {
+    /**
+     * Whether {@code e} synchronises on a channel every element of which is an input or an output: the closure of
+     * delays and internal moves never takes it. When its channel cannot be told from the text (an array element
+     * chosen by an expression), no.
+     */
+    private static boolean surelyObservable(Network network, Partition partition, Edge e) {
+        if (e.sync() == null || e.sync().channel().pos() == null) {
+            return false;
+        }
+        var channel = network.channel(e.sync().channel().pos().text().trim());
+        if (channel.isEmpty()) {
+            return false;
+        }
+        int count = Math.max(1, channel.get().type().channels());
+        for (int c = channel.get().index(); c < channel.get().index() + count; c++) {
+            if (partition.observable(c) == Partition.INTERNAL) {
+                return false;
+            }
+        }
+        return true;
+    }
+
+    /**
+     * What the event judged since {@link #begin} took, given the states {@code before} it (at the last event) and
+     * the moves of the successors the tester keeps. Besides the edges of every successor's move, an internal edge
+     * is taken for certain when a process was in one location in every state before and in another in every state
+     * the move starts from, and the edge is the only one that leaves the first (or enters the second) without an
+     * observable channel, or the only one along such a chain.
+     */
+    public Step step(List<SymState> before, List<StateSet.Successor> successors) {
         List<Integer> touched = new ArrayList<>();
         for (StateSet.Successor s : successors) {
             for (Semantics.Step st : s.move().steps()) {
@@ -215,11 +283,60 @@ public final class Recorder implements RunCoverage {
             counts[id] = 0;
         }
         certainly = Arrays.copyOf(certainly, c);
+        BitSet inferred = internalChains(before, successors);
+        if (!inferred.isEmpty()) {
+            inferred.stream().forEach(closure::clear);
+            BitSet all = new BitSet();
+            for (int id : certainly) {
+                all.set(id);
+            }
+            all.or(inferred);
+            certainly = all.stream().toArray();
+        }
         Arrays.sort(certainly);
         for (int id : certainly) {
             closure.clear(id);
         }
         return new Step(certainly, closure.stream().toArray());
+    }
+
+    /** The internal edges every path of the closure took, by the locations before it and where the move starts. */
+    private BitSet internalChains(List<SymState> before, List<StateSet.Successor> successors) {
+        BitSet out = new BitSet();
+        if (before.isEmpty() || successors.isEmpty()) {
+            return out;
+        }
+        for (int p = 0; p < uniqueOut.length; p++) {
+            int l0 = before.get(0).location(p);
+            int l1 = successors.get(0).from().location(p);
+            if (l0 < 0 || l1 < 0 || l0 == l1) {
+                continue;
+            }
+            boolean same = true;
+            for (SymState s : before) {
+                same &= s.location(p) == l0;
+            }
+            for (StateSet.Successor s : successors) {
+                same &= s.from().location(p) == l1;
+            }
+            if (!same) {
+                continue;
+            }
+            List<Edge> edges = network.processes().get(p).edges();
+            // forward from l0: the process left each location of the chain, by its one internal edge
+            BitSet seen = new BitSet();
+            for (int l = l0; l != l1 && !seen.get(l) && uniqueOut[p][l] >= 0; l = edges.get(uniqueOut[p][l]).target()) {
+                seen.set(l);
+                out.set(edgeBase[p] + uniqueOut[p][l]);
+            }
+            // backward from l1: it entered each location of the chain by its one internal edge
+            seen.clear();
+            for (int l = l1; l != l0 && !seen.get(l) && uniqueIn[p][l] >= 0; l = edges.get(uniqueIn[p][l]).source()) {
+                seen.set(l);
+                out.set(edgeBase[p] + uniqueIn[p][l]);
+            }
+        }
+        return out;
     }
 
     /**
@@ -305,14 +422,15 @@ public final class Recorder implements RunCoverage {
         }
     }
 
-    /** The edges of {@code ids} as people read them: {@code Lamp: off -> low}. */
+    /** The edges of {@code ids} as people read them: {@code Lamp: off -> low i_press?}. */
     public List<String> describe(int[] ids) {
         List<String> out = new ArrayList<>(ids.length);
         for (int id : ids) {
             Process p = network.processes().get(edgeProcess[id]);
             Edge e = p.edges().get(id - edgeBase[p.index()]);
+            String label = label(e);
             out.add(p.name() + ": " + p.locations().get(e.source()).name() + " -> "
-                    + p.locations().get(e.target()).name());
+                    + p.locations().get(e.target()).name() + (label.isEmpty() ? "" : " " + label));
         }
         return out;
     }
