@@ -38,6 +38,9 @@ public record Coverage(String model, String fingerprint, List<Long> seeds, List<
         channels = List.copyOf(channels);
     }
 
+    /** The most unreachable elements the summary names; the coverage file lists them all. */
+    public static final int SUMMARY_UNREACHABLE = 5;
+
     /** How far an element was covered: not, by some of the possible states only, or for certain. */
     public enum Taken {
         NO, POSSIBLY, CERTAINLY;
@@ -243,7 +246,8 @@ public record Coverage(String model, String fingerprint, List<Long> seeds, List<
 
     /**
      * The summary line: {@code coverage: locations 7/8 (87.5%), edges 10/12 (83.3%) of reachable (environment 4/4
-     * (100.0%), implementation 6/8 (75.0%), 1 more possibly); unreachable: Lamp.dead (line 9); traps 2/3 (66.7%)}.
+     * (100.0%), implementation 6/8 (75.0%), 1 more possibly); unreachable: Lamp.dead (line 9); traps 2/3 (66.7%)}. It names at most {@link #SUMMARY_UNREACHABLE} unreachable elements, then
+     * says how many more there are.
      */
     public String summary() {
         StringBuilder sb = new StringBuilder("coverage: locations ").append(locations()).append(", edges ")
@@ -256,7 +260,11 @@ public record Coverage(String model, String fingerprint, List<Long> seeds, List<
         sb.append(')');
         List<String> unreachable = unreachable();
         if (!unreachable.isEmpty()) {
-            sb.append("; unreachable: ").append(String.join(", ", unreachable));
+            sb.append("; unreachable: ").append(String.join(", ", unreachable.subList(0,
+                    Math.min(unreachable.size(), SUMMARY_UNREACHABLE))));
+            if (unreachable.size() > SUMMARY_UNREACHABLE) {
+                sb.append(" and ").append(unreachable.size() - SUMMARY_UNREACHABLE).append(" more");
+            }
         }
         if (reachabilityNote != null) {
             sb.append("; ").append(reachabilityNote);
