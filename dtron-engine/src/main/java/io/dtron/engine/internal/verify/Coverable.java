@@ -100,7 +100,7 @@ public final class Coverable {
                 });
                 if (stored[0] > maxStates) {
                     return new Coverable(locations, edges, "the check of what can be covered stopped at its budget of "
-                            + maxStates + " states");
+                            + maxStates + " stored states");
                 }
             }
             return new Coverable(locations, edges, null);
