@@ -229,6 +229,12 @@ final class RunCommand implements Callable<Integer> {
                     + " delays of a --delta-report, as dtron delta writes it.")
     private Path deltaFrom;
 
+    @picocli.CommandLine.Mixin
+    private CoverageOptions coverage = new CoverageOptions();
+
+    /** The goals a stop condition's reached(N) asks about. */
+    private io.dtron.engine.coverage.Goals goals = io.dtron.engine.coverage.Goals.NONE;
+
     @Override
     public Integer call() {
         PrintWriter out = spec.commandLine().getOut();
@@ -247,6 +253,11 @@ final class RunCommand implements Callable<Integer> {
         } catch (OutOfMemoryError e) {
             err.println("dtron run: " + JvmLimits.modelTooLarge("run", model));
             return 1;
+        }
+        try {
+            coverage.check(network, goals);
+        } catch (IllegalArgumentException e) {
+            throw usage(e.getMessage());
         }
         try {
             if (tronAdapter != null) {
@@ -857,12 +868,14 @@ final class RunCommand implements Callable<Integer> {
     private TestResult testWithEngine(Network network, TestInterface testInterface, Adapter adapter,
                                       TestOptions options, PrintWriter out) throws IOException {
         OnlineTester tester = new OnlineTester(network, testInterface, adapter, options);
+        coverage.configure(tester, goals);
         TestResult result;
         try (Progress progress = new Progress(out, options)) {
             tester.addListener(progress);
             result = JsonTrace.run(tester, trace, model, options, adapter);
         }
         printVerdict(result, out);
+        coverage.report(result, out, spec.commandLine().getErr());
         return result;
     }
 
