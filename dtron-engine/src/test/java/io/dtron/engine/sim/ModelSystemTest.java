@@ -1,0 +1,42 @@
+package io.dtron.engine.sim;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+
+import io.dtron.engine.DelayPolicy;
+import io.dtron.engine.OnlineTester;
+import io.dtron.engine.TestOptions;
+import io.dtron.engine.TestResult;
+import io.dtron.engine.Verdict;
+import io.dtron.model.ModelLoader;
+import io.dtron.model.Network;
+import io.dtron.model.TestInterface;
+import java.nio.file.Path;
+import org.junit.jupiter.api.Test;
+
+class ModelSystemTest {
+    static final Path SHARED = Path.of(System.getProperty("dtron.shared", "../../shared"), "models");
+
+    static TestResult run(Network n, TestInterface ti, long seed, long simSeed, long timeout, DelayPolicy policy) {
+        TestOptions o = new TestOptions(seed, 1000, timeout, policy, 0, true);
+        return new OnlineTester(n, ti, new ModelSystem(n, ti, simSeed), o).run();
+    }
+
+    /** Every seed and delay policy PASSES, and the system produced outputs in the runs. */
+    static void passesForSeeds(Network n, TestInterface ti, long timeout) {
+        long outputs = 0;
+        for (long seed = 1; seed <= 30; seed++) {
+            for (DelayPolicy policy : DelayPolicy.values()) {
+                TestResult r = run(n, ti, seed, seed * 7919, timeout, policy);
+                assertEquals(Verdict.PASSED, r.verdict(), "seed " + seed + " " + policy + ": " + r.explanation());
+                outputs += r.outputs();
+            }
+        }
+        org.junit.jupiter.api.Assertions.assertTrue(outputs > 0, "no output in any run");
+    }
+
+    @Test
+    void theLightControllerAsItsOwnSystemPassesForEverySeed() throws Exception {
+        Network n = ModelLoader.load(SHARED.resolve("tron/LightContr.xml"));
+        passesForSeeds(n, TestInterface.fromFile(n, SHARED.resolve("tron/LightContr.trn")), 2000);
+    }
+}
