@@ -5,6 +5,7 @@ import io.dtron.engine.AdapterContext;
 import io.dtron.engine.Event;
 import io.dtron.engine.TestClock;
 import io.dtron.engine.UnsupportedModelException;
+import io.dtron.engine.internal.eval.ModelRuntimeException;
 import io.dtron.engine.internal.sem.Partition;
 import io.dtron.engine.internal.sem.PartitionException;
 import io.dtron.engine.internal.sem.Semantics;
@@ -30,13 +31,16 @@ import java.util.function.IntPredicate;
  * concrete clock values in the tester's ticks. It applies each input the tester performs on a receiving edge that
  * is enabled (one chosen at random when several are; an input none accepts is ignored, as an input-enabled system
  * ignores it), and between inputs chooses, with its own seed, one of its next moves (an output or an internal
- * move) and a time at which the move is enabled and the invariants hold, or to wait for the next input when its
- * invariants let it wait for ever. Urgent and committed locations and urgent channels take no time. Run on the
+ * move) and a time at which the move is enabled and the invariants hold (a quarter of the time the earliest, a
+ * quarter the latest, else any, in whole ticks of the tester), or to wait for the next input when its invariants
+ * let it wait for ever. Urgent and committed locations and urgent channels take no time. Run on the
  * model it was made from it never contradicts the model; run on a {@link Mutants mutant}, it is the faulty system.
  */
 public final class ModelSystem implements Adapter {
     /** The most moves the system makes at one instant before it gives up as Zeno. */
     static final int MAX_MOVES_AT_ONE_INSTANT = 10_000;
+    /** How the reason starts when the system meets an error of its model (an update out of a variable's range). */
+    public static final String MODEL_ERROR = "the model as system under test met a model error: ";
 
     private final Network network;
     private final TestInterface testInterface;
@@ -94,6 +98,14 @@ public final class ModelSystem implements Adapter {
         new Semantics(network, 1); // the engine's checks of the model, before the run
     }
 
+    /**
+     * The system's seed for a run with seed {@code runSeed}, when none is given: a fixed function of it, so that a
+     * run seed replays the system's choices too.
+     */
+    public static long seedFor(long runSeed) {
+        return runSeed * 0x9E3779B97F4A7C15L + 0x632BE59BD9B4E019L;
+    }
+
     @Override
     public void start(AdapterContext context) {
         this.context = context;
@@ -116,11 +128,26 @@ public final class ModelSystem implements Adapter {
         }
         state = SymState.of(locations, vars, zone);
         stateMicros = clock.nowMicros();
-        plan();
+        guarded(this::plan);
     }
 
     @Override
     public void perform(Event input) {
+        guarded(() -> apply(input));
+    }
+
+    /** Runs a step of the system; a model error stops it and ends the run INCONCLUSIVE, naming the error. */
+    private void guarded(Runnable step) {
+        try {
+            step.run();
+        } catch (ModelRuntimeException e) {
+            stopped = true;
+            cancelPending();
+            context.inconclusive(MODEL_ERROR + e.format());
+        }
+    }
+
+    private void apply(Event input) {
         if (stopped) {
             return;
         }
@@ -207,9 +234,13 @@ public final class ModelSystem implements Adapter {
         long latest = chosen.latest() == Long.MAX_VALUE
                 ? chosen.earliest() + horizonUnits * ticksPerUnit : chosen.latest();
         long steps = (latest - chosen.earliest()) / tickStep;
-        long delay = chosen.earliest() + tickStep * (steps <= 0 ? 0 : Math.floorMod(random.nextLong(), steps + 1));
+        // a quarter of the time at the window's start, a quarter at its end when it has one, else anywhere in it:
+        // a bound that is off by a little shows only near the bound
+        int where = random.nextInt(4);
+        long delay = chosen.earliest() + tickStep * (steps <= 0 || where == 0 ? 0
+                : where == 1 && chosen.latest() != Long.MAX_VALUE ? steps : Math.floorMod(random.nextLong(), steps + 1));
         long at = stateMicros + micros(delay);
-        pending = clock.schedule(Math.max(0, at - clock.nowMicros()), () -> take(chosen.move(), at));
+        pending = clock.schedule(Math.max(0, at - clock.nowMicros()), () -> guarded(() -> take(chosen.move(), at)));
     }
 
     /** The delays (in ticks) at which {@code move} may be taken, from its successor's zone; null if none. */
