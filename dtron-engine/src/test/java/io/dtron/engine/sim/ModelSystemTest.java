@@ -11,6 +11,7 @@ import io.dtron.model.ModelLoader;
 import io.dtron.model.Network;
 import io.dtron.model.TestInterface;
 import java.nio.file.Path;
+import java.util.List;
 import org.junit.jupiter.api.Test;
 
 class ModelSystemTest {
@@ -32,6 +33,27 @@ class ModelSystemTest {
             }
         }
         org.junit.jupiter.api.Assertions.assertTrue(outputs > 0, "no output in any run");
+    }
+
+    @Test
+    void smallModelsAsTheirOwnSystemsPassForEverySeed() throws Exception {
+        for (String name : List.of("beeper.xta", "starter.xta")) {
+            Network n = MutantsTest.load(name);
+            passesForSeeds(n, TestInterface.fromNames(n), 200);
+        }
+    }
+
+    @Test
+    void theBundledTickerAsItsOwnSystemPassesForEverySeed() throws Exception {
+        Network n = ModelLoader.load(Path.of("../models/src/main/resources/io/dtron/models/ticker.xml"));
+        passesForSeeds(n, TestInterface.fromNames(n), 2000);
+    }
+
+    @Test
+    void uppaalsBoxesWithAnInterfaceAsItsOwnSystemPassesForEverySeed() throws Exception {
+        // Guard's ok starts a box; the boxes' sensors report blck and red
+        Network n = ModelLoader.load(SHARED.resolve("uppaal-examples/boxes.xml"));
+        passesForSeeds(n, TestInterface.fromText(n, "boxes.trn", "input ok(); output blck(), red();"), 1000);
     }
 
     @Test
