@@ -452,6 +452,10 @@ final class RunCommand implements Callable<Integer> {
 
     /** Rejects options that belong to another mode, and bad values of the bus options. */
     private void checkModeOptions(boolean busMode, boolean tronBackend) {
+        if ("model".equals(sut) && !virtualTime) {
+            throw usage("--sut model runs in virtual time: add --virtual-time (in real time the simulated system's"
+                    + " timers may run late, past the end of the window it chose, and a correct system would fail)");
+        }
         if (sutSeed != null && !"model".equals(sut)) {
             throw usage("--sut-seed is the seed of --sut model, the model's own implementation part; give --sut model"
                     + " or leave it out");

@@ -90,6 +90,10 @@ class MutantsPageTest {
         CommandRun policy = CommandRun.of("mutants", file, "--delay-policy", "sometimes");
         assertEquals(1, policy.exit());
         assertTrue(policy.err().startsWith("dtron mutants: unknown delay policy 'sometimes'"), policy.err());
+        CommandRun realTime = CommandRun.of("run", file, "--sut", "model");
+        assertEquals(1, realTime.exit());
+        assertTrue(realTime.err().startsWith("dtron run: --sut model runs in virtual time: add --virtual-time"),
+                realTime.err());
         CommandRun seed = CommandRun.of("run", file, "--sut-seed", "3", "--virtual-time", "--sut",
                 "io.dtron.cli.TickerForTests");
         assertEquals(1, seed.exit());
