@@ -37,7 +37,7 @@ class ModelSystemTest {
 
     @Test
     void smallModelsAsTheirOwnSystemsPassForEverySeed() throws Exception {
-        for (String name : List.of("beeper.xta", "starter.xta")) {
+        for (String name : List.of("beeper.xta", "starter.xta", "chooser.xta")) {
             Network n = MutantsTest.load(name);
             passesForSeeds(n, TestInterface.fromNames(n), 200);
         }
@@ -54,6 +54,25 @@ class ModelSystemTest {
         // Guard's ok starts a box; the boxes' sensors report blck and red
         Network n = ModelLoader.load(SHARED.resolve("uppaal-examples/boxes.xml"));
         passesForSeeds(n, TestInterface.fromText(n, "boxes.trn", "input ok(); output blck(), red();"), 1000);
+    }
+
+    @Test
+    void theChooserAnswersEveryValueItsSelectAllows() throws Exception {
+        Network n = MutantsTest.load("chooser.xta");
+        TestInterface ti = TestInterface.fromNames(n);
+        java.util.Set<Integer> values = new java.util.TreeSet<>();
+        for (long seed = 1; seed <= 10; seed++) {
+            TestOptions o = new TestOptions(seed, 1000, 100, DelayPolicy.RANDOM, 0, true);
+            OnlineTester tester = new OnlineTester(n, ti, new ModelSystem(n, ti, seed), o);
+            tester.addListener(new io.dtron.engine.TestListener() {
+                @Override
+                public void outputObserved(io.dtron.engine.Event output, long micros) {
+                    values.add(output.value("v"));
+                }
+            });
+            assertEquals(Verdict.PASSED, tester.run().verdict());
+        }
+        assertEquals(java.util.Set.of(1, 2, 3), values, "the simulated system chose each value the select allows");
     }
 
     @Test

@@ -94,6 +94,30 @@ class MutantsTest {
     }
 
     @Test
+    void theLightControllersMutantsByKind() throws Exception {
+        java.nio.file.Path tron = ModelSystemTest.SHARED.resolve("tron");
+        Network n = ModelLoader.load(tron.resolve("LightContr.xml"));
+        TestInterface ti = TestInterface.fromFile(n, tron.resolve("LightContr.trn"));
+        List<Mutant> mutants = Mutants.derive(n, ti, Duration.ofSeconds(30));
+        java.util.Map<Mutant.Kind, Long> kinds = new java.util.EnumMap<>(Mutant.Kind.class);
+        mutants.forEach(m -> kinds.merge(m.kind(), 1L, Long::sum));
+        // 9 clock bounds of invariants and 12 atoms of guards (6 on clocks, 6 comparing data with a constant), each
+        // moved down and up;
+        // five committed locations; the one output edge (levelAdapter's level!) dropped, early and late
+        assertEquals(java.util.Map.of(Mutant.Kind.INVARIANT_BOUND, 18L, Mutant.Kind.GUARD_BOUND, 24L,
+                Mutant.Kind.URGENCY_REMOVED, 5L, Mutant.Kind.OUTPUT_DROPPED, 1L, Mutant.Kind.OUTPUT_EARLY, 1L,
+                Mutant.Kind.OUTPUT_LATE, 1L), kinds);
+        // the checker proves switch.goingOn unreachable: the one equivalent mutant
+        assertEquals(List.of("switch.goingOn committed -> ordinary"), mutants.stream()
+                .filter(m -> m.equivalent() != null).map(Mutant::change).toList());
+        assertTrue(mutants.stream().allMatch(m -> m.invalid() == null));
+        Mutant dropped = mutants.stream().filter(m -> m.kind() == Mutant.Kind.OUTPUT_DROPPED).findFirst().orElseThrow();
+        MutationReport r = Mutants.run(n, ti, List.of(dropped), OPTIONS.withTimeout(2000), 3, 1);
+        assertEquals(MutationReport.Status.KILLED, r.outcomes().get(0).status(), r.outcomes().get(0).explanation());
+        assertEquals(3, r.modelRuns(), "the light controller as its own system passes: " + r.modelProblem());
+    }
+
+    @Test
     void aRunIsTheSameOnOneThreadAndOnSeveral() throws Exception {
         List<String> one = run("beeper.xta", 1).outcomes().stream().map(o -> row(o) + " " + o.seed() + " "
                 + o.explanation()).toList();
