@@ -71,7 +71,8 @@ public final class ModelSystem implements Adapter {
      * The implementation part of {@code network}, split from its environment by {@code testInterface}, choosing
      * with {@code seed}.
      *
-     * @throws UnsupportedModelException when the interface does not split the model, or the engine cannot run it
+     * @throws UnsupportedModelException when the interface does not split the model (and from {@link #start} when
+     *                                   the engine cannot run it)
      */
     public ModelSystem(Network network, TestInterface testInterface, long seed) {
         this.network = Objects.requireNonNull(network, "network");
@@ -95,7 +96,6 @@ public final class ModelSystem implements Adapter {
         }
         testInterface.outputs().forEach(o -> outputs.put(o.channel(), o));
         this.horizonUnits = Math.max(1, largestConstant(network, inside));
-        new Semantics(network, 1); // the engine's checks of the model, before the run
     }
 
     /**
