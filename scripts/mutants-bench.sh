@@ -16,16 +16,16 @@ budget=${2:-2000}
 tron="$here/../shared/models/tron"
 bundled="$here/models/src/main/resources/io/dtron/models"
 cores=$(nproc)
-printf "%-16s %7s %8s %-40s %s\n" model threads mutants score rate
+printf "%-16s %7s %8s %-14s %s\n" model threads mutants score "runs, time, rates"
 run() {
     local name=$1 threads=$2
     shift 2
     out=$(java ${JAVA_OPTS:-} -jar "$jar" mutants "$@" --seeds "$seeds" --seed 1 --budget "$budget" \
         --threads "$threads")
-    count=$(echo "$out" | sed -n 's/^\([0-9]*\) mutants in .*/\1/p')
+    count=$(echo "$out" | sed -n 's/^\([0-9]*\) mutants, .*/\1/p')
     score=$(echo "$out" | sed -n 's/^mutation score: \([^:]*\):.*/\1/p')
-    rate=$(echo "$out" | sed -n 's/^[0-9]* mutants in \(.*\)$/\1/p')
-    printf "%-16s %7s %8s %-40s %s\n" "$name" "$threads" "$count" "$score" "$rate"
+    rate=$(echo "$out" | sed -n 's/^[0-9]* mutants, \(.*\)$/\1/p')
+    printf "%-16s %7s %8s %-14s %s\n" "$name" "$threads" "$count" "$score" "$rate"
 }
 for threads in 1 "$cores"; do
     run LightContr "$threads" "$tron/LightContr.xml" --interface "$tron/LightContr.trn"

@@ -238,9 +238,10 @@ final class MutantsCommand implements Callable<Integer> {
             out.println("the model as its own system: " + r.modelRuns() + " of " + r.seeds().size() + " runs PASSED;"
                     + " " + r.modelProblem());
         }
-        double seconds = r.wallNanos() / 1e9;
-        out.println(String.format(Locale.ROOT, "%d mutants in %.2f s on %d threads: %.1f mutants/s",
-                r.outcomes().size(), seconds, threads, r.outcomes().size() / Math.max(seconds, 1e-9)));
+        double seconds = Math.max(r.wallNanos() / 1e9, 1e-9);
+        out.println(String.format(Locale.ROOT, "%d mutants, %d runs of %d time units, in %.2f s on %d thread%s: %.1f"
+                + " mutants/s, %.0f runs/s", r.outcomes().size(), r.runs(), r.budget(), seconds, threads,
+                threads == 1 ? "" : "s", r.outcomes().size() / seconds, r.runs() / seconds));
     }
 
     private String json(MutationReport r, TestOptions options) {
@@ -257,6 +258,7 @@ final class MutantsCommand implements Callable<Integer> {
         }
         sb.append(",\"score\":").append(String.format(Locale.ROOT, "%.4f", r.score()));
         sb.append(",\"model_runs_passed\":").append(r.modelRuns());
+        sb.append(",\"runs\":").append(r.runs());
         sb.append(",\"wall_s\":").append(String.format(Locale.ROOT, "%.3f", r.wallNanos() / 1e9));
         sb.append(",\"mutants\":[");
         boolean first = true;

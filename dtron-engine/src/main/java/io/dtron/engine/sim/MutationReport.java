@@ -43,6 +43,23 @@ public record MutationReport(List<Outcome> outcomes, List<Long> seeds, long budg
         return count(Status.KILLED) + count(Status.SURVIVED);
     }
 
+    /**
+     * The runs of the tester: those against the mutants (a killed mutant's up to its killing seed, a survivor's one
+     * per seed) and the model's own, one per seed.
+     */
+    public long runs() {
+        long runs = seeds.size();
+        for (Outcome o : outcomes) {
+            runs += switch (o.status()) {
+                case KILLED -> seeds.indexOf(o.seed()) + 1;
+                case SURVIVED -> seeds.size();
+                case INVALID -> o.seed() == 0 ? 0 : seeds.indexOf(o.seed()) + 1;
+                case EQUIVALENT -> 0;
+            };
+        }
+        return runs;
+    }
+
     /** Killed over {@link #total()}, 1 when there is nothing to kill. */
     public double score() {
         return total() == 0 ? 1 : (double) count(Status.KILLED) / total();
