@@ -330,9 +330,15 @@ public final class ModelSystem implements Adapter {
         if (ticks <= 0) {
             return true;
         }
-        if (ticks > Bound.MAX_VALUE / 4) {
+        long largest = 0;
+        for (int x = 1; x < semantics.dimension(); x++) {
+            largest = Math.max(largest, Bound.value(state.zone().upperBound(x)));
+        }
+        if (largest + ticks > Bound.MAX_VALUE / 2) {
+            // zones count ticks in ints: a clock never reset cannot grow for ever
             stopped = true;
-            context.inconclusive("the model as system under test cannot count a delay of " + ticks + " ticks");
+            context.inconclusive("the model as system under test cannot count a clock past " + Bound.MAX_VALUE / 2
+                    / ticksPerUnit + " time units");
             return false;
         }
         Dbm zone = state.zone().copy();

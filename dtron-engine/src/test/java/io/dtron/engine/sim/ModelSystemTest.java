@@ -76,6 +76,16 @@ class ModelSystemTest {
     }
 
     @Test
+    void aClockNeverResetEndsTheRunInconclusiveWhenItOutgrowsTheZones() throws Exception {
+        // the starter's x is never reset after go: at 1000 ticks per unit it can count to 536,870 units
+        Network n = MutantsTest.load("starter.xta");
+        TestResult r = run(n, TestInterface.fromNames(n), 1, 1, 600_000, DelayPolicy.RANDOM);
+        assertEquals(Verdict.INCONCLUSIVE, r.verdict(), r.explanation());
+        org.junit.jupiter.api.Assertions.assertTrue(r.explanation().startsWith("the model as system under test cannot"
+                + " count a clock past 536870 time units"), r.explanation());
+    }
+
+    @Test
     void theLightControllerAsItsOwnSystemPassesForEverySeed() throws Exception {
         Network n = ModelLoader.load(SHARED.resolve("tron/LightContr.xml"));
         passesForSeeds(n, TestInterface.fromFile(n, SHARED.resolve("tron/LightContr.trn")), 2000);
