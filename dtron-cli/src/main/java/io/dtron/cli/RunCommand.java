@@ -10,6 +10,7 @@ import io.dtron.engine.DelayPolicy;
 import io.dtron.engine.ObservableWindow;
 import io.dtron.engine.OnlineTester;
 import io.dtron.engine.TestOptions;
+import io.dtron.engine.sim.ModelSystem;
 import io.dtron.engine.TestResult;
 import io.dtron.engine.UnsupportedModelException;
 import io.dtron.model.ModelException;
@@ -92,8 +93,14 @@ final class RunCommand implements Callable<Integer> {
     @Option(names = "--sut", paramLabel = "CLASS[:VARIANT]",
             description = "An in-process system under test: a class implementing io.dtron.engine.Adapter,"
                     + " optionally with a variant name passed to its constructor (e.g."
-                    + " io.dtron.models.lamp.SmartLamp:late). Without it, the adapters on the bus are tested.")
+                    + " io.dtron.models.lamp.SmartLamp:late), or model: the model's own implementation part,"
+                    + " simulated (see --sut-seed). Without it, the adapters on the bus are tested.")
     private String sut;
+
+    @Option(names = "--sut-seed", paramLabel = "N",
+            description = "With --sut model: the seed of the simulated system's choices (default: derived from the"
+                    + " run's seed).")
+    private Long sutSeed;
 
     @Option(names = "--classpath", paramLabel = "PATH",
             description = "Jars or folders to load the system under test or the adapters from, separated by"
@@ -291,14 +298,7 @@ final class RunCommand implements Callable<Integer> {
                 return 1;
             }
         }
-        long units = RunDefaults.timeout(timeout, testInterface.timeout());
-        long runSeed = RunDefaults.seed(seed);
-        TestOptions options;
-        try {
-            options = withDelayBound(new TestOptions(runSeed, unit, units, policy, 0, virtualTime));
-        } catch (IllegalArgumentException e) {
-            throw usage(e.getMessage());
-        }
+        TestOptions options = testOptions(testInterface);
         if (!tronBackend) {
             OnlineTester.zenoEnvironment(network, testInterface).ifPresent(zeno -> out.println("dtron run: " + zeno));
         }
@@ -315,7 +315,7 @@ final class RunCommand implements Callable<Integer> {
         }
         try {
             return busMode ? runOnBus(network, testInterface, options, judge, out, err)
-                    : runInProcess(testInterface, options, judge, out);
+                    : runInProcess(network, testInterface, options, judge, out);
         } catch (UnsupportedModelException e) {
             err.println("dtron run: " + model + ": " + e.getMessage());
             return 1;
@@ -325,6 +325,21 @@ final class RunCommand implements Callable<Integer> {
         } catch (IOException e) {
             err.println("dtron run: cannot write the trace " + trace + ": " + e.getMessage());
             return 1;
+        }
+    }
+
+    /**
+     * The tester's options of this command line for a model with {@code testInterface}: seed, time unit, timeout and
+     * how inputs are chosen ({@code dtron mutants} runs with them too).
+     */
+    TestOptions testOptions(TestInterface testInterface) {
+        long unit = RunDefaults.timeUnit(timeUnit, testInterface.timeUnitMicros());
+        long units = RunDefaults.timeout(timeout, testInterface.timeout());
+        long runSeed = RunDefaults.seed(seed);
+        try {
+            return withDelayBound(new TestOptions(runSeed, unit, units, parseDelayPolicy(), 0, virtualTime));
+        } catch (IllegalArgumentException e) {
+            throw usage(e.getMessage());
         }
     }
 
@@ -453,6 +468,14 @@ final class RunCommand implements Callable<Integer> {
 
     /** Rejects options that belong to another mode, and bad values of the bus options. */
     private void checkModeOptions(boolean busMode, boolean tronBackend) {
+        if ("model".equals(sut) && !virtualTime) {
+            throw usage("--sut model runs in virtual time: add --virtual-time (in real time the simulated system's"
+                    + " timers may run late, past the end of the window it chose, and a correct system would fail)");
+        }
+        if (sutSeed != null && !"model".equals(sut)) {
+            throw usage("--sut-seed is the seed of --sut model, the model's own implementation part; give --sut model"
+                    + " or leave it out");
+        }
         if (sut != null && tronAdapter != null) {
             throw usage("--sut and --tron-adapter each name the system under test; give one");
         }
@@ -535,15 +558,22 @@ final class RunCommand implements Callable<Integer> {
         }
     }
 
-    private int runInProcess(TestInterface testInterface, TestOptions options, Judge judge, PrintWriter out)
-            throws IOException {
+    private int runInProcess(Network network, TestInterface testInterface, TestOptions options, Judge judge,
+                             PrintWriter out) throws IOException {
         Adapter adapter;
-        try {
-            adapter = SystemUnderTest.create(sut, classpath());
-        } catch (IllegalArgumentException e) {
-            throw usage(e.getMessage());
+        String against = sut;
+        if (sut.equals("model")) {
+            long simSeed = sutSeed != null ? sutSeed : ModelSystem.seedFor(options.seed());
+            adapter = new ModelSystem(network, testInterface, simSeed);
+            against = "its own implementation part (--sut-seed " + simSeed + ")";
+        } else {
+            try {
+                adapter = SystemUnderTest.create(sut, classpath());
+            } catch (IllegalArgumentException e) {
+                throw usage(e.getMessage());
+            }
         }
-        out.println("dtron run: " + model + " against " + sut + ", seed " + options.seed() + ", " + options.timeout()
+        out.println("dtron run: " + model + " against " + against + ", seed " + options.seed() + ", " + options.timeout()
                 + " time units of " + options.timeUnitMicros() + " us" + (virtualTime ? " in virtual time" : "")
                 + judge.by());
         out.flush();

@@ -462,6 +462,73 @@ public final class Semantics {
         sink.accept(new Move(channel, List.of(steps)), new SymState(locations, vars, zone));
     }
 
+    /**
+     * The moves of {@code s} in which the processes {@code inside} accepts synchronise on {@code channel} with a
+     * partner outside them (the other side of an observable channel): when {@code send}, each of their enabled
+     * sending edges alone (a move must involve a committed process when one of them is in a committed location);
+     * else each enabled receiving edge alone, or for a broadcast channel one receiving edge of every process that
+     * has one. The outside partner's updates are not run: a caller that receives sets the attached variables in
+     * {@code s} first.
+     */
+    public void openMoves(SymState s, java.util.function.IntPredicate inside, int channel, boolean send,
+                          MoveSink sink) {
+        Edge.Direction direction = send ? Edge.Direction.SEND : Edge.Direction.RECEIVE;
+        List<Candidate> own = new ArrayList<>();
+        for (Candidate c : candidates(s)) {
+            if (c.channel == channel && inside.test(c.process) && c.edge.sync() != null
+                    && c.edge.sync().direction() == direction) {
+                own.add(c);
+            }
+        }
+        if (send) {
+            boolean committedNow = inCommitted(s);
+            for (Candidate c : own) {
+                if (!committedNow || isCommitted(s, c.process)) {
+                    fire(s, List.of(c), channel, sink);
+                }
+            }
+            return;
+        }
+        if (!broadcastChannel[channel]) {
+            for (Candidate c : own) {
+                fire(s, List.of(c), channel, sink);
+            }
+            return;
+        }
+        List<List<Candidate>> perProcess = new ArrayList<>();
+        for (Process p : processes) {
+            List<Candidate> mine = own.stream().filter(c -> c.process == p.index()).toList();
+            if (!mine.isEmpty()) {
+                perProcess.add(mine);
+            }
+        }
+        if (perProcess.isEmpty()) {
+            return;
+        }
+        int[] choice = new int[perProcess.size()];
+        while (true) {
+            List<Candidate> participants = new ArrayList<>();
+            for (int i = 0; i < choice.length; i++) {
+                participants.add(perProcess.get(i).get(choice[i]));
+            }
+            fire(s, participants, channel, sink);
+            int k = choice.length - 1;
+            while (k >= 0 && choice[k] == perProcess.get(k).size() - 1) {
+                choice[k] = 0;
+                k--;
+            }
+            if (k < 0) {
+                return;
+            }
+            choice[k]++;
+        }
+    }
+
+    /** Whether {@code channel} is urgent. */
+    public boolean isUrgent(int channel) {
+        return urgentChannel[channel];
+    }
+
     /** The edges whose data guards hold in {@code s}, once per select binding. */
     private List<Candidate> candidates(SymState s) {
         List<Candidate> out = new ArrayList<>();

@@ -24,9 +24,27 @@ public final class SymState {
         this.discreteHash = discreteHash;
     }
 
+    /**
+     * A state with these locations (-1 leaves a process out: it takes part in no move and its invariants do not
+     * apply), variables and zone, all owned by the state from now on.
+     */
+    public static SymState of(int[] locations, int[] vars, Dbm zone) {
+        return new SymState(locations, vars, zone);
+    }
+
     /** The location of process {@code p} (-1 for a process without locations). */
     public int location(int p) {
         return locations[p];
+    }
+
+    /** The locations, one per process (not a copy; do not change it). */
+    public int[] locations() {
+        return locations;
+    }
+
+    /** The integer state vector (not a copy; do not change it). */
+    public int[] vars() {
+        return vars;
     }
 
     /** The value of slot {@code slot} of the integer state vector. */
