@@ -50,6 +50,8 @@ public final class OnlineTester {
     private final Adapter adapter;
     private final TestOptions options;
     private final List<TestListener> listeners = new CopyOnWriteArrayList<>();
+    private Steering steering;
+    private io.dtron.engine.internal.tester.Steerer steerer;
 
     /** A tester for {@code network} with the given interface, adapter and options. */
     public OnlineTester(Network network, TestInterface testInterface, Adapter adapter, TestOptions options) {
@@ -98,6 +100,54 @@ public final class OnlineTester {
     }
 
     /**
+     * Steers the run toward test purposes and coverage (see {@link Steering}); before {@link #run}.
+     *
+     * @throws io.dtron.engine.verify.QueryException when a goal is not an {@code E<>} query or does not compile
+     * @throws UnsupportedModelException when the model cannot be run or explored
+     */
+    public OnlineTester steer(Steering steering) {
+        this.steering = Objects.requireNonNull(steering, "steering");
+        this.steerer = null;
+        steerer();
+        return this;
+    }
+
+    /**
+     * What the steering found: before the run, the goals the model checker proves unreachable (the others open);
+     * after it, the goals reached (when) and found unreachable (when, why), and the edges covered. Null without
+     * {@link #steer steering}.
+     */
+    public SteeringReport steeringReport() {
+        if (steering == null) {
+            return null;
+        }
+        io.dtron.engine.internal.tester.Steerer s = steerer();
+        int[] edges = s.edgeCoverage();
+        int[] env = s.environmentCoverage();
+        long[] full = s.environmentCovered();
+        return new SteeringReport(s.goals(), s.complete(), edges[0], edges[1], env[0], env[1], full[0],
+                (int) full[1]);
+    }
+
+    private io.dtron.engine.internal.tester.Steerer steerer() {
+        if (steerer == null && steering != null) {
+            Partition partition;
+            try {
+                partition = Partition.of(network, testInterface);
+            } catch (PartitionException e) {
+                throw new UnsupportedModelException(e.getMessage());
+            }
+            Semantics semantics = new Semantics(network, ticksPerUnit());
+            steerer = io.dtron.engine.internal.tester.Steerer.of(steering, network, semantics, partition);
+        }
+        return steerer;
+    }
+
+    private int ticksPerUnit() {
+        return (int) Math.min(options.timeUnitMicros(), MAX_TICKS_PER_UNIT);
+    }
+
+    /**
      * Runs the test to its verdict.
      *
      * @throws UnsupportedModelException when the model uses something the engine cannot run, or its interface
@@ -105,7 +155,7 @@ public final class OnlineTester {
      */
     public TestResult run() {
         long unit = options.timeUnitMicros();
-        int ticksPerUnit = (int) Math.min(unit, MAX_TICKS_PER_UNIT);
+        int ticksPerUnit = ticksPerUnit();
         Semantics semantics = new Semantics(network, ticksPerUnit);
         Partition partition;
         try {
@@ -362,6 +412,10 @@ public final class OnlineTester {
                     }
                     continue;
                 }
+                TestResult steered = steered(now);
+                if (steered != null) {
+                    return steered;
+                }
                 Plan plan = plan();
                 long elapsed = ticksFloor(now - lastMicros);
                 // room before a window's end: for the tester's own lateness, and for the input's way to the system
@@ -369,7 +423,7 @@ public final class OnlineTester {
                 Plan.Choice choice = plan.choose(elapsed, random, options.delayPolicy(),
                         options.delayBound() * ticksPerUnit, options.shortDelayBound() * ticksPerUnit,
                         input -> lateness + ticksCeil(Math.max(0, adapter.inputDelayMicros(input.name()))),
-                        earliestInput());
+                        earliestInput(), steerer == null ? null : steerer.scorer());
                 long at = lastMicros + micros(choice.ticks());
                 // a deadline within the test is declared missed only when the outputs stamped before it had the
                 // reorder window to arrive
@@ -427,6 +481,17 @@ public final class OnlineTester {
                             + whyTimePassed() : "") + ". " + plan.explainOutputs(this::time, lastMicros));
                 }
             }
+        }
+
+        /** The steerer's verdict on the goals at {@code now} (reached, or no longer reachable), or null. */
+        private TestResult steered(long now) {
+            if (steerer == null) {
+                return null;
+            }
+            StateSet at = steerer.goalsDependOnTime() && now > lastMicros ? afterDelay(now, 0) : set;
+            io.dtron.engine.internal.tester.Steerer.Stop stop = steerer.check(at, now, lastTaken != null
+                    ? "after " + lastTaken + "," : "at " + time(lastMicros) + ",");
+            return stop == null ? null : result(stop.verdict(), stop.explanation());
         }
 
         /**
@@ -659,9 +724,17 @@ public final class OnlineTester {
             }
             List<StateSet.Successor> moves = atTime.successors(channel.channel());
             List<io.dtron.engine.internal.sem.SymState> matching = new ArrayList<>();
+            List<StateSet.Successor> taken = new ArrayList<>();
             for (StateSet.Successor s : moves) {
                 if (valuesMatch(channel, event, s.state())) {
                     matching.add(s.state());
+                    taken.add(s);
+                }
+            }
+            if (!matching.isEmpty() && steerer != null) {
+                io.dtron.engine.internal.tester.Steerer.Stop stop = steerer.taken(taken, at, inputs, true);
+                if (stop != null) {
+                    return result(stop.verdict(), stop.explanation());
                 }
             }
             if (!matching.isEmpty()) {
@@ -825,10 +898,15 @@ public final class OnlineTester {
             StateSet.Successor chosen = moves.get(random.nextInt(moves.size()));
             Map<String, Integer> values = valuesOf(channel, chosen.state());
             List<io.dtron.engine.internal.sem.SymState> next = new ArrayList<>();
+            List<StateSet.Successor> taken = new ArrayList<>();
             for (StateSet.Successor s : moves) {
                 if (valuesOf(channel, s.state()).equals(values)) {
                     next.add(s.state());
+                    taken.add(s);
                 }
+            }
+            if (steerer != null) {
+                steerer.taken(taken, now, inputs + 1, false);
             }
             Event event = new Event(channel.name(), values);
             set = atTime.of(next);
