@@ -147,6 +147,9 @@ final class RunCommand implements Callable<Integer> {
     @Mixin
     private TronAdapterTimeouts tronTimeouts;
 
+    @Mixin
+    private GoalOptions goalOptions;
+
     @Option(names = "--wait-for-adapters", paramLabel = "channels|N",
             description = "Bus mode: start when every channel of the model is served by an adapter on the bus, as"
                     + " adapters say when they join (channels, the default), or when N members besides the tester"
@@ -852,12 +855,19 @@ final class RunCommand implements Callable<Integer> {
     private TestResult testWithEngine(Network network, TestInterface testInterface, Adapter adapter,
                                       TestOptions options, PrintWriter out) throws IOException {
         OnlineTester tester = new OnlineTester(network, testInterface, adapter, options);
+        io.dtron.engine.Steering steering = goalOptions.steering(this::usage);
+        if (steering != null) {
+            goalOptions.apply(tester, steering, out, this::usage);
+        }
         TestResult result;
         try (Progress progress = new Progress(out, options)) {
             tester.addListener(progress);
             result = JsonTrace.run(tester, trace, model, options, adapter);
         }
         printVerdict(result, out);
+        if (steering != null) {
+            GoalOptions.report(tester.steeringReport(), options.timeUnitMicros(), out);
+        }
         return result;
     }
 

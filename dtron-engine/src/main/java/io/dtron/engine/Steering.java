@@ -17,8 +17,11 @@ import java.util.Objects;
  *                  by the coverage, until its other stop conditions)
  */
 public record Steering(Strategy strategy, List<String> goals, int horizon, int fairness, boolean stopWhenDone) {
-    /** The horizon when none is given: 30 moves. */
-    public static final int DEFAULT_HORIZON = 30;
+    /**
+     * The horizon when none is given: 100 moves (a move of the closed network, internal ones included: on LightContr,
+     * the environment's last edge is 38 moves from the start).
+     */
+    public static final int DEFAULT_HORIZON = 100;
 
     public Steering {
         Objects.requireNonNull(strategy, "strategy");

@@ -53,6 +53,12 @@ public final class Plan {
 
         /** The score of waiting for the system in the states {@code reach}. */
         int waiting(List<SymState> reach);
+
+        /**
+         * How long after the last event, in ticks, waiting for the system is worth it in the states {@code reach}:
+         * past the largest clock constant that matters there, time alone changes nothing.
+         */
+        long patience(List<SymState> reach);
     }
 
     /**
@@ -237,9 +243,10 @@ public final class Plan {
     /**
      * {@link #choose(long, Random, DelayPolicy, long, long, ToLongFunction, long) Chooses}, steered by {@code
      * scorer} when it is not null: among the inputs with the best score (at random between equals), at the start of
-     * its window; waiting when that scores strictly better than every input (until the deadline, or, when an input
-     * must come by then, the best input as late as its window allows). When nothing scores within the horizon, the
-     * choice is the unsteered one.
+     * its window; waiting when that scores at least as well as every input (the system moves on by itself): until
+     * the deadline, or, when an input must come by then, the best input as late as its window allows, or, without a
+     * deadline, until time alone changes nothing ({@link Scorer#patience}). When nothing scores within the horizon,
+     * the choice is the unsteered one.
      */
     public Choice choose(long elapsed, Random random, DelayPolicy policy, long boundTicks, long shortBoundTicks,
                          ToLongFunction<TestInterface.ObservableChannel> marginTicks, long earliestTicks,
@@ -276,7 +283,8 @@ public final class Plan {
         // random time already covers waiting, and the tester would wait to the end of the test
         boolean offerWait = options.isEmpty() || hasDeadline() && !mustAct;
         if (scorer != null && !options.isEmpty()) {
-            Choice steered = steer(scorer, options, channels, origins, random, mustAct, couldActAtDeadline);
+            Choice steered = steer(scorer, elapsed, options, channels, origins, random, mustAct,
+                    couldActAtDeadline);
             if (steered != null) {
                 return steered;
             }
@@ -302,7 +310,7 @@ public final class Plan {
         return new Choice(channels.get(pick), Math.min(ticks, hi), false);
     }
 
-    private Choice steer(Scorer scorer, List<long[]> options, List<TestInterface.ObservableChannel> channels,
+    private Choice steer(Scorer scorer, long elapsed, List<long[]> options, List<TestInterface.ObservableChannel> channels,
                          List<Window> origins, Random random, boolean mustAct, boolean couldActAtDeadline) {
         int best = io.dtron.engine.internal.verify.DiscreteGraph.UNREACHABLE;
         List<Integer> bestOptions = new ArrayList<>();
@@ -316,14 +324,18 @@ public final class Plan {
                 bestOptions.add(i);
             }
         }
-        int wait = scorer.waiting(reach);
+        // waiting for a system that need not act is worth it only until time alone changes nothing: then act
+        long patience = hasDeadline() ? Long.MAX_VALUE : scorer.patience(reach);
+        int wait = elapsed >= patience ? io.dtron.engine.internal.verify.DiscreteGraph.UNREACHABLE
+                : scorer.waiting(reach);
         if (wait >= io.dtron.engine.internal.verify.DiscreteGraph.UNREACHABLE
                 && best >= io.dtron.engine.internal.verify.DiscreteGraph.UNREACHABLE) {
             return null;
         }
-        if (wait < best) {
+        if (wait <= best) {
             if (!mustAct) {
-                return new Choice(null, hasDeadline() ? deadline + 1 : horizon, couldActAtDeadline);
+                return new Choice(null, hasDeadline() ? deadline + 1 : Math.min(horizon, patience),
+                        couldActAtDeadline);
             }
             // an input must come by the deadline: the best one, as late as it can, to give the system its time
             int pick = bestOptions.isEmpty() ? random.nextInt(options.size())

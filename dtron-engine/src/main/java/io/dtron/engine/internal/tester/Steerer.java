@@ -52,6 +52,8 @@ public final class Steerer {
     private int environmentCoveredInputs = -1;
     /** The system's choices: per node, how often each of its output arcs was taken. */
     private final Map<Integer, int[]> choices = new HashMap<>();
+    /** The clock constants that matter per location, for how long waiting is worth it; null when unknown. */
+    private final io.dtron.engine.internal.sem.ClockLimits limits;
 
     /** Why the steerer ends a run. */
     public record Stop(Verdict verdict, String explanation) {
@@ -66,6 +68,7 @@ public final class Steerer {
         this.graph = graph;
         this.goals = goals;
         this.properties = properties;
+        this.limits = io.dtron.engine.internal.sem.ClockLimits.of(network, semantics.dimension(), List.of());
         this.status = new GoalStatus[goals.size()];
         this.goalDistance = new int[goals.size()][];
         for (int g = 0; g < goals.size(); g++) {
@@ -154,7 +157,28 @@ public final class Steerer {
             public int waiting(List<SymState> reach) {
                 return waitScore(reach);
             }
+
+            @Override
+            public long patience(List<SymState> reach) {
+                return patienceTicks(reach);
+            }
         };
+    }
+
+    long patienceTicks(List<SymState> reach) {
+        if (limits == null) {
+            return 100L * semantics.ticksPerUnit();
+        }
+        int[] lo = new int[semantics.dimension()];
+        int[] up = new int[semantics.dimension()];
+        long most = 0;
+        for (SymState s : reach) {
+            limits.fill(s, lo, up);
+            for (int x = 1; x < lo.length; x++) {
+                most = Math.max(most, Math.max(lo[x], up[x]));
+            }
+        }
+        return (most + 1) * semantics.ticksPerUnit();
     }
 
     private int cap(int score) {

@@ -1,0 +1,136 @@
+package io.dtron.cli;
+
+import io.dtron.engine.GoalStatus;
+import io.dtron.engine.OnlineTester;
+import io.dtron.engine.Steering;
+import io.dtron.engine.SteeringReport;
+import io.dtron.engine.Strategy;
+import io.dtron.engine.UnsupportedModelException;
+import io.dtron.engine.verify.Query;
+import io.dtron.engine.verify.QueryException;
+import java.io.IOException;
+import java.io.PrintWriter;
+import java.nio.charset.StandardCharsets;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.util.ArrayList;
+import java.util.List;
+import java.util.Locale;
+import java.util.function.Function;
+import picocli.CommandLine.Option;
+import picocli.CommandLine.ParameterException;
+
+/**
+ * The test purposes and the strategy of {@code dtron run} ({@code --goal}, {@code --goals}, {@code --strategy},
+ * {@code --horizon}, {@code --fairness}), mixed into it: the steering they make, the goals said before the run and
+ * the report after it.
+ */
+final class GoalOptions {
+    @Option(names = "--goal", paramLabel = "'E<> P'",
+            description = "A test purpose, an E<> query in Uppaal's syntax (repeatable). The run ends PASSED when every"
+                    + " goal is reached, INCONCLUSIVE when one can no longer be (said before the run when the model"
+                    + " checker proves it unreachable).")
+    private List<String> goals = List.of();
+
+    @Option(names = "--goals", paramLabel = "FILE.q",
+            description = "Test purposes from a query file, one E<> query a line.")
+    private Path goalFile;
+
+    @Option(names = "--strategy", paramLabel = "random|coverage|goal", defaultValue = "random",
+            description = "How inputs and their times are chosen: at random by the delay policy (the default),"
+                    + " toward the nearest edge not yet covered (coverage), or toward the nearest goal (goal).")
+    private String strategy;
+
+    @Option(names = "--horizon", paramLabel = "N",
+            description = "How many moves ahead --strategy coverage or goal looks (default: "
+                    + Steering.DEFAULT_HORIZON + ").")
+    private Integer horizon;
+
+    @Option(names = "--fairness", paramLabel = "K",
+            description = "End the run INCONCLUSIVE when a choice of the system has alternatives taken a number of"
+                    + " times that differ by more than K while a goal needs the starved one.")
+    private Integer fairness;
+
+    /** The steering these options ask for, or null when they ask for none. */
+    Steering steering(Function<String, ParameterException> usage) {
+        Strategy s = switch (strategy.toLowerCase(Locale.ROOT)) {
+            case "random" -> Strategy.RANDOM;
+            case "coverage" -> Strategy.COVERAGE;
+            case "goal" -> Strategy.GOAL;
+            default -> throw usage.apply("unknown strategy '" + strategy + "' (use random, coverage or goal)");
+        };
+        List<String> all = new ArrayList<>(goals);
+        if (goalFile != null) {
+            String text;
+            try {
+                text = Files.readString(goalFile, StandardCharsets.UTF_8);
+            } catch (IOException e) {
+                throw usage.apply("--goals " + goalFile + ": cannot read it (" + e.getMessage() + ")");
+            }
+            for (Query q : Query.parseFile(text)) {
+                if (q.kind() == Query.Kind.INVALID) {
+                    throw usage.apply("--goals " + goalFile + ": " + q.reason());
+                }
+                all.add(q.text());
+            }
+        }
+        if (s == Strategy.GOAL && all.isEmpty()) {
+            throw usage.apply("--strategy goal needs a goal: give --goal 'E<> P' or --goals FILE.q");
+        }
+        if (s == Strategy.RANDOM && all.isEmpty() && horizon == null && fairness == null) {
+            return null;
+        }
+        if (horizon != null && horizon < 1) {
+            throw usage.apply("--horizon must be at least 1 move: " + horizon);
+        }
+        if (fairness != null && fairness < 0) {
+            throw usage.apply("--fairness must be 0 or more: " + fairness);
+        }
+        return new Steering(s, all, horizon == null ? Steering.DEFAULT_HORIZON : horizon,
+                fairness == null ? -1 : fairness, true);
+    }
+
+    /** Steers {@code tester} and says, before the run, the goals the model checker proves unreachable. */
+    void apply(OnlineTester tester, Steering steering, PrintWriter out, Function<String, ParameterException> usage) {
+        try {
+            tester.steer(steering);
+        } catch (QueryException e) {
+            throw usage.apply("--goal: " + e.getMessage());
+        } catch (UnsupportedModelException e) {
+            throw usage.apply(e.getMessage());
+        }
+        SteeringReport report = tester.steeringReport();
+        for (GoalStatus g : report.goals()) {
+            if (g.state() == GoalStatus.State.UNREACHABLE) {
+                out.println("dtron run: goal '" + g.text() + "' is unreachable: " + g.reason());
+            }
+        }
+        if (!report.explored()) {
+            out.println("dtron run: the model has more states than the planner explores before the run: a goal"
+                    + " it does not meet is not proved unreachable, and the run does not end on it");
+        }
+        out.flush();
+    }
+
+    /** The goals and the coverage after the run, one line each. */
+    static void report(SteeringReport report, long unitMicros, PrintWriter out) {
+        for (GoalStatus g : report.goals()) {
+            out.println("goal '" + g.text() + "': " + switch (g.state()) {
+                case REACHED -> "reached at t=" + units(g.micros(), unitMicros);
+                case UNREACHABLE -> "unreachable" + (g.micros() >= 0 ? " from t=" + units(g.micros(), unitMicros)
+                        : "") + ": " + g.reason();
+                case OPEN -> "not reached";
+            });
+        }
+        out.println("edges covered on inputs and outputs: " + report.edgesCovered() + " of " + report.edges()
+                + " (environment: " + report.environmentEdgesCovered() + " of " + report.environmentEdges()
+                + (report.environmentCoveredMicros() >= 0 ? ", all by t=" + units(report.environmentCoveredMicros(),
+                unitMicros) + " after " + report.environmentCoveredInputs() + " inputs" : "") + ")");
+        out.flush();
+    }
+
+    private static String units(long micros, long unitMicros) {
+        return Math.floorDiv(micros, unitMicros) + "." + String.format(Locale.ROOT, "%03d",
+                Math.floorMod(micros, unitMicros) * 1000 / unitMicros);
+    }
+}
