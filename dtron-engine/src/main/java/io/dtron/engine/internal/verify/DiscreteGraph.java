@@ -22,11 +22,13 @@ import java.util.Set;
 /**
  * The zone graph of a closed network projected on its discrete states (locations and variables): one node per
  * discrete state reached, one arc per move between them (its channel and the edges that take part), with the
- * goals ({@code E<>} queries) that hold somewhere in a node's zones. Built once, before a run, by the checker's
- * exploration (zone inclusion, Extra+_LU); the planner measures distances on it. A path of the zone graph is a
- * path here, so a node from which no goal node can be reached cannot reach the goal in the model either (when the
- * exploration was {@link #complete}); a path here need not be one of the zone graph (its zones may not connect),
- * so distances are a guide, not a promise.
+ * goals ({@code E<>} queries) that hold somewhere in a node's zone. Built once, before a run, on the checker's zone
+ * graph (Extra+_LU), keeping one zone per discrete state, the convex hull of the zones met there: an
+ * over-approximation of the reachable states that ends after a few passes per discrete state, where the exact
+ * search of a model of many independent clocks keeps thousands of zones each. A path of the zone graph is a path
+ * here, so a node from which no goal node can be reached cannot reach the goal in the model either (when the
+ * exploration was {@link #complete}); a path here need not be one of the zone graph, so distances are a guide,
+ * not a promise.
  */
 public final class DiscreteGraph {
     /** Distance of a node from which a target cannot be reached. */
@@ -80,12 +82,12 @@ public final class DiscreteGraph {
         for (int g = 0; g < goals; g++) {
             goalNodes[g] = new BitSet();
         }
-        Map<Key, List<Dbm>> passed = new HashMap<>();
+        Map<Key, Dbm> passed = new HashMap<>();
         List<Set<Arc>> out = new ArrayList<>();
         ArrayDeque<SymState> waiting = new ArrayDeque<>();
         SymState init = graph.initial();
         waiting.add(init);
-        passed.computeIfAbsent(new Key(init), k -> new ArrayList<>()).add(init.zone());
+        passed.put(new Key(init), init.zone().copy());
         long visited = 0;
         boolean done = true;
         Property.StateInfo info = graph::deadlocked;
@@ -108,15 +110,14 @@ public final class DiscreteGraph {
             graph.successors(s, (move, next) -> {
                 int to = node(next, out);
                 out.get(from).add(new Arc(move.channel(), edgesOf(move), to));
-                List<Dbm> zones = passed.computeIfAbsent(new Key(next), k -> new ArrayList<>(2));
-                for (Dbm z : zones) {
-                    if (next.zone().isSubsetOf(z)) {
-                        return;
-                    }
+                Key key = new Key(next);
+                Dbm hull = passed.get(key);
+                if (hull != null && next.zone().isSubsetOf(hull)) {
+                    return;
                 }
-                zones.removeIf(z -> z.isSubsetOf(next.zone()));
-                zones.add(next.zone());
-                waiting.add(next);
+                Dbm grown = hull == null ? next.zone().copy() : hull(hull, next.zone());
+                passed.put(key, grown);
+                waiting.add(next.withZone(grown.copy()));
             });
         }
         for (Set<Arc> a : out) {
@@ -124,6 +125,21 @@ public final class DiscreteGraph {
         }
         this.complete = done;
         this.zoneStates = visited;
+    }
+
+    /** The smallest zone holding {@code a} and {@code b} (both canonical): the weaker of their bounds. */
+    private static Dbm hull(Dbm a, Dbm b) {
+        int n = a.dimension();
+        Dbm h = Dbm.unconstrained(n);
+        for (int i = 0; i < n; i++) {
+            for (int j = 0; j < n; j++) {
+                int bound = Math.max(a.upperBound(i, j), b.upperBound(i, j));
+                if (i != j && bound != io.dtron.engine.zone.Bound.INFINITY) {
+                    h.constrain(i, j, bound);
+                }
+            }
+        }
+        return h;
     }
 
     /**
