@@ -51,8 +51,41 @@ final class GoalOptions {
                     + " times that differ by more than K while a goal needs the starved one.")
     private Integer fairness;
 
-    /** The steering these options ask for, or null when they ask for none. */
-    Steering steering(Function<String, ParameterException> usage) {
+    private Steering steering;
+    private OnlineTester steered;
+
+    /**
+     * Reads the options: the steering they ask for, or null when they ask for none. With a stop condition ({@code
+     * --until}) the run does not end when the goals are done: the condition says when (its {@code reached(N)} asks
+     * these goals).
+     */
+    Steering prepare(boolean until, Function<String, ParameterException> usage) {
+        steering = steering(until, usage);
+        return steering;
+    }
+
+    /** The goals for the stop condition's {@code reached(N)}: numbered from 1, reached as the steered run says. */
+    io.dtron.engine.coverage.Goals goals() {
+        int count = steering == null ? 0 : steering.goals().size();
+        return new io.dtron.engine.coverage.Goals() {
+            @Override
+            public int count() {
+                return count;
+            }
+
+            @Override
+            public boolean reached(int goal) {
+                return steered != null && steered.goalReached(goal - 1);
+            }
+
+            @Override
+            public String describe(int goal) {
+                return "goal " + goal + " '" + steering.goals().get(goal - 1) + "'";
+            }
+        };
+    }
+
+    private Steering steering(boolean until, Function<String, ParameterException> usage) {
         Strategy s = switch (strategy.toLowerCase(Locale.ROOT)) {
             case "random" -> Strategy.RANDOM;
             case "coverage" -> Strategy.COVERAGE;
@@ -87,11 +120,18 @@ final class GoalOptions {
             throw usage.apply("--fairness must be 0 or more: " + fairness);
         }
         return new Steering(s, all, horizon == null ? Steering.DEFAULT_HORIZON : horizon,
-                fairness == null ? -1 : fairness, true);
+                fairness == null ? -1 : fairness, !until);
     }
 
-    /** Steers {@code tester} and says, before the run, the goals the model checker proves unreachable. */
-    void apply(OnlineTester tester, Steering steering, PrintWriter out, Function<String, ParameterException> usage) {
+    /**
+     * Steers {@code tester} as {@link #prepare prepared} (nothing when no steering was asked for) and says, before the
+     * run, the goals the model checker proves unreachable.
+     */
+    void apply(OnlineTester tester, PrintWriter out, Function<String, ParameterException> usage) {
+        if (steering == null) {
+            return;
+        }
+        steered = tester;
         try {
             tester.steer(steering);
         } catch (QueryException e) {
@@ -112,8 +152,12 @@ final class GoalOptions {
         out.flush();
     }
 
-    /** The goals and the coverage after the run, one line each. */
-    static void report(SteeringReport report, long unitMicros, PrintWriter out) {
+    /** The goals and the coverage after the run of {@code tester}, one line each; nothing without steering. */
+    void report(OnlineTester tester, long unitMicros, PrintWriter out) {
+        SteeringReport report = tester.steeringReport();
+        if (steering == null || report == null) {
+            return;
+        }
         for (GoalStatus g : report.goals()) {
             out.println("goal '" + g.text() + "': " + switch (g.state()) {
                 case REACHED -> "reached at t=" + units(g.micros(), unitMicros);

@@ -19,7 +19,8 @@ import java.util.function.Consumer;
 
 /**
  * Writes a run as JSON lines: a {@code start} line with the seed and settings, one line per input and output
- * with its time, and a {@code verdict} line. In virtual time the same seed gives the same file, byte for byte. On
+ * with its time, an {@code edges} line for each of them once the tester has committed to it (the edges it took for
+ * certain and possibly), and a {@code verdict} line. In virtual time the same seed gives the same file, byte for byte. On
  * the bus, a {@code bus} line for every message on the bus while the run lasts, in the bus's order, with its sender's
  * stamps and its receive time: the global trace, the same order at every member.
  */
@@ -92,6 +93,21 @@ final class JsonTrace implements TestListener {
     @Override
     public void outputObserved(Event output, long micros) {
         event("output", output, micros);
+    }
+
+    @Override
+    public void edgesTaken(Event event, boolean input, long micros, java.util.List<String> certainly,
+                           java.util.List<String> possibly) {
+        line("{\"kind\":\"edges\",\"t_us\":" + micros + ",\"channel\":" + quote(event.channel()) + ",\"input\":"
+                + input + ",\"certainly\":" + strings(certainly) + ",\"possibly\":" + strings(possibly) + "}");
+    }
+
+    private static String strings(java.util.List<String> list) {
+        StringBuilder sb = new StringBuilder("[");
+        for (String s : list) {
+            sb.append(sb.length() == 1 ? "" : ",").append(quote(s));
+        }
+        return sb.append(']').toString();
     }
 
     @Override

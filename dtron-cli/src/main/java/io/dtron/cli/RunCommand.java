@@ -227,6 +227,12 @@ final class RunCommand implements Callable<Integer> {
                     + " delays of a --delta-report, as dtron delta writes it.")
     private Path deltaFrom;
 
+    @picocli.CommandLine.Mixin
+    private CoverageOptions coverage = new CoverageOptions();
+
+    /** The goals a stop condition's reached(N) asks about. */
+    private io.dtron.engine.coverage.Goals goals = io.dtron.engine.coverage.Goals.NONE;
+
     @Override
     public Integer call() {
         PrintWriter out = spec.commandLine().getOut();
@@ -245,6 +251,13 @@ final class RunCommand implements Callable<Integer> {
         } catch (OutOfMemoryError e) {
             err.println("dtron run: " + JvmLimits.modelTooLarge("run", model));
             return 1;
+        }
+        goalOptions.prepare(coverage.until != null, this::usage);
+        goals = goalOptions.goals();
+        try {
+            coverage.check(network, goals);
+        } catch (IllegalArgumentException e) {
+            throw usage(e.getMessage());
         }
         try {
             if (tronAdapter != null) {
@@ -855,19 +868,16 @@ final class RunCommand implements Callable<Integer> {
     private TestResult testWithEngine(Network network, TestInterface testInterface, Adapter adapter,
                                       TestOptions options, PrintWriter out) throws IOException {
         OnlineTester tester = new OnlineTester(network, testInterface, adapter, options);
-        io.dtron.engine.Steering steering = goalOptions.steering(this::usage);
-        if (steering != null) {
-            goalOptions.apply(tester, steering, out, this::usage);
-        }
+        coverage.configure(tester, goals);
+        goalOptions.apply(tester, out, this::usage);
         TestResult result;
         try (Progress progress = new Progress(out, options)) {
             tester.addListener(progress);
             result = JsonTrace.run(tester, trace, model, options, adapter);
         }
         printVerdict(result, out);
-        if (steering != null) {
-            GoalOptions.report(tester.steeringReport(), options.timeUnitMicros(), out);
-        }
+        coverage.report(result, out, spec.commandLine().getErr());
+        goalOptions.report(tester, options.timeUnitMicros(), out);
         return result;
     }
 

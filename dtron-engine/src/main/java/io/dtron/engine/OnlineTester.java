@@ -1,14 +1,19 @@
 package io.dtron.engine;
 
+import io.dtron.engine.coverage.Goals;
+import io.dtron.engine.coverage.RunCoverage;
+import io.dtron.engine.coverage.StopCondition;
 import io.dtron.engine.internal.clock.RealClock;
 import io.dtron.engine.internal.clock.RunClock;
 import io.dtron.engine.internal.clock.VirtualClock;
+import io.dtron.engine.internal.coverage.Recorder;
 import io.dtron.engine.internal.eval.ModelRuntimeException;
 import io.dtron.engine.internal.sem.Partition;
 import io.dtron.engine.internal.sem.PartitionException;
 import io.dtron.engine.internal.sem.Semantics;
 import io.dtron.engine.internal.tester.Plan;
 import io.dtron.engine.internal.tester.StateSet;
+import io.dtron.engine.internal.verify.Coverable;
 import io.dtron.engine.internal.verify.ZenoCycles;
 import io.dtron.model.Network;
 import io.dtron.model.TestInterface;
@@ -44,6 +49,10 @@ public final class OnlineTester {
      * without time passing (Zeno) does not hold time still, and an output deadline is reached and judged.
      */
     public static final int MAX_INPUTS_AT_ONE_INSTANT = 100;
+    /** How long, by default, the model checker looks for what can be covered before a run. */
+    public static final java.time.Duration DEFAULT_COVERABLE_BUDGET = java.time.Duration.ofSeconds(2);
+    /** The most symbolic states the check of what can be covered stores. */
+    private static final long COVERABLE_MAX_STATES = 200_000;
 
     private final Network network;
     private final TestInterface testInterface;
@@ -52,6 +61,11 @@ public final class OnlineTester {
     private final List<TestListener> listeners = new CopyOnWriteArrayList<>();
     private Steering steering;
     private io.dtron.engine.internal.tester.Steerer steerer;
+    private java.time.Duration coverableBudget = DEFAULT_COVERABLE_BUDGET;
+    private java.util.Set<String> traps = java.util.Set.of();
+    private StopCondition until;
+    private Goals goals = Goals.NONE;
+    private volatile Recorder recorder;
 
     /** A tester for {@code network} with the given interface, adapter and options. */
     public OnlineTester(Network network, TestInterface testInterface, Adapter adapter, TestOptions options) {
@@ -93,6 +107,45 @@ public final class OnlineTester {
         return java.util.Optional.empty();
     }
 
+    /**
+     * Names further trap variables: bool variables or arrays (qualified, {@code Lamp.seen}, or not) counted as traps
+     * besides those whose name starts with {@code trap} or {@code t_}.
+     */
+    public OnlineTester traps(java.util.Collection<String> names) {
+        this.traps = java.util.Set.copyOf(names);
+        return this;
+    }
+
+    /**
+     * How long the model checker may look for what can be covered (the reachable locations and edges of the closed
+     * network) before the run starts; {@link java.time.Duration#ZERO} for no check (everything counts as
+     * coverable). When the budget runs out, the coverage says so and counts what it did not decide as coverable.
+     */
+    public OnlineTester coverableBudget(java.time.Duration budget) {
+        this.coverableBudget = Objects.requireNonNull(budget, "budget");
+        return this;
+    }
+
+    /**
+     * Ends the run PASSED, before its timeout, when {@code condition} holds (checked after every event and at each
+     * of its {@code time(T)}), the explanation naming which of its conditions held; {@code goals} answers its
+     * {@code reached(N)}. The run checks the condition against the goals and the model's traps when it starts,
+     * and throws an {@link IllegalArgumentException} naming the column when they do not fit.
+     */
+    public OnlineTester until(StopCondition condition, Goals goals) {
+        this.until = Objects.requireNonNull(condition, "condition");
+        this.goals = Objects.requireNonNull(goals, "goals");
+        return this;
+    }
+
+    /**
+     * The coverage of the run in progress (as far as the tester has committed to its events), or of the last run;
+     * null before a run has started. Read it on the tester's thread while the run lasts.
+     */
+    public RunCoverage coverage() {
+        return recorder;
+    }
+
     /** Adds a listener that follows the run. */
     public OnlineTester addListener(TestListener listener) {
         listeners.add(Objects.requireNonNull(listener, "listener"));
@@ -129,6 +182,15 @@ public final class OnlineTester {
                 (int) full[1]);
     }
 
+    /**
+     * Whether goal number {@code index} (from 0) of the {@link #steer steering} has been reached so far; false without
+     * steering. Answers at once, for a stop condition's {@code reached(N)}.
+     */
+    public boolean goalReached(int index) {
+        io.dtron.engine.internal.tester.Steerer s = steerer;
+        return s != null && index >= 0 && index < s.goalCount() && s.reached(index);
+    }
+
     private io.dtron.engine.internal.tester.Steerer steerer() {
         if (steerer == null && steering != null) {
             Partition partition;
@@ -163,9 +225,23 @@ public final class OnlineTester {
         } catch (PartitionException e) {
             throw new UnsupportedModelException(e.getMessage());
         }
+        io.dtron.engine.coverage.Traps.of(network, traps); // refuses names that are no bool variables
+        Coverable coverable;
+        try {
+            coverable = coverableBudget.isZero() ? Coverable.unchecked(network)
+                    : Coverable.of(network, coverableBudget, COVERABLE_MAX_STATES);
+        } catch (ModelRuntimeException e) {
+            coverable = Coverable.failed(network, "the check of what can be covered stopped at a model error: "
+                    + e.format());
+        }
+        Recorder coverage = new Recorder(network, partition, testInterface, coverable, options.seed(), traps);
+        if (until != null) {
+            until.check(goals.count(), coverage.traps().total());
+        }
+        recorder = coverage;
         RunClock clock = options.virtualTime() ? new VirtualClock() : new RealClock();
         AtomicLong window = new AtomicLong(options.reorderWindowMicros());
-        Run run = new Run(semantics, partition, clock, new Random(options.seed()), ticksPerUnit, window);
+        Run run = new Run(semantics, partition, clock, new Random(options.seed()), ticksPerUnit, window, coverage);
         run.warmUp();
         clock.begin(adapter.timeZero());
         adapter.start(new Context(clock, window));
@@ -177,6 +253,9 @@ public final class OnlineTester {
         } finally {
             adapter.stop();
         }
+        run.recordPending();
+        result = new TestResult(result.verdict(), result.explanation(), result.seed(), result.inputs(),
+                result.outputs(), result.durationMicros(), coverage.snapshot());
         for (TestListener l : listeners) {
             l.finished(result);
         }
@@ -276,6 +355,8 @@ public final class OnlineTester {
         boolean doubtful;
         StateSet after;
         long afterMicros;
+        /** What the event took, once judged allowed; null before, or when a verdict came at or before it. */
+        Recorder.Step taken;
 
         Pending(Event event, boolean input, long ordinal, long micros) {
             this.event = event;
@@ -298,7 +379,13 @@ public final class OnlineTester {
         private final Random random;
         private final long unit;
         private final int ticksPerUnit;
-        private final long timeoutMicros;
+        /** The end of the run: the timeout, or when the stop condition was met. */
+        private long timeoutMicros;
+        private final Recorder coverage;
+        /** What the last event judged allowed took. */
+        private Recorder.Step lastStep;
+        /** Which conditions of the stop condition held, once it did. */
+        private String stoppedBy;
         /** The reorder window in microseconds; widened during the run by the adapter. */
         private final AtomicLong windowMicros;
         /** How far, in ticks, an input is aimed inside the end of its window: a real clock wakes up late. */
@@ -327,7 +414,7 @@ public final class OnlineTester {
         private int inputsAtInstant;
 
         Run(Semantics semantics, Partition partition, RunClock clock, Random random, int ticksPerUnit,
-            AtomicLong windowMicros) {
+            AtomicLong windowMicros, Recorder coverage) {
             this.semantics = semantics;
             this.partition = partition;
             this.clock = clock;
@@ -339,6 +426,8 @@ public final class OnlineTester {
             this.inputMargin = options.virtualTime() ? 0 : ticksCeil(options.inputMarginMicros());
             this.set = StateSet.initial(semantics, partition);
             this.committed = set;
+            this.coverage = coverage;
+            coverage.start(set);
         }
 
         private long window() {
@@ -389,6 +478,12 @@ public final class OnlineTester {
                     continue;
                 }
                 commit(now - window());
+                if (until != null && stoppedBy == null && now < timeoutMicros) {
+                    stoppedBy = until.met(stopContext(now));
+                    if (stoppedBy != null) {
+                        timeoutMicros = Math.max(now, lastMicros);
+                    }
+                }
                 // a deadline before the end is judged even when the wait for messages in transit after it (a reorder
                 // window widened while the tester waited) took the run past its end
                 if (now >= timeoutMicros && !deadlineBeforeTheEnd(plan())) {
@@ -402,6 +497,11 @@ public final class OnlineTester {
                         continue;
                     }
                     if (now >= timeoutMicros + window()) {
+                        if (stoppedBy != null) {
+                            return result(Verdict.PASSED, "the stop condition " + until + " was met at "
+                                    + time(timeoutMicros) + " by " + stoppedBy + ", after " + inputs + " inputs and "
+                                    + outputs + " outputs, all as the model allows");
+                        }
                         return result(Verdict.PASSED, "the timeout of " + options.timeout() + " time units was"
                                 + " reached after " + inputs + " inputs and " + outputs + " outputs, all as the model"
                                 + " allows");
@@ -429,6 +529,15 @@ public final class OnlineTester {
                 // reorder window to arrive
                 boolean deadline = !choice.isInput() && choice.ticks() > plan.deadline() && deadlineBeforeTheEnd(plan);
                 long target = choice.isInput() ? at : deadline ? at + window() : Math.min(timeoutMicros, at);
+                long wake = stopWake(now);
+                if (wake < target) {
+                    // a time(T) of the stop condition comes first: look at it then, and plan again
+                    TestResult verdict = receive(clock.awaitUntil(wake));
+                    if (verdict != null) {
+                        return verdict;
+                    }
+                    continue;
+                }
                 announceWait(now, target, choice, plan);
                 RunClock.TimedEvent event = clock.awaitUntil(target);
                 if (event != null) {
@@ -492,6 +601,63 @@ public final class OnlineTester {
             io.dtron.engine.internal.tester.Steerer.Stop stop = steerer.check(at, now, lastTaken != null
                     ? "after " + lastTaken + "," : "at " + time(lastMicros) + ",");
             return stop == null ? null : result(stop.verdict(), stop.explanation());
+        }
+
+        /** The run so far, as the stop condition reads it. */
+        private StopCondition.Context stopContext(long now) {
+            return new StopCondition.Context() {
+                @Override
+                public RunCoverage coverage() {
+                    return coverage;
+                }
+
+                @Override
+                public Goals goals() {
+                    return goals;
+                }
+
+                @Override
+                public double time() {
+                    return (double) now / unit;
+                }
+
+                @Override
+                public int inputs() {
+                    return inputs;
+                }
+            };
+        }
+
+        /** When the stop condition's next {@code time(T)} after {@code now} comes, in microseconds, or never. */
+        private long stopWake(long now) {
+            if (until == null || stoppedBy != null) {
+                return Long.MAX_VALUE;
+            }
+            long units = until.nextTime((double) now / unit);
+            return units == Long.MAX_VALUE || !TestOptions.fits(units, unit) ? Long.MAX_VALUE : units * unit;
+        }
+
+        /** Records the step of a committed event in the coverage, and tells the listeners. */
+        private void record(Pending p) {
+            if (p.taken == null) {
+                return;
+            }
+            coverage.commit(p.taken, p.event, p.input, p.after);
+            if (!listeners.isEmpty()) {
+                List<String> certainly = coverage.describe(p.taken.certainly());
+                List<String> possibly = coverage.describe(p.taken.possibly());
+                for (TestListener l : listeners) {
+                    l.edgesTaken(p.event, p.input, p.micros, certainly, possibly);
+                }
+            }
+            p.taken = null;
+        }
+
+        /** At the end: records the events judged allowed that the tester had not committed to yet. */
+        void recordPending() {
+            for (Pending p : pending) {
+                record(p);
+            }
         }
 
         /**
@@ -569,6 +735,7 @@ public final class OnlineTester {
                     break; // where it was applied is still to come, and so is the order of what follows it
                 }
                 Pending p = pending.remove(0);
+                record(p);
                 committed = p.after;
                 committedMicros = p.afterMicros;
                 if (p.input) {
@@ -680,6 +847,9 @@ public final class OnlineTester {
             }
             held = null;
             for (int i = from; i < pending.size(); i++) {
+                pending.get(i).taken = null;
+            }
+            for (int i = from; i < pending.size(); i++) {
                 Pending p = pending.get(i);
                 TestResult verdict = p.input ? reapply(p) : judge(p.event, p.micros, p.uncertainty);
                 if (verdict != null) {
@@ -691,6 +861,7 @@ public final class OnlineTester {
                 }
                 p.after = set;
                 p.afterMicros = lastMicros;
+                p.taken = lastStep;
             }
             return null;
         }
@@ -738,6 +909,7 @@ public final class OnlineTester {
                 }
             }
             if (!matching.isEmpty()) {
+                lastStep = coverage.step(set.states(), taken);
                 set = atTime.of(matching);
                 lastMicros = at;
                 lastTaken = "output " + event + " at " + time(at) + " was taken as " + edgesTaken(channel, event, moves);
@@ -820,8 +992,9 @@ public final class OnlineTester {
          * every state the model can be in at some time of that interval.
          */
         private StateSet afterDelay(long at, long uncertainty) {
+            coverage.begin();
             return set.afterWindow(ticksFloor(Math.max(0, at - uncertainty - lastMicros)),
-                    ticksCeil(at + uncertainty - lastMicros));
+                    ticksCeil(at + uncertainty - lastMicros), coverage.internalMoves());
         }
 
         /** The distinct edges of {@code moves} whose values match {@code event}, for explanations. */
@@ -858,9 +1031,11 @@ public final class OnlineTester {
             TestInterface.ObservableChannel channel = testInterface.input(p.event.channel()).orElseThrow();
             StateSet atTime = afterDelay(p.micros, p.uncertainty);
             List<io.dtron.engine.internal.sem.SymState> next = new ArrayList<>();
+            List<StateSet.Successor> taken = new ArrayList<>();
             for (StateSet.Successor s : atTime.successors(channel.channel())) {
                 if (valuesOf(channel, s.state()).equals(p.event.values())) {
                     next.add(s.state());
+                    taken.add(s);
                 }
             }
             if (next.isEmpty()) {
@@ -876,6 +1051,7 @@ public final class OnlineTester {
                     : List.<StateSet.Successor>of()) {
                 p.doubtful &= !valuesOf(channel, s.state()).equals(p.event.values());
             }
+            lastStep = coverage.step(set.states(), taken);
             set = atTime.of(next);
             lastMicros = p.micros;
             return null;
@@ -888,7 +1064,8 @@ public final class OnlineTester {
             }
             long delta = ticksFloor(now - lastMicros);
             TestInterface.ObservableChannel channel = choice.input();
-            StateSet atTime = set.afterWindow(delta, ticksCeil(now - lastMicros));
+            coverage.begin();
+            StateSet atTime = set.afterWindow(delta, ticksCeil(now - lastMicros), coverage.internalMoves());
             List<StateSet.Successor> moves = atTime.successors(channel.channel());
             if (moves.isEmpty()) {
                 return result(Verdict.INCONCLUSIVE, "input " + channel.name() + " could not be applied at "
@@ -909,12 +1086,14 @@ public final class OnlineTester {
                 steerer.taken(taken, now, inputs + 1, false);
             }
             Event event = new Event(channel.name(), values);
+            Recorder.Step step = coverage.step(set.states(), taken);
             set = atTime.of(next);
             lastMicros = now;
             lastTaken = null;
             Pending p = new Pending(event, true, ++performed, now);
             p.after = set;
             p.afterMicros = now;
+            p.taken = step;
             pending.add(p);
             inputs++;
             countInstant(now);

@@ -7,14 +7,15 @@ import java.util.Objects;
  * Test purposes and how the tester steers toward them: given to {@link OnlineTester#steer}.
  *
  * @param strategy  how inputs and delays are chosen
- * @param goals     test purposes, each an {@code E<> p} query in Uppaal's syntax; the run ends when every goal is
- *                  reached (PASSED) or can no longer be reached (INCONCLUSIVE), when {@code stopWhenDone}
+ * @param goals     test purposes, each an {@code E<> p} query in Uppaal's syntax; once every goal is reached or
+ *                  can no longer be, the run ends: INCONCLUSIVE when one can no longer be reached, PASSED when all
+ *                  were reached and {@code stopWhenDone}
  * @param horizon   how many moves ahead the strategy looks: a target farther than that does not steer the choice
  * @param fairness  K of thesis 3.4.2: a choice of the system whose alternatives were taken a number of times that
  *                  differ by more than K, while a goal (or, for {@link Strategy#COVERAGE}, an uncovered edge) needs
  *                  the starved one, ends the run INCONCLUSIVE; -1 for no such check
- * @param stopWhenDone whether the run ends once every goal is reached or unreachable (false: it runs on, steered
- *                  by the coverage, until its other stop conditions)
+ * @param stopWhenDone whether the run ends PASSED once every goal is reached (false: it runs on until its other
+ *                  stop conditions, a stop condition's {@code reached(N)} asking {@link OnlineTester#goalReached})
  */
 public record Steering(Strategy strategy, List<String> goals, int horizon, int fairness, boolean stopWhenDone) {
     /**

@@ -19,6 +19,15 @@ public interface TestListener {
     default void waiting(long nowMicros, long untilMicros, Until until) {
     }
 
+    /**
+     * The tester committed to {@code event} (an input when {@code input}) at {@code micros}: the edges it took for
+     * certain (every state kept after it took them), and those it possibly took (some did, or the delays and internal
+     * moves before it may have), as {@code Lamp: off -> low i_press?}. For coverage in traces.
+     */
+    default void edgesTaken(Event event, boolean input, long micros, java.util.List<String> certainly,
+                            java.util.List<String> possibly) {
+    }
+
     /** The run ended. */
     default void finished(TestResult result) {
     }

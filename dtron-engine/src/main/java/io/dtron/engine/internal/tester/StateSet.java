@@ -80,6 +80,11 @@ public final class StateSet {
      * {@code [0, horizonTicks]}; zones keep the elapsed clock, so they tell when each state is possible.
      */
     public List<SymState> reach(long horizonTicks) {
+        return reach(horizonTicks, null);
+    }
+
+    /** {@link #reach(long)}, telling {@code internalMoves} (when not null) every move it follows. */
+    private List<SymState> reach(long horizonTicks, java.util.function.Consumer<Semantics.Move> internalMoves) {
         int elapsed = semantics.elapsedClock();
         int horizon = (int) Math.min(horizonTicks, Bound.MAX_VALUE);
         Passed passed = new Passed();
@@ -101,7 +106,14 @@ public final class StateSet {
                 throw new IllegalStateException("more than " + MAX_STATES + " symbolic states within one step:"
                         + " the model is too nondeterministic to follow online");
             }
-            cache.moves(s, (move, next) -> waiting.add(next));
+            if (internalMoves == null) {
+                cache.moves(s, (move, next) -> waiting.add(next));
+            } else {
+                cache.moves(s, (move, next) -> {
+                    internalMoves.accept(move);
+                    waiting.add(next);
+                });
+            }
         }
         return passed.states();
     }
@@ -116,10 +128,19 @@ public final class StateSet {
      * with the elapsed clock set back to 0.
      */
     public StateSet afterWindow(long fromTicks, long toTicks) {
+        return afterWindow(fromTicks, toTicks, null);
+    }
+
+    /**
+     * {@link #afterWindow(long, long)}, telling {@code internalMoves} (when not null) every internal move the
+     * closure follows within the window: the moves some state may have taken (for coverage).
+     */
+    public StateSet afterWindow(long fromTicks, long toTicks,
+                                java.util.function.Consumer<Semantics.Move> internalMoves) {
         int elapsed = semantics.elapsedClock();
         Passed out = new Passed();
         // the states of reach are its own copies: changed in place
-        for (SymState t : reach(toTicks)) {
+        for (SymState t : reach(toTicks, internalMoves)) {
             Dbm z = t.zone();
             if (!z.constrain(0, elapsed, Bound.le((int) -Math.min(fromTicks, Bound.MAX_VALUE)))) {
                 continue;

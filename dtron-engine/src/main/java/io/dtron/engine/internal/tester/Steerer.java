@@ -111,6 +111,16 @@ public final class Steerer {
         return new Steerer(steering, network, semantics, partition, graph, goals, properties);
     }
 
+    /** How many goals there are. */
+    public int goalCount() {
+        return status.length;
+    }
+
+    /** Whether goal {@code g} (from 0) is reached. */
+    public boolean reached(int g) {
+        return status[g].state() == GoalStatus.State.REACHED;
+    }
+
     /** The goals and where they stand. */
     public List<GoalStatus> goals() {
         return List.of(status);
@@ -413,9 +423,12 @@ public final class Steerer {
         return stopWhenDone();
     }
 
-    /** The stop when every goal is done and the steering stops then (also before the run), else null. */
+    /**
+     * The stop when every goal is done (also before the run): INCONCLUSIVE when one is unreachable, PASSED when all
+     * were reached and the steering stops then (not under a stop condition, which decides itself); else null.
+     */
     public Stop stopWhenDone() {
-        if (!steering.stopWhenDone() || status.length == 0) {
+        if (status.length == 0) {
             return null;
         }
         StringBuilder reached = new StringBuilder();
@@ -429,7 +442,7 @@ public final class Steerer {
                     .append(s.state() == GoalStatus.State.UNREACHABLE ? ": " + s.reason() : "");
         }
         if (unreachable.length() == 0) {
-            return new Stop(Verdict.PASSED, "every goal was reached: " + reached);
+            return steering.stopWhenDone() ? new Stop(Verdict.PASSED, "every goal was reached: " + reached) : null;
         }
         return new Stop(Verdict.INCONCLUSIVE, "a goal can no longer be reached, so the run cannot serve its"
                 + " purpose: " + unreachable + (reached.length() > 0 ? " (reached: " + reached + ")" : ""));

@@ -1,0 +1,97 @@
+package io.dtron.cli;
+
+import io.dtron.engine.coverage.Coverage;
+import java.io.IOException;
+import java.io.PrintWriter;
+import java.nio.charset.StandardCharsets;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.util.ArrayList;
+import java.util.List;
+import java.util.concurrent.Callable;
+import picocli.CommandLine;
+import picocli.CommandLine.Command;
+import picocli.CommandLine.Model.CommandSpec;
+import picocli.CommandLine.Option;
+import picocli.CommandLine.Parameters;
+import picocli.CommandLine.Spec;
+
+/** {@code dtron coverage merge A.json B.json ... [-o ALL.json]}: the coverage of many runs as one suite. */
+@Command(name = "coverage", mixinStandardHelpOptions = true, exitCodeOnInvalidInput = 1,
+        exitCodeOnExecutionException = 1, subcommands = {CoverageCommand.Merge.class, CommandLine.HelpCommand.class},
+        description = "Work with the coverage files of dtron run --coverage.")
+final class CoverageCommand implements Callable<Integer> {
+    @Spec
+    private CommandSpec spec;
+
+    @Override
+    public Integer call() {
+        spec.commandLine().usage(spec.commandLine().getErr());
+        return 1;
+    }
+
+    /** Merges coverage files of one model. */
+    @Command(name = "merge", mixinStandardHelpOptions = true, exitCodeOnInvalidInput = 1,
+            exitCodeOnExecutionException = 1,
+            description = {"Merge the coverage files of runs of one model (many seeds, many strategies) into the"
+                    + " coverage of the suite: an element is covered when some run covered it; channel counts add"
+                    + " up. Prints the summary of the union.",
+                    "Exit code 0 when merged, 1 when a file cannot be read or is of another model."})
+    static final class Merge implements Callable<Integer> {
+        @Spec
+        private CommandSpec spec;
+
+        @Parameters(paramLabel = "FILE.json", arity = "1..*", description = "Coverage files of dtron run --coverage.")
+        private List<Path> files;
+
+        @Option(names = {"-o", "--output"}, paramLabel = "ALL.json", description = "Write the merged coverage here.")
+        private Path output;
+
+        @Override
+        public Integer call() {
+            PrintWriter out = spec.commandLine().getOut();
+            PrintWriter err = spec.commandLine().getErr();
+            try {
+                List<Coverage> all = new ArrayList<>();
+                for (Path f : files) {
+                    String text;
+                    try {
+                        text = Files.readString(f, StandardCharsets.UTF_8);
+                    } catch (IOException e) {
+                        err.println("dtron coverage merge: cannot read " + f + ": " + e.getMessage());
+                        return 1;
+                    }
+                    try {
+                        all.add(CoverageJson.read(text));
+                    } catch (IllegalArgumentException e) {
+                        err.println("dtron coverage merge: " + f + ": " + e.getMessage());
+                        return 1;
+                    }
+                }
+                for (int i = 1; i < all.size(); i++) {
+                    if (!all.get(i).fingerprint().equals(all.get(0).fingerprint())) {
+                        err.println("dtron coverage merge: " + files.get(i) + " is the coverage of another model than "
+                                + files.get(0) + " (" + all.get(i).model() + ", fingerprint "
+                                + all.get(i).fingerprint() + ", not " + all.get(0).model() + ", fingerprint "
+                                + all.get(0).fingerprint() + ")");
+                        return 1;
+                    }
+                }
+                Coverage union = Coverage.union(all);
+                if (output != null) {
+                    try {
+                        Files.writeString(output, CoverageJson.write(union), StandardCharsets.UTF_8);
+                    } catch (IOException e) {
+                        err.println("dtron coverage merge: cannot write " + output + ": " + e.getMessage());
+                        return 1;
+                    }
+                }
+                out.println(union.summary());
+                return 0;
+            } finally {
+                out.flush();
+                err.flush();
+            }
+        }
+    }
+}
