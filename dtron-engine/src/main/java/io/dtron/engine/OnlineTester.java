@@ -61,6 +61,9 @@ public final class OnlineTester {
     private final List<TestListener> listeners = new CopyOnWriteArrayList<>();
     private Steering steering;
     private io.dtron.engine.internal.tester.Steerer steerer;
+    /** The trap names the steerer was made with: made again when {@link #traps} changed them. */
+    private java.util.Set<String> steererTraps;
+    private boolean steererUsed;
     private java.time.Duration coverableBudget = DEFAULT_COVERABLE_BUDGET;
     private java.util.Set<String> traps = java.util.Set.of();
     private StopCondition until;
@@ -200,7 +203,9 @@ public final class OnlineTester {
                 throw new UnsupportedModelException(e.getMessage());
             }
             Semantics semantics = new Semantics(network, ticksPerUnit());
-            steerer = io.dtron.engine.internal.tester.Steerer.of(steering, network, semantics, partition);
+            steererTraps = traps;
+            steerer = io.dtron.engine.internal.tester.Steerer.of(steering, network, semantics, partition,
+                    io.dtron.engine.coverage.Traps.of(network, traps));
         }
         return steerer;
     }
@@ -241,6 +246,11 @@ public final class OnlineTester {
         recorder = coverage;
         RunClock clock = options.virtualTime() ? new VirtualClock() : new RealClock();
         AtomicLong window = new AtomicLong(options.reorderWindowMicros());
+        if (steering != null && (steererUsed || !traps.equals(steererTraps))) {
+            steerer = null; // a run of its own, with the traps as they are now
+        }
+        steerer();
+        steererUsed = steering != null;
         Run run = new Run(semantics, partition, clock, new Random(options.seed()), ticksPerUnit, window, coverage);
         run.warmUp();
         clock.begin(adapter.timeZero());

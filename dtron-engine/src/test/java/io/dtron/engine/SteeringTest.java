@@ -147,6 +147,24 @@ class SteeringTest {
                 + " 'Open'?)"), name.getMessage());
     }
 
+    @Test
+    void theCoverageStrategySetsTheLocksTrapInTheBudget() throws Exception {
+        // the opening edge carries a trap (cov24's convention: a bool whose name starts with t_)
+        String trapped = LOCK.replace("int[0,5] k;", "int[0,5] k; bool t_open;")
+                .replace("sync o_open!; assign k = 0;", "sync o_open!; assign k = 0, t_open = true;");
+        assertTrue(trapped.contains("t_open = true"), trapped);
+        for (long seed = 1; seed <= 3; seed++) {
+            OnlineTester t = tester(trapped, new Lock(), TestOptions.defaults(seed).withTimeout(40))
+                    .steer(Steering.of(Strategy.COVERAGE, List.of()));
+            TestResult r = t.run();
+            assertEquals(Verdict.PASSED, r.verdict(), r.explanation());
+            assertEquals(new io.dtron.engine.coverage.Coverage.Figure(1, 1), r.coverage().trapFigure(),
+                    r.coverage().summary());
+            // every edge on an input or output of both processes, the lock's wrong answers included
+            assertEquals(t.steeringReport().edges(), t.steeringReport().edgesCovered(), t.steeringReport().toString());
+        }
+    }
+
     /** A fork: after go, the system turns left or right for good. */
     static final String FORK = """
             chan i_go, o_left, o_right;

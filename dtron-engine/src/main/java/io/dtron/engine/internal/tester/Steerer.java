@@ -38,7 +38,10 @@ public final class Steerer {
     private final DiscreteGraph graph;
     private final List<Query> goals;
     private final List<StateProperty> properties;
+    /** The goals, then the traps ({@code E<> t[1]}, ...): those the coverage strategy steers to as well. */
     private final GoalStatus[] status;
+    /** How many of {@link #status} are the user's goals; the rest are traps. */
+    private final int userGoals;
     /** Per goal, the distance of each node to it. */
     private final int[][] goalDistance;
     /** The distance to the nearest open goal, per node; null when no goal is open. */
@@ -60,7 +63,8 @@ public final class Steerer {
     }
 
     private Steerer(Steering steering, Network network, Semantics semantics, Partition partition,
-                    DiscreteGraph graph, List<Query> goals, List<StateProperty> properties) {
+                    DiscreteGraph graph, List<Query> goals, List<StateProperty> properties, int userGoals) {
+        this.userGoals = userGoals;
         this.steering = steering;
         this.network = network;
         this.semantics = semantics;
@@ -99,21 +103,27 @@ public final class Steerer {
      *
      * @throws io.dtron.engine.verify.QueryException when a goal is no {@code E<>} query or does not compile
      */
-    public static Steerer of(Steering steering, Network network, Semantics semantics, Partition partition) {
+    public static Steerer of(Steering steering, Network network, Semantics semantics, Partition partition,
+                             List<String> traps) {
         List<Query> goals = new ArrayList<>();
         List<StateProperty> properties = new ArrayList<>();
-        for (String text : steering.goals()) {
+        List<String> texts = new ArrayList<>(steering.goals());
+        for (String trap : traps) {
+            texts.add("E<> " + trap);
+        }
+        for (String text : texts) {
             Query q = Query.parse(text);
             properties.add(StateProperty.goal(network, q, semantics.ticksPerUnit()));
             goals.add(q);
         }
         DiscreteGraph graph = DiscreteGraph.explore(network, goals, MAX_STATES);
-        return new Steerer(steering, network, semantics, partition, graph, goals, properties);
+        return new Steerer(steering, network, semantics, partition, graph, goals, properties,
+                steering.goals().size());
     }
 
     /** How many goals there are. */
     public int goalCount() {
-        return status.length;
+        return userGoals;
     }
 
     /** Whether goal {@code g} (from 0) is reached. */
@@ -123,7 +133,7 @@ public final class Steerer {
 
     /** The goals and where they stand. */
     public List<GoalStatus> goals() {
-        return List.of(status);
+        return List.of(status).subList(0, userGoals);
     }
 
     /** Whether the exploration before the run saw every reachable state (else unreachability is not proved). */
@@ -260,7 +270,8 @@ public final class Steerer {
 
     private void openChanged() {
         int[] d = null;
-        for (int g = 0; g < status.length; g++) {
+        int targets = steering.strategy() == Strategy.COVERAGE ? status.length : userGoals;
+        for (int g = 0; g < targets; g++) {
             if (status[g].state() == GoalStatus.State.OPEN) {
                 if (d == null) {
                     d = goalDistance[g].clone();
@@ -359,9 +370,10 @@ public final class Steerer {
     }
 
     private String needs() {
-        for (GoalStatus s : status) {
-            if (s.state() == GoalStatus.State.OPEN) {
-                return "goal '" + s.text() + "'";
+        for (int g = 0; g < status.length; g++) {
+            if (status[g].state() == GoalStatus.State.OPEN) {
+                return (g < userGoals ? "goal '" : "trap '") + status[g].text().substring(g < userGoals ? 0 : 4)
+                        + "'";
             }
         }
         return "the coverage of the model";
@@ -428,12 +440,12 @@ public final class Steerer {
      * were reached and the steering stops then (not under a stop condition, which decides itself); else null.
      */
     public Stop stopWhenDone() {
-        if (status.length == 0) {
+        if (userGoals == 0) {
             return null;
         }
         StringBuilder reached = new StringBuilder();
         StringBuilder unreachable = new StringBuilder();
-        for (GoalStatus s : status) {
+        for (GoalStatus s : goals()) {
             if (s.state() == GoalStatus.State.OPEN) {
                 return null;
             }

@@ -29,7 +29,7 @@ public final class SteeringBench {
             List<StateSet> sets = recorded.recordedSets();
             long t0 = System.nanoTime();
             Steerer steerer = Steerer.of(new Steering(Strategy.COVERAGE, List.of(), Steering.DEFAULT_HORIZON, -1,
-                    false), recorded.semantics().network(), recorded.semantics(), recorded.partition());
+                    false), recorded.semantics().network(), recorded.semantics(), recorded.partition(), List.of());
             long explore = System.nanoTime() - t0;
             long[] steered = time(recorded, sets, steerer, rounds);
             long[] plain = time(recorded, sets, null, rounds);
