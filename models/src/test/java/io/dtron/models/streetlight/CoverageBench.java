@@ -1,6 +1,7 @@
 package io.dtron.models.streetlight;
 
 import io.dtron.engine.Adapter;
+import io.dtron.engine.DelayPolicy;
 import io.dtron.engine.OnlineTester;
 import io.dtron.engine.Steering;
 import io.dtron.engine.SteeringReport;
@@ -34,6 +35,17 @@ public final class CoverageBench {
                          TestOptions options) {
     }
 
+    /** A strategy with a delay policy: dtron run's default, random with eager or bounded delays, coverage. */
+    private record Variant(String name, Strategy strategy, DelayPolicy policy, long bound) {
+    }
+
+    private static final List<Variant> VARIANTS = List.of(
+            new Variant("random (the default delay policy)", Strategy.RANDOM, DelayPolicy.RANDOM, 0),
+            new Variant("random, --delay-policy eager", Strategy.RANDOM, DelayPolicy.EAGER, 0),
+            new Variant("random, --delay-policy random-bounded --delay-bound 4", Strategy.RANDOM,
+                    DelayPolicy.RANDOM_BOUNDED, 4),
+            new Variant("coverage", Strategy.COVERAGE, DelayPolicy.RANDOM, 0));
+
     public static void main(String[] args) throws Exception {
         int seeds = args.length > 0 ? Integer.parseInt(args[0]) : 20;
         Path tron = Path.of(System.getProperty("dtron.shared", "../../shared"), "models", "tron");
@@ -47,14 +59,15 @@ public final class CoverageBench {
                         () -> new SimulatedStreetLights(false),
                         TestOptions.defaults(0).withTimeUnit(StreetLightModel.TIME_UNIT_MICROS).withTimeout(100_000)));
         for (Bench b : benches) {
-            for (Strategy strategy : List.of(Strategy.RANDOM, Strategy.COVERAGE)) {
+            for (Variant v : VARIANTS) {
+                Strategy strategy = v.strategy();
                 List<Double> units = new ArrayList<>();
                 List<Integer> inputs = new ArrayList<>();
                 int missed = 0;
                 int environmentEdges = 0;
                 for (long seed = 1; seed <= seeds; seed++) {
                     TestOptions o = new TestOptions(seed, b.options().timeUnitMicros(), b.options().timeout(),
-                            b.options().delayPolicy(), 0, true);
+                            v.policy(), v.bound(), true);
                     OnlineTester t = new OnlineTester(b.network(), b.iface(), b.system().get(), o)
                             .steer(new Steering(strategy, List.of(), Steering.DEFAULT_HORIZON, -1, false));
                     TestResult r = t.run();
@@ -76,7 +89,7 @@ public final class CoverageBench {
                 inputs.sort(null);
                 System.out.printf("%s, %s: %d environment edges; time units to cover them: median %s, slowest %s;"
                                 + " inputs: median %s, most %s; %d of %d seeds not within %d units%n", b.name(),
-                        strategy.name().toLowerCase(), environmentEdges, show(median(units)),
+                        v.name(), environmentEdges, show(median(units)),
                         show(units.get(units.size() - 1)), showInt(inputs.get(inputs.size() / 2)),
                         showInt(inputs.get(inputs.size() - 1)), missed, seeds, b.options().timeout());
             }
