@@ -52,6 +52,8 @@ final class GoalOptions {
     private Integer fairness;
 
     private Steering steering;
+    /** Where each goal was given: {@code --goal}, or {@code --goals FILE: line N}. */
+    private final List<String> origins = new ArrayList<>();
     private OnlineTester steered;
 
     /**
@@ -93,6 +95,8 @@ final class GoalOptions {
             default -> throw usage.apply("unknown strategy '" + strategy + "' (use random, coverage or goal)");
         };
         List<String> all = new ArrayList<>(goals);
+        origins.clear();
+        goals.forEach(g -> origins.add("--goal"));
         if (goalFile != null) {
             String text;
             try {
@@ -105,6 +109,7 @@ final class GoalOptions {
                     throw usage.apply("--goals " + goalFile + ": " + q.reason());
                 }
                 all.add(q.text());
+                origins.add("--goals " + goalFile + ": line " + q.line());
             }
         }
         if (s == Strategy.GOAL && all.isEmpty()) {
@@ -135,7 +140,14 @@ final class GoalOptions {
         try {
             tester.steer(steering);
         } catch (QueryException e) {
-            throw usage.apply("--goal: " + e.getMessage());
+            String origin = "--goal";
+            for (int i = 0; i < origins.size(); i++) {
+                if (e.getMessage().contains("'" + steering.goals().get(i) + "'")) {
+                    origin = origins.get(i);
+                    break;
+                }
+            }
+            throw usage.apply(origin + ": " + e.getMessage());
         } catch (UnsupportedModelException e) {
             throw usage.apply(e.getMessage());
         }
