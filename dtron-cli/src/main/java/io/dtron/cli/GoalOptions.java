@@ -158,8 +158,8 @@ final class GoalOptions {
             }
         }
         if (!report.explored()) {
-            out.println("dtron run: the model has more states than the planner explores before the run: a goal"
-                    + " it does not meet is not proved unreachable, and the run does not end on it");
+            out.println("dtron run: the planner explored the model only in part before the run (its limits: 200000"
+                    + " states, 5 s): a goal it did not meet is not proved unreachable, and the run does not end on it");
         }
         out.flush();
     }

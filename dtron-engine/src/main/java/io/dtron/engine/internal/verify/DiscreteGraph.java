@@ -31,6 +31,9 @@ import java.util.Set;
  * not a promise.
  */
 public final class DiscreteGraph {
+    /** How long the exploration may take before it stops, incomplete: 5 s. */
+    public static final long TIME_LIMIT_NANOS = 5_000_000_000L;
+
     /** Distance of a node from which a target cannot be reached. */
     public static final int UNREACHABLE = Integer.MAX_VALUE / 2;
 
@@ -91,8 +94,9 @@ public final class DiscreteGraph {
         long visited = 0;
         boolean done = true;
         Property.StateInfo info = graph::deadlocked;
+        long start = System.nanoTime();
         while (!waiting.isEmpty()) {
-            if (++visited > maxStates) {
+            if (++visited > maxStates || (visited & 1023) == 0 && System.nanoTime() - start > TIME_LIMIT_NANOS) {
                 done = false;
                 break;
             }
@@ -143,7 +147,8 @@ public final class DiscreteGraph {
     }
 
     /**
-     * Explores {@code network} (at most {@code maxStates} symbolic states) and marks where {@code goals} hold;
+     * Explores {@code network} (at most {@code maxStates} symbolic states, for at most {@link #TIME_LIMIT_NANOS})
+     * and marks where {@code goals} hold;
      * each must be an {@code E<>} query.
      *
      * @throws QueryException when a goal is not an {@code E<>} query or its property does not compile
