@@ -77,7 +77,13 @@ final class CoverageCommand implements Callable<Integer> {
                         return 1;
                     }
                 }
-                Coverage union = Coverage.union(all);
+                Coverage union;
+                try {
+                    union = Coverage.union(all);
+                } catch (IllegalArgumentException e) {
+                    err.println("dtron coverage merge: " + e.getMessage());
+                    return 1;
+                }
                 if (output != null) {
                     try {
                         Files.writeString(output, CoverageJson.write(union), StandardCharsets.UTF_8);

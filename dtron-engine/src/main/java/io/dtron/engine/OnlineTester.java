@@ -234,7 +234,7 @@ public final class OnlineTester {
         Coverable coverable;
         try {
             coverable = coverableBudget.isZero() ? Coverable.unchecked(network)
-                    : Coverable.of(network, coverableBudget, COVERABLE_MAX_STATES);
+                    : Coverable.cached(network, coverableBudget, COVERABLE_MAX_STATES);
         } catch (ModelRuntimeException e) {
             coverable = Coverable.failed(network, "the check of what can be covered stopped at a model error: "
                     + e.format());

@@ -291,7 +291,7 @@ public record Coverage(String model, String fingerprint, List<Long> seeds, List<
         }
         Coverage first = runs.get(0);
         for (Coverage c : runs) {
-            if (!c.fingerprint().equals(first.fingerprint())) {
+            if (!c.fingerprint().equals(first.fingerprint()) || !sameShape(c, first)) {
                 throw new IllegalArgumentException("the coverage of " + c.model() + " is of a different model than"
                         + " that of " + first.model() + " (fingerprint " + c.fingerprint() + ", not "
                         + first.fingerprint() + ")");
@@ -341,6 +341,21 @@ public record Coverage(String model, String fingerprint, List<Long> seeds, List<
         traps.forEach((name, set) -> trapList.add(new Trap(name, set)));
         return new Coverage(first.model(), first.fingerprint(), seeds, processes, trapList,
                 new ArrayList<>(channels.values()), complete ? null : note);
+    }
+
+    /** Whether {@code a} and {@code b} have as many processes, and each as many locations and edges. */
+    private static boolean sameShape(Coverage a, Coverage b) {
+        if (a.processes().size() != b.processes().size()) {
+            return false;
+        }
+        for (int p = 0; p < a.processes().size(); p++) {
+            ProcessCoverage x = a.processes().get(p);
+            ProcessCoverage y = b.processes().get(p);
+            if (x.locations().size() != y.locations().size() || x.edges().size() != y.edges().size()) {
+                return false;
+            }
+        }
+        return true;
     }
 
     private static ChannelCoverage mergeChannel(ChannelCoverage a, ChannelCoverage b) {

@@ -249,6 +249,31 @@ class CoverageTest {
     }
 
     @Test
+    void whenTheCheckRunsOutOfBudgetTheUndecidedCountAsCoverableAndTheSummarySaysSo() throws Exception {
+        Network n = model("press.xta");
+        io.dtron.engine.internal.verify.Coverable partial = io.dtron.engine.internal.verify.Coverable.of(n,
+                java.time.Duration.ofSeconds(30), 1);
+        assertEquals("the check of what can be covered stopped at its budget of 1 stored states", partial.stopped());
+        int lamp = n.process("Lamp").orElseThrow().index();
+        int broken = n.process("Lamp").orElseThrow().location("Broken").index();
+        assertTrue(partial.location(lamp, broken), "undecided: coverable");
+        assertTrue(!partial.locationReached(lamp, broken));
+        io.dtron.engine.internal.verify.Coverable complete = io.dtron.engine.internal.verify.Coverable.of(n,
+                java.time.Duration.ofSeconds(30), 1000);
+        assertNull(complete.stopped());
+        assertTrue(!complete.location(lamp, broken), "proved unreachable");
+        // merged with a run whose check was complete, the proof wins over the undecided
+        Coverage unchecked = tester(n, new PressLamp(), 1, 100).coverableBudget(java.time.Duration.ZERO).run()
+                .coverage();
+        Coverage checked = tester(n, new PressLamp(), 2, 100).run().coverage();
+        assertEquals(Coverage.Reach.UNKNOWN, location(unchecked, "Lamp", "Broken").reach());
+        Coverage both = Coverage.union(List.of(unchecked, checked));
+        assertEquals(Coverage.Reach.UNREACHABLE, location(both, "Lamp", "Broken").reach());
+        assertNull(both.reachabilityNote());
+        assertEquals(checked.unreachable(), both.unreachable());
+    }
+
+    @Test
     void namedTrapsCountAndUnknownNamesAreRefused() throws Exception {
         Network n = model("press.xta", Map.of("int[0,1] broken;", "int[0,1] broken; bool seen[2];"));
         OnlineTester t = tester(n, new PressLamp(), 1, 100).traps(List.of("seen"));

@@ -65,6 +65,9 @@ public final class Recorder implements RunCoverage {
     private final Consumer<Semantics.Move> internalMoves = this::internalMove;
     /** Per edge, how many of the successors being summed up took it (scratch of {@link #step}). */
     private final int[] counts;
+    /** The edges {@link #counts} counts, and those taken for certain (scratch of {@link #step}). */
+    private final int[] touched;
+    private final BitSet certain = new BitSet();
     /**
      * Per process and location, the one edge that may leave it (or enter it) without an observable channel, or -1
      * when there are none or several: a process the closure moved away from (or into) the location took it.
@@ -146,6 +149,7 @@ public final class Recorder implements RunCoverage {
         edgeTaken = new byte[edgeBase[n]];
         locationTaken = new byte[locationBase[n]];
         counts = new int[edgeBase[n]];
+        touched = new int[edgeBase[n]];
         List<Integer> slots = new ArrayList<>();
         traps(network, extraTraps, trapNames, slots);
         trapSlots = slots.stream().mapToInt(Integer::intValue).toArray();
@@ -263,48 +267,46 @@ public final class Recorder implements RunCoverage {
      * observable channel, or the only one along such a chain.
      */
     public Step step(List<SymState> before, List<StateSet.Successor> successors) {
-        List<Integer> touched = new ArrayList<>();
+        int n = 0;
         for (StateSet.Successor s : successors) {
             for (Semantics.Step st : s.move().steps()) {
                 int id = edgeBase[st.process()] + st.edge().index();
                 if (counts[id]++ == 0) {
-                    touched.add(id);
+                    touched[n++] = id;
                 }
             }
         }
-        int[] certainly = new int[touched.size()];
-        int c = 0;
-        for (int id : touched) {
+        certain.clear();
+        for (int t = 0; t < n; t++) {
+            int id = touched[t];
             if (counts[id] == successors.size()) {
-                certainly[c++] = id;
+                certain.set(id);
             } else {
                 closure.set(id);
             }
             counts[id] = 0;
         }
-        certainly = Arrays.copyOf(certainly, c);
-        BitSet inferred = internalChains(before, successors);
-        if (!inferred.isEmpty()) {
-            inferred.stream().forEach(closure::clear);
-            BitSet all = new BitSet();
-            for (int id : certainly) {
-                all.set(id);
-            }
-            all.or(inferred);
-            certainly = all.stream().toArray();
-        }
-        Arrays.sort(certainly);
-        for (int id : certainly) {
-            closure.clear(id);
-        }
-        return new Step(certainly, closure.stream().toArray());
+        internalChains(before, successors, certain);
+        closure.andNot(certain);
+        return new Step(ids(certain), ids(closure));
     }
 
-    /** The internal edges every path of the closure took, by the locations before it and where the move starts. */
-    private BitSet internalChains(List<SymState> before, List<StateSet.Successor> successors) {
-        BitSet out = new BitSet();
+    /** The set bits of {@code bits}, in order. */
+    private static int[] ids(BitSet bits) {
+        int[] out = new int[bits.cardinality()];
+        for (int i = bits.nextSetBit(0), k = 0; i >= 0; i = bits.nextSetBit(i + 1)) {
+            out[k++] = i;
+        }
+        return out;
+    }
+
+    /**
+     * Adds to {@code out} the internal edges every path of the closure took, by the locations before it and where
+     * the move starts.
+     */
+    private void internalChains(List<SymState> before, List<StateSet.Successor> successors, BitSet out) {
         if (before.isEmpty() || successors.isEmpty()) {
-            return out;
+            return;
         }
         for (int p = 0; p < uniqueOut.length; p++) {
             int l0 = before.get(0).location(p);
@@ -336,7 +338,6 @@ public final class Recorder implements RunCoverage {
                 out.set(edgeBase[p] + uniqueIn[p][l]);
             }
         }
-        return out;
     }
 
     /**

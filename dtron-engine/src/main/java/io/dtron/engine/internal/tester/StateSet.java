@@ -94,6 +94,10 @@ public final class StateSet {
             waiting.add(copy(s));
         }
         int visited = 0;
+        Semantics.MoveSink sink = internalMoves == null ? (move, next) -> waiting.add(next) : (move, next) -> {
+            internalMoves.accept(move);
+            waiting.add(next);
+        };
         while (!waiting.isEmpty()) {
             SymState s = waiting.poll();
             if (!cache.delay(s, elapsed, Bound.le(horizon))) {
@@ -106,14 +110,7 @@ public final class StateSet {
                 throw new IllegalStateException("more than " + MAX_STATES + " symbolic states within one step:"
                         + " the model is too nondeterministic to follow online");
             }
-            if (internalMoves == null) {
-                cache.moves(s, (move, next) -> waiting.add(next));
-            } else {
-                cache.moves(s, (move, next) -> {
-                    internalMoves.accept(move);
-                    waiting.add(next);
-                });
-            }
+            cache.moves(s, sink);
         }
         return passed.states();
     }

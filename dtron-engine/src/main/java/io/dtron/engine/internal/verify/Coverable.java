@@ -44,6 +44,27 @@ public final class Coverable {
         return failed(network, "what can be covered was not checked");
     }
 
+    /** The last search, for the same network (the same object) searched again with the same budget. */
+    private static volatile Last last;
+
+    private record Last(java.lang.ref.WeakReference<Network> network, Duration timeLimit, long maxStates,
+                        Coverable result) {
+    }
+
+    /**
+     * {@link #of}, or the answer of the last search when it was of this very network with the same budget: runs of
+     * many seeds of one loaded model search once.
+     */
+    public static Coverable cached(Network network, Duration timeLimit, long maxStates) {
+        Last l = last;
+        if (l != null && l.network().get() == network && l.timeLimit().equals(timeLimit) && l.maxStates() == maxStates) {
+            return l.result();
+        }
+        Coverable result = of(network, timeLimit, maxStates);
+        last = new Last(new java.lang.ref.WeakReference<>(network), timeLimit, maxStates, result);
+        return result;
+    }
+
     /** Searches {@code network} for at most {@code timeLimit} and {@code maxStates} stored states. */
     public static Coverable of(Network network, Duration timeLimit, long maxStates) {
         int n = network.processes().size();
@@ -79,7 +100,7 @@ public final class Coverable {
                 });
                 if (stored[0] > maxStates) {
                     return new Coverable(locations, edges, "the check of what can be covered stopped at its budget of "
-                            + maxStates + " states");
+                            + maxStates + " stored states");
                 }
             }
             return new Coverable(locations, edges, null);
