@@ -579,7 +579,7 @@ public final class OnlineTester {
                     if (choice.letsTimePass() && !plan.environmentLetsTimePass()) {
                         return result(Verdict.INCONCLUSIVE, "no input was applied by " + deadlineAt + ": the"
                                 + " environment allowed inputs until then but no time to pass without one, and the"
-                                + " tester let time pass " + whyTimePassed() + ". " + plan.explainInputs(this::time,
+                                + " tester let time pass " + whyTimePassed(choice) + ". " + plan.explainInputs(this::time,
                                 lastMicros));
                     }
                     if (plan.inputPossibleAt(plan.deadline()) && !choice.letsTimePass()) {
@@ -597,7 +597,7 @@ public final class OnlineTester {
                             ? " (the tester waited " + Plan.units(window(), unit) + " time units more for messages"
                             + " in transit)" : "") + (choice.letsTimePass() ? "; the environment allowed more inputs"
                             + " until then and lets time pass without them, and the tester let time pass "
-                            + whyTimePassed() : "") + ". " + plan.explainOutputs(this::time, lastMicros));
+                            + whyTimePassed(choice) : "") + ". " + plan.explainOutputs(this::time, lastMicros));
                 }
             }
         }
@@ -682,7 +682,10 @@ public final class OnlineTester {
         }
 
         /** Why the tester let time pass while the environment allowed an input, for explanations. */
-        private String whyTimePassed() {
+        private String whyTimePassed(Plan.Choice choice) {
+            if (choice.steered()) {
+                return "for the system to act, as the strategy chose (waiting for it scored best)";
+            }
             return inputsAtInstant >= MAX_INPUTS_AT_ONE_INSTANT ? "after " + inputsAtInstant + " inputs at "
                     + time(instantMicros) + " (it gives at most " + MAX_INPUTS_AT_ONE_INSTANT + " inputs at one instant)"
                     : "rather than aim an input less than its input margin before the deadline";

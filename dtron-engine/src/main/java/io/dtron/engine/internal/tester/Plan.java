@@ -64,9 +64,15 @@ public final class Plan {
     /**
      * The tester's next move: an input after {@code ticks}, or (input null) waiting until {@code ticks}; {@code
      * letsTimePass} when the tester waits past a deadline at which the environment allowed an input (it lets time
-     * pass rather than give more inputs at one instant, or an input it could not aim a margin before the deadline).
+     * pass rather than give more inputs at one instant, or an input it could not aim a margin before the deadline, or
+     * because a strategy waits for the system); {@code steered} when a strategy chose it.
      */
-    public record Choice(TestInterface.ObservableChannel input, long ticks, boolean letsTimePass) {
+    public record Choice(TestInterface.ObservableChannel input, long ticks, boolean letsTimePass, boolean steered) {
+        /** A choice that no strategy steered. */
+        public Choice(TestInterface.ObservableChannel input, long ticks, boolean letsTimePass) {
+            this(input, ticks, letsTimePass, false);
+        }
+
         /** Whether this applies an input. */
         public boolean isInput() {
             return input != null;
@@ -244,8 +250,9 @@ public final class Plan {
      * {@link #choose(long, Random, DelayPolicy, long, long, ToLongFunction, long) Chooses}, steered by {@code
      * scorer} when it is not null: among the inputs with the best score (at random between equals), at the start of
      * its window; waiting when that scores at least as well as every input (the system moves on by itself): until
-     * the deadline, or, when an input must come by then, the best input as late as its window allows, or, without a
-     * deadline, until time alone changes nothing ({@link Scorer#patience}). When nothing scores within the horizon,
+     * the deadline (past a window for an input only when the environment lets time pass there, so that the deadline
+     * is the system's), else the best input as late as its window allows; without a deadline, until time alone
+     * changes nothing ({@link Scorer#patience}). When nothing scores within the horizon,
      * the choice is the unsteered one.
      */
     public Choice choose(long elapsed, Random random, DelayPolicy policy, long boundTicks, long shortBoundTicks,
@@ -335,7 +342,12 @@ public final class Plan {
         if (wait <= best) {
             if (!mustAct) {
                 return new Choice(null, hasDeadline() ? deadline + 1 : Math.min(horizon, patience),
-                        couldActAtDeadline);
+                        couldActAtDeadline, true);
+            }
+            if (environmentLetsTimePass()) {
+                // the deadline is the system's: it must act by then whatever the environment does, so the tester
+                // may wait for it past a window in which it could have given an input
+                return new Choice(null, deadline + 1, true, true);
             }
             // an input must come by the deadline: the best one, as late as it can, to give the system its time
             int pick = bestOptions.isEmpty() ? random.nextInt(options.size())

@@ -202,6 +202,9 @@ public final class Steerer {
     }
 
     private int cap(int score) {
+        if (steering.strategy() == Strategy.COVERAGE) {
+            return score; // a sum, already bounded term by term
+        }
         return score > steering.horizon() ? DiscreteGraph.UNREACHABLE : score;
     }
 
@@ -221,6 +224,9 @@ public final class Steerer {
     }
 
     private int arcScore(DiscreteGraph.Arc a) {
+        if (steering.strategy() == Strategy.COVERAGE) {
+            return coverageScore(a);
+        }
         int best = DiscreteGraph.UNREACHABLE;
         if (openDistance != null) {
             best = Math.min(best, 1 + openDistance[a.target()]);
@@ -229,6 +235,63 @@ public final class Steerer {
             best = Math.min(best, uncovered(a) ? 0 : 1 + coverDistance()[a.target()]);
         }
         return best;
+    }
+
+    /**
+     * The coverage strategy's score of an arc: the sum, over the targets left (edges not covered, open goals and
+     * traps), of the moves from the arc's target to each (0 for an edge the arc covers), each counted at most to the
+     * horizon: the move that brings the most targets nearer, not only the nearest one; unreachable when no target is
+     * within the horizon.
+     */
+    private int coverageScore(DiscreteGraph.Arc a) {
+        Integer known = arcScores.get(a);
+        if (known != null) {
+            return known;
+        }
+        int score = sumOfDistances(a);
+        arcScores.put(a, score);
+        return score;
+    }
+
+    private int sumOfDistances(DiscreteGraph.Arc a) {
+        int h = steering.horizon();
+        long sum = 0;
+        boolean within = false;
+        for (int e = coverable.nextSetBit(0); e >= 0; e = coverable.nextSetBit(e + 1)) {
+            if (covered.get(e)) {
+                continue;
+            }
+            int d = contains(a.edges(), e) ? 0 : 1 + edgeDistance(e)[a.target()];
+            within |= d <= h;
+            sum += Math.min(d, h + 1);
+        }
+        for (int g = 0; g < status.length; g++) {
+            if (status[g].state() == GoalStatus.State.OPEN) {
+                int d = 1 + goalDistance[g][a.target()];
+                within |= d <= h;
+                sum += Math.min(d, h + 1);
+            }
+        }
+        return within ? (int) Math.min(sum, DiscreteGraph.UNREACHABLE - 1) : DiscreteGraph.UNREACHABLE;
+    }
+
+    private static boolean contains(int[] edges, int e) {
+        for (int x : edges) {
+            if (x == e) {
+                return true;
+            }
+        }
+        return false;
+    }
+
+    /** The coverage scores of the arcs while the targets stay the same. */
+    private final Map<DiscreteGraph.Arc, Integer> arcScores = new java.util.IdentityHashMap<>();
+
+    /** Per edge, the distance of every node to an arc that takes it; the graph does not change, so kept for good. */
+    private final Map<Integer, int[]> edgeDistances = new HashMap<>();
+
+    private int[] edgeDistance(int e) {
+        return edgeDistances.computeIfAbsent(e, k -> graph.distances(new BitSet(), arc -> contains(arc.edges(), k)));
     }
 
     private boolean uncovered(DiscreteGraph.Arc a) {
@@ -269,6 +332,7 @@ public final class Steerer {
     }
 
     private void openChanged() {
+        arcScores.clear();
         int[] d = null;
         int targets = steering.strategy() == Strategy.COVERAGE ? status.length : userGoals;
         for (int g = 0; g < targets; g++) {
@@ -304,6 +368,7 @@ public final class Steerer {
         }
         if (grew) {
             coverDistance = null;
+            arcScores.clear();
             if (environmentCoveredMicros < 0 && !environmentEdges.isEmpty()) {
                 BitSet missing = (BitSet) environmentEdges.clone();
                 missing.andNot(covered);
