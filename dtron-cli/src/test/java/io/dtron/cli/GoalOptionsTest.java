@@ -60,6 +60,14 @@ class GoalOptionsTest {
                 run("--goals", q.toString()).err());
     }
 
+    @Test
+    void verifyTrapsOnAModelWithoutTrapsSaysSo() {
+        CommandRun r = CommandRun.of("verify", TICKER, "--traps");
+        assertEquals(1, r.exit(), r.out() + r.err());
+        assertEquals("dtron verify: " + TICKER + " has no traps: bool variables or arrays whose name starts with trap"
+                + " or t_", r.err().strip());
+    }
+
     private static String firstLine(CommandRun r) {
         assertEquals(1, r.exit(), r.out() + r.err());
         assertTrue(!r.err().contains("\tat "), r.err());
