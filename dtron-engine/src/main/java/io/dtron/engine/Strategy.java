@@ -5,8 +5,8 @@ public enum Strategy {
     /** At random, by the {@link DelayPolicy} (the default, as Uppaal TRON). */
     RANDOM,
     /**
-     * Toward the nearest edge of the model not yet covered on an input or output (and the nearest open goal), by
-     * distance in the zone graph of the closed network.
+     * Toward the edges of the model not yet covered on an input or output, its traps not yet set and the open goals:
+     * the move that brings them nearest in sum, by distance in the zone graph of the closed network.
      */
     COVERAGE,
     /** Toward the nearest goal not yet reached, by distance in the zone graph of the closed network. */

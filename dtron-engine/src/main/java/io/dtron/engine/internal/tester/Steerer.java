@@ -22,9 +22,10 @@ import java.util.Map;
 /**
  * Steers a run toward its goals and the edges it has not covered: the reactive planner. Before the run it explores
  * the closed network once ({@link DiscreteGraph}) and finds the goals no path reaches; during the run it scores every
- * input the plan offers, and waiting, by the distance (in moves) from where each leads to the nearest target, within
- * the horizon, from distances kept per discrete state and computed again only when the targets change (a goal
- * reached, an edge covered). It also follows the goals (reached, or no longer reachable from any state the system
+ * input the plan offers, and waiting, by the distances (in moves) from where each leads to the targets, within the
+ * horizon: to the nearest open goal ({@link Strategy#GOAL}), or the sum over every edge, trap and goal left ({@link
+ * Strategy#COVERAGE}); distances are kept per discrete state (per target, for good: the graph does not change) and
+ * the scores of arcs until the targets change (a goal reached, an edge covered). It also follows the goals (reached, or no longer reachable from any state the system
  * may be in), the edges covered on inputs and outputs, and the system's choices for the fairness check.
  */
 public final class Steerer {
