@@ -51,7 +51,6 @@ public final class Steerer {
     private final BitSet coverable = new BitSet();
     private final BitSet environmentEdges = new BitSet();
     private final BitSet covered = new BitSet();
-    private int[] coverDistance;
     private long environmentCoveredMicros = -1;
     private int environmentCoveredInputs = -1;
     /** The system's choices: per node, how often each of its output arcs was taken. */
@@ -232,9 +231,6 @@ public final class Steerer {
         if (openDistance != null) {
             best = Math.min(best, 1 + openDistance[a.target()]);
         }
-        if (steering.strategy() == Strategy.COVERAGE) {
-            best = Math.min(best, uncovered(a) ? 0 : 1 + coverDistance()[a.target()]);
-        }
         return best;
     }
 
@@ -295,15 +291,6 @@ public final class Steerer {
         return edgeDistances.computeIfAbsent(e, k -> graph.distances(new BitSet(), arc -> contains(arc.edges(), k)));
     }
 
-    private boolean uncovered(DiscreteGraph.Arc a) {
-        for (int e : a.edges()) {
-            if (coverable.get(e) && !covered.get(e)) {
-                return true;
-            }
-        }
-        return false;
-    }
-
     int waitScore(List<SymState> reach) {
         int best = DiscreteGraph.UNREACHABLE;
         BitSet seen = new BitSet();
@@ -323,13 +310,6 @@ public final class Steerer {
             }
         }
         return cap(best);
-    }
-
-    private int[] coverDistance() {
-        if (coverDistance == null) {
-            coverDistance = graph.distances(new BitSet(), this::uncovered);
-        }
-        return coverDistance;
     }
 
     private void openChanged() {
@@ -368,7 +348,6 @@ public final class Steerer {
             }
         }
         if (grew) {
-            coverDistance = null;
             arcScores.clear();
             if (environmentCoveredMicros < 0 && !environmentEdges.isEmpty()) {
                 BitSet missing = (BitSet) environmentEdges.clone();
