@@ -159,6 +159,9 @@ final class RunCommand implements Callable<Integer> {
     @Mixin
     private TronAdapterTimeouts tronTimeouts;
 
+    @Mixin
+    private GoalOptions goalOptions;
+
     @Option(names = "--wait-for-adapters", paramLabel = "channels|N",
             description = "Bus mode: start when every channel of the model is served by an adapter on the bus, as"
                     + " adapters say when they join (channels, the default), or when N members besides the tester"
@@ -261,6 +264,8 @@ final class RunCommand implements Callable<Integer> {
             err.println("dtron run: " + JvmLimits.modelTooLarge("run", model));
             return 1;
         }
+        goalOptions.prepare(coverage.until != null, this::usage);
+        goals = goalOptions.goals();
         try {
             coverage.check(network, goals);
         } catch (IllegalArgumentException e) {
@@ -899,6 +904,7 @@ final class RunCommand implements Callable<Integer> {
                                       TestOptions options, PrintWriter out) throws IOException {
         OnlineTester tester = new OnlineTester(network, testInterface, adapter, options);
         coverage.configure(tester, goals);
+        goalOptions.apply(tester, out, this::usage);
         TestResult result;
         try (Progress progress = new Progress(out, options)) {
             tester.addListener(progress);
@@ -906,6 +912,7 @@ final class RunCommand implements Callable<Integer> {
         }
         printVerdict(result, out);
         coverage.report(result, out, spec.commandLine().getErr());
+        goalOptions.report(tester, options.timeUnitMicros(), out);
         return result;
     }
 

@@ -57,6 +57,11 @@ final class VerifyCommand implements Callable<Integer> {
             + " model's own queries.")
     private Path queryFile;
 
+    @Option(names = "--traps", description = "Check the coverage-correctness obligation instead of the model's queries:"
+            + " every trap (a bool variable or array element named trap... or t_...) reachable, E<> each, and all of"
+            + " them on one path, E<> all together (with --query and --queries: besides those).")
+    private boolean traps;
+
     @Option(names = "--order", paramLabel = "bfs|dfs", defaultValue = "bfs", description = "Search order of"
             + " reachability queries: breadth-first (shortest traces, the default) or depth-first.")
     private Order order;
@@ -149,6 +154,22 @@ final class VerifyCommand implements Callable<Integer> {
         if (queryFile != null) {
             source = queries.isEmpty() ? queryFile.toString() : "--query and " + queryFile;
         }
+        if (traps) {
+            List<String> names = io.dtron.engine.coverage.Traps.of(network, List.of());
+            if (names.isEmpty()) {
+                err.println("dtron verify: " + model + " has no traps: bool variables or arrays whose name starts with"
+                        + " trap or t_");
+                return 1;
+            }
+            for (String t : names) {
+                toCheck.add(Query.parse("E<> " + t));
+            }
+            if (names.size() > 1) {
+                toCheck.add(Query.parse("E<> " + String.join(" and ", names)));
+            }
+            source = (toCheck.size() > names.size() + (names.size() > 1 ? 1 : 0) ? source + " and " : "") + "--traps ("
+                    + names.size() + " trap" + (names.size() == 1 ? "" : "s") + ")";
+        }
         if (toCheck.isEmpty()) {
             toCheck.addAll(verifier != null ? verifier.modelQueries() : modelQueries(network));
             source = "the model";
@@ -219,6 +240,10 @@ final class VerifyCommand implements Callable<Integer> {
                     : ""));
             err.println("dtron verify: " + model + ": " + cannotRun.getMessage());
             return 1;
+        }
+        if (traps) {
+            text.println("the shortest time to set every trap is not computed (the checker has no time-optimal"
+                    + " search); a witness of E<> with all of them is one path that sets them all");
         }
         int checked = toCheck.size() - skipped - errors;
         text.println(checked - violated - unknown + " of " + checked + " checked hold" + (violated > 0 ? ", " + violated

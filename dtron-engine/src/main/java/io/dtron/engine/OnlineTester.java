@@ -59,6 +59,11 @@ public final class OnlineTester {
     private final Adapter adapter;
     private final TestOptions options;
     private final List<TestListener> listeners = new CopyOnWriteArrayList<>();
+    private Steering steering;
+    private io.dtron.engine.internal.tester.Steerer steerer;
+    /** The trap names the steerer was made with: made again when {@link #traps} changed them. */
+    private java.util.Set<String> steererTraps;
+    private boolean steererUsed;
     private java.time.Duration coverableBudget = DEFAULT_COVERABLE_BUDGET;
     private java.util.Set<String> traps = java.util.Set.of();
     private StopCondition until;
@@ -151,6 +156,65 @@ public final class OnlineTester {
     }
 
     /**
+     * Steers the run toward test purposes and coverage (see {@link Steering}); before {@link #run}.
+     *
+     * @throws io.dtron.engine.verify.QueryException when a goal is not an {@code E<>} query or does not compile
+     * @throws UnsupportedModelException when the model cannot be run or explored
+     */
+    public OnlineTester steer(Steering steering) {
+        this.steering = Objects.requireNonNull(steering, "steering");
+        this.steerer = null;
+        steerer();
+        return this;
+    }
+
+    /**
+     * What the steering found: before the run, the goals the model checker proves unreachable (the others open);
+     * after it, the goals reached (when) and found unreachable (when, why), and the edges covered. Null without
+     * {@link #steer steering}.
+     */
+    public SteeringReport steeringReport() {
+        if (steering == null) {
+            return null;
+        }
+        io.dtron.engine.internal.tester.Steerer s = steerer();
+        int[] edges = s.edgeCoverage();
+        int[] env = s.environmentCoverage();
+        long[] full = s.environmentCovered();
+        return new SteeringReport(s.goals(), s.complete(), edges[0], edges[1], env[0], env[1], full[0],
+                (int) full[1]);
+    }
+
+    /**
+     * Whether goal number {@code index} (from 0) of the {@link #steer steering} has been reached so far; false without
+     * steering. Answers at once, for a stop condition's {@code reached(N)}.
+     */
+    public boolean goalReached(int index) {
+        io.dtron.engine.internal.tester.Steerer s = steerer;
+        return s != null && index >= 0 && index < s.goalCount() && s.reached(index);
+    }
+
+    private io.dtron.engine.internal.tester.Steerer steerer() {
+        if (steerer == null && steering != null) {
+            Partition partition;
+            try {
+                partition = Partition.of(network, testInterface);
+            } catch (PartitionException e) {
+                throw new UnsupportedModelException(e.getMessage());
+            }
+            Semantics semantics = new Semantics(network, ticksPerUnit());
+            steererTraps = traps;
+            steerer = io.dtron.engine.internal.tester.Steerer.of(steering, network, semantics, partition,
+                    io.dtron.engine.coverage.Traps.of(network, traps));
+        }
+        return steerer;
+    }
+
+    private int ticksPerUnit() {
+        return (int) Math.min(options.timeUnitMicros(), MAX_TICKS_PER_UNIT);
+    }
+
+    /**
      * Runs the test to its verdict.
      *
      * @throws UnsupportedModelException when the model uses something the engine cannot run, or its interface
@@ -158,7 +222,7 @@ public final class OnlineTester {
      */
     public TestResult run() {
         long unit = options.timeUnitMicros();
-        int ticksPerUnit = (int) Math.min(unit, MAX_TICKS_PER_UNIT);
+        int ticksPerUnit = ticksPerUnit();
         Semantics semantics = new Semantics(network, ticksPerUnit);
         Partition partition;
         try {
@@ -182,6 +246,11 @@ public final class OnlineTester {
         recorder = coverage;
         RunClock clock = options.virtualTime() ? new VirtualClock() : new RealClock();
         AtomicLong window = new AtomicLong(options.reorderWindowMicros());
+        if (steering != null && (steererUsed || !traps.equals(steererTraps))) {
+            steerer = null; // a run of its own, with the traps as they are now
+        }
+        steerer();
+        steererUsed = steering != null;
         Run run = new Run(semantics, partition, clock, new Random(options.seed()), ticksPerUnit, window, coverage);
         run.warmUp();
         clock.begin(adapter.timeZero());
@@ -453,6 +522,10 @@ public final class OnlineTester {
                     }
                     continue;
                 }
+                TestResult steered = steered(now);
+                if (steered != null) {
+                    return steered;
+                }
                 Plan plan = plan();
                 long elapsed = ticksFloor(now - lastMicros);
                 // room before a window's end: for the tester's own lateness, and for the input's way to the system
@@ -460,7 +533,7 @@ public final class OnlineTester {
                 Plan.Choice choice = plan.choose(elapsed, random, options.delayPolicy(),
                         options.delayBound() * ticksPerUnit, options.shortDelayBound() * ticksPerUnit,
                         input -> lateness + ticksCeil(Math.max(0, adapter.inputDelayMicros(input.name()))),
-                        earliestInput());
+                        earliestInput(), steerer == null ? null : steerer.scorer());
                 long at = lastMicros + micros(choice.ticks());
                 // a deadline within the test is declared missed only when the outputs stamped before it had the
                 // reorder window to arrive
@@ -506,7 +579,7 @@ public final class OnlineTester {
                     if (choice.letsTimePass() && !plan.environmentLetsTimePass()) {
                         return result(Verdict.INCONCLUSIVE, "no input was applied by " + deadlineAt + ": the"
                                 + " environment allowed inputs until then but no time to pass without one, and the"
-                                + " tester let time pass " + whyTimePassed() + ". " + plan.explainInputs(this::time,
+                                + " tester let time pass " + whyTimePassed(choice) + ". " + plan.explainInputs(this::time,
                                 lastMicros));
                     }
                     if (plan.inputPossibleAt(plan.deadline()) && !choice.letsTimePass()) {
@@ -524,9 +597,20 @@ public final class OnlineTester {
                             ? " (the tester waited " + Plan.units(window(), unit) + " time units more for messages"
                             + " in transit)" : "") + (choice.letsTimePass() ? "; the environment allowed more inputs"
                             + " until then and lets time pass without them, and the tester let time pass "
-                            + whyTimePassed() : "") + ". " + plan.explainOutputs(this::time, lastMicros));
+                            + whyTimePassed(choice) : "") + ". " + plan.explainOutputs(this::time, lastMicros));
                 }
             }
+        }
+
+        /** The steerer's verdict on the goals at {@code now} (reached, or no longer reachable), or null. */
+        private TestResult steered(long now) {
+            if (steerer == null) {
+                return null;
+            }
+            StateSet at = steerer.goalsDependOnTime() && now > lastMicros ? afterDelay(now, 0) : set;
+            io.dtron.engine.internal.tester.Steerer.Stop stop = steerer.check(at, now, lastTaken != null
+                    ? "after " + lastTaken + "," : "at " + time(lastMicros) + ",");
+            return stop == null ? null : result(stop.verdict(), stop.explanation());
         }
 
         /** The run so far, as the stop condition reads it. */
@@ -598,7 +682,10 @@ public final class OnlineTester {
         }
 
         /** Why the tester let time pass while the environment allowed an input, for explanations. */
-        private String whyTimePassed() {
+        private String whyTimePassed(Plan.Choice choice) {
+            if (choice.steered()) {
+                return "for the system to act, as the strategy chose (waiting for it scored best)";
+            }
             return inputsAtInstant >= MAX_INPUTS_AT_ONE_INSTANT ? "after " + inputsAtInstant + " inputs at "
                     + time(instantMicros) + " (it gives at most " + MAX_INPUTS_AT_ONE_INSTANT + " inputs at one instant)"
                     : "rather than aim an input less than its input margin before the deadline";
@@ -828,6 +915,12 @@ public final class OnlineTester {
                     taken.add(s);
                 }
             }
+            if (!matching.isEmpty() && steerer != null) {
+                io.dtron.engine.internal.tester.Steerer.Stop stop = steerer.taken(taken, at, inputs, true);
+                if (stop != null) {
+                    return result(stop.verdict(), stop.explanation());
+                }
+            }
             if (!matching.isEmpty()) {
                 lastStep = coverage.step(set.states(), taken);
                 set = atTime.of(matching);
@@ -1001,6 +1094,9 @@ public final class OnlineTester {
                     next.add(s.state());
                     taken.add(s);
                 }
+            }
+            if (steerer != null) {
+                steerer.taken(taken, now, inputs + 1, false);
             }
             Event event = new Event(channel.name(), values);
             Recorder.Step step = coverage.step(set.states(), taken);

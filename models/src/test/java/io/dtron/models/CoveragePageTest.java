@@ -97,7 +97,7 @@ class CoveragePageTest {
     }
 
     /** The words of a shell command line, with '...' quoting. */
-    private static List<String> words(String line) {
+    static List<String> words(String line) {
         List<String> words = new ArrayList<>();
         StringBuilder word = null;
         boolean quoted = false;
@@ -128,7 +128,7 @@ class CoveragePageTest {
     }
 
     /** The lines of a stream, with the folder taken out of file names. */
-    private static List<String> lines(String text, Path dir) {
+    static List<String> lines(String text, Path dir) {
         return text.replace(dir + File.separator, "").lines().toList();
     }
 }

@@ -35,16 +35,44 @@ public final class Plan {
     private final Partition partition;
     private Boolean environmentLetsTimePass;
 
-    /** A window of elapsed ticks in which a channel is enabled, with the edge that would take it. */
-    record Window(long lo, long hi, Semantics.Step edge) {
+    /**
+     * A window of elapsed ticks in which a channel is enabled, with the edge that would take it, the state it is
+     * taken from and the move.
+     */
+    record Window(long lo, long hi, Semantics.Step edge, SymState from, Semantics.Move move) {
+    }
+
+    /**
+     * Scores the tester's moves for a steering strategy: the fewer moves from where one leads to the strategy's
+     * nearest target, the better; {@link io.dtron.engine.internal.verify.DiscreteGraph#UNREACHABLE} when it does not
+     * steer.
+     */
+    public interface Scorer {
+        /** The score of the input {@code move} from {@code from}. */
+        int input(SymState from, Semantics.Move move);
+
+        /** The score of waiting for the system in the states {@code reach}. */
+        int waiting(List<SymState> reach);
+
+        /**
+         * How long after the last event, in ticks, waiting for the system is worth it in the states {@code reach}:
+         * past the largest clock constant that matters there, time alone changes nothing.
+         */
+        long patience(List<SymState> reach);
     }
 
     /**
      * The tester's next move: an input after {@code ticks}, or (input null) waiting until {@code ticks}; {@code
      * letsTimePass} when the tester waits past a deadline at which the environment allowed an input (it lets time
-     * pass rather than give more inputs at one instant, or an input it could not aim a margin before the deadline).
+     * pass rather than give more inputs at one instant, or an input it could not aim a margin before the deadline, or
+     * because a strategy waits for the system); {@code steered} when a strategy chose it.
      */
-    public record Choice(TestInterface.ObservableChannel input, long ticks, boolean letsTimePass) {
+    public record Choice(TestInterface.ObservableChannel input, long ticks, boolean letsTimePass, boolean steered) {
+        /** A choice that no strategy steered. */
+        public Choice(TestInterface.ObservableChannel input, long ticks, boolean letsTimePass) {
+            this(input, ticks, letsTimePass, false);
+        }
+
         /** Whether this applies an input. */
         public boolean isInput() {
             return input != null;
@@ -94,7 +122,7 @@ public final class Plan {
                     byChannel.set(move.channel(), ws);
                     seen.add(move.channel());
                 }
-                ws.add(new Window(lower(lowerNeg), upper(upper, horizon), move.steps().get(0)));
+                ws.add(new Window(lower(lowerNeg), upper(upper, horizon), move.steps().get(0), s, move));
             });
         }
         Map<Integer, List<Window>> windows = new LinkedHashMap<>();
@@ -215,7 +243,23 @@ public final class Plan {
      */
     public Choice choose(long elapsed, Random random, DelayPolicy policy, long boundTicks, long shortBoundTicks,
                          ToLongFunction<TestInterface.ObservableChannel> marginTicks, long earliestTicks) {
+        return choose(elapsed, random, policy, boundTicks, shortBoundTicks, marginTicks, earliestTicks, null);
+    }
+
+    /**
+     * {@link #choose(long, Random, DelayPolicy, long, long, ToLongFunction, long) Chooses}, steered by {@code
+     * scorer} when it is not null: among the inputs with the best score (at random between equals), at the start of
+     * its window; waiting when that scores at least as well as every input (the system moves on by itself): until
+     * the deadline (past a window for an input only when the environment lets time pass there, so that the deadline
+     * is the system's), else the best input as late as its window allows; without a deadline, until time alone
+     * changes nothing ({@link Scorer#patience}). When nothing scores within the horizon,
+     * the choice is the unsteered one.
+     */
+    public Choice choose(long elapsed, Random random, DelayPolicy policy, long boundTicks, long shortBoundTicks,
+                         ToLongFunction<TestInterface.ObservableChannel> marginTicks, long earliestTicks,
+                         Scorer scorer) {
         List<long[]> options = new ArrayList<>();
+        List<Window> origins = new ArrayList<>();
         List<TestInterface.ObservableChannel> channels = new ArrayList<>();
         boolean mustAct = false;
         boolean couldActAtDeadline = false;
@@ -238,12 +282,20 @@ public final class Plan {
                 // window narrower than the margin the start gives it the most room
                 options.add(new long[] {lo, Math.max(lo, hi - margin)});
                 channels.add(input);
+                origins.add(w);
                 mustAct |= hasDeadline() && lo <= deadline && deadline <= w.hi();
             }
         }
         // waiting is a choice of its own only when something must happen by a deadline: otherwise an input's
         // random time already covers waiting, and the tester would wait to the end of the test
         boolean offerWait = options.isEmpty() || hasDeadline() && !mustAct;
+        if (scorer != null && !options.isEmpty()) {
+            Choice steered = steer(scorer, elapsed, options, channels, origins, random, mustAct,
+                    couldActAtDeadline);
+            if (steered != null) {
+                return steered;
+            }
+        }
         int count = options.size() + (offerWait ? 1 : 0);
         int pick = options.isEmpty() ? 0 : random.nextInt(count);
         if (pick == options.size()) {
@@ -263,6 +315,47 @@ public final class Plan {
             }
         };
         return new Choice(channels.get(pick), Math.min(ticks, hi), false);
+    }
+
+    private Choice steer(Scorer scorer, long elapsed, List<long[]> options, List<TestInterface.ObservableChannel> channels,
+                         List<Window> origins, Random random, boolean mustAct, boolean couldActAtDeadline) {
+        int best = io.dtron.engine.internal.verify.DiscreteGraph.UNREACHABLE;
+        List<Integer> bestOptions = new ArrayList<>();
+        for (int i = 0; i < options.size(); i++) {
+            int score = scorer.input(origins.get(i).from(), origins.get(i).move());
+            if (score < best) {
+                best = score;
+                bestOptions.clear();
+            }
+            if (score == best) {
+                bestOptions.add(i);
+            }
+        }
+        // waiting for a system that need not act is worth it only until time alone changes nothing: then act
+        long patience = hasDeadline() ? Long.MAX_VALUE : scorer.patience(reach);
+        int wait = elapsed >= patience ? io.dtron.engine.internal.verify.DiscreteGraph.UNREACHABLE
+                : scorer.waiting(reach);
+        if (wait >= io.dtron.engine.internal.verify.DiscreteGraph.UNREACHABLE
+                && best >= io.dtron.engine.internal.verify.DiscreteGraph.UNREACHABLE) {
+            return null;
+        }
+        if (wait <= best) {
+            if (!mustAct) {
+                return new Choice(null, hasDeadline() ? deadline + 1 : Math.min(horizon, patience),
+                        couldActAtDeadline, true);
+            }
+            if (environmentLetsTimePass()) {
+                // the deadline is the system's: it must act by then whatever the environment does, so the tester
+                // may wait for it past a window in which it could have given an input
+                return new Choice(null, deadline + 1, true, true);
+            }
+            // an input must come by the deadline: the best one, as late as it can, to give the system its time
+            int pick = bestOptions.isEmpty() ? random.nextInt(options.size())
+                    : bestOptions.get(random.nextInt(bestOptions.size()));
+            return new Choice(channels.get(pick), options.get(pick)[1], false);
+        }
+        int pick = bestOptions.get(random.nextInt(bestOptions.size()));
+        return new Choice(channels.get(pick), options.get(pick)[0], false);
     }
 
     /** The outputs the model allowed, with their times, and the implementation's state, for explanations. */
@@ -318,7 +411,7 @@ public final class Plan {
         for (Window w : sorted) {
             if (!out.isEmpty() && w.lo() <= out.get(out.size() - 1).hi() + 1) {
                 Window last = out.remove(out.size() - 1);
-                out.add(new Window(last.lo(), Math.max(last.hi(), w.hi()), last.edge()));
+                out.add(new Window(last.lo(), Math.max(last.hi(), w.hi()), last.edge(), last.from(), last.move()));
             } else {
                 out.add(w);
             }

@@ -36,12 +36,20 @@ public final class PropertyCompiler {
     private final Map<String, Integer> constants = new HashMap<>();
     private final Map<String, int[]> ranges = new HashMap<>();
     private final Map<String, Integer> bound = new HashMap<>();
+    /** Ticks per model time unit of the zones the properties are applied to: clock constants are scaled by it. */
+    private final int scale;
     private String query;
     private int column;
 
     /** A compiler for properties of {@code network}. */
     public PropertyCompiler(Network network) {
+        this(network, 1);
+    }
+
+    /** A compiler for properties of {@code network} applied to zones of {@code scale} ticks per time unit. */
+    PropertyCompiler(Network network, int scale) {
         this.network = network;
+        this.scale = scale;
         readGlobalConstants();
     }
 
@@ -211,8 +219,9 @@ public final class PropertyCompiler {
             throw error(b, "not a clock constraint");
         }
         // x_i - x_j  op  c  with c = ro - lo
-        Property.IntTerm c = s -> ro.eval(s) - lo.eval(s);
-        Property.IntTerm minusC = s -> lo.eval(s) - ro.eval(s);
+        int k = scale;
+        Property.IntTerm c = s -> k * (ro.eval(s) - lo.eval(s));
+        Property.IntTerm minusC = s -> k * (lo.eval(s) - ro.eval(s));
         Property.ClockBound upperStrict = new Property.ClockBound(i, j, c, true);
         Property.ClockBound upper = new Property.ClockBound(i, j, c, false);
         Property.ClockBound lowerStrict = new Property.ClockBound(j, i, minusC, true);

@@ -124,6 +124,23 @@ public class StateSetBenchmark {
         return sb.append(";\n").toString();
     }
 
+    /** The model's network and interface, and the state sets of the recorded steps, for other benches. */
+    List<StateSet> recordedSets() {
+        return steps.stream().map(Step::before).toList();
+    }
+
+    Semantics semantics() {
+        return semantics;
+    }
+
+    Partition partition() {
+        return partition;
+    }
+
+    TestInterface testInterface() {
+        return iface;
+    }
+
     private Step nextStep() {
         Step s = steps.get(next);
         next = (next + 1) % steps.size();

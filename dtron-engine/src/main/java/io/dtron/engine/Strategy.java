@@ -1,0 +1,14 @@
+package io.dtron.engine;
+
+/** How the tester chooses among the inputs and delays the environment model allows. */
+public enum Strategy {
+    /** At random, by the {@link DelayPolicy} (the default, as Uppaal TRON). */
+    RANDOM,
+    /**
+     * Toward the edges of the model not yet covered on an input or output, its traps not yet set and the open goals:
+     * the move that brings them nearest in sum, by distance in the zone graph of the closed network.
+     */
+    COVERAGE,
+    /** Toward the nearest goal not yet reached, by distance in the zone graph of the closed network. */
+    GOAL
+}
