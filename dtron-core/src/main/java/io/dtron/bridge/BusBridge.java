@@ -129,6 +129,8 @@ public final class BusBridge implements Adapter, AutoCloseable {
             new java.util.concurrent.LinkedBlockingQueue<>();
     /** Whether the run start was published before {@link #start} (a run of several testers). */
     private volatile boolean announced;
+    private volatile Duration startLead = Duration.ZERO;
+    private volatile long startUnitMicros;
     /** The run's time 0 as a {@link System#nanoTime()} reading, when announced. */
     private volatile long zeroNanoTime;
     private volatile long windowMicros;
@@ -369,11 +371,30 @@ public final class BusBridge implements Adapter, AutoCloseable {
     }
 
     /**
-     * In a run of several testers: time 0 as {@link #announceRun} or {@link #awaitRun} set it, so that the engine
-     * of every tester counts from the same instant; empty otherwise.
+     * Publishes the start of the next run this far ahead of its time 0, when the engine asks for time 0 ({@link
+     * #timeZero}): the start then reaches the adapters, and their listeners of it run, before time 0, not in the
+     * run's first milliseconds while its first inputs are due. Zero (the default) publishes the start when the engine
+     * starts, at time 0. A run of several testers announces its start itself ({@link #announceRun}), and a joining
+     * tester waits for it.
+     *
+     * @param lead           how far ahead of time 0
+     * @param timeUnitMicros the run's time unit, which the start carries
+     */
+    public void startAhead(Duration lead, long timeUnitMicros) {
+        startLead = lead;
+        startUnitMicros = timeUnitMicros;
+    }
+
+    /**
+     * Time 0 as {@link #announceRun} or {@link #awaitRun} set it (in a run of several testers, so that the engine of
+     * every tester counts from the same instant), or, with {@link #startAhead}, as announced now, that far ahead;
+     * empty otherwise (time 0 is when the engine starts).
      */
     @Override
     public java.util.OptionalLong timeZero() {
+        if (!announced && !joining && !startLead.isZero()) {
+            announceRun(startLead, startUnitMicros);
+        }
         long zero = zeroNanoTime;
         return announced ? java.util.OptionalLong.of(zero) : java.util.OptionalLong.empty();
     }
@@ -614,9 +635,10 @@ public final class BusBridge implements Adapter, AutoCloseable {
     }
 
     /**
-     * Probes every adapter member in rounds, {@code spacing} apart, for at least {@code minimum} (while this process
-     * warms up, say) and until the round trips of the last rounds are steady ({@link InputDelays#steady}), or
-     * {@code limit} has passed: a fresh JVM's first compilations and collections, here and in the adapters, then
+     * Probes every adapter member in rounds, {@code spacing} apart (zero: one after the other), for at least {@code
+     * minimum} (while this process warms up, say) and until the round trips of the last rounds are steady ({@link
+     * InputDelays#steady}) and no longer get faster ({@link InputDelays#noLongerImproving}), or {@code limit} has
+     * passed: a fresh JVM's first compilations and collections, here and in the adapters, then
      * happen before the run, not in it. Each probe takes the way of an input ({@link Dtron#probeAsInput}): through
      * the adapter's listeners' thread and its acknowledgement, without reaching a listener, so that the adapter's
      * first input of the run does not take that way for the first time. Each member's longest round trip in the last
@@ -646,11 +668,13 @@ public final class BusBridge implements Adapter, AutoCloseable {
             }
             rounds.add(round);
             long elapsed = System.nanoTime() - start;
-            steady = InputDelays.steady(rounds);
+            steady = InputDelays.steady(rounds) && InputDelays.noLongerImproving(rounds);
             if (steady && elapsed >= minimum.toNanos() || elapsed >= limit.toNanos()) {
                 break;
             }
-            Thread.sleep(spacing.toMillis());
+            if (!spacing.isZero()) {
+                Thread.sleep(spacing.toMillis());
+            }
         }
         byMember.forEach((member, trips) -> inputDelays.probed(member, trips.subList(Math.max(0, trips.size()
                 - InputDelays.STEADY_ROUNDS), trips.size()).stream().mapToLong(Long::longValue).max().orElse(0)));

@@ -1087,6 +1087,9 @@ public final class OnlineTester {
             }
             StateSet.Successor chosen = moves.get(random.nextInt(moves.size()));
             Map<String, Integer> values = valuesOf(channel, chosen.state());
+            Event event = new Event(channel.name(), values);
+            // published first, the bookkeeping after: the input's way to the system starts at its time
+            adapter.perform(event);
             List<io.dtron.engine.internal.sem.SymState> next = new ArrayList<>();
             List<StateSet.Successor> taken = new ArrayList<>();
             for (StateSet.Successor s : moves) {
@@ -1098,7 +1101,6 @@ public final class OnlineTester {
             if (steerer != null) {
                 steerer.taken(taken, now, inputs + 1, false);
             }
-            Event event = new Event(channel.name(), values);
             Recorder.Step step = coverage.step(set.states(), taken);
             set = atTime.of(next);
             lastMicros = now;
@@ -1113,7 +1115,6 @@ public final class OnlineTester {
             for (TestListener l : listeners) {
                 l.inputApplied(event, now);
             }
-            adapter.perform(event);
             return null;
         }
 

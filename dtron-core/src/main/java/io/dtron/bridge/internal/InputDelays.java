@@ -20,6 +20,10 @@ public final class InputDelays {
     static final double STEADY_FACTOR = 1.5;
     /** ...or at most this much more, in microseconds (for round trips too short for a factor to mean much). */
     static final long STEADY_SLACK_MICROS = 1000;
+    /** How many rounds of probes are compared with as many before them, to tell whether they still get faster. */
+    public static final int TREND_ROUNDS = 50;
+    /** Still getting faster: the median of the last rounds below this share of the median of the rounds before. */
+    static final double IMPROVING = 0.85;
     /** How many acknowledged delays are kept per channel, the latest. */
     private static final int KEPT = 256;
 
@@ -42,6 +46,26 @@ public final class InputDelays {
         long median = before[before.length / 2];
         long last = roundsMicros.subList(n - STEADY_ROUNDS, n).stream().mapToLong(Long::longValue).max().orElse(0);
         return last <= Math.max((long) (STEADY_FACTOR * median), median + STEADY_SLACK_MICROS);
+    }
+
+    /**
+     * Whether round trips (one per round, in order) no longer get faster: there are at least twice {@value
+     * #TREND_ROUNDS}, and the median of the last {@value #TREND_ROUNDS} is at least 0.85 times the median of the
+     * {@value #TREND_ROUNDS} before them. A fresh process's code gets faster as the JIT compiler compiles it, over
+     * hundreds to thousands of rounds; the rounds only look alike ({@link #steady}) long before that.
+     */
+    public static boolean noLongerImproving(List<Long> roundsMicros) {
+        int n = roundsMicros.size();
+        if (n < 2 * TREND_ROUNDS) {
+            return false;
+        }
+        return median(roundsMicros.subList(n - TREND_ROUNDS, n))
+                >= IMPROVING * median(roundsMicros.subList(n - 2 * TREND_ROUNDS, n - TREND_ROUNDS));
+    }
+
+    private static long median(List<Long> values) {
+        long[] sorted = values.stream().mapToLong(Long::longValue).sorted().toArray();
+        return sorted[sorted.length / 2];
     }
 
     /** Records the longest probe round trip of {@code member} in the last rounds before the run. */

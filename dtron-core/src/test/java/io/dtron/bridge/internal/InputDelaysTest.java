@@ -29,6 +29,20 @@ class InputDelaysTest {
     }
 
     @Test
+    void roundTripsNoLongerImproveWhenTheLastFiftyAreNotMuchFasterThanTheFiftyBefore() {
+        List<Long> rounds = new java.util.ArrayList<>(java.util.Collections.nCopies(99, 3_000L));
+        assertFalse(InputDelays.noLongerImproving(rounds), "too few rounds to tell");
+        rounds.add(3_000L);
+        assertTrue(InputDelays.noLongerImproving(rounds));
+        // the compiler at work: the last fifty at 2.5 ms against 3 ms before, still getting faster
+        rounds.addAll(java.util.Collections.nCopies(50, 2_500L));
+        assertFalse(InputDelays.noLongerImproving(rounds));
+        // 0.85 times the median before is no longer getting faster
+        rounds.addAll(java.util.Collections.nCopies(50, 2_125L));
+        assertTrue(InputDelays.noLongerImproving(rounds));
+    }
+
+    @Test
     void theRoomOfAChannelIsItsReceiversProbeOrTheHighPercentileOfItsAcknowledgedDelays() {
         InputDelays delays = new InputDelays();
         assertEquals(0, delays.roomMicros("start", Set.of()));

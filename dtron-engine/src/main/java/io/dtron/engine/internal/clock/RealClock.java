@@ -7,7 +7,7 @@ package io.dtron.engine.internal.clock;
  */
 public final class RealClock extends RunClock {
     /** How long before a target the clock stops sleeping and spins, in microseconds. */
-    public static final long SPIN_MICROS = 300;
+    public static final long SPIN_MICROS = 1000;
     private volatile long start = System.nanoTime();
     private volatile long worstLateness;
 
@@ -19,13 +19,16 @@ public final class RealClock extends RunClock {
         }
         long zero = zeroNanoTime.getAsLong();
         long ahead;
-        while ((ahead = zero - System.nanoTime()) > 0) {
+        while ((ahead = zero - System.nanoTime()) > SPIN_MICROS * 1000) {
             try {
-                java.util.concurrent.TimeUnit.NANOSECONDS.sleep(ahead);
+                java.util.concurrent.TimeUnit.NANOSECONDS.sleep(ahead - SPIN_MICROS * 1000);
             } catch (InterruptedException e) {
                 Thread.currentThread().interrupt();
                 break;
             }
+        }
+        while (System.nanoTime() < zero && !Thread.currentThread().isInterrupted()) {
+            Thread.onSpinWait();
         }
         start = zero;
     }
