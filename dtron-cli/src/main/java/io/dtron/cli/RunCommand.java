@@ -89,12 +89,6 @@ final class RunCommand implements Callable<Integer> {
     private static final Duration PROBE_LIMIT = Duration.ofSeconds(3);
     /** How far ahead a run of several testers is started, so that every tester starts its engine at time 0. */
     private static final Duration RUN_LEAD = Duration.ofMillis(500);
-    /**
-     * How far ahead of time 0 a run's start is published, at least: twice the longest delay measured before the run
-     * (with the clock error), up to {@link #RUN_LEAD}. The adapters then hear of the start, and run their listeners of
-     * it, before time 0, not while the run's first inputs are due.
-     */
-    private static final Duration START_LEAD = Duration.ofMillis(100);
 
     @Option(names = "--sut", paramLabel = "CLASS[:VARIANT]",
             description = "An in-process system under test: a class implementing io.dtron.engine.Adapter,"
@@ -699,10 +693,6 @@ final class RunCommand implements Callable<Integer> {
                     }
                 } else if (testers != null && testers > 1) {
                     bridge.announceRun(RUN_LEAD, options.timeUnitMicros());
-                } else {
-                    long measured = 2 * (delays.maxDelayNanos() + delays.maxErrorNanos());
-                    bridge.startAhead(Duration.ofNanos(Math.min(RUN_LEAD.toNanos(), Math.max(START_LEAD.toNanos(),
-                            measured))), options.timeUnitMicros());
                 }
             } catch (InterruptedException e) {
                 Thread.currentThread().interrupt();

@@ -129,8 +129,6 @@ public final class BusBridge implements Adapter, AutoCloseable {
             new java.util.concurrent.LinkedBlockingQueue<>();
     /** Whether the run start was published before {@link #start} (a run of several testers). */
     private volatile boolean announced;
-    private volatile Duration startLead = Duration.ZERO;
-    private volatile long startUnitMicros;
     /** The run's time 0 as a {@link System#nanoTime()} reading, when announced. */
     private volatile long zeroNanoTime;
     private volatile long windowMicros;
@@ -371,30 +369,11 @@ public final class BusBridge implements Adapter, AutoCloseable {
     }
 
     /**
-     * Publishes the start of the next run this far ahead of its time 0, when the engine asks for time 0 ({@link
-     * #timeZero}): the start then reaches the adapters, and their listeners of it run, before time 0, not in the
-     * run's first milliseconds while its first inputs are due. Zero (the default) publishes the start when the engine
-     * starts, at time 0. A run of several testers announces its start itself ({@link #announceRun}), and a joining
-     * tester waits for it.
-     *
-     * @param lead           how far ahead of time 0
-     * @param timeUnitMicros the run's time unit, which the start carries
-     */
-    public void startAhead(Duration lead, long timeUnitMicros) {
-        startLead = lead;
-        startUnitMicros = timeUnitMicros;
-    }
-
-    /**
-     * Time 0 as {@link #announceRun} or {@link #awaitRun} set it (in a run of several testers, so that the engine of
-     * every tester counts from the same instant), or, with {@link #startAhead}, as announced now, that far ahead;
-     * empty otherwise (time 0 is when the engine starts).
+     * In a run of several testers: time 0 as {@link #announceRun} or {@link #awaitRun} set it, so that the engine
+     * of every tester counts from the same instant; empty otherwise.
      */
     @Override
     public java.util.OptionalLong timeZero() {
-        if (!announced && !joining && !startLead.isZero()) {
-            announceRun(startLead, startUnitMicros);
-        }
         long zero = zeroNanoTime;
         return announced ? java.util.OptionalLong.of(zero) : java.util.OptionalLong.empty();
     }
