@@ -16,7 +16,9 @@ import java.util.concurrent.atomic.AtomicInteger;
 /**
  * A ticker on the bus for the ticker model, using only {@code io.dtron.api}: from the start of a run it publishes
  * {@code tick(seq)} every 10 time units ({@code slow}: 13), and restarts on {@code reset}, until the run stops;
- * periods count from the publish time of the message that starts them.
+ * the first period counts from the run's time 0 (the event time of its start), and a period after a reset from when
+ * this adapter applied the reset, as it acknowledges it (counting from the reset's publish time would tick early by
+ * the reset's way here: a false FAILED when that way takes more than the model's tolerance).
  */
 public final class BusTicker implements DtronAdapter {
     private static final IDtronChannel RESET = IDtronChannel.of("reset");
@@ -56,7 +58,8 @@ public final class BusTicker implements DtronAdapter {
         bus.addDtronListener(new DtronListener(Dtron.RUN_START) {
             @Override
             public void messageReceived(IDtronChannelValued message) {
-                restart(periodUnits * (long) message.getVariables().get("timeunit"), message);
+                restart(periodUnits * (long) message.getVariables().get("timeunit"),
+                        message.getEventTimeNanos() + message.getClockOffsetNanos() - dtron.getClockOffsetNanos());
             }
         });
         bus.addDtronListener(new DtronListener(Dtron.RUN_STOP) {
@@ -75,7 +78,7 @@ public final class BusTicker implements DtronAdapter {
 
     private synchronized void reset(IDtronChannelValued message) {
         resets.incrementAndGet();
-        restart(periodMicros, message);
+        restart(periodMicros, 0);
     }
 
     /** Stops ticking until the next run starts. */
@@ -97,13 +100,17 @@ public final class BusTicker implements DtronAdapter {
         timer.shutdownNow();
     }
 
-    /** Starts a period at the publish time of the message that starts it (exact on one host). */
-    private synchronized void restart(long period, IDtronChannelValued message) {
+    /**
+     * Starts a period at {@code fromEpochNanos} on this member's clock (the run's time 0, exact on one host), or now
+     * when it is 0.
+     */
+    private synchronized void restart(long period, long fromEpochNanos) {
         if (timer.isShutdown() || period == 0) {
             return;
         }
         Instant now = Instant.now();
-        long age = (now.getEpochSecond() * 1_000_000_000L + now.getNano() - message.getPublishTimeNanos()) / 1000;
+        long age = fromEpochNanos == 0 ? 0
+                : (now.getEpochSecond() * 1_000_000_000L + now.getNano() - fromEpochNanos) / 1000;
         long firstDelay = period - Math.max(0, Math.min(period / 2, age));
         if (ticking != null) {
             ticking.cancel(false);
