@@ -1,10 +1,16 @@
 package io.dtron.cli;
 
+import io.dtron.engine.GoalStatus;
+import io.dtron.engine.OnlineTester;
+import io.dtron.engine.Steering;
+import io.dtron.engine.SteeringReport;
 import io.dtron.engine.TestOptions;
 import io.dtron.engine.UnsupportedModelException;
+import io.dtron.engine.sim.ModelSystem;
 import io.dtron.engine.sim.Mutant;
 import io.dtron.engine.sim.MutationReport;
 import io.dtron.engine.sim.Mutants;
+import io.dtron.engine.verify.QueryException;
 import io.dtron.model.ModelException;
 import io.dtron.model.ModelLoader;
 import io.dtron.model.Network;
@@ -42,8 +48,9 @@ import picocli.CommandLine.Spec;
                         + " for --budget time units with each of --seeds seeds (from --seed on) until a run FAILS."
                         + " Mutants whose change takes effect only at a location the checker proves unreachable are"
                         + " equivalent; mutants the engine refuses are invalid; neither counts in the score.",
-                "Options of dtron run that choose inputs (--seed, --timeunit, --delay-policy, --delay-bound, ...) are"
-                        + " passed to every run.",
+                "Options of dtron run that choose inputs (--seed, --timeunit, --delay-policy, --delay-bound,"
+                        + " --strategy, --goal, --horizon, ...) are passed to every run: --strategy coverage or goal"
+                        + " steers each run as dtron run would.",
                 "Exit code 0, 3 when the model as its own system does not PASS with every seed, 1 usage or model"
                         + " error."})
 final class MutantsCommand implements Callable<Integer> {
@@ -122,13 +129,18 @@ final class MutantsCommand implements Callable<Integer> {
             return 1;
         }
         TestOptions options;
+        Steering steering;
         try {
+            steering = run.steering();
             options = run.testOptions(testInterface);
             options = options.withTimeout(budget != null ? budget : options.timeout()).withVirtualTime(true);
         } catch (ParameterException e) {
             throw usage(e.getMessage().replaceFirst("^dtron run: ", ""));
         } catch (IllegalArgumentException e) {
             throw usage(e.getMessage());
+        }
+        if (steering != null && !steerable(network, testInterface, options, steering, out)) {
+            return 1;
         }
         List<Mutant> mutants;
         MutationReport report;
@@ -137,9 +149,10 @@ final class MutantsCommand implements Callable<Integer> {
             out.println("dtron mutants: " + model + ", " + mutants.size() + " mutants of the implementation, seeds "
                     + options.seed() + (seeds > 1 ? ".." + (options.seed() + seeds - 1) : "") + ", "
                     + options.timeout() + " time units each, delay policy "
-                    + options.delayPolicy().name().toLowerCase(Locale.ROOT).replace('_', '-'));
+                    + options.delayPolicy().name().toLowerCase(Locale.ROOT).replace('_', '-')
+                    + (steering == null ? "" : ", strategy " + steering.strategy().name().toLowerCase(Locale.ROOT)));
             out.flush();
-            report = Mutants.run(network, testInterface, mutants, options, seeds, threadCount);
+            report = Mutants.run(network, testInterface, mutants, options, steering, seeds, threadCount);
         } catch (UnsupportedModelException e) {
             err.println("dtron mutants: " + model + ": " + e.getMessage());
             return 1;
@@ -148,13 +161,39 @@ final class MutantsCommand implements Callable<Integer> {
         printSummary(report, threadCount, out);
         if (json != null) {
             try {
-                Files.writeString(json, json(report, options), StandardCharsets.UTF_8);
+                Files.writeString(json, json(report, options, steering), StandardCharsets.UTF_8);
             } catch (IOException e) {
                 err.println("dtron mutants: cannot write " + json + ": " + e.getMessage());
                 return 1;
             }
         }
         return report.modelRuns() == report.seeds().size() ? 0 : 3;
+    }
+
+    /**
+     * Explores the model for the planner of {@code steering} before the mutants are derived: a goal that does not
+     * compile is a usage error; a goal the checker proves unreachable is said (every run then ends INCONCLUSIVE).
+     */
+    private boolean steerable(Network network, TestInterface testInterface, TestOptions options, Steering steering,
+                              PrintWriter out) {
+        OnlineTester probe;
+        try {
+            probe = new OnlineTester(network, testInterface, new ModelSystem(network, testInterface, 0), options)
+                    .steer(steering);
+        } catch (QueryException e) {
+            throw usage("--goal: " + e.getMessage());
+        } catch (UnsupportedModelException e) {
+            spec.commandLine().getErr().println("dtron mutants: " + model + ": " + e.getMessage());
+            return false;
+        }
+        SteeringReport report = probe.steeringReport();
+        for (GoalStatus g : report.goals()) {
+            if (g.state() == GoalStatus.State.UNREACHABLE) {
+                out.println("dtron mutants: goal '" + g.text() + "' is unreachable: " + g.reason()
+                        + "; every run ends INCONCLUSIVE");
+            }
+        }
+        return true;
     }
 
     /** dtron run's command line for the options this command does not take itself. */
@@ -244,7 +283,7 @@ final class MutantsCommand implements Callable<Integer> {
                 threads == 1 ? "" : "s", r.outcomes().size() / seconds, r.runs() / seconds));
     }
 
-    private String json(MutationReport r, TestOptions options) {
+    private String json(MutationReport r, TestOptions options, Steering steering) {
         StringBuilder sb = new StringBuilder("{");
         sb.append("\"model\":").append(JsonTrace.quote(model.toString()));
         sb.append(",\"seeds\":").append(r.seeds().stream().map(String::valueOf).collect(Collectors.joining(",", "[",
@@ -253,6 +292,8 @@ final class MutantsCommand implements Callable<Integer> {
         sb.append(",\"timeunit_us\":").append(options.timeUnitMicros());
         sb.append(",\"delay_policy\":").append(JsonTrace.quote(options.delayPolicy().name()
                 .toLowerCase(Locale.ROOT).replace('_', '-')));
+        sb.append(",\"strategy\":").append(JsonTrace.quote(steering == null ? "random"
+                : steering.strategy().name().toLowerCase(Locale.ROOT)));
         for (MutationReport.Status s : MutationReport.Status.values()) {
             sb.append(",\"").append(s.name().toLowerCase(Locale.ROOT)).append("\":").append(r.count(s));
         }

@@ -348,6 +348,15 @@ final class RunCommand implements Callable<Integer> {
         }
     }
 
+    /**
+     * The steering of this command line's {@code --strategy}, {@code --goal}, {@code --goals}, {@code --horizon} and
+     * {@code --fairness} for runs without a stop condition ({@code dtron mutants} steers its runs with it); null when
+     * it asks for none.
+     */
+    io.dtron.engine.Steering steering() {
+        return goalOptions.prepare(false, this::usage);
+    }
+
     /** The installed TRON could not test: it did not start or connect, broke the protocol, or gave no verdict. */
     private static final class TronFailure extends RuntimeException {
         TronFailure(String message) {

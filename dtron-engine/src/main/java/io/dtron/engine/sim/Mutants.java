@@ -1,6 +1,7 @@
 package io.dtron.engine.sim;
 
 import io.dtron.engine.OnlineTester;
+import io.dtron.engine.Steering;
 import io.dtron.engine.TestOptions;
 import io.dtron.engine.TestResult;
 import io.dtron.engine.UnsupportedModelException;
@@ -102,6 +103,20 @@ public final class Mutants {
      */
     public static MutationReport run(Network network, TestInterface testInterface, List<Mutant> mutants,
                                      TestOptions options, int seeds, int threads) {
+        return run(network, testInterface, mutants, options, null, seeds, threads);
+    }
+
+    /**
+     * {@link #run(Network, TestInterface, List, TestOptions, int, int) Runs} the tester against each mutant, every run
+     * steered by {@code steering} (null: none) as {@link OnlineTester#steer} steers a run. The planner's exploration
+     * of the model is done once and shared by every run: the tester's model is the unmutated one, whatever the mutant,
+     * so the exploration is the same for all.
+     *
+     * @throws io.dtron.engine.verify.QueryException when a goal of {@code steering} is not an {@code E<>} query or
+     *                                               does not compile
+     */
+    public static MutationReport run(Network network, TestInterface testInterface, List<Mutant> mutants,
+                                     TestOptions options, Steering steering, int seeds, int threads) {
         if (seeds < 1 || threads < 1) {
             throw new IllegalArgumentException("seeds and threads must be at least 1");
         }
@@ -111,16 +126,20 @@ public final class Mutants {
         }
         TestOptions base = options.withVirtualTime(true);
         long start = System.nanoTime();
+        if (steering != null) {
+            // explores the model for the planner before the runs share it, and refuses goals that do not compile
+            new OnlineTester(network, testInterface, new ModelSystem(network, testInterface, 0), base).steer(steering);
+        }
         ExecutorService pool = Executors.newFixedThreadPool(threads, r -> {
             Thread t = new Thread(r, "dtron-mutants");
             t.setDaemon(true);
             return t;
         });
         try {
-            Future<String[]> model = pool.submit(() -> modelRuns(network, testInterface, base, seedList));
+            Future<String[]> model = pool.submit(() -> modelRuns(network, testInterface, base, steering, seedList));
             List<Future<MutationReport.Outcome>> futures = new ArrayList<>();
             for (Mutant m : mutants) {
-                futures.add(pool.submit(() -> outcome(network, testInterface, m, base, seedList)));
+                futures.add(pool.submit(() -> outcome(network, testInterface, m, base, steering, seedList)));
             }
             List<MutationReport.Outcome> outcomes = new ArrayList<>();
             for (Future<MutationReport.Outcome> f : futures) {
@@ -140,11 +159,11 @@ public final class Mutants {
     }
 
     private static String[] modelRuns(Network network, TestInterface testInterface, TestOptions base,
-                                      List<Long> seeds) {
+                                      Steering steering, List<Long> seeds) {
         int passed = 0;
         String problem = null;
         for (long seed : seeds) {
-            TestResult r = once(network, network, testInterface, base, seed);
+            TestResult r = once(network, network, testInterface, base, steering, seed);
             if (r.verdict() == Verdict.PASSED) {
                 passed++;
             } else if (problem == null) {
@@ -155,7 +174,7 @@ public final class Mutants {
     }
 
     private static MutationReport.Outcome outcome(Network network, TestInterface testInterface, Mutant m,
-                                                  TestOptions base, List<Long> seeds) {
+                                                  TestOptions base, Steering steering, List<Long> seeds) {
         if (m.invalid() != null) {
             return new MutationReport.Outcome(m, MutationReport.Status.INVALID, 0, m.invalid());
         }
@@ -167,7 +186,7 @@ public final class Mutants {
         for (long seed : seeds) {
             TestResult r;
             try {
-                r = once(network, m.network(), testInterface, base, seed);
+                r = once(network, m.network(), testInterface, base, steering, seed);
             } catch (ModelRuntimeException | UnsupportedModelException e) {
                 return new MutationReport.Outcome(m, MutationReport.Status.INVALID, seed, e.getMessage());
             }
@@ -190,10 +209,14 @@ public final class Mutants {
 
     /** One run of the tester with {@code spec} against {@code system} as the system under test. */
     private static TestResult once(Network spec, Network system, TestInterface testInterface, TestOptions base,
-                                   long seed) {
+                                   Steering steering, long seed) {
         TestOptions options = new TestOptions(seed, base.timeUnitMicros(), base.timeout(), base.delayPolicy(),
                 base.delayBound(), true, base.reorderWindowMicros(), base.inputMarginMicros(), base.shortDelayBound());
-        return new OnlineTester(spec, testInterface, new ModelSystem(system, testInterface,
-                ModelSystem.seedFor(seed)), options).run();
+        OnlineTester tester = new OnlineTester(spec, testInterface, new ModelSystem(system, testInterface,
+                ModelSystem.seedFor(seed)), options);
+        if (steering != null) {
+            tester.steer(steering);
+        }
+        return tester.run();
     }
 }

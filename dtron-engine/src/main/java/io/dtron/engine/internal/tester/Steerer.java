@@ -21,7 +21,7 @@ import java.util.Map;
 
 /**
  * Steers a run toward its goals and the edges it has not covered: the reactive planner. Before the run it explores
- * the closed network once ({@link DiscreteGraph}) and finds the goals no path reaches; during the run it scores every
+ * the closed network once ({@link DiscreteGraph}, shared by the runs of one model) and finds the goals no path reaches; during the run it scores every
  * input the plan offers, and waiting, by the distances (in moves) from where each leads to the targets, within the
  * horizon: to the nearest open goal ({@link Strategy#GOAL}), or the sum over every edge, trap and goal left ({@link
  * Strategy#COVERAGE}); distances are kept per discrete state (per target, for good: the graph does not change) and
@@ -116,7 +116,7 @@ public final class Steerer {
             properties.add(StateProperty.goal(network, q, semantics.ticksPerUnit()));
             goals.add(q);
         }
-        DiscreteGraph graph = DiscreteGraph.explore(network, goals, MAX_STATES);
+        DiscreteGraph graph = DiscreteGraph.cached(network, goals, MAX_STATES);
         return new Steerer(steering, network, semantics, partition, graph, goals, properties,
                 steering.goals().size());
     }

@@ -71,7 +71,8 @@ public final class DiscreteGraph {
     private final BitSet[] goalNodes;
     private final boolean complete;
     private final long zoneStates;
-    private int[][] reverse;
+    /** Per node, its predecessors: built with the graph, which is read-only from then on (runs share it). */
+    private final int[][] reverse;
 
     private DiscreteGraph(Network network, int goals, int maxStates, ZoneGraph graph, List<Property> properties) {
         this.edgeOffset = new int[network.processes().size()];
@@ -129,6 +130,7 @@ public final class DiscreteGraph {
         }
         this.complete = done;
         this.zoneStates = visited;
+        this.reverse = reverse(nodes.size(), arcs);
     }
 
     /** The smallest zone holding {@code a} and {@code b} (both canonical): the weaker of their bounds. */
@@ -174,6 +176,31 @@ public final class DiscreteGraph {
         } catch (ModelRuntimeException e) {
             throw new io.dtron.engine.UnsupportedModelException("model error while exploring the model for the"
                     + " planner: " + e.format());
+        }
+    }
+
+    /** The last exploration, for the same network (the same object) explored again toward the same goals. */
+    private static Last last;
+
+    private record Last(java.lang.ref.WeakReference<Network> network, List<String> goals, int maxStates,
+                        DiscreteGraph graph) {
+    }
+
+    /**
+     * {@link #explore}, or the graph of the last exploration when it was of this very network toward the same goals
+     * and bound: the runs of many seeds, or of many mutants tested against one model, explore it once. The graph is
+     * read-only once built, so runs on many threads share it.
+     */
+    public static DiscreteGraph cached(Network network, List<Query> goals, int maxStates) {
+        List<String> texts = goals.stream().map(Query::text).toList();
+        synchronized (DiscreteGraph.class) {
+            Last l = last;
+            if (l != null && l.network().get() == network && l.goals().equals(texts) && l.maxStates() == maxStates) {
+                return l.graph();
+            }
+            DiscreteGraph graph = explore(network, goals, maxStates);
+            last = new Last(new java.lang.ref.WeakReference<>(network), texts, maxStates, graph);
+            return graph;
         }
     }
 
@@ -275,7 +302,7 @@ public final class DiscreteGraph {
      * arcTarget} accepts as reaching the target; {@link #UNREACHABLE} when none can be reached.
      */
     public int[] distances(BitSet targets, java.util.function.Predicate<Arc> arcTarget) {
-        int[][] rev = reverse();
+        int[][] rev = reverse;
         int[] dist = new int[nodes.size()];
         Arrays.fill(dist, UNREACHABLE);
         ArrayDeque<Integer> queue = new ArrayDeque<>();
@@ -315,21 +342,19 @@ public final class DiscreteGraph {
         return dist;
     }
 
-    private int[][] reverse() {
-        if (reverse == null) {
-            List<List<Integer>> rev = new ArrayList<>();
-            for (int n = 0; n < nodes.size(); n++) {
-                rev.add(new ArrayList<>());
+    private static int[][] reverse(int size, List<Arc[]> arcs) {
+        List<List<Integer>> rev = new ArrayList<>();
+        for (int n = 0; n < size; n++) {
+            rev.add(new ArrayList<>());
+        }
+        for (int n = 0; n < size; n++) {
+            for (Arc a : arcs.get(n)) {
+                rev.get(a.target()).add(n);
             }
-            for (int n = 0; n < nodes.size(); n++) {
-                for (Arc a : arcs.get(n)) {
-                    rev.get(a.target()).add(n);
-                }
-            }
-            reverse = new int[nodes.size()][];
-            for (int n = 0; n < nodes.size(); n++) {
-                reverse[n] = rev.get(n).stream().mapToInt(Integer::intValue).distinct().toArray();
-            }
+        }
+        int[][] reverse = new int[size][];
+        for (int n = 0; n < size; n++) {
+            reverse[n] = rev.get(n).stream().mapToInt(Integer::intValue).distinct().toArray();
         }
         return reverse;
     }
