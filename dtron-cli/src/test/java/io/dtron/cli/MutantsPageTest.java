@@ -5,7 +5,7 @@ import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import io.dtron.testsupport.DocPage;
-import java.io.File;
+import io.dtron.testsupport.ShellWords;
 import java.nio.charset.StandardCharsets;
 import java.nio.file.Files;
 import java.nio.file.Path;
@@ -42,7 +42,7 @@ class MutantsPageTest {
             CommandRun r = CommandRun.of(args.toArray(String[]::new));
             assertFalse(r.err().contains("\tat "), "no stack trace: " + r.err());
             assertEquals(exits.get(args.get(0)), r.exit(), r.out() + r.err());
-            List<String> out = r.out().replace(dir + File.separator, "").lines().toList();
+            List<String> out = ShellWords.lines(r.out(), dir);
             assertEquals(lines.size(), out.size(), "mutants.md line " + b.line() + ": the lines printed\n" + r.out());
             for (int i = 0; i < lines.size(); i++) {
                 assertTrue(pattern(lines.get(i)).matcher(out.get(i)).matches(), "mutants.md, the session on line "

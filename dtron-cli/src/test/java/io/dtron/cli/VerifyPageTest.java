@@ -7,6 +7,7 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 import static org.junit.jupiter.api.Assertions.fail;
 
 import io.dtron.testsupport.DocPage;
+import io.dtron.testsupport.ShellWords;
 import io.dtron.testsupport.Tools;
 import java.io.File;
 import java.io.IOException;
@@ -46,7 +47,7 @@ class VerifyPageTest {
         for (Session s : sessions) {
             CommandRun r = CommandRun.of(s.args().toArray(String[]::new));
             assertFalse(r.err().contains("\tat "), "no stack trace: " + r.err());
-            match(s, lines(r.out(), dir), s.dropErr() ? List.of() : lines(r.err(), dir));
+            match(s, ShellWords.lines(r.out(), dir), s.dropErr() ? List.of() : ShellWords.lines(r.err(), dir));
             assertEquals(exits.get(Path.of(s.args().get(1)).getFileName().toString()), r.exit(), r.out() + r.err());
             if (s.args().get(1).endsWith("crossing.xta")) {
                 // the errors, dropped by 2>/dev/null on the page, are on standard error with the model's name
@@ -77,7 +78,7 @@ class VerifyPageTest {
         assertTrue(jq.waitFor(60, TimeUnit.SECONDS), "jq ends");
         String jqOut = new String(jq.getInputStream().readAllBytes(), StandardCharsets.UTF_8);
         assertEquals(0, jq.exitValue(), jqOut);
-        match(s, lines(jqOut, dir), lines(r.err(), dir));
+        match(s, ShellWords.lines(jqOut, dir), ShellWords.lines(r.err(), dir));
     }
 
     /** The page's verify sessions, with the page's model written to {@code dir} and the shared models found. */
@@ -95,7 +96,7 @@ class VerifyPageTest {
                 command.append(l, 0, l.length() - 1).append(' ');
             }
             command.append(lines.remove(0));
-            List<String> words = words(command.substring(COMMAND.length()));
+            List<String> words = ShellWords.split(command.substring(COMMAND.length()));
             Path file = dir.resolve(words.get(0));
             if (!Files.exists(file)) {
                 file = SHARED.resolve("uppaal-examples").resolve(words.get(0));
@@ -124,42 +125,6 @@ class VerifyPageTest {
             sessions.add(new Session(args, dropErr, jq, lines, b.line()));
         }
         return sessions;
-    }
-
-    /** The words of a shell command line, with '...' and "..." quoting. */
-    private static List<String> words(String line) {
-        List<String> words = new ArrayList<>();
-        StringBuilder word = null;
-        char quote = 0;
-        for (char c : line.toCharArray()) {
-            if (quote != 0) {
-                if (c == quote) {
-                    quote = 0;
-                } else {
-                    word.append(c);
-                }
-            } else if (c == '\'' || c == '"') {
-                quote = c;
-                word = word == null ? new StringBuilder() : word;
-            } else if (Character.isWhitespace(c)) {
-                if (word != null) {
-                    words.add(word.toString());
-                    word = null;
-                }
-            } else {
-                word = word == null ? new StringBuilder() : word;
-                word.append(c);
-            }
-        }
-        if (word != null) {
-            words.add(word.toString());
-        }
-        return words;
-    }
-
-    /** The lines of a stream, with the temporary folder taken out of file names. */
-    private static List<String> lines(String text, Path dir) {
-        return text.replace(dir + File.separator, "").lines().toList();
     }
 
     /**

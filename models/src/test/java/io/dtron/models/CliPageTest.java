@@ -11,8 +11,8 @@ import io.dtron.cli.DtronCommand;
 import io.dtron.models.ticker.TickerBusAdapter;
 import io.dtron.testsupport.DocPage;
 import io.dtron.testsupport.LogCapture;
+import io.dtron.testsupport.ShellWords;
 import io.dtron.testsupport.Waits;
-import java.io.File;
 import java.io.PrintWriter;
 import java.io.StringWriter;
 import java.nio.file.Files;
@@ -91,7 +91,7 @@ class CliPageTest {
             // wrong one)
             boolean heldUp = s.realTime() && (exit == 3 && HELD_UP.matcher(out.toString()).find()
                     || exit == 2 && !lateTicks.isEmpty() && out.toString().contains("\nFAILED: output tick("));
-            match(s, heldUp, lines(out.toString(), dir), lines(err.toString(), dir));
+            match(s, heldUp, ShellWords.lines(out.toString(), dir), ShellWords.lines(err.toString(), dir));
             exits.add(s.shown() + ": " + (heldUp ? 0 : exit));
         }
         // each session this test runs, by its command's first words, and its exit code: the page's verdicts
@@ -156,11 +156,6 @@ class CliPageTest {
             }
         }
         return sessions;
-    }
-
-    /** The lines of a stream, with the folder taken out of file names. */
-    private static List<String> lines(String text, Path dir) {
-        return text.replace(dir + File.separator, "").lines().toList();
     }
 
     /**

@@ -6,6 +6,7 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import io.dtron.cli.DtronCommand;
 import io.dtron.testsupport.DocPage;
+import io.dtron.testsupport.ShellWords;
 import java.io.File;
 import java.io.PrintWriter;
 import java.io.StringWriter;
@@ -45,7 +46,7 @@ class CoveragePageTest {
                 while (i < lines.size() && !lines.get(i).startsWith("$ ")) {
                     expected.add(lines.get(i++));
                 }
-                List<String> args = words(command);
+                List<String> args = ShellWords.split(command);
                 for (int a = 0; a < args.size(); a++) {
                     if (args.get(a).matches("[\\w-]+\\.(xml|trn|json|jsonl)")) {
                         args.set(a, dir.resolve(args.get(a)).toString());
@@ -58,8 +59,8 @@ class CoveragePageTest {
                 int exit = DtronCommand.run(args.toArray(String[]::new), new PrintWriter(out, true),
                         new PrintWriter(err, true));
                 assertFalse(err.toString().contains("\tat "), "no stack trace: " + err);
-                List<String> printed = new ArrayList<>(lines(out.toString(), dir));
-                printed.addAll(lines(err.toString(), dir));
+                List<String> printed = new ArrayList<>(ShellWords.lines(out.toString(), dir));
+                printed.addAll(ShellWords.lines(err.toString(), dir));
                 assertEquals(expected, printed, "coverage.md, the session on line " + line);
                 exits.add(String.join(" ", args.subList(0, 2)).replace(dir + File.separator, "") + ": " + exit);
             }
@@ -94,41 +95,5 @@ class CoveragePageTest {
         // the trace's first input and its edges, as the page shows them
         List<String> trace = Files.readAllLines(dir.resolve("lamp-2.jsonl"));
         assertEquals(page.blocks("json").get(0).strip(), String.join("\n", trace.subList(1, 3)));
-    }
-
-    /** The words of a shell command line, with '...' quoting. */
-    static List<String> words(String line) {
-        List<String> words = new ArrayList<>();
-        StringBuilder word = null;
-        boolean quoted = false;
-        for (char c : line.toCharArray()) {
-            if (quoted) {
-                if (c == '\'') {
-                    quoted = false;
-                } else {
-                    word.append(c);
-                }
-            } else if (c == '\'') {
-                quoted = true;
-                word = word == null ? new StringBuilder() : word;
-            } else if (Character.isWhitespace(c)) {
-                if (word != null) {
-                    words.add(word.toString());
-                    word = null;
-                }
-            } else {
-                word = word == null ? new StringBuilder() : word;
-                word.append(c);
-            }
-        }
-        if (word != null) {
-            words.add(word.toString());
-        }
-        return words;
-    }
-
-    /** The lines of a stream, with the folder taken out of file names. */
-    static List<String> lines(String text, Path dir) {
-        return text.replace(dir + File.separator, "").lines().toList();
     }
 }

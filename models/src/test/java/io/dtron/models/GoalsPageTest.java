@@ -5,7 +5,7 @@ import static org.junit.jupiter.api.Assertions.assertFalse;
 
 import io.dtron.cli.DtronCommand;
 import io.dtron.testsupport.DocPage;
-import java.io.File;
+import io.dtron.testsupport.ShellWords;
 import java.io.PrintWriter;
 import java.io.StringWriter;
 import java.nio.file.Files;
@@ -37,7 +37,7 @@ class GoalsPageTest {
             List<String> lines = b.code().lines().toList();
             String command = lines.get(0).substring(PROMPT.length());
             List<String> expected = lines.subList(1, lines.size()).stream().map(GoalsPageTest::untimed).toList();
-            List<String> args = CoveragePageTest.words(command);
+            List<String> args = ShellWords.split(command);
             for (int a = 0; a < args.size(); a++) {
                 if (args.get(a).matches("[\\w-]+\\.(xml|trn|xta)")) {
                     args.set(a, dir.resolve(args.get(a)).toString());
@@ -50,8 +50,8 @@ class GoalsPageTest {
             int exit = DtronCommand.run(args.toArray(String[]::new), new PrintWriter(out, true),
                     new PrintWriter(err, true));
             assertFalse(err.toString().contains("\tat "), "no stack trace: " + err);
-            List<String> printed = new ArrayList<>(CoveragePageTest.lines(out.toString(), dir));
-            printed.addAll(CoveragePageTest.lines(err.toString(), dir));
+            List<String> printed = new ArrayList<>(ShellWords.lines(out.toString(), dir));
+            printed.addAll(ShellWords.lines(err.toString(), dir));
             assertEquals(expected, printed.stream().map(GoalsPageTest::untimed).toList(),
                     "goals.md, the session on line " + b.line());
             exits.add(args.get(0) + ": " + exit);
