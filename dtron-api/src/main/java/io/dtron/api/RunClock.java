@@ -52,7 +52,7 @@ public final class RunClock {
      * How long before a task's time the clock's thread stops waiting and spins: a timed wait of this machine's
      * threads may end milliseconds late when its CPU was idle, a spin of this length does not.
      */
-    static final long SPIN_NANOS = 1_000_000;
+    private static final long SPIN_NANOS = 1_000_000;
 
     private final String member;
     private final LongSupplier wallClock;

@@ -7,7 +7,7 @@ package io.dtron.engine.internal.clock;
  */
 public final class RealClock extends RunClock {
     /** How long before a target the clock stops sleeping and spins, in microseconds. */
-    public static final long SPIN_MICROS = 1000;
+    private static final long SPIN_MICROS = 1000;
     private volatile long start = System.nanoTime();
     private volatile long worstLateness;
 
