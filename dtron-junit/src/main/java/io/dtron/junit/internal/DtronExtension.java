@@ -1,0 +1,159 @@
+package io.dtron.junit.internal;
+
+import io.dtron.engine.DelayPolicy;
+import io.dtron.engine.TestOptions;
+import io.dtron.junit.DtronRun;
+import io.dtron.junit.DtronTest;
+import io.dtron.model.ModelException;
+import io.dtron.model.ModelLoader;
+import io.dtron.model.Network;
+import io.dtron.model.TestInterface;
+import java.io.IOException;
+import java.io.InputStream;
+import java.io.UncheckedIOException;
+import java.lang.reflect.Method;
+import java.nio.charset.StandardCharsets;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.util.ArrayList;
+import java.util.LinkedHashSet;
+import java.util.List;
+import java.util.Optional;
+import java.util.Set;
+import java.util.concurrent.ThreadLocalRandom;
+import java.util.stream.Stream;
+import org.junit.jupiter.api.extension.ExtensionConfigurationException;
+import org.junit.jupiter.api.extension.ExtensionContext;
+import org.junit.jupiter.api.extension.TestTemplateInvocationContext;
+import org.junit.jupiter.api.extension.TestTemplateInvocationContextProvider;
+
+/**
+ * Makes the runs of a {@link DtronTest} method: loads its model once, chooses the seeds (those that failed last time
+ * first), and gives one invocation per seed and goal, each with its {@link DtronRun}.
+ */
+public final class DtronExtension implements TestTemplateInvocationContextProvider {
+    /** System property: the file of the failed seeds (default {@code .dtron/failed-seeds.properties}). */
+    public static final String SEED_FILE = "dtron.seedFile";
+    /** System property: the folder of the runs' reports (default {@code target/dtron-reports}). */
+    public static final String REPORT_DIRECTORY = "dtron.reportDirectory";
+
+    @Override
+    public boolean supportsTestTemplate(ExtensionContext context) {
+        return context.getTestMethod().map(m -> m.isAnnotationPresent(DtronTest.class)).orElse(false);
+    }
+
+    @Override
+    public Stream<TestTemplateInvocationContext> provideTestTemplateInvocationContexts(ExtensionContext context) {
+        Method method = context.getRequiredTestMethod();
+        Class<?> testClass = context.getRequiredTestClass();
+        DtronTest test = method.getAnnotation(DtronTest.class);
+        String where = "@DtronTest on " + testClass.getSimpleName() + "." + method.getName();
+        if (method.getParameterCount() != 1 || method.getParameterTypes()[0] != DtronRun.class) {
+            throw new ExtensionConfigurationException(where + ": the method takes one parameter, a DtronRun, and"
+                    + " calls run.test(system)");
+        }
+        if (test.seeds() < 1) {
+            throw new ExtensionConfigurationException(where + ": seeds must be at least 1, not " + test.seeds());
+        }
+        if (test.seed() < -1 || test.timeout() < 0 || test.timeUnit() < 0) {
+            throw new ExtensionConfigurationException(where + ": seed must be 0 or more (or -1 for new seeds), timeout"
+                    + " and timeUnit 0 (the default) or more");
+        }
+        Path base = Path.of(System.getProperty("basedir", System.getProperty("user.dir")));
+        Model model = load(testClass, test, base, where);
+        TestOptions options;
+        try {
+            long unit = test.timeUnit() > 0 ? test.timeUnit() : orElse(model.testInterface().timeUnitMicros(), 1000);
+            long timeout = test.timeout() > 0 ? test.timeout() : orElse(model.testInterface().timeout(), 1000);
+            options = new TestOptions(0, unit, timeout, DelayPolicy.RANDOM, 0, test.virtualTime());
+        } catch (IllegalArgumentException e) {
+            throw new ExtensionConfigurationException(where + ": " + e.getMessage());
+        }
+        SeedStore store = new SeedStore(base.resolve(System.getProperty(SEED_FILE,
+                ".dtron/failed-seeds.properties")));
+        String key = testClass.getName() + "#" + method.getName();
+        List<Long> failed = store.failed(key);
+        for (long seed : failed) {
+            System.out.println("dtron: " + testClass.getSimpleName() + "." + method.getName() + ": seed " + seed
+                    + " did not pass last time; it runs first (" + store.file() + ")");
+        }
+        Set<Long> seeds = new LinkedHashSet<>(failed);
+        for (long next = test.seed(); seeds.size() < Math.max(test.seeds(), failed.size()); next++) {
+            seeds.add(test.seed() >= 0 ? next : ThreadLocalRandom.current().nextLong(1L << 32));
+        }
+        Path reports = base.resolve(System.getProperty(REPORT_DIRECTORY, "target/dtron-reports"))
+                .resolve(testClass.getName());
+        List<String> goals = List.of(test.goals());
+        List<TestTemplateInvocationContext> runs = new ArrayList<>();
+        for (long seed : seeds) {
+            if (goals.isEmpty()) {
+                runs.add(new SeedRun(new Plan(model, options, seed, Optional.empty(), store, key,
+                        reports.resolve(method.getName() + "-seed-" + seed + ".txt"))));
+            }
+            for (int g = 0; g < goals.size(); g++) {
+                runs.add(new SeedRun(new Plan(model, options, seed, Optional.of(goals.get(g)), store, key,
+                        reports.resolve(method.getName() + "-seed-" + seed + "-goal-" + (g + 1) + ".txt"))));
+            }
+        }
+        return runs.stream();
+    }
+
+    private static long orElse(Long value, long fallback) {
+        return value != null ? value : fallback;
+    }
+
+    /** The model and its test interface, with the name they were given by. */
+    record Model(String name, Network network, TestInterface testInterface) {
+    }
+
+    /** What one run needs. */
+    record Plan(Model model, TestOptions options, long seed, Optional<String> goal, SeedStore store, String key,
+                Path report) {
+    }
+
+    private static Model load(Class<?> testClass, DtronTest test, Path base, String where) {
+        try {
+            String model = resource(testClass, test.model());
+            Network network = model != null ? ModelLoader.loadResource(testClass.getClassLoader(), model)
+                    : ModelLoader.load(file(testClass, test.model(), base, where, "model"));
+            TestInterface testInterface;
+            if (test.interfaceFile().isEmpty()) {
+                testInterface = TestInterface.fromNames(network);
+            } else if (resource(testClass, test.interfaceFile()) != null) {
+                try (InputStream in = testClass.getResourceAsStream(test.interfaceFile())) {
+                    testInterface = TestInterface.fromText(network, test.interfaceFile(),
+                            new String(in.readAllBytes(), StandardCharsets.UTF_8));
+                }
+            } else {
+                testInterface = TestInterface.fromFile(network, file(testClass, test.interfaceFile(), base, where,
+                        "interfaceFile"));
+            }
+            return new Model(test.model(), network, testInterface);
+        } catch (ModelException e) {
+            throw new ExtensionConfigurationException(where + ": " + e.getMessage());
+        } catch (IOException e) {
+            throw new UncheckedIOException(where + ": cannot read " + test.interfaceFile() + ": " + e.getMessage(), e);
+        }
+    }
+
+    /** The classpath name of resource {@code name} beside {@code testClass} (or absolute), or null if there is none. */
+    private static String resource(Class<?> testClass, String name) {
+        String path = resourcePath(testClass, name);
+        return testClass.getClassLoader().getResource(path) != null ? path : null;
+    }
+
+    private static String resourcePath(Class<?> testClass, String name) {
+        String pkg = testClass.getPackageName().replace('.', '/');
+        return name.startsWith("/") ? name.substring(1) : pkg.isEmpty() ? name : pkg + "/" + name;
+    }
+
+    /** The file {@code name} in {@code base}; fails the test's configuration clearly when there is none. */
+    private static Path file(Class<?> testClass, String name, Path base, String where, String attribute) {
+        Path file = base.resolve(name);
+        if (Files.isRegularFile(file)) {
+            return file;
+        }
+        throw new ExtensionConfigurationException(where + ": " + attribute + " '" + name + "' is neither a resource on"
+                + " the classpath (" + resourcePath(testClass, name) + ") nor a file (" + file + ")");
+    }
+}

@@ -1,0 +1,115 @@
+package io.dtron.junit.internal;
+
+import io.dtron.engine.Adapter;
+import io.dtron.engine.OnlineTester;
+import io.dtron.engine.Steering;
+import io.dtron.engine.Strategy;
+import io.dtron.engine.TestOptions;
+import io.dtron.engine.TestResult;
+import io.dtron.engine.Verdict;
+import io.dtron.junit.DtronRun;
+import java.lang.reflect.Method;
+import java.util.List;
+import java.util.Optional;
+import org.junit.jupiter.api.extension.Extension;
+import org.junit.jupiter.api.extension.ExtensionContext;
+import org.junit.jupiter.api.extension.InvocationInterceptor;
+import org.junit.jupiter.api.extension.ParameterContext;
+import org.junit.jupiter.api.extension.ParameterResolver;
+import org.junit.jupiter.api.extension.ReflectiveInvocationContext;
+import org.junit.jupiter.api.extension.TestTemplateInvocationContext;
+import org.opentest4j.AssertionFailedError;
+
+/**
+ * One run of a {@code @DtronTest} method: its display name carries the seed (and the goal); it hands the method its
+ * {@link DtronRun} and checks afterwards that the method tested a system.
+ */
+final class SeedRun implements TestTemplateInvocationContext, ParameterResolver, InvocationInterceptor {
+    private final DtronExtension.Plan plan;
+    private final Run run;
+
+    SeedRun(DtronExtension.Plan plan) {
+        this.plan = plan;
+        this.run = new Run();
+    }
+
+    @Override
+    public String getDisplayName(int invocationIndex) {
+        return "seed " + plan.seed() + plan.goal().map(g -> ", goal " + g).orElse("");
+    }
+
+    @Override
+    public List<Extension> getAdditionalExtensions() {
+        return List.of(this);
+    }
+
+    @Override
+    public boolean supportsParameter(ParameterContext parameter, ExtensionContext context) {
+        return parameter.getParameter().getType() == DtronRun.class;
+    }
+
+    @Override
+    public Object resolveParameter(ParameterContext parameter, ExtensionContext context) {
+        return run;
+    }
+
+    @Override
+    public void interceptTestTemplateMethod(Invocation<Void> invocation,
+                                            ReflectiveInvocationContext<Method> invocationContext,
+                                            ExtensionContext extensionContext) throws Throwable {
+        invocation.proceed();
+        if (!run.tested) {
+            throw new AssertionFailedError("the @DtronTest method returned without testing a system: call"
+                    + " run.test(system) with the system under test");
+        }
+    }
+
+    /** The {@link DtronRun} of this invocation. */
+    private final class Run implements DtronRun {
+        private boolean tested;
+
+        @Override
+        public long seed() {
+            return plan.seed();
+        }
+
+        @Override
+        public Optional<String> goal() {
+            return plan.goal();
+        }
+
+        @Override
+        public TestResult test(Adapter system) {
+            if (tested) {
+                throw new IllegalStateException("this run tested a system already: call run.test once per run");
+            }
+            tested = true;
+            TestOptions base = plan.options();
+            TestOptions options = new TestOptions(plan.seed(), base.timeUnitMicros(), base.timeout(),
+                    base.delayPolicy(), base.delayBound(), base.virtualTime());
+            DtronExtension.Model model = plan.model();
+            OnlineTester tester = new OnlineTester(model.network(), model.testInterface(), system, options);
+            plan.goal().ifPresent(g -> tester.steer(Steering.of(Strategy.GOAL, List.of(g))));
+            RunRecord record = new RunRecord("dtron: " + model.name() + ", seed " + plan.seed()
+                    + plan.goal().map(g -> ", goal " + g).orElse("") + ", " + options.timeout() + " time units of "
+                    + options.timeUnitMicros() + " us" + (options.virtualTime() ? " in virtual time" : ""),
+                    options.timeUnitMicros());
+            tester.addListener(record);
+            TestResult result = tester.run();
+            record.write(result, plan.report());
+            boolean passed = result.verdict() == Verdict.PASSED;
+            plan.store().record(plan.key(), plan.seed(), passed);
+            if (passed) {
+                return result;
+            }
+            String message = result.verdict() + " with seed " + plan.seed() + ": " + result.explanation()
+                    + "\n(the seed runs first next time, from " + plan.store().file() + "; the run: " + plan.report()
+                    + ")";
+            System.out.println("dtron: " + message);
+            if (result.verdict() == Verdict.FAILED) {
+                throw new AssertionFailedError(message);
+            }
+            throw new Inconclusive(message);
+        }
+    }
+}

@@ -1,0 +1,5 @@
+/**
+ * Running DTRON from JUnit 5: {@link io.dtron.junit.DtronTest} on a method that takes a {@link
+ * io.dtron.junit.DtronRun} tests the system it gets against a model, one test per seed and goal.
+ */
+package io.dtron.junit;

@@ -1,0 +1,157 @@
+package io.dtron.junit;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertInstanceOf;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+import static org.junit.platform.engine.discovery.DiscoverySelectors.selectClass;
+import static org.junit.platform.engine.discovery.DiscoverySelectors.selectMethod;
+
+import io.dtron.junit.internal.DtronExtension;
+import io.dtron.junit.internal.Inconclusive;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.util.List;
+import java.util.Properties;
+import java.io.Reader;
+import org.junit.jupiter.api.AfterEach;
+import org.junit.jupiter.api.BeforeEach;
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.io.TempDir;
+import org.junit.platform.engine.TestExecutionResult;
+import org.junit.platform.testkit.engine.EngineTestKit;
+import org.junit.platform.testkit.engine.Event;
+import org.junit.platform.testkit.engine.Events;
+import org.opentest4j.AssertionFailedError;
+
+/**
+ * {@link DtronTest} as a user sees it: test classes of {@link LampCases} run through the JUnit Platform, with the
+ * failed seeds and the reports in a folder of this test.
+ */
+class DtronTestTest {
+    @TempDir
+    Path dir;
+
+    @BeforeEach
+    void intoThisTestsFolder() {
+        System.setProperty(DtronExtension.SEED_FILE, dir.resolve("seeds.properties").toString());
+        System.setProperty(DtronExtension.REPORT_DIRECTORY, dir.resolve("reports").toString());
+    }
+
+    @AfterEach
+    void back() {
+        System.clearProperty(DtronExtension.SEED_FILE);
+        System.clearProperty(DtronExtension.REPORT_DIRECTORY);
+    }
+
+    @Test
+    void theCorrectLampPassesOneTestPerSeedEachNamedByItsSeedWithItsReport() throws Exception {
+        Events tests = run(LampCases.Correct.class);
+        assertEquals(List.of("seed 100", "seed 101", "seed 102", "seed 103", "seed 104"), names(tests.started()));
+        assertEquals(5, tests.succeeded().count(), () -> "every run passes: " + tests.failed().list());
+        Path report = dir.resolve("reports").resolve(LampCases.Correct.class.getName()).resolve("lamp-seed-102.txt");
+        String text = Files.readString(report);
+        assertTrue(text.startsWith("dtron: lamp.xta, seed 102, 1000 time units of 1000 us in virtual time\n"), text);
+        assertTrue(text.contains(" input press()\n") && text.contains(" output light(level=1)\n"), text);
+        assertTrue(text.contains("\nPASSED: ") && text.contains("\ncoverage: locations 3/3"), text);
+        assertTrue(!Files.exists(dir.resolve("seeds.properties")), "no seed failed, none is stored");
+    }
+
+    @Test
+    void theLateLampFailsWithTheExplanationAndItsSeedsAreStored() throws Exception {
+        Events tests = run(LampCases.Late.class);
+        assertEquals(List.of("seed 7", "seed 8", "seed 9"), names(tests.started()));
+        assertEquals(3, tests.failed().count());
+        Throwable failure = thrown(tests.failed().list().get(0));
+        assertInstanceOf(AssertionFailedError.class, failure);
+        assertTrue(failure.getMessage().startsWith("FAILED with seed 7: no output came by t="), failure.getMessage());
+        assertTrue(failure.getMessage().contains("The model allowed these outputs: light between t="),
+                failure.getMessage());
+        assertTrue(failure.getMessage().contains("the seed runs first next time"), failure.getMessage());
+        assertEquals("7,8,9", stored().getProperty(LampCases.Late.class.getName() + "#lamp"));
+        String report = Files.readString(dir.resolve("reports").resolve(LampCases.Late.class.getName())
+                .resolve("lamp-seed-8.txt"));
+        assertTrue(report.contains("\nFAILED: no output came by t="), report);
+    }
+
+    @Test
+    void theSeedsOfTheRunsThatFailedRunFirstTheNextTime() {
+        Events first = run(LampCases.LateNewSeeds.class);
+        List<String> failed = names(first.failed());
+        assertEquals(2, failed.size(), "the late lamp fails with every seed");
+        Events second = run(LampCases.LateNewSeeds.class);
+        assertEquals(failed, names(second.started()).subList(0, 2), "last time's seeds come first, in their order");
+    }
+
+    @Test
+    void aStoredSeedThatPassesIsTakenOut() throws Exception {
+        String key = LampCases.CorrectNewSeeds.class.getName() + "#lamp";
+        Properties seeds = new Properties();
+        seeds.setProperty(key, "4711");
+        try (var out = Files.newBufferedWriter(dir.resolve("seeds.properties"))) {
+            seeds.store(out, null);
+        }
+        Events tests = run(LampCases.CorrectNewSeeds.class);
+        assertEquals("seed 4711", names(tests.started()).get(0));
+        assertEquals(2, tests.succeeded().count());
+        assertEquals(null, stored().getProperty(key), "the seed passed: it is no longer stored");
+    }
+
+    @Test
+    void oneTestPerSeedAndGoalAGoalNoRunReachesIsAnErrorNotAFailure() {
+        Events tests = run(LampCases.Goals.class);
+        assertEquals(List.of("seed 1, goal E<> Lamp.Switching and Lamp.level == 0", "seed 1, goal E<> User.u > 20",
+                "seed 2, goal E<> Lamp.Switching and Lamp.level == 0", "seed 2, goal E<> User.u > 20"),
+                names(tests.started()));
+        assertEquals(List.of("seed 1, goal E<> Lamp.Switching and Lamp.level == 0",
+                "seed 2, goal E<> Lamp.Switching and Lamp.level == 0"), names(tests.succeeded()));
+        for (Event e : tests.failed().list()) {
+            Throwable t = thrown(e);
+            assertInstanceOf(Inconclusive.class, t, "INCONCLUSIVE is an error of the test, not an assertion");
+            assertTrue(t.getMessage().startsWith("INCONCLUSIVE with seed "), t.getMessage());
+        }
+    }
+
+    @Test
+    void mistakesInATestAreSaidClearly() {
+        Events missing = runMethod(LampCases.Mistakes.class, "missingModel", DtronRun.class);
+        String message = thrown(missing.failed().list().get(0)).getMessage();
+        assertEquals("@DtronTest on Mistakes.missingModel: model 'no-such-lamp.xta' is neither a resource on the"
+                + " classpath (io/dtron/junit/no-such-lamp.xta) nor a file (" + Path.of(System.getProperty("basedir",
+                System.getProperty("user.dir"))).resolve("no-such-lamp.xta") + ")", message);
+
+        Events noRun = runMethod(LampCases.Mistakes.class, "noRun");
+        assertTrue(thrown(noRun.failed().list().get(0)).getMessage().endsWith(": the method takes one parameter, a"
+                + " DtronRun, and calls run.test(system)"));
+
+        Events nothing = runMethod(LampCases.Mistakes.class, "testsNothing", DtronRun.class);
+        assertTrue(thrown(nothing.failed().list().get(0)).getMessage().startsWith("the @DtronTest method returned"
+                + " without testing a system"));
+    }
+
+    private static Events run(Class<?> testClass) {
+        return EngineTestKit.engine("junit-jupiter").selectors(selectClass(testClass)).execute().testEvents();
+    }
+
+    private static Events runMethod(Class<?> testClass, String method, Class<?>... parameters) {
+        Events all = EngineTestKit.engine("junit-jupiter")
+                .selectors(selectMethod(testClass, method, parameters.length == 0 ? ""
+                        : parameters[0].getName())).execute().allEvents();
+        return all;
+    }
+
+    private static List<String> names(Events events) {
+        return events.map(e -> e.getTestDescriptor().getDisplayName()).toList();
+    }
+
+    private static Throwable thrown(Event event) {
+        return event.getPayload(TestExecutionResult.class).flatMap(TestExecutionResult::getThrowable).orElseThrow();
+    }
+
+    private Properties stored() throws Exception {
+        Properties p = new Properties();
+        try (Reader in = Files.newBufferedReader(dir.resolve("seeds.properties"))) {
+            p.load(in);
+        }
+        return p;
+    }
+}
