@@ -185,7 +185,7 @@ final class GoalOptions {
         out.flush();
     }
 
-    private static String units(long micros, long unitMicros) {
+    static String units(long micros, long unitMicros) {
         return Math.floorDiv(micros, unitMicros) + "." + String.format(Locale.ROOT, "%03d",
                 Math.floorMod(micros, unitMicros) * 1000 / unitMicros);
     }

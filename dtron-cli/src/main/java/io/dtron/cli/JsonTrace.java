@@ -23,14 +23,54 @@ import java.util.function.Consumer;
  * certain and possibly), and a {@code verdict} line. In virtual time the same seed gives the same file, byte for byte. On
  * the bus, a {@code bus} line for every message on the bus while the run lasts, in the bus's order, with its sender's
  * stamps and its receive time: the global trace, the same order at every member.
+ *
+ * <p>A trace may be bounded ({@code --trace-max-size}): it stops there. The lines of events that would take it past
+ * the bound are left out, and a {@code truncated} line (the bound, how many lines were left out, the time of the last
+ * event written) comes before the {@code verdict} line, which always ends the trace: the file holds the start of the
+ * run and its verdict, at most the bound plus those two lines.
  */
 final class JsonTrace implements TestListener {
+    /** No bound. */
+    static final long UNBOUNDED = Long.MAX_VALUE;
+
     private final Writer out;
     private final long unitMicros;
+    private final Counted counted;
+    private final long maxBytes;
+    private long lastMicros = -1;
+    private long omitted;
+    private long omittedAfterMicros = -1;
 
     JsonTrace(Writer out, long unitMicros) {
+        this(out, unitMicros, null, UNBOUNDED);
+    }
+
+    private JsonTrace(Writer out, long unitMicros, Counted counted, long maxBytes) {
         this.out = out;
         this.unitMicros = unitMicros;
+        this.counted = counted;
+        this.maxBytes = maxBytes;
+    }
+
+    /** The bytes written to a stream. */
+    private static final class Counted extends java.io.FilterOutputStream {
+        private long bytes;
+
+        Counted(java.io.OutputStream out) {
+            super(out);
+        }
+
+        @Override
+        public void write(int b) throws IOException {
+            out.write(b);
+            bytes++;
+        }
+
+        @Override
+        public void write(byte[] b, int off, int len) throws IOException {
+            out.write(b, off, len);
+            bytes += len;
+        }
     }
 
     /**
@@ -39,40 +79,56 @@ final class JsonTrace implements TestListener {
      * @throws IOException if the trace file cannot be written
      */
     static TestResult run(OnlineTester tester, Path file, Path model, TestOptions options) throws IOException {
-        return run(tester, file, model, options, null);
+        return run(tester, file, model, options, null, UNBOUNDED, note -> { });
     }
 
     /**
      * Runs the tester, writing the run to {@code file} when one is given, with every message on the bus when the
-     * adapter is the bus bridge.
+     * adapter is the bus bridge, and at most {@code maxBytes} of events ({@link #UNBOUNDED} for no bound); when the
+     * bound cut the trace short, tells {@code note} so in a sentence after the run.
      *
      * @throws IOException if the trace file cannot be written
      */
-    static TestResult run(OnlineTester tester, Path file, Path model, TestOptions options, Adapter adapter)
-            throws IOException {
+    static TestResult run(OnlineTester tester, Path file, Path model, TestOptions options, Adapter adapter,
+                          long maxBytes, Consumer<String> note) throws IOException {
         if (file == null) {
             return tester.run();
         }
-        try (Writer writer = Files.newBufferedWriter(file, StandardCharsets.UTF_8)) {
-            JsonTrace json = new JsonTrace(writer, options.timeUnitMicros());
-            json.start(options.seed(), model.toString(), options.timeout(), options.virtualTime());
-            tester.addListener(json);
-            if (!(adapter instanceof BusBridge bridge)) {
-                return tester.run();
-            }
-            Consumer<BusRecord> bus = json::bus;
-            bridge.addRecordListener(bus);
+        Counted counted = new Counted(Files.newOutputStream(file));
+        try (Writer writer = new java.io.BufferedWriter(new java.io.OutputStreamWriter(counted,
+                StandardCharsets.UTF_8))) {
+            JsonTrace json = new JsonTrace(writer, options.timeUnitMicros(), counted, maxBytes);
             try {
-                return tester.run();
+                return run(tester, json, model, options, adapter);
             } finally {
-                bridge.removeRecordListener(bus);
+                if (json.omitted > 0) {
+                    note.accept("the trace " + file + " stopped at its bound of " + maxBytes + " bytes"
+                            + (json.omittedAfterMicros < 0 ? "" : " after the event at t_us " + json.omittedAfterMicros)
+                            + ": " + json.omitted + " later lines were left out; its last line is the verdict");
+                }
             }
+        }
+    }
+
+    private static TestResult run(OnlineTester tester, JsonTrace json, Path model, TestOptions options,
+                                  Adapter adapter) {
+        json.start(options.seed(), model.toString(), options.timeout(), options.virtualTime());
+        tester.addListener(json);
+        if (!(adapter instanceof BusBridge bridge)) {
+            return tester.run();
+        }
+        Consumer<BusRecord> bus = json::bus;
+        bridge.addRecordListener(bus);
+        try {
+            return tester.run();
+        } finally {
+            bridge.removeRecordListener(bus);
         }
     }
 
     /** A message on the bus. */
     void bus(BusRecord r) {
-        line("{\"kind\":\"bus\",\"channel\":" + quote(r.channel()) + ",\"sender\":" + quote(r.sender())
+        bounded(-1, "{\"kind\":\"bus\",\"channel\":" + quote(r.channel()) + ",\"sender\":" + quote(r.sender())
                 + ",\"sequence\":" + r.sequence() + ",\"run\":" + quote(r.runId()) + ",\"publish_ns\":"
                 + r.publishTimeNanos() + ",\"event_ns\":" + r.eventTimeNanos() + ",\"receive_ns\":"
                 + r.receiveTimeNanos() + ",\"offset_ns\":" + r.clockOffsetNanos() + ",\"error_ns\":"
@@ -98,7 +154,7 @@ final class JsonTrace implements TestListener {
     @Override
     public void edgesTaken(Event event, boolean input, long micros, java.util.List<String> certainly,
                            java.util.List<String> possibly) {
-        line("{\"kind\":\"edges\",\"t_us\":" + micros + ",\"channel\":" + quote(event.channel()) + ",\"input\":"
+        bounded(micros, "{\"kind\":\"edges\",\"t_us\":" + micros + ",\"channel\":" + quote(event.channel()) + ",\"input\":"
                 + input + ",\"certainly\":" + strings(certainly) + ",\"possibly\":" + strings(possibly) + "}");
     }
 
@@ -112,13 +168,19 @@ final class JsonTrace implements TestListener {
 
     @Override
     public void finished(TestResult r) {
+        synchronized (this) {
+            if (omitted > 0) {
+                line("{\"kind\":\"truncated\",\"max_bytes\":" + maxBytes + ",\"omitted_lines\":" + omitted
+                        + ",\"after_t_us\":" + omittedAfterMicros + "}");
+            }
+        }
         line("{\"kind\":\"verdict\",\"t_us\":" + r.durationMicros() + ",\"verdict\":\"" + r.verdict() + "\",\"seed\":"
                 + r.seed() + ",\"inputs\":" + r.inputs() + ",\"outputs\":" + r.outputs() + ",\"explanation\":"
                 + quote(r.explanation()) + "}");
     }
 
     private void event(String kind, Event e, long micros) {
-        line("{\"kind\":\"" + kind + "\",\"t_us\":" + micros + ",\"channel\":" + quote(e.channel()) + ",\"values\":"
+        bounded(micros, "{\"kind\":\"" + kind + "\",\"t_us\":" + micros + ",\"channel\":" + quote(e.channel()) + ",\"values\":"
                 + values(e.values()) + "}");
     }
 
@@ -128,6 +190,21 @@ final class JsonTrace implements TestListener {
             values.append(values.length() == 1 ? "" : ",").append(quote(v.getKey())).append(':').append(v.getValue());
         }
         return values.append('}').toString();
+    }
+
+    /**
+     * Writes the line of an event at {@code micros} (-1 for a message on the bus) unless the trace reached its bound:
+     * then it is counted as left out.
+     */
+    private synchronized void bounded(long micros, String json) {
+        if (omitted == 0 && (counted == null || counted.bytes + json.length() + 1 <= maxBytes)) {
+            line(json);
+            lastMicros = micros >= 0 ? micros : lastMicros;
+            return;
+        }
+        if (omitted++ == 0) {
+            omittedAfterMicros = lastMicros;
+        }
     }
 
     /** Writes one line; the engine's thread and the bus's write lines. */

@@ -229,6 +229,19 @@ final class RunCommand implements Callable<Integer> {
             + " too; not the messages it rejects).")
     private Path trace;
 
+    @Option(names = "--trace-max-size", paramLabel = "SIZE",
+            description = "Bound the --trace file: at SIZE (bytes, or with KB, MB or GB of 1024, e.g. 10MB) it stops"
+                    + " writing events; a truncated line says how many were left out, the verdict line still ends it,"
+                    + " and the run's output says so.")
+    private String traceMaxSize;
+
+    @Option(names = "--junit", paramLabel = "FILE.xml",
+            description = "Write the run as a JUnit XML report to FILE.xml, as Surefire, Jenkins and GitLab read it:"
+                    + " one test case per run, or per goal, named by the seed (and the goal); FAILED a failure with"
+                    + " the explanation, INCONCLUSIVE an error with its reason; the seed, the coverage and the goals"
+                    + " not reached as properties.")
+    private Path junit;
+
     @Option(names = "--delta-report", paramLabel = "FILE",
             description = "Bus mode: write the delays of the run per channel and direction (inputs published to"
                     + " applied, outputs produced to received) as JSON to FILE, for dtron delta --delta-from.")
@@ -244,6 +257,10 @@ final class RunCommand implements Callable<Integer> {
 
     /** The goals a stop condition's reached(N) asks about. */
     private io.dtron.engine.coverage.Goals goals = io.dtron.engine.coverage.Goals.NONE;
+    /** What the run tests, as its first line names it: for {@code --junit}. */
+    private String against = "";
+    /** When the command started, for the time of {@code --junit}'s test case. */
+    private final long startNanos = System.nanoTime();
 
     @Override
     public Integer call() {
@@ -281,7 +298,7 @@ final class RunCommand implements Callable<Integer> {
             CheckCommand.printErrors(model, e, err);
             return 1;
         } catch (IOException e) {
-            err.println("dtron run: cannot write the trace " + trace + ": " + e.getMessage());
+            err.println("dtron run: " + ioProblem(e));
             return 1;
         }
         if (testInterface.inputs().isEmpty() && testInterface.outputs().isEmpty()) {
@@ -328,8 +345,22 @@ final class RunCommand implements Callable<Integer> {
             err.println("dtron run: --backend tron: " + e.getMessage());
             return 1;
         } catch (IOException e) {
-            err.println("dtron run: cannot write the trace " + trace + ": " + e.getMessage());
+            err.println("dtron run: " + ioProblem(e));
             return 1;
+        }
+    }
+
+    /** What an I/O error of the run's files says: the JUnit report's message as it is, else the trace's. */
+    private String ioProblem(IOException e) {
+        return e instanceof JunitFailure ? e.getMessage() : "cannot write the trace " + trace + ": " + e.getMessage();
+    }
+
+    /** The JUnit report could not be written. */
+    private static final class JunitFailure extends IOException {
+        private static final long serialVersionUID = 1L;
+
+        JunitFailure(String message, IOException cause) {
+            super(message, cause);
         }
     }
 
@@ -553,6 +584,14 @@ final class RunCommand implements Callable<Integer> {
         if (tronBackend && virtualTime) {
             throw usage("--backend tron runs in real time only; leave out --virtual-time");
         }
+        if (traceMaxSize != null && trace == null) {
+            throw usage("--trace-max-size bounds the --trace file: give --trace FILE too");
+        }
+        traceMaxBytes();
+        if (junit != null && (junit.toAbsolutePath().getParent() == null
+                || !Files.isDirectory(junit.toAbsolutePath().getParent()))) {
+            throw usage("--junit " + junit + ": the folder " + junit.toAbsolutePath().getParent() + " does not exist");
+        }
         if (tronBackend && trace != null) {
             throw usage("--trace records DTRON's engine; with --backend tron, TRON keeps its own log");
         }
@@ -587,6 +626,7 @@ final class RunCommand implements Callable<Integer> {
                 throw usage(e.getMessage());
             }
         }
+        this.against = against;
         out.println("dtron run: " + model + " against " + against + ", seed " + options.seed() + ", " + options.timeout()
                 + " time units of " + options.timeUnitMicros() + " us" + (virtualTime ? " in virtual time" : "")
                 + judge.by());
@@ -623,6 +663,7 @@ final class RunCommand implements Callable<Integer> {
             return 1;
         }
         try (session) {
+            against = "the adapters on bus '" + clusterName + "'";
             out.println("dtron run: " + model + " on bus '" + clusterName + "' at " + where
                     + " as " + session.bridge().memberId() + ", seed " + options.seed() + ", " + options.timeout()
                     + " time units of " + options.timeUnitMicros() + " us in real time" + judge.by());
@@ -898,6 +939,7 @@ final class RunCommand implements Callable<Integer> {
                     throw new TronFailure(e.getMessage());
                 }
                 printVerdict(result, out);
+                writeJunit(result, options, null);
                 return result;
             }
 
@@ -917,12 +959,61 @@ final class RunCommand implements Callable<Integer> {
         TestResult result;
         try (Progress progress = new Progress(out, options)) {
             tester.addListener(progress);
-            result = JsonTrace.run(tester, trace, model, options, adapter);
+            result = JsonTrace.run(tester, trace, model, options, adapter, traceMaxBytes(), note -> {
+                out.println("dtron run: " + note);
+                out.flush();
+            });
         }
         printVerdict(result, out);
         coverage.report(result, out, spec.commandLine().getErr());
         goalOptions.report(tester, options.timeUnitMicros(), out);
+        writeJunit(result, options, tester.steeringReport());
         return result;
+    }
+
+    /**
+     * {@code --junit}: writes the run's JUnit XML report, with what it printed last as the suite's output.
+     *
+     * @throws IOException if the report cannot be written
+     */
+    private void writeJunit(TestResult result, TestOptions options, io.dtron.engine.SteeringReport steering)
+            throws IOException {
+        if (junit == null) {
+            return;
+        }
+        long unit = options.timeUnitMicros();
+        String output = result.verdict() + ": " + result.explanation() + "\nstatistics: " + result.statisticsLine()
+                + " (seed verdict inputs outputs duration-us)\n" + (result.coverage() == null ? ""
+                : result.coverage().summary() + "\n");
+        String name = model.getFileName().toString();
+        String stem = name.contains(".") ? name.substring(0, name.lastIndexOf('.')) : name;
+        try {
+            JunitXml.write(junit, "dtron run " + model, "dtron." + stem, JunitXml.cases(result, against, steering,
+                    unit), JunitXml.properties(model.toString(), against, result, unit, options.timeout(),
+                    options.virtualTime(), steering), (System.nanoTime() - startNanos) / 1e9, output);
+        } catch (IOException e) {
+            throw new JunitFailure("cannot write the JUnit report " + junit + ": " + e.getMessage(), e);
+        }
+    }
+
+    /** {@code --trace-max-size} in bytes: N, or N with KB, MB or GB (of 1024); unbounded without it. */
+    private long traceMaxBytes() {
+        if (traceMaxSize == null) {
+            return JsonTrace.UNBOUNDED;
+        }
+        java.util.regex.Matcher m = Pattern.compile("(\\d{1,12})\\s*([KMG]?B?)").matcher(traceMaxSize.strip()
+                .toUpperCase(Locale.ROOT));
+        if (m.matches() && Long.parseLong(m.group(1)) > 0) {
+            int shift = switch (m.group(2).isEmpty() ? 'B' : m.group(2).charAt(0)) {
+                case 'K' -> 10;
+                case 'M' -> 20;
+                case 'G' -> 30;
+                default -> 0;
+            };
+            return Long.parseLong(m.group(1)) << shift;
+        }
+        throw usage("--trace-max-size " + traceMaxSize + ": give a positive size in bytes, or with KB, MB or GB"
+                + " (e.g. 10MB)");
     }
 
     private static void printVerdict(TestResult result, PrintWriter out) {
@@ -994,6 +1085,7 @@ final class RunCommand implements Callable<Integer> {
                 err.println("dtron run: " + reason);
                 return 1;
             }
+            against = "the TRON adapter at " + adapter.remote();
             out.println("dtron run: " + model + " against the TRON adapter at " + adapter.remote() + ", seed "
                     + runSeed + ", " + units + " time units of " + unit + " us"
                     + (virtualTime ? " in virtual time" : ""));

@@ -41,7 +41,7 @@ import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
 
 class RunCommandTest {
-    private static final String TICKER = """
+    static final String TICKER = """
             const int P = 10; const int T = 2;
             chan i_reset, o_tick;
             int[0,999] o_tick_seq;
