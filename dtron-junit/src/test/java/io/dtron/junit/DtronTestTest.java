@@ -57,6 +57,15 @@ class DtronTestTest {
     }
 
     @Test
+    void theRunTakesTheTimeoutAndTimeUnitOfItsAnnotationAndGivesItsResult() throws Exception {
+        Events tests = run(LampCases.Short.class);
+        assertEquals(1, tests.succeeded().count(), () -> "the run passes: " + tests.failed().list());
+        String text = Files.readString(dir.resolve("reports").resolve(LampCases.Short.class.getName())
+                .resolve("lamp-seed-5.txt"));
+        assertTrue(text.startsWith("dtron: lamp.xta, seed 5, 50 time units of 500 us in virtual time\n"), text);
+    }
+
+    @Test
     void theLateLampFailsWithTheExplanationAndItsSeedsAreStored() throws Exception {
         Events tests = run(LampCases.Late.class);
         assertEquals(List.of("seed 7", "seed 8", "seed 9"), names(tests.started()));
@@ -97,7 +106,7 @@ class DtronTestTest {
     }
 
     @Test
-    void oneTestPerSeedAndGoalAGoalNoRunReachesIsAnErrorNotAFailure() {
+    void oneTestPerSeedAndGoalAGoalNoRunReachesIsAnErrorNotAFailure() throws Exception {
         Events tests = run(LampCases.Goals.class);
         assertEquals(List.of("seed 1, goal E<> Lamp.Switching and Lamp.level == 0", "seed 1, goal E<> User.u > 20",
                 "seed 2, goal E<> Lamp.Switching and Lamp.level == 0", "seed 2, goal E<> User.u > 20"),
@@ -109,6 +118,10 @@ class DtronTestTest {
             assertInstanceOf(Inconclusive.class, t, "INCONCLUSIVE is an error of the test, not an assertion");
             assertTrue(t.getMessage().startsWith("INCONCLUSIVE with seed "), t.getMessage());
         }
+        String key = LampCases.Goals.class.getName() + "#lamp ";
+        Properties stored = stored();
+        assertEquals("1,2", stored.getProperty(key + "E<> User.u > 20"), "stored for the goal they did not reach");
+        assertEquals(null, stored.getProperty(key + "E<> Lamp.Switching and Lamp.level == 0"));
     }
 
     @Test
@@ -118,6 +131,11 @@ class DtronTestTest {
         assertEquals("@DtronTest on Mistakes.missingModel: model 'no-such-lamp.xta' is neither a resource on the"
                 + " classpath (io/dtron/junit/no-such-lamp.xta) nor a file (" + Path.of(System.getProperty("basedir",
                 System.getProperty("user.dir"))).resolve("no-such-lamp.xta") + ")", message);
+
+        Events broken = runMethod(LampCases.Mistakes.class, "brokenModel", DtronRun.class);
+        String error = thrown(broken.failed().list().get(0)).getMessage();
+        assertTrue(error.startsWith("@DtronTest on Mistakes.brokenModel: io/dtron/junit/broken.xta:2:"), error);
+        assertTrue(error.contains("error: "), error);
 
         Events noRun = runMethod(LampCases.Mistakes.class, "noRun");
         assertTrue(thrown(noRun.failed().list().get(0)).getMessage().endsWith(": the method takes one parameter, a"

@@ -1,5 +1,9 @@
 package io.dtron.junit;
 
+import static org.junit.jupiter.api.Assertions.assertEquals;
+
+import io.dtron.engine.TestResult;
+
 /**
  * Test classes with {@code @DtronTest} methods that {@link DtronTestTest} runs through the JUnit Platform (their
  * names do not end in Test, so that Surefire does not run them by themselves).
@@ -13,6 +17,17 @@ final class LampCases {
         @DtronTest(model = "lamp.xta", seeds = 5, seed = 100)
         void lamp(DtronRun run) {
             run.test(new Lamp(false));
+        }
+    }
+
+    /** The correct lamp, one seed, 50 time units of 500 us. */
+    static class Short {
+        @DtronTest(model = "lamp.xta", seeds = 1, seed = 5, timeout = 50, timeUnit = 500)
+        void lamp(DtronRun run) {
+            assertEquals(5, run.seed());
+            assertEquals(java.util.Optional.empty(), run.goal());
+            TestResult result = run.test(new Lamp(false));
+            assertEquals(50 * 500, result.durationMicros());
         }
     }
 
@@ -49,8 +64,16 @@ final class LampCases {
         }
     }
 
-    /** Mistakes: a model that is not there, a method without a DtronRun, a method that tests nothing. */
+    /**
+     * Mistakes: a model that is not there, one with a syntax error, a method without a DtronRun, a method that tests
+     * nothing.
+     */
     static class Mistakes {
+        @DtronTest(model = "broken.xta")
+        void brokenModel(DtronRun run) {
+            run.test(new Lamp(false));
+        }
+
         @DtronTest(model = "no-such-lamp.xta")
         void missingModel(DtronRun run) {
             run.test(new Lamp(false));

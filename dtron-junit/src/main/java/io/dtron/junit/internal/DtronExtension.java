@@ -71,8 +71,12 @@ public final class DtronExtension implements TestTemplateInvocationContextProvid
         }
         SeedStore store = new SeedStore(base.resolve(System.getProperty(SEED_FILE,
                 ".dtron/failed-seeds.properties")));
-        String key = testClass.getName() + "#" + method.getName();
-        List<Long> failed = store.failed(key);
+        String name = testClass.getName() + "#" + method.getName();
+        List<String> goals = List.of(test.goals());
+        // a key per goal: a seed may fail toward one goal and pass toward another
+        List<String> keys = goals.isEmpty() ? List.of(name) : goals.stream().map(g -> name + " " + g).toList();
+        Set<Long> failed = new LinkedHashSet<>();
+        keys.forEach(k -> failed.addAll(store.failed(k)));
         for (long seed : failed) {
             System.out.println("dtron: " + testClass.getSimpleName() + "." + method.getName() + ": seed " + seed
                     + " did not pass last time; it runs first (" + store.file() + ")");
@@ -83,15 +87,14 @@ public final class DtronExtension implements TestTemplateInvocationContextProvid
         }
         Path reports = base.resolve(System.getProperty(REPORT_DIRECTORY, "target/dtron-reports"))
                 .resolve(testClass.getName());
-        List<String> goals = List.of(test.goals());
         List<TestTemplateInvocationContext> runs = new ArrayList<>();
         for (long seed : seeds) {
             if (goals.isEmpty()) {
-                runs.add(new SeedRun(new Plan(model, options, seed, Optional.empty(), store, key,
+                runs.add(new SeedRun(new Plan(model, options, seed, Optional.empty(), store, keys.get(0),
                         reports.resolve(method.getName() + "-seed-" + seed + ".txt"))));
             }
             for (int g = 0; g < goals.size(); g++) {
-                runs.add(new SeedRun(new Plan(model, options, seed, Optional.of(goals.get(g)), store, key,
+                runs.add(new SeedRun(new Plan(model, options, seed, Optional.of(goals.get(g)), store, keys.get(g),
                         reports.resolve(method.getName() + "-seed-" + seed + "-goal-" + (g + 1) + ".txt"))));
             }
         }
@@ -106,7 +109,7 @@ public final class DtronExtension implements TestTemplateInvocationContextProvid
     record Model(String name, Network network, TestInterface testInterface) {
     }
 
-    /** What one run needs. */
+    /** What one run needs; {@code key} names its test method (and goal) in the store of failed seeds. */
     record Plan(Model model, TestOptions options, long seed, Optional<String> goal, SeedStore store, String key,
                 Path report) {
     }
