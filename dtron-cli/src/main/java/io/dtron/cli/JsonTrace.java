@@ -41,10 +41,6 @@ final class JsonTrace implements TestListener {
     private long omitted;
     private long omittedAfterMicros = -1;
 
-    JsonTrace(Writer out, long unitMicros) {
-        this(out, unitMicros, null, UNBOUNDED);
-    }
-
     private JsonTrace(Writer out, long unitMicros, Counted counted, long maxBytes) {
         this.out = out;
         this.unitMicros = unitMicros;
@@ -101,13 +97,19 @@ final class JsonTrace implements TestListener {
             try {
                 return run(tester, json, model, options, adapter);
             } finally {
-                if (json.omitted > 0) {
-                    note.accept("the trace " + file + " stopped at its bound of " + maxBytes + " bytes"
-                            + (json.omittedAfterMicros < 0 ? "" : " after the event at t_us " + json.omittedAfterMicros)
-                            + ": " + json.omitted + " later lines were left out; its last line is the verdict");
+                String truncated = json.truncation(file);
+                if (truncated != null) {
+                    note.accept(truncated);
                 }
             }
         }
+    }
+
+    /** The sentence that says where the bound cut the trace {@code file} short, or null if it did not. */
+    private synchronized String truncation(Path file) {
+        return omitted == 0 ? null : "the trace " + file + " stopped at its bound of " + maxBytes + " bytes"
+                + (omittedAfterMicros < 0 ? "" : " after the event at t_us " + omittedAfterMicros) + ": " + omitted
+                + " later lines were left out; its last line is the verdict";
     }
 
     private static TestResult run(OnlineTester tester, JsonTrace json, Path model, TestOptions options,
@@ -197,7 +199,7 @@ final class JsonTrace implements TestListener {
      * then it is counted as left out.
      */
     private synchronized void bounded(long micros, String json) {
-        if (omitted == 0 && (counted == null || counted.bytes + json.length() + 1 <= maxBytes)) {
+        if (omitted == 0 && counted.bytes + json.length() + 1 <= maxBytes) {
             line(json);
             lastMicros = micros >= 0 ? micros : lastMicros;
             return;

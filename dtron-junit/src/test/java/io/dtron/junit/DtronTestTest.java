@@ -66,6 +66,16 @@ class DtronTestTest {
     }
 
     @Test
+    void aTronInterfaceFileOnTheClasspathGivesTheInterfaceTimeUnitAndTimeout() throws Exception {
+        Events tests = run(LampCases.TronInterface.class);
+        assertEquals(1, tests.succeeded().count(), () -> "the run passes: " + tests.failed().list());
+        String text = Files.readString(dir.resolve("reports").resolve(LampCases.TronInterface.class.getName())
+                .resolve("lamp-seed-3.txt"));
+        assertTrue(text.startsWith("dtron: tron-lamp.xta, seed 3, 40 time units of 500 us in virtual time\n"), text);
+        assertTrue(text.contains(" output light(level=1)\n"), text);
+    }
+
+    @Test
     void theLateLampFailsWithTheExplanationAndItsSeedsAreStored() throws Exception {
         Events tests = run(LampCases.Late.class);
         assertEquals(List.of("seed 7", "seed 8", "seed 9"), names(tests.started()));

@@ -31,6 +31,14 @@ final class LampCases {
         }
     }
 
+    /** The correct lamp against a model with a TRON interface file, which gives the time unit and the timeout. */
+    static class TronInterface {
+        @DtronTest(model = "tron-lamp.xta", interfaceFile = "tron-lamp.trn", seeds = 1, seed = 3)
+        void lamp(DtronRun run) {
+            run.test(new Lamp(false));
+        }
+    }
+
     /** The late lamp, three seeds from 7. */
     static class Late {
         @DtronTest(model = "lamp.xta", seeds = 3, seed = 7)
