@@ -22,18 +22,25 @@ import javax.xml.stream.XMLStreamException;
 import javax.xml.stream.XMLStreamWriter;
 
 /**
- * {@code --junit FILE.xml}: a run as a JUnit XML report, in the form Surefire writes and Jenkins, GitLab and
- * Surefire's report plugin read: one {@code testsuite} per run, one {@code testcase} per run, or per goal when the run
- * has goals, named by the seed (and the goal). A FAILED run is a {@code failure} with the explanation, an
- * INCONCLUSIVE one (or a goal not reached) an {@code error} with the reason. The seed, the settings, the coverage
- * figures and the goals that were not reached are the suite's {@code properties}.
+ * {@code --junit FILE.xml}: a run (or a mutation analysis) as a JUnit XML report, in the form Surefire writes and
+ * Jenkins, GitLab and Surefire's report plugin read: one {@code testsuite}; for {@code dtron run} one {@code testcase}
+ * per run, or per goal when the run has goals, named by the seed (and the goal). A FAILED run is a {@code failure}
+ * with the explanation, an INCONCLUSIVE one (or a goal not reached) an {@code error} with the reason. The seed, the
+ * settings, the coverage figures and the goals that were not reached are the suite's {@code properties}.
  */
 final class JunitXml {
     private JunitXml() {
     }
 
-    /** One test case: its name, and null for a pass, else the element ({@code failure} or {@code error}) and why. */
-    record Case(String name, String problem, String message) {
+    /**
+     * One test case: its name, and null for a pass, else the element ({@code failure}, {@code error} or {@code
+     * skipped}) and why; {@code type} names the outcome in the element's {@code type}.
+     */
+    record Case(String name, String problem, String type, String message) {
+        /** A case of a run's verdict: FAILED a failure, INCONCLUSIVE an error. */
+        Case(String name, String problem, String message) {
+            this(name, problem, "failure".equals(problem) ? "FAILED" : "INCONCLUSIVE", message);
+        }
     }
 
     /**
@@ -120,6 +127,7 @@ final class JunitXml {
                       double seconds, String output) throws IOException {
         long failures = cases.stream().filter(c -> "failure".equals(c.problem())).count();
         long errors = cases.stream().filter(c -> "error".equals(c.problem())).count();
+        long skipped = cases.stream().filter(c -> "skipped".equals(c.problem())).count();
         String time = String.format(Locale.ROOT, "%.3f", seconds);
         try (OutputStream stream = Files.newOutputStream(file)) {
             XMLStreamWriter xml = XMLOutputFactory.newFactory().createXMLStreamWriter(stream, "UTF-8");
@@ -130,7 +138,7 @@ final class JunitXml {
             xml.writeAttribute("tests", Integer.toString(cases.size()));
             xml.writeAttribute("failures", Long.toString(failures));
             xml.writeAttribute("errors", Long.toString(errors));
-            xml.writeAttribute("skipped", "0");
+            xml.writeAttribute("skipped", Long.toString(skipped));
             xml.writeAttribute("time", time);
             xml.writeAttribute("timestamp", DateTimeFormatter.ISO_LOCAL_DATE_TIME.format(
                     Instant.now().atOffset(ZoneOffset.UTC).withNano(0)));
@@ -154,7 +162,7 @@ final class JunitXml {
                     xml.writeCharacters("\n    ");
                     xml.writeStartElement(c.problem());
                     xml.writeAttribute("message", clean(c.message()));
-                    xml.writeAttribute("type", c.problem().equals("failure") ? "FAILED" : "INCONCLUSIVE");
+                    xml.writeAttribute("type", clean(c.type()));
                     xml.writeCharacters(clean(c.message()));
                     xml.writeEndElement();
                     xml.writeCharacters("\n  ");

@@ -17,6 +17,7 @@ import io.dtron.model.Network;
 import io.dtron.model.TestInterface;
 import java.io.IOException;
 import java.io.PrintWriter;
+import java.io.StringWriter;
 import java.nio.charset.StandardCharsets;
 import java.nio.file.Files;
 import java.nio.file.Path;
@@ -58,6 +59,7 @@ final class MutantsCommand implements Callable<Integer> {
     private static final Set<String> NOT_FOR_MUTANTS = Set.of("--sut", "--sut-seed", "--classpath", "--cluster",
             "--bind", "--members", "--port", "--port-range", "--testers", "--join", "--key-file", "--insecure",
             "--wait-for-adapters", "--wait-timeout", "--adapter", "--tron-adapter", "--backend", "--delta", "--trace",
+            "--trace-max-size",
             "--delta-report", "--delta-from", "--bus", "--timeout");
 
     @Spec
@@ -89,6 +91,12 @@ final class MutantsCommand implements Callable<Integer> {
     @Option(names = "--json", paramLabel = "FILE", description = "Write the mutants and their results as JSON to FILE.")
     private Path json;
 
+    @Option(names = "--junit", paramLabel = "FILE.xml",
+            description = "Write the analysis as a JUnit XML report to FILE.xml: one test case per mutant (killed"
+                    + " passes, survived fails, equivalent and invalid are skipped) and one for the model as its own"
+                    + " system (an error unless it PASSED with every seed); the score and the seeds as properties.")
+    private Path junit;
+
     @CommandLine.Unmatched
     private List<String> runOptions = new ArrayList<>();
 
@@ -109,6 +117,10 @@ final class MutantsCommand implements Callable<Integer> {
         }
         if (checkSeconds <= 0) {
             throw usage("--check-time must be a positive number of seconds: " + checkSeconds);
+        }
+        if (junit != null && (junit.toAbsolutePath().getParent() == null
+                || !Files.isDirectory(junit.toAbsolutePath().getParent()))) {
+            throw usage("--junit " + junit + ": the folder " + junit.toAbsolutePath().getParent() + " does not exist");
         }
         Network network;
         TestInterface testInterface;
@@ -164,6 +176,14 @@ final class MutantsCommand implements Callable<Integer> {
                 Files.writeString(json, json(report, options, steering), StandardCharsets.UTF_8);
             } catch (IOException e) {
                 err.println("dtron mutants: cannot write " + json + ": " + e.getMessage());
+                return 1;
+            }
+        }
+        if (junit != null) {
+            try {
+                writeJunit(report, options, steering, threadCount);
+            } catch (IOException e) {
+                err.println("dtron mutants: cannot write the JUnit report " + junit + ": " + e.getMessage());
                 return 1;
             }
         }
@@ -281,6 +301,51 @@ final class MutantsCommand implements Callable<Integer> {
         out.println(String.format(Locale.ROOT, "%d mutants, %d runs of %d time units, in %.2f s on %d thread%s: %.1f"
                 + " mutants/s, %.0f runs/s", r.outcomes().size(), r.runs(), r.budget(), seconds, threads,
                 threads == 1 ? "" : "s", r.outcomes().size() / seconds, r.runs() / seconds));
+    }
+
+    /**
+     * {@code --junit}: a test case per mutant, named by its number, kind, change and place (killed passes, survived is a
+     * failure: no seed found it; equivalent and invalid are skipped, as they are not counted), and one for the model as
+     * its own system (an error unless every seed PASSED); the seeds, the budget and the score as properties.
+     */
+    private void writeJunit(MutationReport r, TestOptions options, Steering steering, int threads)
+            throws IOException {
+        List<Long> seeds = r.seeds();
+        String range = seeds.get(0) + (seeds.size() > 1 ? ".." + seeds.get(seeds.size() - 1) : "");
+        List<JunitXml.Case> cases = new ArrayList<>();
+        cases.add(r.modelRuns() == seeds.size() ? new JunitXml.Case("the model as its own system, seeds " + range,
+                null, null, "PASSED with every seed") : new JunitXml.Case("the model as its own system, seeds " + range,
+                "error", "INCONCLUSIVE", r.modelRuns() + " of " + seeds.size() + " runs PASSED; " + r.modelProblem()));
+        for (MutationReport.Outcome o : r.outcomes()) {
+            Mutant m = o.mutant();
+            String name = "mutant " + m.number() + ": " + m.kind().label() + ", " + m.change() + " (" + shortWhere(
+                    m.where()) + ")";
+            cases.add(switch (o.status()) {
+                case KILLED -> new JunitXml.Case(name, null, null, "killed by seed " + o.seed());
+                case SURVIVED -> new JunitXml.Case(name, "failure", "SURVIVED", "survived seeds " + range + ": "
+                        + o.explanation());
+                case EQUIVALENT -> new JunitXml.Case(name, "skipped", "EQUIVALENT", "equivalent: " + o.explanation());
+                case INVALID -> new JunitXml.Case(name, "skipped", "INVALID", "invalid: " + o.explanation());
+            });
+        }
+        java.util.Map<String, String> properties = new java.util.LinkedHashMap<>();
+        properties.put("model", model.toString());
+        properties.put("seeds", range);
+        properties.put("budget", Long.toString(r.budget()));
+        properties.put("timeunit_us", Long.toString(options.timeUnitMicros()));
+        properties.put("delay_policy", options.delayPolicy().name().toLowerCase(Locale.ROOT).replace('_', '-'));
+        properties.put("strategy", steering == null ? "random" : steering.strategy().name().toLowerCase(Locale.ROOT));
+        properties.put("mutation_score", r.count(MutationReport.Status.KILLED) + "/" + r.total());
+        for (MutationReport.Status status : MutationReport.Status.values()) {
+            properties.put(status.name().toLowerCase(Locale.ROOT), Long.toString(r.count(status)));
+        }
+        properties.put("model_runs_passed", r.modelRuns() + "/" + seeds.size());
+        String name = model.getFileName().toString();
+        String stem = name.contains(".") ? name.substring(0, name.lastIndexOf('.')) : name;
+        StringWriter summary = new StringWriter();
+        printSummary(r, threads, new PrintWriter(summary));
+        JunitXml.write(junit, "dtron mutants " + model, "dtron.mutants." + stem, cases, properties,
+                r.wallNanos() / 1e9, summary.toString());
     }
 
     private String json(MutationReport r, TestOptions options, Steering steering) {

@@ -122,6 +122,49 @@ class JunitReportTest {
     }
 
     @Test
+    void theMutantsAreOneTestCaseEachAsTheirJsonSays() throws Exception {
+        Path model = Files.writeString(dir.resolve("beeper.xta"), Files.readString(
+                Path.of("../dtron-engine/src/test/resources/io/dtron/engine/sim/beeper.xta")));
+        Path xml = dir.resolve("mutants.xml");
+        Path json = dir.resolve("mutants.json");
+        CommandRun r = CommandRun.of("mutants", model.toString(), "--budget", "100", "--seeds", "10", "--seed", "1",
+                "--delay-policy", "eager", "--json", json.toString(), "--junit", xml.toString());
+        assertEquals(0, r.exit(), r.out() + r.err());
+        Map<?, ?> root = (Map<?, ?>) Json.parse(Files.readString(json));
+        List<?> mutants = (List<?>) root.get("mutants");
+
+        Element suite = parse(xml).getDocumentElement();
+        NodeList tests = suite.getElementsByTagName("testcase");
+        assertEquals(mutants.size() + 1, tests.getLength());
+        Element model0 = (Element) tests.item(0);
+        assertEquals("the model as its own system, seeds 1..10", model0.getAttribute("name"));
+        assertEquals(0, model0.getElementsByTagName("*").getLength(), "the model passes with every seed");
+        assertEquals(List.of(String.valueOf(mutants.size() + 1), String.valueOf(root.get("survived")), "0",
+                String.valueOf(root.get("equivalent"))), List.of(suite.getAttribute("tests"),
+                suite.getAttribute("failures"), suite.getAttribute("errors"), suite.getAttribute("skipped")));
+        for (int i = 0; i < mutants.size(); i++) {
+            Map<?, ?> m = (Map<?, ?>) mutants.get(i);
+            Element test = (Element) tests.item(i + 1);
+            assertTrue(test.getAttribute("name").startsWith("mutant " + m.get("number") + ": " + m.get("kind") + ", "
+                    + m.get("change") + " (beeper.xta:"), test.getAttribute("name"));
+            String element = switch (m.get("status").toString()) {
+                case "killed" -> null;
+                case "survived" -> "failure";
+                default -> "skipped";
+            };
+            assertEquals(element == null ? 0 : 1, test.getElementsByTagName("*").getLength(), test.getAttribute("name"));
+            if (element != null) {
+                Element problem = only(test, element);
+                assertEquals(m.get("status").toString().toUpperCase(java.util.Locale.ROOT), problem.getAttribute("type"));
+            }
+        }
+        Map<String, String> properties = properties(suite);
+        assertEquals(root.get("killed") + "/" + (((Long) root.get("killed")) + (Long) root.get("survived")),
+                properties.get("mutation_score"));
+        assertEquals("1..10", properties.get("seeds"));
+    }
+
+    @Test
     void aBadJunitFolderOrTraceSizeIsAUsageError() {
         String model = dir.resolve("none.xta").toString();
         CommandRun folder = CommandRun.of("run", model, "--sut", "x", "--junit", dir.resolve("no/such/r.xml").toString());
