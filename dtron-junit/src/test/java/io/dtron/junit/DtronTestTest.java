@@ -12,7 +12,10 @@ import java.nio.file.Files;
 import java.nio.file.Path;
 import java.util.List;
 import java.util.Properties;
+import java.io.ByteArrayOutputStream;
+import java.io.PrintStream;
 import java.io.Reader;
+import java.nio.charset.StandardCharsets;
 import org.junit.jupiter.api.AfterEach;
 import org.junit.jupiter.api.BeforeEach;
 import org.junit.jupiter.api.Test;
@@ -30,6 +33,8 @@ import org.opentest4j.AssertionFailedError;
 class DtronTestTest {
     @TempDir
     Path dir;
+    /** What the last tests run printed. */
+    private String printed = "";
 
     @BeforeEach
     void intoThisTestsFolder() {
@@ -97,8 +102,13 @@ class DtronTestTest {
         Events first = run(LampCases.LateNewSeeds.class);
         List<String> failed = names(first.failed());
         assertEquals(2, failed.size(), "the late lamp fails with every seed");
+        assertTrue(printed.contains("dtron: FAILED with " + failed.get(0) + ": no output came by t="), printed);
         Events second = run(LampCases.LateNewSeeds.class);
         assertEquals(failed, names(second.started()).subList(0, 2), "last time's seeds come first, in their order");
+        for (String seed : failed) {
+            assertTrue(printed.contains("dtron: LateNewSeeds.lamp: " + seed + " did not pass last time; it runs first ("
+                    + dir.resolve("seeds.properties") + ")\n"), printed);
+        }
     }
 
     @Test
@@ -156,15 +166,27 @@ class DtronTestTest {
                 + " without testing a system"));
     }
 
-    private static Events run(Class<?> testClass) {
-        return EngineTestKit.engine("junit-jupiter").selectors(selectClass(testClass)).execute().testEvents();
+    /** Runs the test class's tests; what they print goes to {@link #printed}. */
+    private Events run(Class<?> testClass) {
+        return printing(() -> EngineTestKit.engine("junit-jupiter").selectors(selectClass(testClass)).execute()
+                .testEvents());
     }
 
-    private static Events runMethod(Class<?> testClass, String method, Class<?>... parameters) {
-        Events all = EngineTestKit.engine("junit-jupiter")
-                .selectors(selectMethod(testClass, method, parameters.length == 0 ? ""
-                        : parameters[0].getName())).execute().allEvents();
-        return all;
+    private Events runMethod(Class<?> testClass, String method, Class<?>... parameters) {
+        return printing(() -> EngineTestKit.engine("junit-jupiter").selectors(selectMethod(testClass, method,
+                parameters.length == 0 ? "" : parameters[0].getName())).execute().allEvents());
+    }
+
+    private Events printing(java.util.function.Supplier<Events> tests) {
+        PrintStream out = System.out;
+        ByteArrayOutputStream bytes = new ByteArrayOutputStream();
+        System.setOut(new PrintStream(bytes, true, StandardCharsets.UTF_8));
+        try {
+            return tests.get();
+        } finally {
+            System.setOut(out);
+            printed = bytes.toString(StandardCharsets.UTF_8);
+        }
     }
 
     private static List<String> names(Events events) {
