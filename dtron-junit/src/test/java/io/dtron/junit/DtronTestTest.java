@@ -71,6 +71,19 @@ class DtronTestTest {
     }
 
     @Test
+    void virtualTimeFalseRunsOnTheWallClock() throws Exception {
+        long start = System.nanoTime();
+        Events tests = run(LampCases.RealTime.class);
+        long millis = (System.nanoTime() - start) / 1_000_000;
+        // no press can come before the timeout (the user waits 3 units): the run passes whatever the load
+        assertEquals(1, tests.succeeded().count(), () -> "the run passes: " + tests.failed().list());
+        assertTrue(millis >= 500, "2 units of 250 ms take at least 500 ms of wall time, not " + millis);
+        String text = Files.readString(dir.resolve("reports").resolve(LampCases.RealTime.class.getName())
+                .resolve("lamp-seed-1.txt"));
+        assertTrue(text.startsWith("dtron: lamp.xta, seed 1, 2 time units of 250000 us in real time\n"), text);
+    }
+
+    @Test
     void aTronInterfaceFileOnTheClasspathGivesTheInterfaceTimeUnitAndTimeout() throws Exception {
         Events tests = run(LampCases.TronInterface.class);
         assertEquals(1, tests.succeeded().count(), () -> "the run passes: " + tests.failed().list());

@@ -39,6 +39,14 @@ final class LampCases {
         }
     }
 
+    /** The lamp in real time, for 2 time units of 250 ms: less than the user waits before the first press. */
+    static class RealTime {
+        @DtronTest(model = "lamp.xta", seeds = 1, seed = 1, timeout = 2, timeUnit = 250_000, virtualTime = false)
+        void lamp(DtronRun run) {
+            run.test(new Lamp(false));
+        }
+    }
+
     /** The late lamp, three seeds from 7. */
     static class Late {
         @DtronTest(model = "lamp.xta", seeds = 3, seed = 7)

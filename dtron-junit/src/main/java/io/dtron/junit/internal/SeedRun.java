@@ -92,7 +92,7 @@ final class SeedRun implements TestTemplateInvocationContext, ParameterResolver,
             plan.goal().ifPresent(g -> tester.steer(Steering.of(Strategy.GOAL, List.of(g))));
             RunRecord record = new RunRecord("dtron: " + model.name() + ", seed " + plan.seed()
                     + plan.goal().map(g -> ", goal " + g).orElse("") + ", " + options.timeout() + " time units of "
-                    + options.timeUnitMicros() + " us" + (options.virtualTime() ? " in virtual time" : ""),
+                    + options.timeUnitMicros() + " us in " + (options.virtualTime() ? "virtual" : "real") + " time",
                     options.timeUnitMicros());
             tester.addListener(record);
             TestResult result = tester.run();
