@@ -156,8 +156,9 @@ final class JsonTrace implements TestListener {
     @Override
     public void edgesTaken(Event event, boolean input, long micros, java.util.List<String> certainly,
                            java.util.List<String> possibly) {
-        bounded(micros, "{\"kind\":\"edges\",\"t_us\":" + micros + ",\"channel\":" + quote(event.channel()) + ",\"input\":"
-                + input + ",\"certainly\":" + strings(certainly) + ",\"possibly\":" + strings(possibly) + "}");
+        bounded(micros, "{\"kind\":\"edges\",\"t_us\":" + micros + ",\"channel\":" + quote(event.channel())
+                + ",\"input\":" + input + ",\"certainly\":" + strings(certainly) + ",\"possibly\":"
+                + strings(possibly) + "}");
     }
 
     private static String strings(java.util.List<String> list) {
@@ -182,8 +183,8 @@ final class JsonTrace implements TestListener {
     }
 
     private void event(String kind, Event e, long micros) {
-        bounded(micros, "{\"kind\":\"" + kind + "\",\"t_us\":" + micros + ",\"channel\":" + quote(e.channel()) + ",\"values\":"
-                + values(e.values()) + "}");
+        bounded(micros, "{\"kind\":\"" + kind + "\",\"t_us\":" + micros + ",\"channel\":" + quote(e.channel())
+                + ",\"values\":" + values(e.values()) + "}");
     }
 
     private static String values(Map<String, Integer> variables) {

@@ -183,6 +183,19 @@ final class JunitXml {
         }
     }
 
+    /** Why {@code --junit FILE} cannot be written (its folder does not exist), or null when it can be. */
+    static String folderProblem(Path file) {
+        Path folder = file.toAbsolutePath().getParent();
+        return folder != null && Files.isDirectory(folder) ? null
+                : "--junit " + file + ": the folder " + folder + " does not exist";
+    }
+
+    /** The class name of the test cases of {@code model}: {@code prefix} and the file's name without extension. */
+    static String className(String prefix, Path model) {
+        String name = model.getFileName().toString();
+        return prefix + (name.contains(".") ? name.substring(0, name.lastIndexOf('.')) : name);
+    }
+
     /** {@code text} without the characters XML 1.0 cannot hold (control characters but tab and line ends). */
     static String clean(String text) {
         StringBuilder sb = new StringBuilder(text.length());

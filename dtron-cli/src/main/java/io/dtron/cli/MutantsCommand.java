@@ -118,9 +118,8 @@ final class MutantsCommand implements Callable<Integer> {
         if (checkSeconds <= 0) {
             throw usage("--check-time must be a positive number of seconds: " + checkSeconds);
         }
-        if (junit != null && (junit.toAbsolutePath().getParent() == null
-                || !Files.isDirectory(junit.toAbsolutePath().getParent()))) {
-            throw usage("--junit " + junit + ": the folder " + junit.toAbsolutePath().getParent() + " does not exist");
+        if (junit != null && JunitXml.folderProblem(junit) != null) {
+            throw usage(JunitXml.folderProblem(junit));
         }
         Network network;
         TestInterface testInterface;
@@ -304,9 +303,9 @@ final class MutantsCommand implements Callable<Integer> {
     }
 
     /**
-     * {@code --junit}: a test case per mutant, named by its number, kind, change and place (killed passes, survived is a
-     * failure: no seed found it; equivalent and invalid are skipped, as they are not counted), and one for the model as
-     * its own system (an error unless every seed PASSED); the seeds, the budget and the score as properties.
+     * {@code --junit}: a test case per mutant, named by its number, kind, change and place (killed passes, survived is
+     * a failure: no seed found it; equivalent and invalid are skipped, as they are not counted), and one for the model
+     * as its own system (an error unless every seed PASSED); the seeds, the budget and the score as properties.
      */
     private void writeJunit(MutationReport r, TestOptions options, Steering steering, int threads)
             throws IOException {
@@ -340,12 +339,10 @@ final class MutantsCommand implements Callable<Integer> {
             properties.put(status.name().toLowerCase(Locale.ROOT), Long.toString(r.count(status)));
         }
         properties.put("model_runs_passed", r.modelRuns() + "/" + seeds.size());
-        String name = model.getFileName().toString();
-        String stem = name.contains(".") ? name.substring(0, name.lastIndexOf('.')) : name;
         StringWriter summary = new StringWriter();
         printSummary(r, threads, new PrintWriter(summary));
-        JunitXml.write(junit, "dtron mutants " + model, "dtron.mutants." + stem, cases, properties,
-                r.wallNanos() / 1e9, summary.toString());
+        JunitXml.write(junit, "dtron mutants " + model, JunitXml.className("dtron.mutants.", model), cases,
+                properties, r.wallNanos() / 1e9, summary.toString());
     }
 
     private String json(MutationReport r, TestOptions options, Steering steering) {

@@ -588,9 +588,8 @@ final class RunCommand implements Callable<Integer> {
             throw usage("--trace-max-size bounds the --trace file: give --trace FILE too");
         }
         traceMaxBytes();
-        if (junit != null && (junit.toAbsolutePath().getParent() == null
-                || !Files.isDirectory(junit.toAbsolutePath().getParent()))) {
-            throw usage("--junit " + junit + ": the folder " + junit.toAbsolutePath().getParent() + " does not exist");
+        if (junit != null && JunitXml.folderProblem(junit) != null) {
+            throw usage(JunitXml.folderProblem(junit));
         }
         if (tronBackend && trace != null) {
             throw usage("--trace records DTRON's engine; with --backend tron, TRON keeps its own log");
@@ -985,12 +984,11 @@ final class RunCommand implements Callable<Integer> {
         String output = result.verdict() + ": " + result.explanation() + "\nstatistics: " + result.statisticsLine()
                 + " (seed verdict inputs outputs duration-us)\n" + (result.coverage() == null ? ""
                 : result.coverage().summary() + "\n");
-        String name = model.getFileName().toString();
-        String stem = name.contains(".") ? name.substring(0, name.lastIndexOf('.')) : name;
         try {
-            JunitXml.write(junit, "dtron run " + model, "dtron." + stem, JunitXml.cases(result, against, steering,
-                    unit), JunitXml.properties(model.toString(), against, result, unit, options.timeout(),
-                    options.virtualTime(), steering), (System.nanoTime() - startNanos) / 1e9, output);
+            JunitXml.write(junit, "dtron run " + model, JunitXml.className("dtron.", model),
+                    JunitXml.cases(result, against, steering, unit), JunitXml.properties(model.toString(), against,
+                    result, unit, options.timeout(), options.virtualTime(), steering),
+                    (System.nanoTime() - startNanos) / 1e9, output);
         } catch (IOException e) {
             throw new JunitFailure("cannot write the JUnit report " + junit + ": " + e.getMessage(), e);
         }
@@ -1003,14 +1001,17 @@ final class RunCommand implements Callable<Integer> {
         }
         java.util.regex.Matcher m = Pattern.compile("(\\d{1,12})\\s*([KMG]?B?)").matcher(traceMaxSize.strip()
                 .toUpperCase(Locale.ROOT));
-        if (m.matches() && Long.parseLong(m.group(1)) > 0) {
+        if (m.matches()) {
             int shift = switch (m.group(2).isEmpty() ? 'B' : m.group(2).charAt(0)) {
                 case 'K' -> 10;
                 case 'M' -> 20;
                 case 'G' -> 30;
                 default -> 0;
             };
-            return Long.parseLong(m.group(1)) << shift;
+            long size = Long.parseLong(m.group(1));
+            if (size > 0 && size <= Long.MAX_VALUE >> shift) {
+                return size << shift;
+            }
         }
         throw usage("--trace-max-size " + traceMaxSize + ": give a positive size in bytes, or with KB, MB or GB"
                 + " (e.g. 10MB)");

@@ -191,7 +191,8 @@ class JunitPageIT {
         Matcher m = Pattern.compile(anyNumber ? "\\.\\.\\.|\\d+" : "\\.\\.\\.").matcher(line);
         int last = 0;
         while (m.find()) {
-            regex.append(Pattern.quote(line.substring(last, m.start()))).append(m.group().equals("...") ? ".*" : "\\d+");
+            regex.append(Pattern.quote(line.substring(last, m.start())))
+                    .append(m.group().equals("...") ? ".*" : "\\d+");
             last = m.end();
         }
         return Pattern.compile(regex.append(Pattern.quote(line.substring(last))).toString());

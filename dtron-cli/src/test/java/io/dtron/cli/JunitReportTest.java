@@ -152,10 +152,12 @@ class JunitReportTest {
                 case "survived" -> "failure";
                 default -> "skipped";
             };
-            assertEquals(element == null ? 0 : 1, test.getElementsByTagName("*").getLength(), test.getAttribute("name"));
+            assertEquals(element == null ? 0 : 1, test.getElementsByTagName("*").getLength(),
+                    test.getAttribute("name"));
             if (element != null) {
                 Element problem = only(test, element);
-                assertEquals(m.get("status").toString().toUpperCase(java.util.Locale.ROOT), problem.getAttribute("type"));
+                assertEquals(m.get("status").toString().toUpperCase(java.util.Locale.ROOT),
+                        problem.getAttribute("type"));
             }
         }
         Map<String, String> properties = properties(suite);
@@ -167,7 +169,8 @@ class JunitReportTest {
     @Test
     void aBadJunitFolderOrTraceSizeIsAUsageError() {
         String model = dir.resolve("none.xta").toString();
-        CommandRun folder = CommandRun.of("run", model, "--sut", "x", "--junit", dir.resolve("no/such/r.xml").toString());
+        CommandRun folder = CommandRun.of("run", model, "--sut", "x", "--junit",
+                dir.resolve("no/such/r.xml").toString());
         assertEquals(1, folder.exit());
         assertTrue(folder.err().startsWith("dtron run: --junit " + dir.resolve("no/such/r.xml") + ": the folder "
                 + dir.resolve("no/such") + " does not exist"), folder.err());
@@ -175,6 +178,15 @@ class JunitReportTest {
         assertEquals(1, size.exit());
         assertTrue(size.err().startsWith("dtron run: --trace-max-size 10XB: give a positive size in bytes, or with KB,"
                 + " MB or GB (e.g. 10MB)"), size.err());
+        CommandRun huge = CommandRun.of("run", model, "--sut", "x", "--trace", "t.jsonl", "--trace-max-size",
+                "999999999999GB");
+        assertEquals(1, huge.exit());
+        assertTrue(huge.err().startsWith("dtron run: --trace-max-size 999999999999GB: give a positive size"),
+                huge.err());
+        CommandRun mutants = CommandRun.of("mutants", model, "--junit", dir.resolve("no/such/m.xml").toString());
+        assertEquals(1, mutants.exit());
+        assertTrue(mutants.err().startsWith("dtron mutants: --junit " + dir.resolve("no/such/m.xml") + ": the folder "),
+                mutants.err());
         CommandRun alone = CommandRun.of("run", model, "--sut", "x", "--trace-max-size", "1MB");
         assertEquals(1, alone.exit());
         assertTrue(alone.err().startsWith("dtron run: --trace-max-size bounds the --trace file: give --trace FILE"
