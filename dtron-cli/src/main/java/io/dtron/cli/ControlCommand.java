@@ -102,7 +102,8 @@ final class ControlCommand implements Callable<Integer> {
                     + " whenever the file changes, and taken at the next reset point; refused with the reason otherwise.")
     private Path reloadFrom;
 
-    @Option(names = "--virtual-time", description = "Run in virtual time: deterministic, as fast as the CPU allows.")
+    @Option(names = "--virtual-time", description = "Run in virtual time: deterministic, as fast as the CPU allows"
+            + " (--plant model needs it).")
     private boolean virtualTime;
 
     @Option(names = "--seed", paramLabel = "N", description = "Seed of the random choices (default: from the clock).")
@@ -141,6 +142,10 @@ final class ControlCommand implements Callable<Integer> {
         }
         if (!"model".equals(plant)) {
             throw usage("--plant must be 'model' (the model's own plant part): the plant on the bus is not wired yet");
+        }
+        if (!virtualTime) {
+            throw usage("--plant model runs in virtual time: add --virtual-time (real time is for a plant on the bus,"
+                    + " which is not wired yet)");
         }
         if (duration <= 0) {
             throw usage("--duration must be a positive number of time units: " + duration);
