@@ -12,22 +12,14 @@ import io.dtron.engine.control.SafeAction;
 import io.dtron.engine.sim.ModelSystem;
 import io.dtron.engine.sim.Mutant;
 import io.dtron.engine.sim.Mutants;
-import io.dtron.engine.verify.Query;
 import io.dtron.engine.verify.QueryException;
 import io.dtron.model.ModelException;
 import io.dtron.model.ModelLoader;
 import io.dtron.model.Network;
 import io.dtron.model.TestInterface;
-import java.io.IOException;
 import java.io.PrintWriter;
-import java.io.UncheckedIOException;
-import java.nio.charset.StandardCharsets;
-import java.nio.file.ClosedWatchServiceException;
 import java.nio.file.Files;
 import java.nio.file.Path;
-import java.nio.file.StandardWatchEventKinds;
-import java.nio.file.WatchKey;
-import java.nio.file.WatchService;
 import java.time.Duration;
 import java.util.ArrayList;
 import java.util.List;
@@ -144,14 +136,17 @@ final class ControlCommand implements Callable<Integer> {
             throw usage("--plant must be 'model' (the model's own plant part): the plant on the bus is not wired yet");
         }
         if (!virtualTime) {
-            throw usage("--plant model runs in virtual time: add --virtual-time (real time is for a plant on the bus,"
-                    + " which is not wired yet)");
+            throw usage("--plant model runs in virtual time: add --virtual-time (a plant in this process is simulated on"
+                    + " the controller's clock; real time is for a plant on the bus, not wired yet)");
         }
         if (duration <= 0) {
             throw usage("--duration must be a positive number of time units: " + duration);
         }
         if (safeAction != null && safeLocation != null) {
             throw usage("give --safe-action or --safe-location, not both");
+        }
+        if (reloadFrom != null && !Files.isDirectory(reloadFrom.toAbsolutePath().getParent())) {
+            throw usage("--reload-from " + reloadFrom + ": its folder does not exist");
         }
         ControlPolicy chosen = switch (policy) {
             case "eager" -> ControlPolicy.EAGER;
@@ -196,21 +191,33 @@ final class ControlCommand implements Callable<Integer> {
         } catch (IllegalArgumentException e) {
             throw usage(e.getMessage());
         }
-        controller.addListener(new Printer(out, unit));
         out.println("dtron control: " + model + " against " + plantName + ", policy " + policy + ", " + duration
                 + " time units" + (virtualTime ? " in virtual time" : "") + ", seed " + runSeed);
         out.flush();
-        Watcher watcher = reloadFrom == null ? null : new Watcher(reloadFrom, testInterface, controller, out);
+        Printer printer = new Printer(out, unit);
+        controller.addListener(printer);
+        ModelVersionFile versions = reloadFrom == null ? null : new ModelVersionFile(reloadFrom, model, interfaceFile,
+                testInterface, new ModelVersionFile.Sink() {
+                    @Override
+                    public void checked(ModelVersion.Check check) {
+                        controller.offer(check);
+                    }
+
+                    @Override
+                    public void unloadable(String version, String reason) {
+                        printer.versionRefused(version, reason);
+                    }
+                });
         ControlResult result;
         try {
-            if (watcher != null) {
-                watcher.offerNow();
-                watcher.start();
+            if (versions != null) {
+                versions.checkNow();
+                versions.watch();
             }
             result = controller.run();
         } finally {
-            if (watcher != null) {
-                watcher.close();
+            if (versions != null) {
+                versions.close();
             }
         }
         if (result.outcome() == ControlResult.Outcome.STOPPED) {
@@ -241,131 +248,6 @@ final class ControlCommand implements Callable<Integer> {
 
     private ParameterException usage(String message) {
         return new ParameterException(spec.commandLine(), message);
-    }
-
-    /**
-     * The queries a new version is checked with: those of the {@code .q} file beside it, else those written in it,
-     * else those of the {@code .q} file beside the model the run started with; none when there are none.
-     */
-    private List<Query> queriesFor(Path version, Network network) throws IOException {
-        Path own = beside(version);
-        if (Files.isRegularFile(own)) {
-            return Query.parseFile(Files.readString(own, StandardCharsets.UTF_8));
-        }
-        if (!network.queries().isEmpty()) {
-            List<Query> written = new ArrayList<>();
-            for (io.dtron.xta.ast.Query q : network.queries()) {
-                try {
-                    written.add(Query.parse(q.pos().text()));
-                } catch (QueryException e) {
-                    written.add(new Query(q.pos().text().strip(), Query.Kind.INVALID, null, null, e.getMessage(), 0,
-                            0));
-                }
-            }
-            return written;
-        }
-        Path started = beside(model);
-        return Files.isRegularFile(started) ? Query.parseFile(Files.readString(started, StandardCharsets.UTF_8))
-                : List.of();
-    }
-
-    /** {@code FILE.q} for {@code FILE.xta} (or .xml, .ta). */
-    private static Path beside(Path file) {
-        String name = file.getFileName().toString();
-        int dot = name.lastIndexOf('.');
-        return file.resolveSibling((dot > 0 ? name.substring(0, dot) : name) + ".q");
-    }
-
-    /** Checks the file of new versions when the run starts and whenever it changes, and hands each to the run. */
-    private final class Watcher implements AutoCloseable {
-        private final Path file;
-        private final TestInterface running;
-        private final Controller controller;
-        private final PrintWriter out;
-        private WatchService service;
-        private Thread thread;
-
-        Watcher(Path file, TestInterface running, Controller controller, PrintWriter out) {
-            this.file = file.toAbsolutePath();
-            this.running = running;
-            this.controller = controller;
-            this.out = out;
-        }
-
-        /** Checks the file as it is now, if it exists. */
-        void offerNow() {
-            if (Files.exists(file)) {
-                offer();
-            }
-        }
-
-        void start() {
-            try {
-                service = file.getFileSystem().newWatchService();
-                file.getParent().register(service, StandardWatchEventKinds.ENTRY_CREATE,
-                        StandardWatchEventKinds.ENTRY_MODIFY);
-            } catch (IOException e) {
-                throw new UncheckedIOException("cannot watch " + file + ": " + e.getMessage(), e);
-            }
-            thread = new Thread(this::watch, "dtron-reload-watcher");
-            thread.setDaemon(true);
-            thread.start();
-        }
-
-        private void watch() {
-            try {
-                while (true) {
-                    WatchKey key = service.take();
-                    boolean ours = key.pollEvents().stream().anyMatch(e -> e.context() instanceof Path p
-                            && file.getFileName().equals(p));
-                    key.reset();
-                    if (ours && Files.exists(file)) {
-                        offer();
-                    }
-                }
-            } catch (InterruptedException | ClosedWatchServiceException e) {
-                // the run is over
-            }
-        }
-
-        /** Loads and checks the file, and hands the outcome to the controller. */
-        private void offer() {
-            String label = reloadFrom.toString();
-            Network network;
-            TestInterface testInterface;
-            List<Query> queries;
-            try {
-                network = ModelLoader.load(file);
-                testInterface = interfaceFile == null ? TestInterface.fromNames(network)
-                        : TestInterface.fromFile(network, interfaceFile);
-                queries = queriesFor(file, network);
-            } catch (ModelException e) {
-                refuse(label, "it does not load: " + e.getMessage().lines().findFirst().orElse(""));
-                return;
-            } catch (IOException e) {
-                refuse(label, "its queries cannot be read: " + e.getMessage());
-                return;
-            }
-            controller.offer(ModelVersion.check(new ModelVersion(label, network, testInterface), running, queries));
-        }
-
-        private void refuse(String label, String reason) {
-            synchronized (out) {
-                out.println("model version " + label + " refused: " + reason + "; the run goes on with the one it has");
-                out.flush();
-            }
-        }
-
-        @Override
-        public void close() {
-            if (service != null) {
-                try {
-                    service.close();
-                } catch (IOException e) {
-                    // closing: nothing to do
-                }
-            }
-        }
     }
 
     /** Prints the alarms, the safe action and the model versions as they come. */
