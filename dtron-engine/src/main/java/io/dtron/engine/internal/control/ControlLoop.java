@@ -235,7 +235,14 @@ public final class ControlLoop {
                     + " have been able to act: " + unreachable.get(), null, -1);
         }
         return alarm("no reading came by " + deadlineAt + ": the model required the plant to act by then. "
-                + plan.explainOutputs(this::time, lastMicros));
+                + readings(plan));
+    }
+
+    /** The readings {@code plan} allowed and the plant's state, in the controller's terms. */
+    private String readings(Plan plan) {
+        return plan.explainOutputs(this::time, lastMicros).replace("The model allowed these outputs:",
+                "The model allowed these readings:").replace("The model allowed no outputs then",
+                "The model allowed no readings then").replace("the implementation was in", "the plant was in");
     }
 
     /** Takes what the plant reported; returns the end of the run, or null. */
@@ -265,8 +272,7 @@ public final class ControlLoop {
         Plan before = plan();
         StateSet atTime = set.afterWindow(ticksFloor(at - lastMicros), ticksCeil(at - lastMicros));
         if (atTime.isEmpty()) {
-            return alarm("reading " + event + " at " + time(at) + " is too late: " + before.explainOutputs(this::time,
-                    lastMicros));
+            return alarm("reading " + event + " at " + time(at) + " is too late: " + readings(before));
         }
         List<StateSet.Successor> moves = atTime.successors(channel.channel());
         List<SymState> matching = new ArrayList<>();
@@ -297,7 +303,7 @@ public final class ControlLoop {
         }
         return alarm("reading " + event + " at " + time(at) + " is not allowed then"
                 + before.timing(channel.channel(), ticksFloor(at - lastMicros)) + ". "
-                + before.explainOutputs(this::time, lastMicros));
+                + readings(before));
     }
 
     /** Sends the command chosen, now. */
