@@ -121,6 +121,9 @@ final class ControlCommand implements Callable<Integer> {
         } catch (UnsupportedModelException | QueryException e) {
             err.println("dtron control: " + model + ": " + e.getMessage());
             return 1;
+        } catch (java.io.UncheckedIOException e) {
+            err.println("dtron control: " + e.getMessage());
+            return 1;
         } finally {
             out.flush();
             err.flush();
@@ -194,8 +197,7 @@ final class ControlCommand implements Callable<Integer> {
         out.println("dtron control: " + model + " against " + plantName + ", policy " + policy + ", " + duration
                 + " time units" + (virtualTime ? " in virtual time" : "") + ", seed " + runSeed);
         out.flush();
-        Printer printer = new Printer(out, unit);
-        controller.addListener(printer);
+        controller.addListener(new Printer(out, unit));
         ModelVersionFile versions = reloadFrom == null ? null : new ModelVersionFile(reloadFrom, model, interfaceFile,
                 testInterface, new ModelVersionFile.Sink() {
                     @Override
@@ -205,7 +207,7 @@ final class ControlCommand implements Callable<Integer> {
 
                     @Override
                     public void unloadable(String version, String reason) {
-                        printer.versionRefused(version, reason);
+                        controller.refuse(version, reason);
                     }
                 });
         ControlResult result;

@@ -4,8 +4,10 @@ import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
+import java.nio.file.Files;
 import java.nio.file.Path;
 import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.io.TempDir;
 
 /**
  * {@code dtron control}'s usage errors on the robot-arm sample: each one line naming what is wrong, exit code 1, no
@@ -51,6 +53,17 @@ class ControlCommandTest {
                 "--virtual-time", "--plant-mutant", "99");
         refused("--reload-from /no/such/folder/v2.xta: its folder does not exist", "--plant", "model", "--duration",
                 "10", "--virtual-time", "--reload-from", "/no/such/folder/v2.xta");
+    }
+
+    @Test
+    void aVersionThatDoesNotLoadIsRefusedCountedAndTheRunGoesOn(@TempDir Path dir) throws Exception {
+        Path broken = Files.writeString(dir.resolve("next.xta"), "chan i_move;;\n");
+        CommandRun r = CommandRun.of("control", ARM, "--plant", "model", "--duration", "100", "--virtual-time",
+                "--seed", "1", "--reload-from", broken.toString());
+        assertEquals(0, r.exit(), r.out() + r.err());
+        assertTrue(r.out().contains("\nmodel version " + broken + " refused: it does not load: " + broken
+                + ":1:13: error: syntax error"), r.out());
+        assertTrue(r.out().endsWith(", 0 alarms, 1 refused (seed 1)\n"), r.out());
     }
 
     @Test

@@ -88,13 +88,21 @@ public final class Controller {
     public void offer(ModelVersion.Check check) {
         Objects.requireNonNull(check, "check");
         if (!check.accepted()) {
-            refused.add(check.version().label() + ": " + check.refusal());
-            for (ControlListener l : listeners) {
-                l.versionRefused(check.version().label(), check.refusal());
-            }
+            refuse(check.version().label(), check.refusal());
             return;
         }
         offered.set(check.version());
+    }
+
+    /**
+     * Records a version refused before it could be checked ({@code reason}: it does not load, its queries cannot be
+     * read): told to the listeners and counted in the result, as a refused {@link #offer} is (thread-safe).
+     */
+    public void refuse(String version, String reason) {
+        refused.add(Objects.requireNonNull(version, "version") + ": " + Objects.requireNonNull(reason, "reason"));
+        for (ControlListener l : listeners) {
+            l.versionRefused(version, reason);
+        }
     }
 
     /**
