@@ -125,6 +125,23 @@ class RobotArmControlTest {
     }
 
     @Test
+    void theSampleHasItsCommandsAndReadingsAndSatisfiesItsQueries() throws Exception {
+        for (String file : List.of("robot-arm.xta", "robot-arm-v2.xta", "robot-arm-slow.xta")) {
+            Network n = load(file);
+            assertTrue(n.warnings().isEmpty(), file + ": " + n.warnings());
+            TestInterface i = TestInterface.fromNames(n);
+            assertEquals(List.of("move", "grip", "release", "stop"), i.inputs().stream()
+                    .map(TestInterface.ObservableChannel::name).toList(), file);
+            assertEquals(List.of("arrived", "gripped"), i.outputs().stream()
+                    .map(TestInterface.ObservableChannel::name).toList(), file);
+        }
+        Network arm = load("robot-arm.xta");
+        ModelVersion.Check itself = ModelVersion.check(new ModelVersion("robot-arm.xta", arm,
+                TestInterface.fromNames(arm)), TestInterface.fromNames(arm), queries());
+        assertTrue(itself.accepted(), itself.refusal());
+    }
+
+    @Test
     void controlRunsItsDurationWithTheCommandsInTheModelsOrder() throws Exception {
         Network arm = load("robot-arm.xta");
         TestInterface names = TestInterface.fromNames(arm);
