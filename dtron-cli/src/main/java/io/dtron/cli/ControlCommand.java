@@ -1,0 +1,292 @@
+package io.dtron.cli;
+
+import io.dtron.engine.Event;
+import io.dtron.engine.TestOptions;
+import io.dtron.engine.UnsupportedModelException;
+import io.dtron.engine.control.ControlListener;
+import io.dtron.engine.control.ControlPolicy;
+import io.dtron.engine.control.ControlResult;
+import io.dtron.engine.control.Controller;
+import io.dtron.engine.control.ModelVersion;
+import io.dtron.engine.control.SafeAction;
+import io.dtron.engine.sim.ModelSystem;
+import io.dtron.engine.sim.Mutant;
+import io.dtron.engine.sim.Mutants;
+import io.dtron.engine.verify.QueryException;
+import io.dtron.model.ModelException;
+import io.dtron.model.ModelLoader;
+import io.dtron.model.Network;
+import io.dtron.model.TestInterface;
+import java.io.PrintWriter;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.time.Duration;
+import java.util.ArrayList;
+import java.util.List;
+import java.util.concurrent.Callable;
+import picocli.CommandLine.Command;
+import picocli.CommandLine.Model.CommandSpec;
+import picocli.CommandLine.Option;
+import picocli.CommandLine.ParameterException;
+import picocli.CommandLine.Parameters;
+import picocli.CommandLine.Spec;
+
+/**
+ * {@code dtron control MODEL}: the model as controller. Parses the options, builds the plant and the {@link
+ * Controller}, watches the file of new model versions, and prints what happens and the summary; the engine runs the
+ * control.
+ */
+@Command(name = "control", mixinStandardHelpOptions = true, exitCodeOnInvalidInput = 1, exitCodeOnExecutionException = 1,
+        description = {"Run the model as a controller: DTRON sends the commands (i_ channels) the model's controller"
+                + " part chooses and takes the plant's readings (o_ channels) as the model allows them.",
+                "A plant that deviates from the model raises an alarm; the controller then takes the safe action"
+                        + " (--safe-action, --safe-location) and the run ends. A new model version (--reload-from) is"
+                        + " checked with its queries and taken at the next reset point.",
+                "The plant: --plant model (the model's own plant part, in this process). The bus (--cluster, --bus)"
+                        + " is not wired yet.",
+                "Exit code 0 when the run lasted its duration, 2 after an alarm, 3 when it stopped for another reason,"
+                        + " 1 usage or model error."})
+final class ControlCommand implements Callable<Integer> {
+    @Spec
+    private CommandSpec spec;
+
+    @Parameters(index = "0", paramLabel = "MODEL", description = "The closed model (.xml, .xta, or an Uppaal 3 .ta).")
+    private Path model;
+
+    @Option(names = "--interface", paramLabel = "FILE.trn",
+            description = "Take commands (inputs) and readings (outputs) from a TRON interface file instead of i_/o_.")
+    private Path interfaceFile;
+
+    @Option(names = "--plant", paramLabel = "model", required = true,
+            description = "The plant: 'model', the model's own plant part simulated in this process.")
+    private String plant;
+
+    @Option(names = "--plant-mutant", paramLabel = "N",
+            description = "With --plant model: mutant N of the plant part instead (the numbers dtron mutants prints),"
+                    + " e.g. one whose reading is dropped: a stalling plant.")
+    private Integer plantMutant;
+
+    @Option(names = "--plant-seed", paramLabel = "N",
+            description = "With --plant model: the seed of the plant's choices (default: derived from --seed).")
+    private Long plantSeed;
+
+    @Option(names = "--duration", paramLabel = "UNITS", required = true,
+            description = "How long the run lasts, in model time units.")
+    private long duration;
+
+    @Option(names = "--policy", paramLabel = "eager|random|goal", defaultValue = "eager",
+            description = "How commands are chosen: as early as allowed (default), at random, or toward --goal.")
+    private String policy;
+
+    @Option(names = "--goal", paramLabel = "'E<> P'", description = "A goal of the goal policy (repeatable).")
+    private List<String> goals = new ArrayList<>();
+
+    @Option(names = "--safe-action", paramLabel = "CHANNEL",
+            description = "The command sent after an alarm (i_stop); the model's plant must take it anywhere.")
+    private String safeAction;
+
+    @Option(names = "--safe-location", paramLabel = "PROCESS.LOCATION",
+            description = "After an alarm, the command that the model's edges into this location send.")
+    private String safeLocation;
+
+    @Option(names = "--reload-from", paramLabel = "FILE",
+            description = "A new version of the model: checked (it loads, its queries hold) when the run starts and"
+                    + " whenever the file changes, and taken at the next reset point; refused with the reason otherwise.")
+    private Path reloadFrom;
+
+    @Option(names = "--virtual-time", description = "Run in virtual time: deterministic, as fast as the CPU allows"
+            + " (--plant model needs it).")
+    private boolean virtualTime;
+
+    @Option(names = "--seed", paramLabel = "N", description = "Seed of the random choices (default: from the clock).")
+    private Long seed;
+
+    @Option(names = "--timeunit", paramLabel = "US",
+            description = "Microseconds per model time unit (default: the interface file's precision, else 1000).")
+    private Long timeUnit;
+
+    @Option(names = {"--cluster", "--bus"}, paramLabel = "NAME|URL",
+            description = "Not yet: control on the bus comes with the bus run's owner.")
+    private String bus;
+
+    @Override
+    public Integer call() {
+        PrintWriter out = spec.commandLine().getOut();
+        PrintWriter err = spec.commandLine().getErr();
+        try {
+            return control(out, err);
+        } catch (ModelException e) {
+            CheckCommand.printErrors(model, e, err);
+            return 1;
+        } catch (UnsupportedModelException | QueryException e) {
+            err.println("dtron control: " + model + ": " + e.getMessage());
+            return 1;
+        } catch (java.io.UncheckedIOException e) {
+            err.println("dtron control: " + e.getMessage());
+            return 1;
+        } finally {
+            out.flush();
+            err.flush();
+        }
+    }
+
+    private int control(PrintWriter out, PrintWriter err) throws ModelException {
+        if (bus != null) {
+            throw usage("the bus (--cluster, --bus) is not wired to control yet: it comes with the bus run's owner;"
+                    + " run against an in-process plant with --plant model");
+        }
+        if (!"model".equals(plant)) {
+            throw usage("--plant must be 'model' (the model's own plant part): the plant on the bus is not wired yet");
+        }
+        if (!virtualTime) {
+            throw usage("--plant model runs in virtual time: add --virtual-time (a plant in this process is simulated on"
+                    + " the controller's clock; real time is for a plant on the bus, not wired yet)");
+        }
+        if (duration <= 0) {
+            throw usage("--duration must be a positive number of time units: " + duration);
+        }
+        if (safeAction != null && safeLocation != null) {
+            throw usage("give --safe-action or --safe-location, not both");
+        }
+        if (reloadFrom != null && !Files.isDirectory(reloadFrom.toAbsolutePath().getParent())) {
+            throw usage("--reload-from " + reloadFrom + ": its folder does not exist");
+        }
+        ControlPolicy chosen = switch (policy) {
+            case "eager" -> ControlPolicy.EAGER;
+            case "random" -> ControlPolicy.RANDOM;
+            case "goal" -> ControlPolicy.GOAL;
+            default -> throw usage("--policy must be eager, random or goal: " + policy);
+        };
+        Network network = ModelLoader.load(model);
+        TestInterface testInterface = interfaceFile == null ? TestInterface.fromNames(network)
+                : TestInterface.fromFile(network, interfaceFile);
+        if (testInterface.inputs().isEmpty()) {
+            err.println("dtron control: " + model + " has no commands: name the controller's channels i_x, or give"
+                    + " --interface FILE.trn");
+            return 1;
+        }
+        long unit = timeUnit != null ? timeUnit : testInterface.timeUnitMicros() != null
+                ? testInterface.timeUnitMicros() : RunDefaults.timeUnit();
+        if (unit <= 0) {
+            throw usage("--timeunit must be a positive number of microseconds: " + unit);
+        }
+        if (!TestOptions.fits(duration, unit)) {
+            throw usage(TestOptions.tooLong("--duration", duration, unit));
+        }
+        long runSeed = RunDefaults.seed(seed);
+        TestOptions options = TestOptions.defaults(runSeed).withTimeUnit(unit).withTimeout(duration)
+                .withVirtualTime(virtualTime);
+        Network plantModel = network;
+        String plantName = "the model's own plant part";
+        if (plantMutant != null) {
+            Mutant mutant = mutant(network, testInterface, plantMutant);
+            plantModel = mutant.network();
+            plantName = "mutant " + mutant.number() + " of the plant part (" + mutant.kind().label() + ": "
+                    + mutant.change() + ")";
+        }
+        ModelSystem plantSystem = new ModelSystem(plantModel, testInterface,
+                plantSeed != null ? plantSeed : ModelSystem.seedFor(runSeed));
+        Controller controller = new Controller(network, testInterface, plantSystem, options);
+        try {
+            controller.policy(chosen, goals);
+            controller.safeAction(safeAction != null ? SafeAction.channel(safeAction)
+                    : safeLocation != null ? SafeAction.location(safeLocation) : SafeAction.NONE);
+        } catch (IllegalArgumentException e) {
+            throw usage(e.getMessage());
+        }
+        out.println("dtron control: " + model + " against " + plantName + ", policy " + policy + ", " + duration
+                + " time units" + (virtualTime ? " in virtual time" : "") + ", seed " + runSeed);
+        out.flush();
+        controller.addListener(new Printer(out, unit));
+        ModelVersionFile versions = reloadFrom == null ? null : new ModelVersionFile(reloadFrom, model, interfaceFile,
+                testInterface, new ModelVersionFile.Sink() {
+                    @Override
+                    public void checked(ModelVersion.Check check) {
+                        controller.offer(check);
+                    }
+
+                    @Override
+                    public void unloadable(String version, String reason) {
+                        controller.refuse(version, reason);
+                    }
+                });
+        ControlResult result;
+        try {
+            if (versions != null) {
+                versions.checkNow();
+                versions.watch();
+            }
+            result = controller.run();
+        } finally {
+            if (versions != null) {
+                versions.close();
+            }
+        }
+        if (result.outcome() == ControlResult.Outcome.STOPPED) {
+            out.println("stopped: " + result.reason());
+        } else if (result.outcome() == ControlResult.Outcome.ALARM && result.safeAction() == null) {
+            out.println("no safe action (--safe-action, --safe-location): the controller stopped");
+        }
+        out.println(result.summary(unit));
+        return switch (result.outcome()) {
+            case COMPLETED -> 0;
+            case ALARM -> 2;
+            case STOPPED -> 3;
+        };
+    }
+
+    private Mutant mutant(Network network, TestInterface testInterface, int number) {
+        List<Mutant> mutants = Mutants.derive(network, testInterface, Duration.ofSeconds(10));
+        if (number < 1 || number > mutants.size()) {
+            throw usage("--plant-mutant " + number + ": the plant part has mutants 1 to " + mutants.size()
+                    + " (dtron mutants " + model + " lists them)");
+        }
+        Mutant mutant = mutants.get(number - 1);
+        if (mutant.invalid() != null) {
+            throw usage("--plant-mutant " + number + " cannot be run: " + mutant.invalid());
+        }
+        return mutant;
+    }
+
+    private ParameterException usage(String message) {
+        return new ParameterException(spec.commandLine(), message);
+    }
+
+    /** Prints the alarms, the safe action and the model versions as they come. */
+    private static final class Printer implements ControlListener {
+        private final PrintWriter out;
+        private final long unit;
+
+        Printer(PrintWriter out, long unit) {
+            this.out = out;
+            this.unit = unit;
+        }
+
+        @Override
+        public void alarm(String reason, long micros) {
+            print("ALARM at " + ControlResult.time(micros, unit) + ": " + reason);
+        }
+
+        @Override
+        public void safeActionTaken(Event command, long micros) {
+            print("safe action " + command + " sent at " + ControlResult.time(micros, unit));
+        }
+
+        @Override
+        public void versionTaken(String version, long micros) {
+            print("model version " + version + " taken at " + ControlResult.time(micros, unit) + " (a reset point)");
+        }
+
+        @Override
+        public void versionRefused(String version, String reason) {
+            print("model version " + version + " refused: " + reason + "; the run goes on with the one it has");
+        }
+
+        private void print(String line) {
+            synchronized (out) {
+                out.println(line);
+                out.flush();
+            }
+        }
+    }
+}

@@ -1,0 +1,76 @@
+package io.dtron.cli;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertFalse;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+import java.nio.file.Files;
+import java.nio.file.Path;
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.io.TempDir;
+
+/**
+ * {@code dtron control}'s usage errors on the robot-arm sample: each one line naming what is wrong, exit code 1, no
+ * stack trace; the bus is refused as not wired yet.
+ */
+class ControlCommandTest {
+    private static final String ARM = Path.of("../models/src/main/resources/io/dtron/models/robotarm/robot-arm.xta")
+            .toString();
+
+    private static void refused(String expected, String... options) {
+        String[] args = new String[options.length + 2];
+        args[0] = "control";
+        args[1] = ARM;
+        System.arraycopy(options, 0, args, 2, options.length);
+        CommandRun r = CommandRun.of(args);
+        assertEquals(1, r.exit(), r.out() + r.err());
+        assertFalse(r.err().contains("\tat "), r.err());
+        assertTrue(r.err().startsWith("dtron control: " + expected), r.err());
+    }
+
+    @Test
+    void badOptionsAreOneLineErrors() {
+        refused("the bus (--cluster, --bus) is not wired to control yet", "--plant", "model", "--duration", "10",
+                "--virtual-time", "--cluster", "arm");
+        refused("--plant must be 'model'", "--plant", "python", "--duration", "10", "--virtual-time");
+        refused("--plant model runs in virtual time: add --virtual-time", "--plant", "model", "--duration", "10");
+        refused("--duration must be a positive number of time units: 0", "--plant", "model", "--duration", "0",
+                "--virtual-time");
+        refused("--policy must be eager, random or goal: lazy", "--plant", "model", "--duration", "10",
+                "--virtual-time", "--policy", "lazy");
+        refused("the goal policy needs at least one goal (E<> p)", "--plant", "model", "--duration", "10",
+                "--virtual-time", "--policy", "goal");
+        refused("the safe action i_halt is no input (command) of the model; its inputs are [i_move, i_grip, i_release,"
+                + " i_stop]", "--plant", "model", "--duration", "10", "--virtual-time", "--safe-action", "i_halt");
+        refused("the safe location Arm.Stopped must be entered by edges that send one command, the safe action; no edge"
+                + " into it sends a command", "--plant", "model", "--duration", "10", "--virtual-time",
+                "--safe-location", "Arm.Stopped");
+        refused("the safe location Robot.Safe: the model has no process Robot", "--plant", "model", "--duration", "10",
+                "--virtual-time", "--safe-location", "Robot.Safe");
+        refused("give --safe-action or --safe-location, not both", "--plant", "model", "--duration", "10",
+                "--virtual-time", "--safe-action", "i_stop", "--safe-location", "Controller.Safe");
+        refused("--plant-mutant 99: the plant part has mutants 1 to 14", "--plant", "model", "--duration", "10",
+                "--virtual-time", "--plant-mutant", "99");
+        refused("--reload-from /no/such/folder/v2.xta: its folder does not exist", "--plant", "model", "--duration",
+                "10", "--virtual-time", "--reload-from", "/no/such/folder/v2.xta");
+    }
+
+    @Test
+    void aVersionThatDoesNotLoadIsRefusedCountedAndTheRunGoesOn(@TempDir Path dir) throws Exception {
+        Path broken = Files.writeString(dir.resolve("next.xta"), "chan i_move;;\n");
+        CommandRun r = CommandRun.of("control", ARM, "--plant", "model", "--duration", "100", "--virtual-time",
+                "--seed", "1", "--reload-from", broken.toString());
+        assertEquals(0, r.exit(), r.out() + r.err());
+        assertTrue(r.out().contains("\nmodel version " + broken + " refused: it does not load: " + broken
+                + ":1:13: error: syntax error"), r.out());
+        assertTrue(r.out().endsWith(", 0 alarms, 1 refused (seed 1)\n"), r.out());
+    }
+
+    @Test
+    void theSafeLocationSendsItsCommand() {
+        CommandRun r = CommandRun.of("control", ARM, "--plant", "model", "--plant-mutant", "7", "--duration", "100",
+                "--virtual-time", "--seed", "3", "--safe-location", "Controller.Safe");
+        assertEquals(2, r.exit(), r.out() + r.err());
+        assertTrue(r.out().contains("\nsafe action stop() sent at t="), r.out());
+    }
+}
