@@ -27,7 +27,7 @@ final class CoverTable {
     private final int penalty;
     /** Per subset (a bit mask: the edges from bit 0, then the goals), the moves from each node that cover it. */
     private final int[][] moves;
-    /** Per arc of the graph, in the order of its nodes and their arcs: the targets it covers. */
+    /** Per arc of the graph (the graph's own arc objects): the targets it covers, as a mask. */
     private final Map<DiscreteGraph.Arc, Integer> arcMasks;
 
     private CoverTable(DiscreteGraph graph, int[] edges, int[] goals, int horizon) {

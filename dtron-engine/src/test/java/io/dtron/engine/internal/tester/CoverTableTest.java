@@ -62,8 +62,8 @@ class CoverTableTest {
         assertEquals(4, table.score(intoLoop, both));
         // T1 first: 1 move, then T2 cannot be covered from the dead end: given up at the horizon plus one, 1 + 4
         assertEquals(5, table.score(t1, both));
-        // the sum of separate distances would prefer T1: 0 for T1 plus T2 capped at 4, against 4 (T1 from P1: P2,
-        // Start, T1) plus 2 (T2 from P1: P2, T2)
+        // the sum of separate distances would prefer T1: 0 for T1 plus T2 capped at 4, against 4 (the move to P1, then
+        // P2, Start, T1) plus 3 (the move to P1, then P2, T2)
 
         // once T2 is covered, the table of the smaller set is in the same table: T1 first is then best
         BitSet onlyT1 = new BitSet();
