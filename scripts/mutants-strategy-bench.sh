@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The mutation score of the random and the coverage strategy within the same budget of time units: `dtron mutants`
 # with --strategy random and --strategy coverage, the same seeds, on LightContr (../shared/models/tron) and on
-# Uppaal's boxes and gearbox demo models (../shared/models/uppaal-examples) with the interfaces written below.
+# Uppaal's boxes, gearbox and train-gate demo models (../shared/models/uppaal-examples) with the interfaces written
+# below.
 # Prints one line per model and strategy: killed / counted, and the wall time of the mutation runs. Not part of the
 # test command; see src/site/markdown/benchmarks.md ("Mutation score of the strategies").
 #
@@ -32,6 +33,11 @@ cat > "$work/controller.trn" <<'TRN'
 input ReqNewGear(FromGear, ToGear), ClutchIsOpen(), ClutchIsClosed(), GearNeu(), GearSet();
 output NewGear(), OpenClutch(), CloseClutch(), ReqNeu(), ReqSet(); precision 1000; timeout 5000;
 TRN
+# train-gate: the trains (approaching, leaving; arrays of channels, one element per train) are the environment, the
+# gate with its queue the system, which tells a train to stop and to go
+cat > "$work/train-gate.trn" <<'TRN'
+input appr(), leave(); output stop(), go(); precision 1000; timeout 1000;
+TRN
 printf "%-12s %8s %-9s %-22s %s\n" model budget strategy "killed / counted" "mutants, runs, wall time"
 run() {
     local name=$1 budget=$2 model=$3 trn=$4
@@ -47,3 +53,4 @@ run LightContr 2000 "$shared/tron/LightContr.xml" "$shared/tron/LightContr.trn"
 run boxes 1000 "$shared/uppaal-examples/boxes.xml" "$work/boxes.trn"
 run gearbox 5000 "$shared/uppaal-examples/engine-classic.xml" "$work/gearbox.trn"
 run controller 5000 "$shared/uppaal-examples/engine-classic.xml" "$work/controller.trn"
+run train-gate 1000 "$shared/uppaal-examples/train-gate.xml" "$work/train-gate.trn"

@@ -1,6 +1,7 @@
 package io.dtron.cli;
 
 import io.dtron.engine.UnsupportedModelException;
+import io.dtron.engine.verify.CoverTime;
 import io.dtron.engine.verify.Query;
 import io.dtron.engine.verify.QueryException;
 import io.dtron.engine.verify.SearchOrder;
@@ -59,7 +60,8 @@ final class VerifyCommand implements Callable<Integer> {
 
     @Option(names = "--traps", description = "Check the coverage-correctness obligation instead of the model's queries:"
             + " every trap (a bool variable or array element named trap... or t_...) reachable, E<> each, and all of"
-            + " them on one path, E<> all together (with --query and --queries: besides those).")
+            + " them on one path, E<> all together (with --query and --queries: besides those); then the shortest"
+            + " time in which a run sets them all.")
     private boolean traps;
 
     @Option(names = "--order", paramLabel = "bfs|dfs", defaultValue = "bfs", description = "Search order of"
@@ -154,8 +156,12 @@ final class VerifyCommand implements Callable<Integer> {
         if (queryFile != null) {
             source = queries.isEmpty() ? queryFile.toString() : "--query and " + queryFile;
         }
+        List<String> trapNames = List.of();
+        int firstTrap = -1;
         if (traps) {
             List<String> names = io.dtron.engine.coverage.Traps.of(network, List.of());
+            trapNames = names;
+            firstTrap = toCheck.size();
             if (names.isEmpty()) {
                 err.println("dtron verify: " + model + " has no traps: bool variables or arrays whose name starts with"
                         + " trap or t_");
@@ -183,6 +189,7 @@ final class VerifyCommand implements Callable<Integer> {
         int unknown = 0;
         int skipped = 0;
         int errors = 0;
+        List<String> unreachableTraps = new ArrayList<>();
         for (int i = 0; i < toCheck.size(); i++) {
             Query q = toCheck.get(i);
             text.println("[" + (i + 1) + "] " + q.text());
@@ -217,6 +224,10 @@ final class VerifyCommand implements Callable<Integer> {
                 continue;
             }
             text.println("    " + line(r));
+            if (firstTrap >= 0 && i >= firstTrap && i < firstTrap + trapNames.size()
+                    && r.outcome() == Outcome.VIOLATED) {
+                unreachableTraps.add(trapNames.get(i - firstTrap));
+            }
             switch (r.outcome()) {
                 case VIOLATED -> violated++;
                 case UNKNOWN -> unknown++;
@@ -242,8 +253,7 @@ final class VerifyCommand implements Callable<Integer> {
             return 1;
         }
         if (traps) {
-            text.println("the shortest time to set every trap is not computed (the checker has no time-optimal"
-                    + " search); a witness of E<> with all of them is one path that sets them all");
+            text.println(fastestCover(verifier, trapNames, unreachableTraps));
         }
         int checked = toCheck.size() - skipped - errors;
         text.println(checked - violated - unknown + " of " + checked + " checked hold" + (violated > 0 ? ", " + violated
@@ -251,6 +261,31 @@ final class VerifyCommand implements Callable<Integer> {
                 + " skipped" : "") + (errors > 0 ? "; " + errors + " in error" : ""));
         // a counterexample outranks an error, an error (to fix) an unknown answer (to retry with larger limits)
         return violated > 0 ? 2 : errors > 0 ? 1 : unknown > 0 ? 3 : 0;
+    }
+
+    /** The most symbolic states the search for the shortest time to set every trap explores. */
+    static final long FASTEST_COVER_STATES = 200_000;
+
+    /** The line on the shortest time to set every trap: searched when every trap is reachable on its own. */
+    private static String fastestCover(Verifier verifier, List<String> names, List<String> unreachable) {
+        if (!unreachable.isEmpty()) {
+            return "no run sets every trap: " + String.join(", ", unreachable) + (unreachable.size() == 1 ? " is"
+                    : " are") + " unreachable";
+        }
+        CoverTime t;
+        try {
+            t = verifier.fastestCover(names, FASTEST_COVER_STATES);
+        } catch (QueryException | UnsupportedModelException e) {
+            return "the shortest time to set every trap is unknown: " + e.getMessage();
+        }
+        return switch (t.answer()) {
+            case FOUND -> "the shortest time to set every trap: " + (t.strict() ? "just over " : "") + t.units()
+                    + " time unit" + (t.units() == 1 && !t.strict() ? "" : "s") + " (" + t.explored()
+                    + " symbolic states explored)";
+            case NONE -> "no run sets every trap (" + t.explored() + " symbolic states explored)";
+            case UNKNOWN -> "the shortest time to set every trap is unknown: the search stopped at its limit of "
+                    + FASTEST_COVER_STATES + " symbolic states";
+        };
     }
 
     /** The queries written in {@code network}, parsed; one that does not parse is {@link Query.Kind#INVALID}. */

@@ -17,7 +17,7 @@ import org.junit.jupiter.api.io.TempDir;
 
 /**
  * The {@code $ java -jar dtron.jar ...} sessions of the goals page ({@code goals.md}) run as written, in order, in
- * this JVM, in one folder holding the shared {@code LightContr.xml} and {@code .trn} and the page's own trap model:
+ * this JVM, in one folder holding the shared {@code LightContr.xml} and {@code .trn} and the page's own trap models:
  * the runs are in virtual time, so each prints exactly what the page shows; of {@code dtron verify}'s lines, only
  * the time and memory of each query are left out of the comparison.
  */
@@ -32,6 +32,7 @@ class GoalsPageTest {
         Files.copy(SHARED.resolve("tron/LightContr.trn"), dir.resolve("LightContr.trn"));
         DocPage page = DocPage.read("goals.md");
         Files.writeString(dir.resolve("lamp-traps.xta"), page.blocks("xta").get(0));
+        Files.writeString(dir.resolve("lamp-traps-2.xta"), page.blocks("xta").get(1));
         List<String> exits = new ArrayList<>();
         for (DocPage.Block b : page.blocksStartingWith(PROMPT)) {
             List<String> lines = b.code().lines().toList();
@@ -56,7 +57,7 @@ class GoalsPageTest {
                     "goals.md, the session on line " + b.line());
             exits.add(args.get(0) + ": " + exit);
         }
-        assertEquals(List.of("run: 0", "run: 0", "run: 0", "run: 3", "verify: 2"), exits);
+        assertEquals(List.of("run: 0", "run: 0", "run: 0", "run: 3", "verify: 2", "verify: 0"), exits);
         String text = page.text();
         assertEquals(true, text.contains("The exit code is 2") && text.contains("INCONCLUSIVE (exit code 3)"),
                 "the page says the exit codes the runs give");

@@ -130,7 +130,11 @@ public record TestInterface(List<ObservableChannel> inputs, List<ObservableChann
         return fromText(network, file.toString(), text);
     }
 
-    /** The interface declared in the text of a TRON interface file; {@code name} is used in messages. */
+    /**
+     * The interface declared in the text of a TRON interface file; {@code name} is used in messages. A channel array
+     * named there gives one channel per element, named as in the model ({@code appr[0]}, {@code appr[1]}, ...), each
+     * with the variables attached to the array.
+     */
     public static TestInterface fromText(Network network, String name, String text) throws ModelException {
         Parsed<InterfaceSpec> parsed = ModelSyntax.parseInterface(name, text);
         if (parsed.hasErrors()) {
@@ -164,11 +168,6 @@ public record TestInterface(List<ObservableChannel> inputs, List<ObservableChann
                         + network.file()));
                 continue;
             }
-            if (found.get().type().channels() != 1) {
-                errors.add(Diagnostic.error(c.pos(), kind + " '" + c.name() + "' is a channel array; an interface"
-                        + " names single channels"));
-                continue;
-            }
             List<AttachedVariable> vars = new ArrayList<>();
             for (InterfaceSpec.Variable v : c.variables()) {
                 Optional<Variable> var = network.variable(v.name()).filter(x -> x.owner() == null);
@@ -182,7 +181,12 @@ public record TestInterface(List<ObservableChannel> inputs, List<ObservableChann
                     vars.add(new AttachedVariable(v.name(), var.get()));
                 }
             }
-            out.add(new ObservableChannel(c.name(), found.get().index(), c.name(), vars));
+            // an array of channels: one channel per element, named as in the model (appr[0], appr[1], ...)
+            ChannelVariable v = found.get();
+            for (int k = 0; k < v.type().channels(); k++) {
+                String element = v.elementName(v.index() + k);
+                out.add(new ObservableChannel(element, v.index() + k, element, vars));
+            }
         }
         return out;
     }

@@ -61,6 +61,18 @@ public final class Verifier {
     }
 
     /**
+     * The shortest time in which a run of the model sets every one of {@code traps} (each the name of a trap, as
+     * {@link io.dtron.engine.coverage.Traps#of} gives them; a trap counts once it has held), by a best-first search
+     * over the zone graph with a global clock, exploring at most {@code maxStates} symbolic states.
+     *
+     * @throws QueryException            when a trap does not compile as a property of the model
+     * @throws UnsupportedModelException on a model error met during the search
+     */
+    public CoverTime fastestCover(List<String> traps, long maxStates) {
+        return io.dtron.engine.internal.verify.FastestCover.of(network, traps, maxStates);
+    }
+
+    /**
      * Checks that the model can serve as a test specification with {@code testInterface}: output observability
      * (the environment and the implementation interact only through inputs and outputs), then, on the
      * implementation closed by a generated canonical tester (every input offered at any time, with every value of

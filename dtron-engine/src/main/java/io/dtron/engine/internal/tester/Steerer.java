@@ -23,8 +23,9 @@ import java.util.Map;
  * Steers a run toward its goals and the edges it has not covered: the reactive planner. Before the run it explores
  * the closed network once ({@link DiscreteGraph}, shared by the runs of one model) and finds the goals no path reaches; during the run it scores every
  * input the plan offers, and waiting, by the distances (in moves) from where each leads to the targets, within the
- * horizon: to the nearest open goal ({@link Strategy#GOAL}), or the sum over every edge, trap and goal left ({@link
- * Strategy#COVERAGE}); distances are kept per discrete state (per target, for good: the graph does not change) and
+ * horizon: to the nearest open goal ({@link Strategy#GOAL}), or, for {@link Strategy#COVERAGE}, the fewest moves that
+ * cover every edge, trap and goal left together when they are few ({@link CoverTable}), else the sum of the distances
+ * to each; distances are kept per discrete state (per target, for good: the graph does not change) and
  * the scores of arcs until the targets change (a goal reached, an edge covered). It also follows the goals (reached, or no longer reachable from any state the system
  * may be in), the edges covered on inputs and outputs, and the system's choices for the fairness check.
  */
@@ -96,6 +97,15 @@ public final class Steerer {
             }
         }
         openChanged();
+        if (steering.strategy() == Strategy.COVERAGE) {
+            BitSet goalsOpen = new BitSet();
+            for (int g = 0; g < status.length; g++) {
+                if (status[g].state() == GoalStatus.State.OPEN) {
+                    goalsOpen.set(g);
+                }
+            }
+            cover = CoverTable.of(graph, coverable, goalsOpen, steering.horizon());
+        }
     }
 
     /**
@@ -235,20 +245,47 @@ public final class Steerer {
     }
 
     /**
-     * The coverage strategy's score of an arc: the sum, over the targets left (edges not covered, open goals and
-     * traps), of the moves from the arc's target to each (0 for an edge the arc covers), each counted at most to the
-     * horizon: the move that brings the most targets nearer, not only the nearest one; unreachable when no target is
-     * within the horizon.
+     * The coverage strategy's score of an arc: with few targets left (edges not covered, open goals and traps; see
+     * {@link CoverTable}), one move plus the fewest moves from the arc's target that cover all of them together, each
+     * one given up costing the horizon plus one; with more, the sum over the targets of the moves from the arc's
+     * target to each (0 for an edge the arc covers), each counted at most to the horizon. Either way the move that
+     * brings the most targets nearer, not only the nearest one; unreachable when no target is within the horizon.
      */
     private int coverageScore(DiscreteGraph.Arc a) {
         Integer known = arcScores.get(a);
         if (known != null) {
             return known;
         }
-        int score = sumOfDistances(a);
+        int left = coverLeft();
+        int score = left >= 0 ? cover.score(a, left) : sumOfDistances(a);
         arcScores.put(a, score);
         return score;
     }
+
+    /**
+     * The targets left as a mask of {@link #cover}; -1 when there is no table for them (too many before the run: the
+     * sum of distances scores). The table is built before the run only, never in a step.
+     */
+    private int coverLeft() {
+        if (coverLeft != -2) {
+            return coverLeft;
+        }
+        BitSet edgesLeft = (BitSet) coverable.clone();
+        edgesLeft.andNot(covered);
+        BitSet goalsLeft = new BitSet();
+        for (int g = 0; g < status.length; g++) {
+            if (status[g].state() == GoalStatus.State.OPEN) {
+                goalsLeft.set(g);
+            }
+        }
+        coverLeft = cover == null ? -1 : cover.maskOf(edgesLeft, goalsLeft);
+        return coverLeft;
+    }
+
+    /** The plan that covers the targets left together, when they are few enough; null else. */
+    private CoverTable cover;
+    /** The targets left as a mask of {@link #cover}; -1 without a table for them, -2 when to be worked out. */
+    private int coverLeft = -2;
 
     private int sumOfDistances(DiscreteGraph.Arc a) {
         int h = steering.horizon();
@@ -314,6 +351,7 @@ public final class Steerer {
 
     private void openChanged() {
         arcScores.clear();
+        coverLeft = -2;
         int[] d = null;
         int targets = steering.strategy() == Strategy.COVERAGE ? status.length : userGoals;
         for (int g = 0; g < targets; g++) {
@@ -349,6 +387,7 @@ public final class Steerer {
         }
         if (grew) {
             arcScores.clear();
+            coverLeft = -2;
             if (environmentCoveredMicros < 0 && !environmentEdges.isEmpty()) {
                 BitSet missing = (BitSet) environmentEdges.clone();
                 missing.andNot(covered);
