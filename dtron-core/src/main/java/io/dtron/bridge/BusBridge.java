@@ -12,6 +12,7 @@ import io.dtron.api.ServedChannels;
 import io.dtron.bridge.internal.ChannelOwners;
 import io.dtron.bridge.internal.InputDelays;
 import io.dtron.bridge.internal.LatencyRecorder;
+import io.dtron.bridge.internal.RunTimeline;
 import io.dtron.engine.Adapter;
 import io.dtron.engine.AdapterContext;
 import io.dtron.engine.Event;
@@ -127,10 +128,8 @@ public final class BusBridge implements Adapter, AutoCloseable {
     /** On a joining bridge: the run start it waits for or joined. */
     private final java.util.concurrent.BlockingQueue<IDtronChannelValued> starts =
             new java.util.concurrent.LinkedBlockingQueue<>();
-    /** Whether the run start was published before {@link #start} (a run of several testers). */
-    private volatile boolean announced;
-    /** The run's time 0 as a {@link System#nanoTime()} reading, when announced. */
-    private volatile long zeroNanoTime;
+    /** Time 0 of the run and the times of its messages on the run's clock. */
+    private final RunTimeline timeline;
     private volatile long windowMicros;
     private volatile boolean autoWindow;
     /** Whether the adapters of the current run acknowledge inputs (see {@link #acknowledgesInputs()}). */
@@ -138,13 +137,12 @@ public final class BusBridge implements Adapter, AutoCloseable {
     private volatile AdapterContext context;
     private volatile boolean running;
     private volatile String runId = "";
-    /** The tester's wall-clock time of the run's time 0, in nanoseconds since the epoch. */
-    private volatile long zeroEpochNanos;
 
     private BusBridge(Dtron dtron, Map<String, IDtronChannel> channels, TestInterface testInterface,
             boolean joining) {
         this.dtron = dtron;
         this.joining = joining;
+        this.timeline = new RunTimeline(dtron::currentTimeNanos);
         Map<String, IDtronChannel> inputChannels = new LinkedHashMap<>();
         testInterface.inputs().forEach(c -> inputChannels.put(c.name(), channels.get(c.name())));
         this.inputs = Map.copyOf(inputChannels);
@@ -312,8 +310,7 @@ public final class BusBridge implements Adapter, AutoCloseable {
         long zero = dtron.currentTimeNanos() + lead.toNanos();
         dtron.send(Dtron.RUN_START.constructValued(Map.of("timeunit", (int) Math.min(Integer.MAX_VALUE,
                 timeUnitMicros))), zero);
-        zeroNanoTime = nanoTimeOf(zero);
-        announced = true;
+        timeline.announce(zero);
         return zero;
     }
 
@@ -331,9 +328,8 @@ public final class BusBridge implements Adapter, AutoCloseable {
         }
         runId = start.getRunId();
         peerVerdicts.clear();
-        long zero = start.getEventTimeNanos() + start.getClockOffsetNanos() - dtron.getClockOffsetNanos();
-        zeroNanoTime = nanoTimeOf(zero);
-        announced = true;
+        long zero = RunTimeline.zeroOf(start, dtron.getClockOffsetNanos());
+        timeline.announce(zero);
         return zero;
     }
 
@@ -374,13 +370,7 @@ public final class BusBridge implements Adapter, AutoCloseable {
      */
     @Override
     public java.util.OptionalLong timeZero() {
-        long zero = zeroNanoTime;
-        return announced ? java.util.OptionalLong.of(zero) : java.util.OptionalLong.empty();
-    }
-
-    /** Converts a time on this member's wall clock to a {@link System#nanoTime()} reading. */
-    private long nanoTimeOf(long epochNanos) {
-        return System.nanoTime() + (epochNanos - dtron.currentTimeNanos());
+        return timeline.timeZero();
     }
 
     /**
@@ -770,10 +760,8 @@ public final class BusBridge implements Adapter, AutoCloseable {
         }
         // the run's clock is the starting tester's: a joining tester's own time 0 is its engine's, on that clock
         long nowNanos = dtron.currentTimeNanos() + (joining ? dtron.getClockOffsetNanos() : 0);
-        long runMicros = runContext.clock().nowMicros();
-        zeroEpochNanos = nowNanos - runMicros * 1000;
-        if (announced) {
-            announced = false;
+        long zeroEpochNanos = timeline.startedAt(nowNanos, runContext.clock().nowMicros());
+        if (timeline.takeAnnounced()) {
             running = true;
             return; // a run of several testers: its start was published before the engines started
         }
@@ -887,7 +875,7 @@ public final class BusBridge implements Adapter, AutoCloseable {
             if (sent != null) {
                 inputNumbers.put(sent.getSequence(), performed);
                 inputChannels.put(performed, input.channel());
-                inputSentMicros.put(performed, Math.floorDiv(sent.getPublishTimeNanos() - zeroEpochNanos, 1000));
+                inputSentMicros.put(performed, timeline.publishedMicros(sent));
             }
         }
     }
@@ -1029,12 +1017,6 @@ public final class BusBridge implements Adapter, AutoCloseable {
         }
     }
 
-    /** The time of an event on the run's clock, in microseconds: its sender's time corrected by its offset. */
-    private long runMicros(IDtronChannelValued message) {
-        long testerNanos = message.getEventTimeNanos() + message.getClockOffsetNanos();
-        return Math.floorDiv(testerNanos - zeroEpochNanos, 1000);
-    }
-
     /** An adapter applied one of this run's inputs: the engine places the input at that time. */
     private void acknowledged(IDtronChannelValued ack) {
         if (!running || ofOtherRun(ack)) {
@@ -1055,15 +1037,15 @@ public final class BusBridge implements Adapter, AutoCloseable {
         }
         recordOffset(ack);
         if (number != null) {
-            long applied = runMicros(ack);
+            long applied = timeline.eventMicros(ack);
             String channel = inputChannels.getOrDefault(number, "?");
             Long sent = inputSentMicros.remove(number);
             if (sent != null) {
                 measured("input", channel, applied - sent);
-                inputDelays.applied(channel, applied - sent, errorMicros(ack));
+                inputDelays.applied(channel, applied - sent, RunTimeline.errorMicros(ack));
             }
             arrived(ack, "acknowledgement of " + channel, applied);
-            context.inputApplied(number, applied, errorMicros(ack));
+            context.inputApplied(number, applied, RunTimeline.errorMicros(ack));
         }
     }
 
@@ -1125,10 +1107,11 @@ public final class BusBridge implements Adapter, AutoCloseable {
     /** Reports an output to the engine at the event time {@code timing} carries (itself, or its acknowledgement). */
     private void reportOutput(IDtronChannelValued message, IDtronChannelValued timing) {
         // stamped before time 0 (it was ordered before the start on the bus): it counts from the start
-        long happened = Math.max(0, runMicros(timing));
-        measured("output", message.getChannelName(), arrivalDelay(timing, happened));
+        long happened = Math.max(0, timeline.eventMicros(timing));
+        measured("output", message.getChannelName(), timeline.arrivalDelay(timing, happened));
         arrived(timing, "output " + message.getChannelName(), happened);
-        context.report(new Event(message.getChannelName(), message.getVariables()), happened, errorMicros(timing));
+        context.report(new Event(message.getChannelName(), message.getVariables()), happened,
+                RunTimeline.errorMicros(timing));
     }
 
     /** Whether an adapter (a member that is no tester of this run) listens to a channel, so applies its messages. */
@@ -1144,28 +1127,18 @@ public final class BusBridge implements Adapter, AutoCloseable {
                         .orElse(false);
     }
 
-    /** A message's clock error bound in whole microseconds, rounded up: the uncertainty of its event time. */
-    private static long errorMicros(IDtronChannelValued message) {
-        return -Math.floorDiv(-message.getClockErrorNanos(), 1000);
-    }
-
     /** Adds a delay to a channel's interval in one direction. */
     private void measured(String direction, String channel, long delayMicros) {
         runDelays.merge(direction + " " + channel, new ChannelDelay(channel, direction, 1, Math.max(0, delayMicros),
                 Math.max(0, delayMicros)), (old, one) -> old.plus(delayMicros));
     }
 
-    /** How long after its event, at {@code eventRunMicros} on the run's clock, a message arrived, in microseconds. */
-    private long arrivalDelay(IDtronChannelValued message, long eventRunMicros) {
-        return Math.max(0, Math.floorDiv(message.getReceiveTimeNanos() - zeroEpochNanos, 1000) - eventRunMicros);
-    }
-
     /**
      * A message arrived: widens the reorder window when it took more than half of it and the window is automatic.
      */
     private void arrived(IDtronChannelValued message, String what, long eventRunMicros) {
-        long received = Math.floorDiv(message.getReceiveTimeNanos() - zeroEpochNanos, 1000);
-        long delay = arrivalDelay(message, eventRunMicros);
+        long received = timeline.receivedMicros(message);
+        long delay = timeline.arrivalDelay(message, eventRunMicros);
         long window = windowMicros;
         if (autoWindow && window > 0 && delay > window / 2) {
             long widened = -Math.floorDiv(-2 * delay, 1000) * 1000;
