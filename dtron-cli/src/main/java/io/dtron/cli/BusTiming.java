@@ -15,29 +15,12 @@ import java.util.Optional;
  * the run saw.
  */
 final class BusTiming {
-    /**
-     * The smallest automatic reorder window: a loaded host or a fresh JVM holds a message up for tens of
-     * milliseconds now and then, whatever the bus's delays were before the run.
-     */
-    static final long AUTO_FLOOR_MICROS = RunDefaults.REORDER_WINDOW_MICROS;
-    /** How many times the longest delay measured before the run the automatic window allows for. */
-    private static final int DELAY_FACTOR = 3;
     /** Delays that take more than this share of the narrowest window are worth a warning. */
     private static final double WARN_SHARE = 0.2;
     /** The share of the narrowest window that a suggested time unit leaves to the delays. */
     private static final double FIT_SHARE = 0.1;
 
     private BusTiming() {
-    }
-
-    /**
-     * The automatic reorder window: three times the longest delay measured plus twice the clocks' error bound,
-     * rounded up to a millisecond, and at least {@link #AUTO_FLOOR_MICROS}.
-     */
-    static long autoWindow(BusBridge.Delays delays) {
-        long nanos = DELAY_FACTOR * delays.maxDelayNanos() + 2 * delays.maxErrorNanos();
-        long micros = -Math.floorDiv(-nanos, 1_000_000L) * 1000;
-        return Math.max(AUTO_FLOOR_MICROS, micros);
     }
 
     /** The line printed before time 0: the delays measured and the reorder window. */
@@ -49,9 +32,9 @@ final class BusTiming {
                         millis(delays.maxDelayNanos() / 1000), delays.messages(), delays.members(),
                         delays.members() == 1 ? "" : "s", millis(delays.maxErrorNanos() / 1000));
         String window = auto
-                ? "auto: " + DELAY_FACTOR + " x the longest delay + 2 x the clock error, at least "
-                        + millis(AUTO_FLOOR_MICROS) + "; widened during the run when a message takes more than half of"
-                        + " it"
+                ? "auto: " + BusBridge.AUTO_WINDOW_DELAY_FACTOR + " x the longest delay + 2 x the clock error, at"
+                        + " least " + millis(BusBridge.AUTO_WINDOW_FLOOR_MICROS) + "; widened during the run when a"
+                        + " message takes more than half of it"
                 : "--delta";
         return "dtron run: delays on the bus before the run: " + measured + "; reorder window (Delta) "
                 + millis(windowMicros) + " (" + window + ")";
@@ -105,7 +88,8 @@ final class BusTiming {
     }
 
     /** The lines printed after the verdict: the window in the end, its widenings, and the largest delays. */
-    static List<String> summary(BusBridge bridge, boolean auto) {
+    static List<String> summary(BusBridge bridge) {
+        boolean auto = bridge.reorderWindowAutomatic();
         List<String> lines = new ArrayList<>();
         List<String> widenings = bridge.widenings();
         lines.add("reorder window (Delta): " + millis(bridge.reorderWindowMicros()) + (auto ? " (auto)" : " (--delta)")

@@ -220,7 +220,7 @@ final class RunCommand implements Callable<Integer> {
     @Option(names = "--delta", paramLabel = "US|auto", defaultValue = "auto",
             description = "On the bus: the reorder window, how long the tester holds its judgement for messages still"
                     + " in transit; every message is placed by the time its sender stamped on it (auto: from the"
-                    + " delays measured before the run, at least " + BusTiming.AUTO_FLOOR_MICROS + " us, widened"
+                    + " delays measured before the run, at least " + BusBridge.AUTO_WINDOW_FLOOR_MICROS + " us, widened"
                     + " during the run when a message takes more than half of it).")
     private String delta;
 
@@ -401,15 +401,15 @@ final class RunCommand implements Callable<Integer> {
         }
     }
 
-    /** The reorder window of a bus run, in microseconds: {@code --delta}. */
-    private long reorderWindow() {
+    /** The reorder window of a bus run, in microseconds: {@code --delta}; empty for auto. */
+    private java.util.OptionalLong reorderWindow() {
         if (delta.equalsIgnoreCase("auto")) {
-            return RunDefaults.REORDER_WINDOW_MICROS;
+            return java.util.OptionalLong.empty();
         }
         try {
             long micros = Long.parseLong(delta);
             if (micros >= 0) {
-                return micros;
+                return java.util.OptionalLong.of(micros);
             }
         } catch (NumberFormatException e) {
             // the message below says what is expected
@@ -667,7 +667,6 @@ final class RunCommand implements Callable<Integer> {
                 err.println("dtron run: interrupted while waiting for the adapters");
                 return 1;
             }
-            boolean auto = delta.equalsIgnoreCase("auto");
             long window;
             BusBridge bridge = session.bridge();
             try {
@@ -687,8 +686,8 @@ final class RunCommand implements Callable<Integer> {
                 options = prepareOnBus(bridge, network, testInterface, options, out, err);
                 // what the probes measured, and for a joining tester what passes by: the others' pings and answers
                 BusBridge.Delays delays = bridge.measureDelays(0, DELAY_PROBE_SPACING);
-                window = auto ? BusTiming.autoWindow(delays) : reorderWindow();
-                out.println(BusTiming.delaysLine(delays, window, auto));
+                window = bridge.reorderWindow(delays, reorderWindow());
+                out.println(BusTiming.delaysLine(delays, window, bridge.reorderWindowAutomatic()));
                 BusTiming.windowWarning(ObservableWindow.narrowest(network, testInterface), delays,
                         options.timeUnitMicros()).ifPresent(out::println);
                 out.flush();
@@ -711,7 +710,6 @@ final class RunCommand implements Callable<Integer> {
             if (refusedForOwners(bridge, err)) {
                 return 1;
             }
-            bridge.reorderWindow(window, auto);
             TestResult result = judge.test(testInterface, bridge, options.withReorderWindow(window), out);
             bridge.finish(result.verdict().exitCode());
             if (deltaReport != null) {
@@ -719,7 +717,7 @@ final class RunCommand implements Callable<Integer> {
                         bridge.runDelays()));
             }
             session.printSummary(out);
-            BusTiming.summary(bridge, auto).forEach(out::println);
+            BusTiming.summary(bridge).forEach(out::println);
             bridge.peerVerdicts().forEach((member, code) -> out.println("tester " + member + " of this run: "
                     + (code == 0 ? "PASSED" : code == 2 ? "FAILED" : "INCONCLUSIVE")));
             out.flush();

@@ -43,11 +43,12 @@ class BusTimingTest {
 
     @Test
     void theAutomaticWindowCoversThreeTimesTheLongestDelayAndTwiceTheErrorWithAFloor() {
-        assertEquals(BusTiming.AUTO_FLOOR_MICROS, BusTiming.autoWindow(new BusBridge.Delays(400_000, 50_000, 20, 1)));
+        assertEquals(BusBridge.AUTO_WINDOW_FLOOR_MICROS,
+                new BusBridge.Delays(400_000, 50_000, 20, 1).autoWindowMicros());
         // 3 x 30 ms + 2 x 1.5 ms = 93 ms
-        assertEquals(93_000, BusTiming.autoWindow(new BusBridge.Delays(30_000_000, 1_500_000, 20, 1)));
+        assertEquals(93_000, new BusBridge.Delays(30_000_000, 1_500_000, 20, 1).autoWindowMicros());
         // rounded up to a whole millisecond
-        assertEquals(91_000, BusTiming.autoWindow(new BusBridge.Delays(30_000_000, 100_000, 20, 1)));
+        assertEquals(91_000, new BusBridge.Delays(30_000_000, 100_000, 20, 1).autoWindowMicros());
     }
 
     @Test

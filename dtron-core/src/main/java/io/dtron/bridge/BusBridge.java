@@ -12,6 +12,7 @@ import io.dtron.api.ServedChannels;
 import io.dtron.bridge.internal.ChannelOwners;
 import io.dtron.bridge.internal.InputDelays;
 import io.dtron.bridge.internal.LatencyRecorder;
+import io.dtron.bridge.internal.ReorderWindow;
 import io.dtron.bridge.internal.RunTimeline;
 import io.dtron.engine.Adapter;
 import io.dtron.engine.AdapterContext;
@@ -78,6 +79,10 @@ public final class BusBridge implements Adapter, AutoCloseable {
     static final Duration FIRST_ESTIMATE_TIMEOUT = Duration.ofSeconds(2);
     /** How long the tester that started a run of several testers waits for the others' verdicts before it ends it. */
     static final Duration VERDICTS_TIMEOUT = Duration.ofSeconds(30);
+    /** The smallest automatic reorder window, in microseconds (see {@link Delays#autoWindowMicros()}). */
+    public static final long AUTO_WINDOW_FLOOR_MICROS = ReorderWindow.AUTO_FLOOR_MICROS;
+    /** How many times the longest delay measured before a run the automatic reorder window allows for. */
+    public static final int AUTO_WINDOW_DELAY_FACTOR = ReorderWindow.DELAY_FACTOR;
 
     private final Dtron dtron;
     /** Whether this bridge takes part in a run another tester starts ({@link #join}). */
@@ -116,7 +121,6 @@ public final class BusBridge implements Adapter, AutoCloseable {
     private final InputDelays inputDelays = new InputDelays();
     /** When each input of the run was published, on the run's clock in microseconds, by its number. */
     private final Map<Long, Long> inputSentMicros = new ConcurrentHashMap<>();
-    private final List<String> widenings = Collections.synchronizedList(new ArrayList<>());
     /** Inputs of other testers of the run, observed as outputs, until their acknowledgements say when they happened. */
     private final Map<String, IDtronChannelValued> heldPeerInputs = new ConcurrentHashMap<>();
     /** The testers of a run of several that told their verdicts, with the verdicts' exit codes. */
@@ -130,8 +134,8 @@ public final class BusBridge implements Adapter, AutoCloseable {
             new java.util.concurrent.LinkedBlockingQueue<>();
     /** Time 0 of the run and the times of its messages on the run's clock. */
     private final RunTimeline timeline;
-    private volatile long windowMicros;
-    private volatile boolean autoWindow;
+    /** The run's reorder window (Delta), fixed or automatic. */
+    private final ReorderWindow window = new ReorderWindow();
     /** Whether the adapters of the current run acknowledge inputs (see {@link #acknowledgesInputs()}). */
     private volatile boolean acknowledging;
     private volatile AdapterContext context;
@@ -553,6 +557,14 @@ public final class BusBridge implements Adapter, AutoCloseable {
      * @param members       how many adapter members sent them
      */
     public record Delays(long maxDelayNanos, long maxErrorNanos, long messages, int members) {
+        /**
+         * The automatic reorder window for these delays: {@value #AUTO_WINDOW_DELAY_FACTOR} times the longest delay
+         * plus twice the clocks' error bound, rounded up to a millisecond, and at least {@link
+         * #AUTO_WINDOW_FLOOR_MICROS}, in microseconds.
+         */
+        public long autoWindowMicros() {
+            return ReorderWindow.auto(maxDelayNanos, maxErrorNanos);
+        }
     }
 
     /**
@@ -674,13 +686,29 @@ public final class BusBridge implements Adapter, AutoCloseable {
      * {@code --delta auto}. A fixed window ({@code auto} false) stays as the user set it.
      */
     public void reorderWindow(long micros, boolean auto) {
-        windowMicros = micros;
-        autoWindow = auto;
+        window.set(micros, auto);
+    }
+
+    /**
+     * Sets the reorder window the next run starts with: {@code fixedMicros} ({@code --delta US}), or when empty the
+     * automatic one for the delays measured before the run ({@link Delays#autoWindowMicros()}), widened during the
+     * run (see {@link #reorderWindow(long, boolean)}).
+     *
+     * @return the window the run starts with, in microseconds
+     */
+    public long reorderWindow(Delays measured, java.util.OptionalLong fixedMicros) {
+        reorderWindow(fixedMicros.orElse(measured.autoWindowMicros()), fixedMicros.isEmpty());
+        return window.micros();
     }
 
     /** Returns the reorder window now: as set, or as widened during the run. */
     public long reorderWindowMicros() {
-        return windowMicros;
+        return window.micros();
+    }
+
+    /** Whether the reorder window is automatic: widened during the run when a message takes more than half of it. */
+    public boolean reorderWindowAutomatic() {
+        return window.automatic();
     }
 
     /**
@@ -688,9 +716,7 @@ public final class BusBridge implements Adapter, AutoCloseable {
      * took 5.9 ms"); empty if it was not.
      */
     public List<String> widenings() {
-        synchronized (widenings) {
-            return List.copyOf(widenings);
-        }
+        return window.widenings();
     }
 
     /**
@@ -741,7 +767,7 @@ public final class BusBridge implements Adapter, AutoCloseable {
         acknowledging = inputsReceivedByHandshakeMembers();
         inputSentMicros.clear();
         heldPeerInputs.clear();
-        widenings.clear();
+        window.newRun();
         runLeader = joining ? dtron.getTester().orElse(null) : null;
         owners.newRun();
         Map<String, ServedChannels> servedNow = served;
@@ -1093,7 +1119,7 @@ public final class BusBridge implements Adapter, AutoCloseable {
             // acknowledgement says; held for half the reorder window, then taken as happened when published
             String key = message.getSender() + "/" + message.getSequence();
             heldPeerInputs.put(key, message);
-            context.clock().schedule(windowMicros / 2, () -> {
+            context.clock().schedule(window.micros() / 2, () -> {
                 IDtronChannelValued unacknowledged = heldPeerInputs.remove(key);
                 if (unacknowledged != null && running) {
                     reportOutput(unacknowledged, unacknowledged);
@@ -1137,18 +1163,8 @@ public final class BusBridge implements Adapter, AutoCloseable {
      * A message arrived: widens the reorder window when it took more than half of it and the window is automatic.
      */
     private void arrived(IDtronChannelValued message, String what, long eventRunMicros) {
-        long received = timeline.receivedMicros(message);
-        long delay = timeline.arrivalDelay(message, eventRunMicros);
-        long window = windowMicros;
-        if (autoWindow && window > 0 && delay > window / 2) {
-            long widened = -Math.floorDiv(-2 * delay, 1000) * 1000;
-            windowMicros = widened;
-            String line = String.format(java.util.Locale.ROOT, "to %.1f ms at run time %.3f s: %s from %s took %.1f ms",
-                    widened / 1e3, received / 1e6, what, message.getSender(), delay / 1e3);
-            widenings.add(line);
-            LOG.info("Reorder window widened {}", line);
-            context.widenReorderWindow(widened);
-        }
+        window.arrived(timeline.arrivalDelay(message, eventRunMicros), timeline.receivedMicros(message),
+                what + " from " + message.getSender()).ifPresent(context::widenReorderWindow);
     }
 
     /**
