@@ -1,5 +1,6 @@
 package io.dtron.cli;
 
+import io.dtron.api.internal.TesterSide;
 import static org.awaitility.Awaitility.await;
 import static org.junit.jupiter.api.Assertions.assertArrayEquals;
 import static org.junit.jupiter.api.Assertions.assertEquals;
@@ -368,7 +369,7 @@ class RunCommandTest {
         // a member that stays on the bus through both, to see when the first tester is there
         try (Dtron watcher = Dtron.connect(DtronOptions.builder().clusterName(shared).memberName("watcher").build())) {
             CompletableFuture<CommandRun> first = CompletableFuture.supplyAsync(() -> CommandRun.of(args));
-            await().atMost(Duration.ofSeconds(60)).until(() -> !watcher.getOtherTesters().isEmpty());
+            await().atMost(Duration.ofSeconds(60)).until(() -> !TesterSide.of(watcher).getOtherTesters().isEmpty());
             CommandRun second = CommandRun.of(args);
             assertEquals(1, second.exit(), second.out() + second.err());
             assertTrue(second.err().contains("has a run in progress"), second.err());

@@ -9,6 +9,7 @@ import io.dtron.api.DtronStats;
 import io.dtron.api.IDtronChannel;
 import io.dtron.api.IDtronChannelValued;
 import io.dtron.api.ServedChannels;
+import io.dtron.api.internal.TesterSide;
 import io.dtron.bridge.internal.ChannelOwners;
 import io.dtron.bridge.internal.InputDelays;
 import io.dtron.bridge.internal.LatencyRecorder;
@@ -87,6 +88,8 @@ public final class BusRun implements AutoCloseable {
     public static final int AUTO_WINDOW_DELAY_FACTOR = ReorderWindow.DELAY_FACTOR;
 
     private final Dtron dtron;
+    /** What only a tester does with its bus member. */
+    private final TesterSide tester;
     /** Whether this run takes part in a run another tester starts ({@link #join}). */
     private final boolean joining;
     private final Map<String, IDtronChannel> inputs;
@@ -147,6 +150,7 @@ public final class BusRun implements AutoCloseable {
     private BusRun(Dtron dtron, Map<String, IDtronChannel> channels, TestInterface testInterface,
             boolean joining) {
         this.dtron = dtron;
+        this.tester = TesterSide.of(dtron);
         this.joining = joining;
         this.timeline = new RunTimeline(dtron::currentTimeNanos);
         Map<String, IDtronChannel> inputChannels = new LinkedHashMap<>();
@@ -154,8 +158,8 @@ public final class BusRun implements AutoCloseable {
         this.inputs = Map.copyOf(inputChannels);
         this.outputs = Set.copyOf(testInterface.outputs().stream().map(TestInterface.ObservableChannel::name).toList());
         this.owners = new ChannelOwners(inputs.keySet(), outputs);
-        dtron.addServedChannelsListener(this::servedChanged);
-        this.served = dtron.getMembersServedChannels();
+        tester.addServedChannelsListener(this::servedChanged);
+        this.served = tester.getMembersServedChannels();
         for (IDtronChannel channel : channels.values()) {
             dtron.addDtronListener(new DtronListener(channel) {
                 @Override
@@ -266,14 +270,14 @@ public final class BusRun implements AutoCloseable {
             }
             Thread.sleep(10);
         }
-        dtron.setJoiningRun(true);
+        tester.setJoiningRun(true);
         return true;
     }
 
     /** Returns the members that said they are testers ready to join the next run this run starts. */
     public List<String> joiningTesters() {
         List<String> ready = new ArrayList<>();
-        dtron.getMembersServedChannels().forEach((member, served) -> {
+        tester.getMembersServedChannels().forEach((member, served) -> {
             if (served.joinsRun() && dtron.getMembers().contains(member)) {
                 ready.add(member);
             }
@@ -311,7 +315,7 @@ public final class BusRun implements AutoCloseable {
         joiners = Set.copyOf(joiningTesters());
         peerVerdicts.clear();
         runId = Long.toHexString(ThreadLocalRandom.current().nextLong() >>> 16);
-        dtron.setRunId(runId);
+        tester.setRunId(runId);
         long zero = dtron.currentTimeNanos() + lead.toNanos();
         dtron.send(Dtron.RUN_START.constructValued(Map.of("timeunit", (int) Math.min(Integer.MAX_VALUE,
                 timeUnitMicros))), zero);
@@ -402,7 +406,7 @@ public final class BusRun implements AutoCloseable {
     /** Whether every input channel is received by a member of the handshake that is no tester of this run. */
     private boolean inputsReceivedByHandshakeMembers() {
         Set<String> received = new java.util.HashSet<>();
-        dtron.getMembersServedChannels().values().stream().filter(s -> !isPeerTester(s.member()))
+        tester.getMembersServedChannels().values().stream().filter(s -> !isPeerTester(s.member()))
                 .forEach(s -> received.addAll(s.receives()));
         return !inputs.isEmpty() && received.containsAll(inputs.keySet());
     }
@@ -478,7 +482,7 @@ public final class BusRun implements AutoCloseable {
     public boolean awaitAdapters(int count, Duration timeout) throws InterruptedException {
         long deadline = System.nanoTime() + timeout.toNanos();
         // testers of other runs are no adapters of this one
-        while (dtron.getMembers().size() - 1 - dtron.getOtherTesters().size() < count) {
+        while (dtron.getMembers().size() - 1 - tester.getOtherTesters().size() < count) {
             long left = deadline - System.nanoTime();
             if (left <= 0) {
                 return false;
@@ -490,14 +494,14 @@ public final class BusRun implements AutoCloseable {
 
     /**
      * Returns the channels of the model that no adapter on the bus serves yet, as the handshake tells (see {@link
-     * Dtron#getMembersServedChannels()}): "input NAME" for an input no member listens to, "output NAME" for an
+     * TesterSide#getMembersServedChannels()}): "input NAME" for an input no member listens to, "output NAME" for an
      * output no member declared or sent; empty when every channel is served. Testers of other runs do not count.
      */
     public List<String> unservedChannels() {
         Set<String> receivers = new java.util.HashSet<>();
         Set<String> senders = new java.util.HashSet<>();
         Set<String> testers = testersOfOtherRuns();
-        dtron.getMembersServedChannels().forEach((member, served) -> {
+        tester.getMembersServedChannels().forEach((member, served) -> {
             if (!testers.contains(member)) {
                 receivers.addAll(served.receives());
                 senders.addAll(served.sends());
@@ -528,7 +532,7 @@ public final class BusRun implements AutoCloseable {
 
     /** Returns what each adapter member on the bus said it serves, by member id (testers left out). */
     public Map<String, ServedChannels> servedChannels() {
-        Map<String, ServedChannels> served = new TreeMap<>(dtron.getMembersServedChannels());
+        Map<String, ServedChannels> served = new TreeMap<>(tester.getMembersServedChannels());
         served.keySet().removeAll(testersOfOtherRuns());
         return Collections.unmodifiableMap(served);
     }
@@ -538,7 +542,7 @@ public final class BusRun implements AutoCloseable {
      * joining tester, the one whose run it joins.
      */
     private Set<String> testersOfOtherRuns() {
-        Set<String> testers = new java.util.HashSet<>(dtron.getOtherTesters());
+        Set<String> testers = new java.util.HashSet<>(tester.getOtherTesters());
         if (joining) {
             dtron.getTester().ifPresent(testers::remove);
         }
@@ -568,7 +572,7 @@ public final class BusRun implements AutoCloseable {
 
     /**
      * Measures the delays of the adapters' messages before a run: asks every adapter member {@code rounds} times,
-     * {@code spacing} apart, to answer (see {@link Dtron#probe}), and sums up every message of theirs measured so far
+     * {@code spacing} apart, to answer (see {@link TesterSide#probe}), and sums up every message of theirs measured so far
      * (their pings since they joined included), so that the first, slow messages of a fresh process count too. A
      * member that joined just now is given {@link #FIRST_ESTIMATE_TIMEOUT} to send its first clock offset estimate,
      * without which its delays cannot be measured.
@@ -581,18 +585,18 @@ public final class BusRun implements AutoCloseable {
         adapters.removeAll(testersOfOtherRuns());
         // a member that joined just now sends its first clock offset estimate after a few round trips
         long deadline = System.nanoTime() + FIRST_ESTIMATE_TIMEOUT.toNanos();
-        while (!dtron.getDelaysFromMembers().keySet().containsAll(adapters) && System.nanoTime() < deadline) {
+        while (!tester.getDelaysFromMembers().keySet().containsAll(adapters) && System.nanoTime() < deadline) {
             Thread.sleep(10);
         }
         for (int i = 0; i < rounds && !adapters.isEmpty(); i++) {
-            dtron.probe(adapters, PROBE_TIMEOUT);
+            tester.probe(adapters, PROBE_TIMEOUT);
             Thread.sleep(spacing.toMillis());
         }
         long max = 0;
         long error = 0;
         long messages = 0;
         int members = 0;
-        for (Map.Entry<String, io.dtron.api.MemberDelay> e : dtron.getDelaysFromMembers().entrySet()) {
+        for (Map.Entry<String, io.dtron.api.MemberDelay> e : tester.getDelaysFromMembers().entrySet()) {
             if (adapters.contains(e.getKey())) {
                 max = Math.max(max, e.getValue().maxNanos());
                 error = Math.max(error, e.getValue().maxErrorNanos());
@@ -619,7 +623,7 @@ public final class BusRun implements AutoCloseable {
      * minimum} (while this process warms up, say) and until the round trips of the last rounds are steady ({@link
      * InputDelays#steady}) and no longer get faster ({@link InputDelays#noLongerImproving}), or {@code limit} has
      * passed: a fresh JVM's first compilations and collections, here and in the adapters, then
-     * happen before the run, not in it. Each probe takes the way of an input ({@link Dtron#probeAsInput}): through
+     * happen before the run, not in it. Each probe takes the way of an input ({@link TesterSide#probeAsInput}): through
      * the adapter's listeners' thread and its acknowledgement, without reaching a listener, so that the adapter's
      * first input of the run does not take that way for the first time. Each member's longest round trip in the last
      * rounds is taken as the delay of the inputs it receives until the run's acknowledgements say more ({@link
@@ -632,7 +636,7 @@ public final class BusRun implements AutoCloseable {
         Set<String> adapters = new java.util.TreeSet<>(dtron.getMembers());
         adapters.remove(dtron.getMemberId());
         adapters.removeAll(testersOfOtherRuns());
-        adapters.removeAll(dtron.getOtherTesters());
+        adapters.removeAll(tester.getOtherTesters());
         Map<String, List<Long>> byMember = new HashMap<>();
         List<Long> rounds = new ArrayList<>();
         boolean steady = false;
@@ -640,7 +644,7 @@ public final class BusRun implements AutoCloseable {
             long round = 0;
             for (String member : adapters) {
                 long sent = System.nanoTime();
-                Set<String> answered = dtron.probeAsInput(Set.of(member), PROBE_TIMEOUT);
+                Set<String> answered = tester.probeAsInput(Set.of(member), PROBE_TIMEOUT);
                 long micros = answered.contains(member) ? (System.nanoTime() - sent) / 1000 : PROBE_TIMEOUT.toNanos()
                         / 1000;
                 byMember.computeIfAbsent(member, m -> new ArrayList<>()).add(micros);
@@ -670,7 +674,7 @@ public final class BusRun implements AutoCloseable {
      */
     public long inputDelayMicros(String channel) {
         List<String> receivers = new ArrayList<>();
-        dtron.getMembersServedChannels().forEach((member, served) -> {
+        tester.getMembersServedChannels().forEach((member, served) -> {
             if (served.receives().contains(channel) && !isPeerTester(member)) {
                 receivers.add(member);
             }
@@ -734,7 +738,7 @@ public final class BusRun implements AutoCloseable {
      * (a member that left without serving one, such as a tester refused because of this run, changes nothing).
      */
     public void expectAdapters() {
-        Set<String> testers = dtron.getOtherTesters();
+        Set<String> testers = tester.getOtherTesters();
         expected.clear();
         dtron.getMembers().stream().filter(m -> !m.equals(dtron.getMemberId()) && !testers.contains(m))
                 .forEach(expected::add);
@@ -795,7 +799,7 @@ public final class BusRun implements AutoCloseable {
         }
         joiners = Set.of();
         runId = Long.toHexString(ThreadLocalRandom.current().nextLong() >>> 16);
-        dtron.setRunId(runId);
+        tester.setRunId(runId);
         // a time unit beyond int range (35 minutes) does not occur in practice; the message carries an int
         int unit = (int) Math.min(Integer.MAX_VALUE, runContext.timeUnitMicros());
         // the adapters' time 0 is the start's event time: the engine's time 0, however late the start is published
@@ -815,7 +819,7 @@ public final class BusRun implements AutoCloseable {
      * one owner.
      */
     public Optional<String> ownersConflict() {
-        return owners.conflict(dtron.getMembers(), dtron.getMembersServedChannels(), notOwners());
+        return owners.conflict(dtron.getMembers(), tester.getMembersServedChannels(), notOwners());
     }
 
     /**
@@ -845,10 +849,10 @@ public final class BusRun implements AutoCloseable {
 
     /**
      * Returns the other testers on this bus: members that announced themselves as testers (see {@link
-     * Dtron#getOtherTesters()}). A run on a bus with another tester would share its adapters with another run.
+     * TesterSide#getOtherTesters()}). A run on a bus with another tester would share its adapters with another run.
      */
     public Set<String> otherTesters() {
-        return dtron.getOtherTesters();
+        return tester.getOtherTesters();
     }
 
     /**
@@ -879,8 +883,8 @@ public final class BusRun implements AutoCloseable {
 
     /** The other members that have not told yet whether they are testers. */
     private List<String> silentMembers() {
-        Set<String> told = new java.util.HashSet<>(dtron.getMembersServedChannels().keySet());
-        told.addAll(dtron.getOtherTesters());
+        Set<String> told = new java.util.HashSet<>(tester.getMembersServedChannels().keySet());
+        told.addAll(tester.getOtherTesters());
         told.add(dtron.getMemberId());
         return dtron.getMembers().stream().filter(m -> !told.contains(m)).toList();
     }
@@ -958,7 +962,7 @@ public final class BusRun implements AutoCloseable {
         }
         Set<String> answered;
         try {
-            answered = dtron.probe(expected, PROBE_TIMEOUT);
+            answered = tester.probe(expected, PROBE_TIMEOUT);
         } catch (InterruptedException e) {
             Thread.currentThread().interrupt();
             return Optional.of("the tester was interrupted while it asked the adapters whether they are there");
@@ -1147,14 +1151,14 @@ public final class BusRun implements AutoCloseable {
 
     /** Whether an adapter (a member that is no tester of this run) listens to a channel, so applies its messages. */
     private boolean appliedByAdapter(String channel) {
-        return dtron.getMembersServedChannels().values().stream().anyMatch(served -> served.receives()
+        return tester.getMembersServedChannels().values().stream().anyMatch(served -> served.receives()
                 .contains(channel) && !isPeerTester(served.member()));
     }
 
     /** Whether a member is another tester of this run. */
     private boolean isPeerTester(String member) {
         return joiners.contains(member) || joining && member.equals(dtron.getTester().orElse(null))
-                || Optional.ofNullable(dtron.getMembersServedChannels().get(member)).map(ServedChannels::joinsRun)
+                || Optional.ofNullable(tester.getMembersServedChannels().get(member)).map(ServedChannels::joinsRun)
                         .orElse(false);
     }
 
@@ -1189,7 +1193,7 @@ public final class BusRun implements AutoCloseable {
         LOG.info("Left the bus: {}; members now {}", left, members);
         // a tester of another run (refused because of this one) never served it, even if it said so only now
         List<String> gone = left.stream().filter(watched::remove)
-                .filter(m -> !dtron.wasTester(m) || m.equals(runLeader)).toList();
+                .filter(m -> !tester.wasTester(m) || m.equals(runLeader)).toList();
         if (running && !gone.isEmpty()) {
             gone.forEach(expected::remove); // reported here, not again by the start
             context.inconclusive("adapter member" + (gone.size() == 1 ? " " : "s ") + String.join(", ", gone)

@@ -1,5 +1,6 @@
 package io.dtron.bridge;
 
+import io.dtron.api.internal.TesterSide;
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertNotNull;
@@ -311,7 +312,7 @@ class BusBridgeTest {
         bridge.start(context);
         try (Dtron other = Dtron.connect(DtronOptions.builder().clusterName(cluster).memberName("other-run")
                 .inJvm(true).build())) {
-            other.setRunId("another-run");
+            TesterSide.of(other).setRunId("another-run");
             other.send(DONE.constructValued(Map.of("amount", 5)));
             adapter.send(DONE.constructValued(Map.of("amount", 6)));
             assertEquals(Event.of("done", "amount", 6), context.outputs.poll(10, TimeUnit.SECONDS),
