@@ -24,8 +24,6 @@ final class BusSession implements AutoCloseable {
     private static final Logger LOG = LoggerFactory.getLogger(BusSession.class);
     /** How long adapters that just joined get to add their listeners before the run starts. */
     private static final Duration SETTLE = Duration.ofMillis(250);
-    /** How long this tester waits for every member on the bus to tell whether it is a tester. */
-    private static final Duration ROLL_CALL = Duration.ofSeconds(3);
 
     private final Supplier<DtronOptions.Builder> options;
     private final BusBridge bridge;
@@ -97,7 +95,7 @@ final class BusSession implements AutoCloseable {
      * @throws InterruptedException if the thread was interrupted while waiting
      */
     List<String> testersThatJoinedFirst() throws InterruptedException {
-        return bridge.run().testersThatJoinedFirst(ROLL_CALL);
+        return bridge.run().testersThatJoinedFirst();
     }
 
     /**

@@ -75,21 +75,6 @@ final class RunCommand implements Callable<Integer> {
     @Parameters(index = "0", paramLabel = "MODEL", description = "The model (.xml, .xta, or an Uppaal 3 .ta).")
     private Path model;
 
-    /**
-     * Before a run the tester probes the adapters in rounds this far apart, for at least {@link #PROBE_MINIMUM} (its
-     * engine warms up meanwhile) and until their round trips are steady, or {@link #PROBE_LIMIT} passed.
-     */
-    private static final Duration DELAY_PROBE_SPACING = Duration.ofMillis(20);
-    /**
-     * The probes before a run come one after the other: a thousand rounds and more, so that the JIT compiler of a
-     * fresh JVM compiles the path of an input, here and in the adapters, before time 0.
-     */
-    private static final Duration WARM_UP_PROBE_SPACING = Duration.ZERO;
-    private static final Duration PROBE_MINIMUM = Duration.ofMillis(400);
-    private static final Duration PROBE_LIMIT = Duration.ofSeconds(3);
-    /** How far ahead a run of several testers is started, so that every tester starts its engine at time 0. */
-    private static final Duration RUN_LEAD = Duration.ofMillis(500);
-
     @Option(names = "--sut", paramLabel = "CLASS[:VARIANT]",
             description = "An in-process system under test: a class implementing io.dtron.engine.Adapter,"
                     + " optionally with a variant name passed to its constructor (e.g."
@@ -684,8 +669,7 @@ final class RunCommand implements Callable<Integer> {
                     return 1;
                 }
                 options = prepareOnBus(busRun, network, testInterface, options, out, err);
-                // what the probes measured, and for a joining tester what passes by: the others' pings and answers
-                BusRun.Delays delays = busRun.measureDelays(0, DELAY_PROBE_SPACING);
+                BusRun.Delays delays = busRun.measuredDelays();
                 window = busRun.reorderWindow(delays, reorderWindow());
                 out.println(BusTiming.delaysLine(delays, window, busRun.reorderWindowAutomatic()));
                 BusTiming.windowWarning(ObservableWindow.narrowest(network, testInterface), delays,
@@ -700,7 +684,7 @@ final class RunCommand implements Callable<Integer> {
                         return 1;
                     }
                 } else if (testers != null && testers > 1) {
-                    busRun.announceRun(RUN_LEAD, options.timeUnitMicros());
+                    busRun.announceRun(options.timeUnitMicros());
                 }
             } catch (InterruptedException e) {
                 Thread.currentThread().interrupt();
@@ -1025,8 +1009,7 @@ final class RunCommand implements Callable<Integer> {
             measuring.start();
         }
         if (!join) {
-            out.println(BusTiming.probingLine(busRun.probeUntilSteady(WARM_UP_PROBE_SPACING, warm ? PROBE_MINIMUM
-                    : Duration.ZERO, PROBE_LIMIT), warm));
+            out.println(BusTiming.probingLine(busRun.warmUp(warm), warm));
             out.flush();
         }
         if (!warm) {

@@ -82,6 +82,19 @@ public final class BusRun implements AutoCloseable {
     static final Duration FIRST_ESTIMATE_TIMEOUT = Duration.ofSeconds(2);
     /** How long the tester that started a run of several testers waits for the others' verdicts before it ends it. */
     static final Duration VERDICTS_TIMEOUT = Duration.ofSeconds(30);
+    /** How far ahead a run of several testers is started, so that every tester starts its engine at time 0. */
+    static final Duration RUN_LEAD = Duration.ofMillis(500);
+    /**
+     * The probes before a run ({@link #warmUp}) come one after the other: a thousand rounds and more, so that the JIT
+     * compiler of a fresh JVM compiles the path of an input, here and in the adapters, before time 0.
+     */
+    static final Duration WARM_UP_SPACING = Duration.ZERO;
+    /** How long the probes before a run last at least while the engine warms up meanwhile. */
+    static final Duration WARM_UP_MINIMUM = Duration.ofMillis(400);
+    /** How long the probes before a run last at most, steady or not. */
+    static final Duration WARM_UP_LIMIT = Duration.ofSeconds(3);
+    /** How long a tester waits for every member on the bus to tell whether it is a tester. */
+    static final Duration ROLL_CALL = Duration.ofSeconds(3);
     /** The smallest automatic reorder window, in microseconds (see {@link Delays#autoWindowMicros()}). */
     public static final long AUTO_WINDOW_FLOOR_MICROS = ReorderWindow.AUTO_FLOOR_MICROS;
     /** How many times the longest delay measured before a run the automatic reorder window allows for. */
@@ -303,20 +316,20 @@ public final class BusRun implements AutoCloseable {
     }
 
     /**
-     * Starts a run of several testers: publishes the run start with time 0 {@code lead} from now, so that every
-     * tester of the run (this one and those that {@linkplain #joiningTesters() joined}) can start its engine at
+     * Starts a run of several testers: publishes the run start with time 0 {@link #RUN_LEAD} from now, so that
+     * every tester of the run (this one and those that {@linkplain #joiningTesters() joined}) can start its engine at
      * that time. The next {@link #start} does not publish it again.
      *
      * @param timeUnitMicros the run's time unit, which the start carries
      * @return time 0 of the run on this member's wall clock, in nanoseconds since the epoch
      * @throws DtronException if the bus did not take the message
      */
-    public long announceRun(Duration lead, long timeUnitMicros) {
+    public long announceRun(long timeUnitMicros) {
         joiners = Set.copyOf(joiningTesters());
         peerVerdicts.clear();
         runId = Long.toHexString(ThreadLocalRandom.current().nextLong() >>> 16);
         tester.setRunId(runId);
-        long zero = dtron.currentTimeNanos() + lead.toNanos();
+        long zero = dtron.currentTimeNanos() + RUN_LEAD.toNanos();
         dtron.send(Dtron.RUN_START.constructValued(Map.of("timeunit", (int) Math.min(Integer.MAX_VALUE,
                 timeUnitMicros))), zero);
         timeline.announce(zero);
@@ -608,6 +621,27 @@ public final class BusRun implements AutoCloseable {
     }
 
     /**
+     * Before time 0: probes the adapters until their round trips are steady ({@link #probeUntilSteady}), round after
+     * round without a pause, at most {@link #WARM_UP_LIMIT}, and at least {@link #WARM_UP_MINIMUM} when the engine
+     * warms up meanwhile ({@code engineWarmsUp}).
+     *
+     * @throws InterruptedException if the thread was interrupted while waiting
+     */
+    public Probing warmUp(boolean engineWarmsUp) throws InterruptedException {
+        return probeUntilSteady(WARM_UP_SPACING, engineWarmsUp ? WARM_UP_MINIMUM : Duration.ZERO, WARM_UP_LIMIT);
+    }
+
+    /**
+     * The delays measured before a run without probing again ({@link #measureDelays} with no round): what the
+     * probes of {@link #warmUp} measured, and for a joining tester what passes by, the others' pings and answers.
+     *
+     * @throws InterruptedException if the thread was interrupted while waiting
+     */
+    public Delays measuredDelays() throws InterruptedException {
+        return measureDelays(0, Duration.ZERO);
+    }
+
+    /**
      * The probes before a run ({@link #probeUntilSteady}).
      *
      * @param rounds     how many rounds were probed
@@ -859,14 +893,14 @@ public final class BusRun implements AutoCloseable {
      * Returns the testers of other runs (see {@link #otherTesters()}) that joined the bus before this run, once
      * every other member has told whether it is a tester: it answered this tester's greeting in the
      * channel-serving handshake (a tester says that it is one), or greeted the bus as a tester. Members that never
-     * tell (adapters built against an API without the handshake) are waited for until the timeout. Of two testers
-     * that meet on one bus, the one that joined first starts its run and the other, finding it here, does not: the
-     * members' order on the bus is the same for all of them.
+     * tell (adapters built against an API without the handshake) are waited for, {@link #ROLL_CALL} at most. Of two
+     * testers that meet on one bus, the one that joined first starts its run and the other, finding it here, does not:
+     * the members' order on the bus is the same for all of them.
      *
      * @throws InterruptedException if the thread was interrupted while waiting
      */
-    public List<String> testersThatJoinedFirst(Duration timeout) throws InterruptedException {
-        long deadline = System.nanoTime() + timeout.toNanos();
+    public List<String> testersThatJoinedFirst() throws InterruptedException {
+        long deadline = System.nanoTime() + ROLL_CALL.toNanos();
         while (!silentMembers().isEmpty() && System.nanoTime() < deadline) {
             Thread.sleep(20);
         }
