@@ -148,52 +148,61 @@ public final class Dtron implements AutoCloseable {
     private final TesterSide testerSide = new TesterSide() {
         @Override
         public void setRunId(String id) {
-            Dtron.this.setRunId(id);
+            runIdSet = Objects.requireNonNull(id, "id");
         }
 
         @Override
         public Set<String> probe(Collection<String> members, Duration timeout) throws InterruptedException {
-            return Dtron.this.probe(members, timeout);
+            return Dtron.this.probe(members, timeout, false);
         }
 
         @Override
         public Set<String> probeAsInput(Collection<String> members, Duration timeout) throws InterruptedException {
-            return Dtron.this.probeAsInput(members, timeout);
+            return Dtron.this.probe(members, timeout, true);
         }
 
         @Override
         public Set<String> getOtherTesters() {
-            return Dtron.this.getOtherTesters();
+            Set<String> testers = new LinkedHashSet<>(clockSync.otherTesters());
+            handshake.others().values().stream().filter(ServedChannels::tester).map(ServedChannels::member)
+                    .forEach(testers::add);
+            return Collections.unmodifiableSet(testers);
         }
 
         @Override
         public boolean wasTester(String member) {
-            return Dtron.this.wasTester(member);
+            return testersSeen.contains(member);
         }
 
         @Override
         public Map<String, MemberDelay> getDelaysFromMembers() {
-            return Dtron.this.getDelaysFromMembers();
+            return Collections.unmodifiableMap(new java.util.TreeMap<>(delays));
         }
 
         @Override
         public Map<String, ServedChannels> getMembersServedChannels() {
-            return Dtron.this.getMembersServedChannels();
+            return handshake.others();
         }
 
         @Override
         public void addServedChannelsListener(java.util.function.Consumer<Map<String, ServedChannels>> listener) {
-            Dtron.this.addServedChannelsListener(listener);
+            Objects.requireNonNull(listener, "listener");
+            synchronized (lock) {
+                requireOpen();
+                if (!servedListeners.contains(listener)) {
+                    servedListeners.add(listener);
+                }
+            }
         }
 
         @Override
         public void removeServedChannelsListener(java.util.function.Consumer<Map<String, ServedChannels>> listener) {
-            Dtron.this.removeServedChannelsListener(listener);
+            servedListeners.remove(Objects.requireNonNull(listener, "listener"));
         }
 
         @Override
         public void setJoiningRun(boolean joining) {
-            Dtron.this.setJoiningRun(joining);
+            handshake.joiningRun(joining);
         }
     };
     private final Map<AckKey, Boolean> acknowledged = new LinkedHashMap<>() {
@@ -407,11 +416,6 @@ public final class Dtron implements AutoCloseable {
         handshake.sending(names);
     }
 
-    /** See {@link TesterSide#setJoiningRun}. */
-    private void setJoiningRun(boolean joining) {
-        handshake.joiningRun(joining);
-    }
-
     /**
      * Returns the channels this member serves: those it has listeners for and those it declared or sent on (for a
      * tester, those it tests, and that it is a tester). It tells the bus whenever they change, and each tester that
@@ -419,32 +423,6 @@ public final class Dtron implements AutoCloseable {
      */
     public ServedChannels getServedChannels() {
         return handshake.own();
-    }
-
-    /** See {@link TesterSide#getMembersServedChannels}. */
-    private Map<String, ServedChannels> getMembersServedChannels() {
-        return handshake.others();
-    }
-
-    /** See {@link TesterSide#addServedChannelsListener}. */
-    private void addServedChannelsListener(java.util.function.Consumer<Map<String, ServedChannels>> listener) {
-        Objects.requireNonNull(listener, "listener");
-        synchronized (lock) {
-            requireOpen();
-            if (!servedListeners.contains(listener)) {
-                servedListeners.add(listener);
-            }
-        }
-    }
-
-    /** See {@link TesterSide#removeServedChannelsListener}. */
-    private void removeServedChannelsListener(java.util.function.Consumer<Map<String, ServedChannels>> listener) {
-        servedListeners.remove(Objects.requireNonNull(listener, "listener"));
-    }
-
-    /** See {@link TesterSide#getDelaysFromMembers}. */
-    private Map<String, MemberDelay> getDelaysFromMembers() {
-        return java.util.Collections.unmodifiableMap(new java.util.TreeMap<>(delays));
     }
 
     /**
@@ -562,11 +540,6 @@ public final class Dtron implements AutoCloseable {
         return publishAck(message, appliedAtEpochNanos);
     }
 
-    /** See {@link TesterSide#setRunId}. */
-    private void setRunId(String id) {
-        runIdSet = Objects.requireNonNull(id, "id");
-    }
-
     /** Returns the run id this member stamps on the messages it sends now (see {@link TesterSide#setRunId}), or "". */
     public String getRunId() {
         String set = runIdSet;
@@ -595,29 +568,6 @@ public final class Dtron implements AutoCloseable {
      */
     public Optional<String> getTester() {
         return clockSync.tester();
-    }
-
-    /** See {@link TesterSide#getOtherTesters}. */
-    private Set<String> getOtherTesters() {
-        Set<String> testers = new LinkedHashSet<>(clockSync.otherTesters());
-        handshake.others().values().stream().filter(ServedChannels::tester).map(ServedChannels::member)
-                .forEach(testers::add);
-        return Collections.unmodifiableSet(testers);
-    }
-
-    /** See {@link TesterSide#wasTester}. */
-    private boolean wasTester(String member) {
-        return testersSeen.contains(member);
-    }
-
-    /** See {@link TesterSide#probe}. */
-    private Set<String> probe(Collection<String> members, Duration timeout) throws InterruptedException {
-        return probe(members, timeout, false);
-    }
-
-    /** See {@link TesterSide#probeAsInput}. */
-    private Set<String> probeAsInput(Collection<String> members, Duration timeout) throws InterruptedException {
-        return probe(members, timeout, true);
     }
 
     private Set<String> probe(Collection<String> members, Duration timeout, boolean asInput)
