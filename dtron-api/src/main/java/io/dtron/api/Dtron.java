@@ -11,6 +11,7 @@ import io.dtron.api.internal.HostClock;
 import io.dtron.api.internal.SerialExecutor;
 import io.dtron.api.internal.Stamp;
 import io.dtron.api.internal.SyncCodec;
+import io.dtron.api.internal.TesterSide;
 import io.dtron.api.internal.proto.Sync;
 import io.dtron.bus.BusMessage;
 import io.dtron.bus.MembershipView;
@@ -110,6 +111,10 @@ public final class Dtron implements AutoCloseable {
     private static final int ACKED_MEMORY = 65_536;
 
     private static final Logger LOG = LoggerFactory.getLogger(Dtron.class);
+
+    static {
+        TesterSide.Access.grant(dtron -> dtron.testerSide);
+    }
     private static final Duration CLOSE_TIMEOUT = Duration.ofSeconds(5);
     /** How long {@link #connect} waits at most for the warm-up of the run clock's code (see RunClock.warmUp). */
     private static final Duration RUN_CLOCK_WARM_UP = Duration.ofMillis(200);
@@ -136,9 +141,70 @@ public final class Dtron implements AutoCloseable {
     private final String hostClock;
     private final ClockSync clockSync;
     private final ChannelHandshake handshake;
-    /** The other members that said they are testers while on the bus (see {@link #wasTester}); only grows. */
+    /** The other members that said they are testers while on the bus (see {@link TesterSide#wasTester}); only grows. */
     private final Set<String> testersSeen = ConcurrentHashMap.newKeySet();
     private final RunClock runClock;
+    /** What only a tester does with this member (see {@link TesterSide#of}). */
+    private final TesterSide testerSide = new TesterSide() {
+        @Override
+        public void setRunId(String id) {
+            runIdSet = Objects.requireNonNull(id, "id");
+        }
+
+        @Override
+        public Set<String> probe(Collection<String> members, Duration timeout) throws InterruptedException {
+            return Dtron.this.probe(members, timeout, false);
+        }
+
+        @Override
+        public Set<String> probeAsInput(Collection<String> members, Duration timeout) throws InterruptedException {
+            return Dtron.this.probe(members, timeout, true);
+        }
+
+        @Override
+        public Set<String> getOtherTesters() {
+            Set<String> testers = new LinkedHashSet<>(clockSync.otherTesters());
+            handshake.others().values().stream().filter(ServedChannels::tester).map(ServedChannels::member)
+                    .forEach(testers::add);
+            return Collections.unmodifiableSet(testers);
+        }
+
+        @Override
+        public boolean wasTester(String member) {
+            return testersSeen.contains(member);
+        }
+
+        @Override
+        public Map<String, MemberDelay> getDelaysFromMembers() {
+            return Collections.unmodifiableMap(new java.util.TreeMap<>(delays));
+        }
+
+        @Override
+        public Map<String, ServedChannels> getMembersServedChannels() {
+            return handshake.others();
+        }
+
+        @Override
+        public void addServedChannelsListener(java.util.function.Consumer<Map<String, ServedChannels>> listener) {
+            Objects.requireNonNull(listener, "listener");
+            synchronized (lock) {
+                requireOpen();
+                if (!servedListeners.contains(listener)) {
+                    servedListeners.add(listener);
+                }
+            }
+        }
+
+        @Override
+        public void removeServedChannelsListener(java.util.function.Consumer<Map<String, ServedChannels>> listener) {
+            servedListeners.remove(Objects.requireNonNull(listener, "listener"));
+        }
+
+        @Override
+        public void setJoiningRun(boolean joining) {
+            handshake.joiningRun(joining);
+        }
+    };
     private final Map<AckKey, Boolean> acknowledged = new LinkedHashMap<>() {
         @Override
         protected boolean removeEldestEntry(Map.Entry<AckKey, Boolean> eldest) {
@@ -351,62 +417,12 @@ public final class Dtron implements AutoCloseable {
     }
 
     /**
-     * Says whether this member is a tester that takes part in the next run another tester starts on this bus
-     * ({@code dtron run --join}): the starting tester waits for the testers that said so. Told in the handshake.
-     */
-    public void setJoiningRun(boolean joining) {
-        handshake.joiningRun(joining);
-    }
-
-    /**
      * Returns the channels this member serves: those it has listeners for and those it declared or sent on (for a
      * tester, those it tests, and that it is a tester). It tells the bus whenever they change, and each tester that
      * greets the bus.
      */
     public ServedChannels getServedChannels() {
         return handshake.own();
-    }
-
-    /**
-     * Returns what the other members on the bus said they serve, by member id in id order (testers say that they
-     * are); members that said nothing (adapters built against an API without the handshake) are left out; an immutable
-     * snapshot, cheap to take on every message. A tester waits until its model's channels are all served before it
-     * starts a run.
-     */
-    public Map<String, ServedChannels> getMembersServedChannels() {
-        return handshake.others();
-    }
-
-    /**
-     * Adds a listener that is told what the other members serve (as {@link #getMembersServedChannels()} returns
-     * it) whenever that changes: a member said what it serves, or one that had said it left. It is called on the
-     * thread of the {@link DtronListener}s, in order with the messages: a member's announcement comes before the
-     * messages it sent after it, and its messages before the news that it left. For a tester, which judges who
-     * sends on its channels; a listener added twice is called once.
-     */
-    public void addServedChannelsListener(java.util.function.Consumer<Map<String, ServedChannels>> listener) {
-        Objects.requireNonNull(listener, "listener");
-        synchronized (lock) {
-            requireOpen();
-            if (!servedListeners.contains(listener)) {
-                servedListeners.add(listener);
-            }
-        }
-    }
-
-    /** Removes a listener of {@link #addServedChannelsListener}; removing an unknown one does nothing. */
-    public void removeServedChannelsListener(java.util.function.Consumer<Map<String, ServedChannels>> listener) {
-        servedListeners.remove(Objects.requireNonNull(listener, "listener"));
-    }
-
-    /**
-     * Returns how long the messages of each other member took to arrive, on the tester's clock: publish time plus
-     * the sender's clock offset estimate, to receive time plus this member's, over every message that carried an
-     * estimate or came from the tester (members ping the tester once a second, and {@link #probe} asks them all).
-     * By member id in id order; members that left are kept. Empty while this member has no clock offset estimate.
-     */
-    public Map<String, MemberDelay> getDelaysFromMembers() {
-        return java.util.Collections.unmodifiableMap(new java.util.TreeMap<>(delays));
     }
 
     /**
@@ -448,7 +464,7 @@ public final class Dtron implements AutoCloseable {
 
     /**
      * Publishes a message to every member, stamped with this member's id, the next sequence number, the publish
-     * time as event time, the run id ({@link #setRunId}) and this member's clock offset estimate.
+     * time as event time, the run id ({@link TesterSide#setRunId}) and this member's clock offset estimate.
      *
      * @throws InvalidMessageException  if the channel is not declared (when channels are declared) or its
      *                                  variables do not fit the template known here
@@ -524,16 +540,7 @@ public final class Dtron implements AutoCloseable {
         return publishAck(message, appliedAtEpochNanos);
     }
 
-    /**
-     * Sets the run id this member stamps on the messages it sends from now on; "" for none. A member that sets
-     * none stamps the id of the current run, as the run's {@link #RUN_START} carried it, until the run stops. A
-     * tester sets it before publishing {@code RUN_START}.
-     */
-    public void setRunId(String id) {
-        runIdSet = Objects.requireNonNull(id, "id");
-    }
-
-    /** Returns the run id this member stamps on the messages it sends now (see {@link #setRunId}), or "". */
+    /** Returns the run id this member stamps on the messages it sends now (see {@link TesterSide#setRunId}), or "". */
     public String getRunId() {
         String set = runIdSet;
         return set.isEmpty() ? runId : set;
@@ -561,58 +568,6 @@ public final class Dtron implements AutoCloseable {
      */
     public Optional<String> getTester() {
         return clockSync.tester();
-    }
-
-    /**
-     * Returns the other members that announced themselves as a tester (connected with the {@linkplain
-     * DtronOptions.Builder#tester tester} option, or by publishing {@link #RUN_START}), by a greeting or in the
-     * handshake, and are on the bus now. A tester that finds another one here shares its bus with another run: its
-     * adapters would follow both.
-     */
-    public Set<String> getOtherTesters() {
-        Set<String> testers = new LinkedHashSet<>(clockSync.otherTesters());
-        handshake.others().values().stream().filter(ServedChannels::tester).map(ServedChannels::member)
-                .forEach(testers::add);
-        return Collections.unmodifiableSet(testers);
-    }
-
-    /**
-     * Returns whether another member said it is a tester (by a greeting, in the handshake or by starting a run)
-     * while it was on the bus; still true after it left. For a tester deciding whether a member that has just left
-     * stood for part of the system under test.
-     */
-    public boolean wasTester(String member) {
-        return testersSeen.contains(member);
-    }
-
-    /**
-     * Asks members whether they are there, for a tester: pings the bus and waits until each of {@code members}
-     * answered, or the timeout passed. A member answers its tester's ping from its own thread, as long as its
-     * process runs and reaches the bus; a member that was killed, stopped or cut off does not. Since every member's
-     * messages arrive in the order it sent them, an answer also means that the messages it sent before have
-     * arrived: when this returns, they have been delivered to this member's listeners.
-     *
-     * @return the members of {@code members} that answered
-     * @throws InterruptedException if the thread was interrupted while waiting
-     */
-    public Set<String> probe(Collection<String> members, Duration timeout) throws InterruptedException {
-        return probe(members, timeout, false);
-    }
-
-    /**
-     * Probes members as {@link #probe} does, through the path of an input, for a tester warming its adapters up
-     * before a run: a member built on this API answers on the thread of its listeners, in order with the messages
-     * they hear, and with the {@linkplain #ACK acknowledgement} it publishes when it applied an input, but calls
-     * none of its listeners (the system under test does not hear of it). So a fresh process runs that path for the
-     * first time before the run, and the round trip is that of an input. A member that does not know this probe (an
-     * older API, another language's client) answers it as any ping, which counts as well. Not for telling whether a
-     * member is there: a listener that is busy holds the answer up.
-     *
-     * @return the members of {@code members} that answered
-     * @throws InterruptedException if the thread was interrupted while waiting
-     */
-    public Set<String> probeAsInput(Collection<String> members, Duration timeout) throws InterruptedException {
-        return probe(members, timeout, true);
     }
 
     private Set<String> probe(Collection<String> members, Duration timeout, boolean asInput)
@@ -1118,7 +1073,7 @@ public final class Dtron implements AutoCloseable {
 
     /**
      * Called on the dispatcher thread, in the bus's order; acknowledges the message after its listeners. A probe sent
-     * as an input ({@link #probeAsInput}) takes the same way, but no listener hears it.
+     * as an input ({@link TesterSide#probeAsInput}) takes the same way, but no listener hears it.
      */
     private void deliver(IDtronChannelValued value, boolean acknowledge) {
         boolean probe = value.getChannelName().equals(ClockSync.PING);

@@ -48,7 +48,10 @@ public interface IDtronChannelValued extends IChannelSkeleton {
         return getPublishTimeNanos();
     }
 
-    /** Returns the id of the test run the sender stamped on the message (see {@link Dtron#setRunId}), or "". */
+    /**
+     * Returns the id of the test run the sender stamped on the message (a tester sets it, see {@link
+     * io.dtron.api.internal.TesterSide#setRunId}), or "".
+     */
     default String getRunId() {
         return "";
     }

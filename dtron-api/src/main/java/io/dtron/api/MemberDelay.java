@@ -3,7 +3,8 @@ package io.dtron.api;
 import java.util.Objects;
 
 /**
- * How long the messages of one member took to reach the tester, from {@link Dtron#getDelaysFromMembers()}: from
+ * How long the messages of one member took to reach the tester, from {@link
+ * io.dtron.api.internal.TesterSide#getDelaysFromMembers()}: from
  * the sender's publish time, corrected by the clock offset the sender estimated, to the tester's receive time, over
  * every message that carried an offset estimate (pings and pongs included). Immutable.
  *

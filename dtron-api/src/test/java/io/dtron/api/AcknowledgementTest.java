@@ -1,5 +1,6 @@
 package io.dtron.api;
 
+import io.dtron.api.internal.TesterSide;
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertNull;
@@ -202,7 +203,7 @@ class AcknowledgementTest {
         startRun();
         tester.send(MOVE.constructValued(Map.of("amount", 1)));
         // the probe comes while the listener applies the move: its answer waits for it, as an input would
-        assertEquals(Set.of("adapter"), tester.probeAsInput(List.of("adapter"), Duration.ofSeconds(10)));
+        assertEquals(Set.of("adapter"), TesterSide.of(tester).probeAsInput(List.of("adapter"), Duration.ofSeconds(10)));
         long moveApplied = applier.returnedAt.poll(10, TimeUnit.SECONDS);
 
         BusRecord ping = records.stream().filter(r -> r.channel().equals("dtron_ping") && r.sender().equals("tester"))
@@ -230,7 +231,7 @@ class AcknowledgementTest {
         // a tester answers every ping with a pong, as an adapter built against an older API does
         try (Dtron other = Dtron.connect(TestClusters.inJvm(cluster).memberName("other").tester(true).build())) {
             assertTrue(tester.awaitMembers(3, Duration.ofSeconds(10)));
-            assertEquals(Set.of("other"), tester.probeAsInput(List.of("other"), Duration.ofSeconds(10)));
+            assertEquals(Set.of("other"), TesterSide.of(tester).probeAsInput(List.of("other"), Duration.ofSeconds(10)));
         }
     }
 

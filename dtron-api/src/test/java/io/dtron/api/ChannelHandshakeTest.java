@@ -1,5 +1,6 @@
 package io.dtron.api;
 
+import io.dtron.api.internal.TesterSide;
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertThrows;
@@ -36,7 +37,8 @@ class ChannelHandshakeTest {
 
     /** Waits until the tester's view of the members' channels fits. */
     private static Map<String, ServedChannels> awaitServed(Dtron tester, Predicate<Map<String, ServedChannels>> fits) {
-        return Waits.await("the tester's view of the served channels").until(tester::getMembersServedChannels, fits::test);
+        return Waits.await("the tester's view of the served channels")
+                .until(TesterSide.of(tester)::getMembersServedChannels, fits::test);
     }
 
     @Test
@@ -54,11 +56,11 @@ class ChannelHandshakeTest {
                 // that it is a tester
                 assertEquals(Map.of("tester", new ServedChannels("tester", Set.of(), Set.of(), false, true)),
                         awaitServed(adapter, m -> m.containsKey("tester")));
-                assertEquals(Set.of("tester"), adapter.getOtherTesters());
+                assertEquals(Set.of("tester"), TesterSide.of(adapter).getOtherTesters());
             }
             // known after it left, for a tester deciding whether a member that left served its run
-            assertTrue(adapter.wasTester("tester"));
-            assertFalse(adapter.wasTester("adapter"));
+            assertTrue(TesterSide.of(adapter).wasTester("tester"));
+            assertFalse(TesterSide.of(adapter).wasTester("adapter"));
         }
     }
 
@@ -94,7 +96,8 @@ class ChannelHandshakeTest {
                     seen.add("tick from " + message.getSender());
                 }
             });
-            tester.addServedChannelsListener(served -> seen.add("served " + Optional.ofNullable(served.get("adapter"))
+            TesterSide.of(tester).addServedChannelsListener(served -> seen.add("served "
+                    + Optional.ofNullable(served.get("adapter"))
                     .map(s -> s.sends().toString()).orElse("nothing")));
             try (Dtron adapter = Dtron.connect(TestClusters.inJvm(cluster).memberName("adapter").build())) {
                 // not declared: sending on tick serves it, and the bus orders the announcement first
@@ -116,10 +119,10 @@ class ChannelHandshakeTest {
         try (Dtron tester = Dtron.connect(TestClusters.inJvm(cluster).memberName("tester").tester(true).build());
                 Dtron joining = Dtron.connect(TestClusters.inJvm(cluster).memberName("joining").build())) {
             joining.declareOutputs(TICK);
-            joining.setJoiningRun(true);
+            TesterSide.of(joining).setJoiningRun(true);
             assertTrue(awaitServed(tester, m -> m.containsKey("joining") && m.get("joining").joinsRun())
                     .get("joining").sends().contains("tick"));
-            joining.setJoiningRun(false);
+            TesterSide.of(joining).setJoiningRun(false);
             awaitServed(tester, m -> !m.get("joining").joinsRun());
         }
     }

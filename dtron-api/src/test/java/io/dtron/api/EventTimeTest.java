@@ -1,5 +1,6 @@
 package io.dtron.api;
 
+import io.dtron.api.internal.TesterSide;
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertNotEquals;
 import static org.junit.jupiter.api.Assertions.assertThrows;
@@ -91,7 +92,7 @@ class EventTimeTest {
             adapter.addDtronListener(stops);
             tester.addDtronListener(dones);
 
-            tester.setRunId("run-42");
+            TesterSide.of(tester).setRunId("run-42");
             assertEquals("run-42", tester.getRunId());
             tester.send(Dtron.RUN_START.constructValued(Map.of("timeunit", 1_000)));
             IDtronChannelValued start = starts.take();
@@ -111,7 +112,7 @@ class EventTimeTest {
             assertEquals("run-42", stops.take().getRunId());
             adapter.send(DONE.constructValued(Map.of("amount", 2)));
             assertEquals("", dones.take().getRunId(), "between runs, no run id");
-            adapter.setRunId("mine");
+            TesterSide.of(adapter).setRunId("mine");
             adapter.send(DONE.constructValued(Map.of("amount", 3)));
             assertEquals("mine", dones.take().getRunId());
         }

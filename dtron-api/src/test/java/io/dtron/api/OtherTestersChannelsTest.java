@@ -1,5 +1,6 @@
 package io.dtron.api;
 
+import io.dtron.api.internal.TesterSide;
 import static org.awaitility.Awaitility.await;
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertTrue;
@@ -45,12 +46,15 @@ class OtherTestersChannelsTest {
             Inbox moves = new Inbox(move);
             first.addDtronListener(moves);
             second.addDtronListener(new Inbox(done));   // the second tester receives done: its model's output
-            await().atMost(Duration.ofSeconds(20)).until(() -> first.getOtherTesters().contains(second.getMemberId())
-                    && first.getMembersServedChannels().containsKey(second.getMemberId())
-                    && first.getMembersServedChannels().get(second.getMemberId()).receives().contains("done")
-                    && second.getOtherTesters().contains(first.getMemberId())
-                    && second.getMembersServedChannels().containsKey(first.getMemberId())
-                    && second.getMembersServedChannels().get(first.getMemberId()).receives().contains("move"));
+            TesterSide firstTester = TesterSide.of(first);
+            TesterSide secondTester = TesterSide.of(second);
+            await().atMost(Duration.ofSeconds(20)).until(() -> firstTester.getOtherTesters()
+                    .contains(second.getMemberId())
+                    && firstTester.getMembersServedChannels().containsKey(second.getMemberId())
+                    && firstTester.getMembersServedChannels().get(second.getMemberId()).receives().contains("done")
+                    && secondTester.getOtherTesters().contains(first.getMemberId())
+                    && secondTester.getMembersServedChannels().containsKey(first.getMemberId())
+                    && secondTester.getMembersServedChannels().get(first.getMemberId()).receives().contains("move"));
             first.addRecordListener(r -> {
                 if (!Dtron.isReservedChannel(r.channel())) {
                     records.add(r);

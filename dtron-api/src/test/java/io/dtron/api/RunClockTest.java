@@ -1,5 +1,6 @@
 package io.dtron.api;
 
+import io.dtron.api.internal.TesterSide;
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertNotNull;
@@ -242,7 +243,7 @@ class RunClockTest {
             member.addDtronListener(starts);
             Inbox resets = new Inbox(RESET);
             member.addDtronListener(resets);
-            tester.setRunId("run-1");
+            TesterSide.of(tester).setRunId("run-1");
             tester.send(Dtron.RUN_START.constructValued(Map.of("timeunit", 1_000)));
             long timeZero = starts.take().getEventTimeNanos();
             RunClock clock = member.runClock();

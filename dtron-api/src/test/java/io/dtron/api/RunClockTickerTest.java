@@ -1,5 +1,6 @@
 package io.dtron.api;
 
+import io.dtron.api.internal.TesterSide;
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertNotNull;
 import static org.junit.jupiter.api.Assertions.assertNull;
@@ -159,7 +160,7 @@ class RunClockTickerTest {
             Waits.await("the ticker's run clock stopped").until(() -> !adapter.runClock().isRunning());
             // the ticker's answer to a probe comes after every tick it sent: then all of them have arrived
             assertEquals(java.util.Set.of(adapter.getMemberId()),
-                    tester.probe(List.of(adapter.getMemberId()), Waits.TIMEOUT));
+                    TesterSide.of(tester).probe(List.of(adapter.getMemberId()), Waits.TIMEOUT));
             while (ticks.poll(0) != null) {
                 // a tick sent before the stop
             }

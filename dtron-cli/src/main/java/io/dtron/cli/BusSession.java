@@ -4,6 +4,7 @@ import io.dtron.api.Dtron;
 import io.dtron.api.DtronAdapter;
 import io.dtron.api.DtronOptions;
 import io.dtron.bridge.BusBridge;
+import io.dtron.bridge.BusRun;
 import io.dtron.model.TestInterface;
 import java.io.PrintWriter;
 import java.util.function.Supplier;
@@ -23,8 +24,6 @@ final class BusSession implements AutoCloseable {
     private static final Logger LOG = LoggerFactory.getLogger(BusSession.class);
     /** How long adapters that just joined get to add their listeners before the run starts. */
     private static final Duration SETTLE = Duration.ofMillis(250);
-    /** How long this tester waits for every member on the bus to tell whether it is a tester. */
-    private static final Duration ROLL_CALL = Duration.ofSeconds(3);
 
     private final Supplier<DtronOptions.Builder> options;
     private final BusBridge bridge;
@@ -54,6 +53,11 @@ final class BusSession implements AutoCloseable {
         return bridge;
     }
 
+    /** The run on the bus. */
+    BusRun run() {
+        return bridge.run();
+    }
+
     /**
      * Connects an adapter of this JVM to the bus as a member of its own and starts it.
      *
@@ -76,7 +80,7 @@ final class BusSession implements AutoCloseable {
      * @throws InterruptedException if the thread was interrupted while waiting
      */
     boolean awaitAdapters(int count, Duration timeout) throws InterruptedException {
-        if (!bridge.awaitAdapters(count, timeout)) {
+        if (!bridge.run().awaitAdapters(count, timeout)) {
             return false;
         }
         Thread.sleep(SETTLE.toMillis());
@@ -85,13 +89,13 @@ final class BusSession implements AutoCloseable {
 
     /**
      * Returns the testers of other runs on this bus that joined it before this one, once every member has told
-     * whether it is a tester (see {@link BusBridge#testersThatJoinedFirst}): a run here would share their adapters.
+     * whether it is a tester (see {@link BusRun#testersThatJoinedFirst}): a run here would share their adapters.
      * Called before this JVM's adapters join, so that a tester that does not start leaves no adapter behind.
      *
      * @throws InterruptedException if the thread was interrupted while waiting
      */
     List<String> testersThatJoinedFirst() throws InterruptedException {
-        return bridge.testersThatJoinedFirst(ROLL_CALL);
+        return bridge.run().testersThatJoinedFirst();
     }
 
     /**
@@ -99,14 +103,14 @@ final class BusSession implements AutoCloseable {
      * of the run (they are not judged).
      */
     void printSummary(PrintWriter out) {
-        out.println("latency t2 - t1 of outputs: " + bridge.outputLatency());
-        out.println("latency t2 - t1 of inputs back from the bus: " + bridge.inputLatency());
-        bridge.clockOffsets().forEach((member, offset) -> out.printf(Locale.ROOT,
+        out.println("latency t2 - t1 of outputs: " + bridge.run().outputLatency());
+        out.println("latency t2 - t1 of inputs back from the bus: " + bridge.run().inputLatency());
+        bridge.run().clockOffsets().forEach((member, offset) -> out.printf(Locale.ROOT,
                 "clock offset of %s to the tester: %.3f ms +/- %.3f ms%n", member, offset.offsetNanos() / 1e6,
                 offset.errorNanos() / 1e6));
-        long late = bridge.outputsAfterEnd();
-        long others = bridge.messagesOfOtherRuns();
-        out.println("bus: " + bridge.stats() + (late == 0 ? "" : ", " + late + " output" + (late == 1 ? "" : "s")
+        long late = bridge.run().outputsAfterEnd();
+        long others = bridge.run().messagesOfOtherRuns();
+        out.println("bus: " + bridge.run().stats() + (late == 0 ? "" : ", " + late + " output" + (late == 1 ? "" : "s")
                 + " after the end (not judged)") + (others == 0 ? "" : ", " + others + " message"
                 + (others == 1 ? "" : "s") + " of other runs (ignored)"));
     }

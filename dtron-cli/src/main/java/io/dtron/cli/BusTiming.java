@@ -1,6 +1,6 @@
 package io.dtron.cli;
 
-import io.dtron.bridge.BusBridge;
+import io.dtron.bridge.BusRun;
 import io.dtron.bridge.ChannelDelay;
 import io.dtron.engine.ObservableWindow;
 import java.nio.file.Path;
@@ -15,13 +15,6 @@ import java.util.Optional;
  * the run saw.
  */
 final class BusTiming {
-    /**
-     * The smallest automatic reorder window: a loaded host or a fresh JVM holds a message up for tens of
-     * milliseconds now and then, whatever the bus's delays were before the run.
-     */
-    static final long AUTO_FLOOR_MICROS = RunDefaults.REORDER_WINDOW_MICROS;
-    /** How many times the longest delay measured before the run the automatic window allows for. */
-    private static final int DELAY_FACTOR = 3;
     /** Delays that take more than this share of the narrowest window are worth a warning. */
     private static final double WARN_SHARE = 0.2;
     /** The share of the narrowest window that a suggested time unit leaves to the delays. */
@@ -30,18 +23,8 @@ final class BusTiming {
     private BusTiming() {
     }
 
-    /**
-     * The automatic reorder window: three times the longest delay measured plus twice the clocks' error bound,
-     * rounded up to a millisecond, and at least {@link #AUTO_FLOOR_MICROS}.
-     */
-    static long autoWindow(BusBridge.Delays delays) {
-        long nanos = DELAY_FACTOR * delays.maxDelayNanos() + 2 * delays.maxErrorNanos();
-        long micros = -Math.floorDiv(-nanos, 1_000_000L) * 1000;
-        return Math.max(AUTO_FLOOR_MICROS, micros);
-    }
-
     /** The line printed before time 0: the delays measured and the reorder window. */
-    static String delaysLine(BusBridge.Delays delays, long windowMicros, boolean auto) {
+    static String delaysLine(BusRun.Delays delays, long windowMicros, boolean auto) {
         String measured = delays.messages() == 0
                 ? "no message of an adapter could be measured (adapters send their clock offset once they know the"
                         + " tester)"
@@ -49,9 +32,9 @@ final class BusTiming {
                         millis(delays.maxDelayNanos() / 1000), delays.messages(), delays.members(),
                         delays.members() == 1 ? "" : "s", millis(delays.maxErrorNanos() / 1000));
         String window = auto
-                ? "auto: " + DELAY_FACTOR + " x the longest delay + 2 x the clock error, at least "
-                        + millis(AUTO_FLOOR_MICROS) + "; widened during the run when a message takes more than half of"
-                        + " it"
+                ? "auto: " + BusRun.AUTO_WINDOW_DELAY_FACTOR + " x the longest delay + 2 x the clock error, at"
+                        + " least " + millis(BusRun.AUTO_WINDOW_FLOOR_MICROS) + "; widened during the run when a"
+                        + " message takes more than half of it"
                 : "--delta";
         return "dtron run: delays on the bus before the run: " + measured + "; reorder window (Delta) "
                 + millis(windowMicros) + " (" + window + ")";
@@ -62,7 +45,7 @@ final class BusTiming {
      * input, and why they stopped (steady, or the time limit), with the longest round trip of the last rounds;
      * {@code warmedUp} when the engine warmed up meanwhile.
      */
-    static String probingLine(BusBridge.Probing probing, boolean warmedUp) {
+    static String probingLine(BusRun.Probing probing, boolean warmedUp) {
         if (probing.rounds() == 0) {
             return "dtron run: no adapter on the bus to probe before the run";
         }
@@ -79,7 +62,7 @@ final class BusTiming {
      * A warning when the delays measured take more than a fifth of the model's narrowest observable window at this
      * time unit, with the time unit that would leave them a tenth of it.
      */
-    static Optional<String> windowWarning(Optional<ObservableWindow> narrowest, BusBridge.Delays delays,
+    static Optional<String> windowWarning(Optional<ObservableWindow> narrowest, BusRun.Delays delays,
             long unitMicros) {
         if (narrowest.isEmpty() || delays.messages() == 0) {
             return Optional.empty();
@@ -105,12 +88,13 @@ final class BusTiming {
     }
 
     /** The lines printed after the verdict: the window in the end, its widenings, and the largest delays. */
-    static List<String> summary(BusBridge bridge, boolean auto) {
+    static List<String> summary(BusRun run) {
+        boolean auto = run.reorderWindowAutomatic();
         List<String> lines = new ArrayList<>();
-        List<String> widenings = bridge.widenings();
-        lines.add("reorder window (Delta): " + millis(bridge.reorderWindowMicros()) + (auto ? " (auto)" : " (--delta)")
+        List<String> widenings = run.widenings();
+        lines.add("reorder window (Delta): " + millis(run.reorderWindowMicros()) + (auto ? " (auto)" : " (--delta)")
                 + (widenings.isEmpty() ? (auto ? ", not widened" : "") : ", widened " + String.join("; ", widenings)));
-        List<ChannelDelay> delays = bridge.runDelays();
+        List<ChannelDelay> delays = run.runDelays();
         if (!delays.isEmpty()) {
             List<String> parts = new ArrayList<>();
             delays.forEach(d -> parts.add(d.direction() + " " + d.channel() + " " + millis(d.lowMicros()) + " to "

@@ -120,11 +120,11 @@ final class JsonTrace implements TestListener {
             return tester.run();
         }
         Consumer<BusRecord> bus = json::bus;
-        bridge.addRecordListener(bus);
+        bridge.run().addRecordListener(bus);
         try {
             return tester.run();
         } finally {
-            bridge.removeRecordListener(bus);
+            bridge.run().removeRecordListener(bus);
         }
     }
 

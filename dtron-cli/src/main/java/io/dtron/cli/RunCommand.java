@@ -4,7 +4,7 @@ import io.dtron.api.DtronAdapter;
 import io.dtron.api.DtronException;
 import io.dtron.api.DtronOptions;
 import io.dtron.api.ServedChannels;
-import io.dtron.bridge.BusBridge;
+import io.dtron.bridge.BusRun;
 import io.dtron.engine.Adapter;
 import io.dtron.engine.DelayPolicy;
 import io.dtron.engine.ObservableWindow;
@@ -74,21 +74,6 @@ final class RunCommand implements Callable<Integer> {
 
     @Parameters(index = "0", paramLabel = "MODEL", description = "The model (.xml, .xta, or an Uppaal 3 .ta).")
     private Path model;
-
-    /**
-     * Before a run the tester probes the adapters in rounds this far apart, for at least {@link #PROBE_MINIMUM} (its
-     * engine warms up meanwhile) and until their round trips are steady, or {@link #PROBE_LIMIT} passed.
-     */
-    private static final Duration DELAY_PROBE_SPACING = Duration.ofMillis(20);
-    /**
-     * The probes before a run come one after the other: a thousand rounds and more, so that the JIT compiler of a
-     * fresh JVM compiles the path of an input, here and in the adapters, before time 0.
-     */
-    private static final Duration WARM_UP_PROBE_SPACING = Duration.ZERO;
-    private static final Duration PROBE_MINIMUM = Duration.ofMillis(400);
-    private static final Duration PROBE_LIMIT = Duration.ofSeconds(3);
-    /** How far ahead a run of several testers is started, so that every tester starts its engine at time 0. */
-    private static final Duration RUN_LEAD = Duration.ofMillis(500);
 
     @Option(names = "--sut", paramLabel = "CLASS[:VARIANT]",
             description = "An in-process system under test: a class implementing io.dtron.engine.Adapter,"
@@ -220,7 +205,7 @@ final class RunCommand implements Callable<Integer> {
     @Option(names = "--delta", paramLabel = "US|auto", defaultValue = "auto",
             description = "On the bus: the reorder window, how long the tester holds its judgement for messages still"
                     + " in transit; every message is placed by the time its sender stamped on it (auto: from the"
-                    + " delays measured before the run, at least " + BusTiming.AUTO_FLOOR_MICROS + " us, widened"
+                    + " delays measured before the run, at least " + BusRun.AUTO_WINDOW_FLOOR_MICROS + " us, widened"
                     + " during the run when a message takes more than half of it).")
     private String delta;
 
@@ -432,15 +417,15 @@ final class RunCommand implements Callable<Integer> {
         }
     }
 
-    /** The reorder window of a bus run, in microseconds: {@code --delta}. */
-    private long reorderWindow() {
+    /** The reorder window of a bus run, in microseconds: {@code --delta}; empty for auto. */
+    private java.util.OptionalLong reorderWindow() {
         if (delta.equalsIgnoreCase("auto")) {
-            return RunDefaults.REORDER_WINDOW_MICROS;
+            return java.util.OptionalLong.empty();
         }
         try {
             long micros = Long.parseLong(delta);
             if (micros >= 0) {
-                return micros;
+                return java.util.OptionalLong.of(micros);
             }
         } catch (NumberFormatException e) {
             // the message below says what is expected
@@ -664,7 +649,7 @@ final class RunCommand implements Callable<Integer> {
         try (session) {
             against = "the adapters on bus '" + clusterName + "'";
             out.println("dtron run: " + model + " on bus '" + clusterName + "' at " + where
-                    + " as " + session.bridge().memberId() + ", seed " + options.seed() + ", " + options.timeout()
+                    + " as " + session.run().memberId() + ", seed " + options.seed() + ", " + options.timeout()
                     + " time units of " + options.timeUnitMicros() + " us in real time" + judge.by());
             out.flush();
             try {
@@ -698,21 +683,20 @@ final class RunCommand implements Callable<Integer> {
             int wanted = adaptersWanted();
             try {
                 if ((wanted < 0 ? !awaitChannels(session, seconds, out, err) : !awaitMembers(session, wanted, seconds,
-                        out, err)) || refusedForOwners(session.bridge(), err)) {
+                        out, err)) || refusedForOwners(session.run(), err)) {
                     return 1;
                 }
-                session.bridge().expectAdapters();
+                session.run().expectAdapters();
             } catch (InterruptedException e) {
                 Thread.currentThread().interrupt();
                 err.println("dtron run: interrupted while waiting for the adapters");
                 return 1;
             }
-            boolean auto = delta.equalsIgnoreCase("auto");
             long window;
-            BusBridge bridge = session.bridge();
+            BusRun busRun = session.run();
             try {
                 if (join) {
-                    if (!bridge.readyToJoin(Duration.ofSeconds(seconds))) {
+                    if (!busRun.readyToJoin(Duration.ofSeconds(seconds))) {
                         err.println("dtron run: no tester that could start a run greeted bus '" + clusterName
                                 + "' within " + seconds + " s (this tester needs its clock's offset to that tester's);"
                                 + " start it with --testers N, or wait longer with --wait-timeout");
@@ -721,46 +705,44 @@ final class RunCommand implements Callable<Integer> {
                     out.println("dtron run: ready; waiting up to " + seconds + " s for the tester that starts the run"
                             + " on bus '" + clusterName + "'");
                     out.flush();
-                } else if (testers != null && testers > 1 && !awaitTesters(bridge, testers - 1, seconds, out, err)) {
+                } else if (testers != null && testers > 1 && !awaitTesters(busRun, testers - 1, seconds, out, err)) {
                     return 1;
                 }
-                options = prepareOnBus(bridge, network, testInterface, options, out, err);
-                // what the probes measured, and for a joining tester what passes by: the others' pings and answers
-                BusBridge.Delays delays = bridge.measureDelays(0, DELAY_PROBE_SPACING);
-                window = auto ? BusTiming.autoWindow(delays) : reorderWindow();
-                out.println(BusTiming.delaysLine(delays, window, auto));
+                options = prepareOnBus(busRun, network, testInterface, options, out, err);
+                BusRun.Delays delays = busRun.measuredDelays();
+                window = busRun.reorderWindow(delays, reorderWindow());
+                out.println(BusTiming.delaysLine(delays, window, busRun.reorderWindowAutomatic()));
                 BusTiming.windowWarning(ObservableWindow.narrowest(network, testInterface), delays,
                         options.timeUnitMicros()).ifPresent(out::println);
                 out.flush();
                 // a run of several testers: every engine counts from the time 0 its start names
                 if (join) {
-                    if (bridge.awaitRun(Duration.ofSeconds(seconds)) < 0) {
+                    if (busRun.awaitRun(Duration.ofSeconds(seconds)) < 0) {
                         err.println("dtron run: no tester started a run on bus '" + clusterName + "' within " + seconds
                                 + " s; start it with --testers N (N counting every tester of the run), or wait"
                                 + " longer with --wait-timeout");
                         return 1;
                     }
                 } else if (testers != null && testers > 1) {
-                    bridge.announceRun(RUN_LEAD, options.timeUnitMicros());
+                    busRun.announceRun(options.timeUnitMicros());
                 }
             } catch (InterruptedException e) {
                 Thread.currentThread().interrupt();
                 err.println("dtron run: interrupted while preparing the run");
                 return 1;
             }
-            if (refusedForOwners(bridge, err)) {
+            if (refusedForOwners(busRun, err)) {
                 return 1;
             }
-            bridge.reorderWindow(window, auto);
-            TestResult result = judge.test(testInterface, bridge, options.withReorderWindow(window), out);
-            bridge.finish(result.verdict().exitCode());
+            TestResult result = judge.test(testInterface, session.bridge(), options.withReorderWindow(window), out);
+            busRun.finish(result.verdict().exitCode());
             if (deltaReport != null) {
-                Files.writeString(deltaReport, BusTiming.deltaReport(model, options.timeUnitMicros(), bridge.runId(),
-                        bridge.runDelays()));
+                Files.writeString(deltaReport, BusTiming.deltaReport(model, options.timeUnitMicros(), busRun.runId(),
+                        busRun.runDelays()));
             }
             session.printSummary(out);
-            BusTiming.summary(bridge, auto).forEach(out::println);
-            bridge.peerVerdicts().forEach((member, code) -> out.println("tester " + member + " of this run: "
+            BusTiming.summary(busRun).forEach(out::println);
+            busRun.peerVerdicts().forEach((member, code) -> out.println("tester " + member + " of this run: "
                     + (code == 0 ? "PASSED" : code == 2 ? "FAILED" : "INCONCLUSIVE")));
             out.flush();
             return result.verdict().exitCode();
@@ -773,9 +755,9 @@ final class RunCommand implements Callable<Integer> {
      */
     private boolean awaitChannels(BusSession session, long seconds, PrintWriter out, PrintWriter err)
             throws InterruptedException {
-        BusBridge bridge = session.bridge();
+        BusRun busRun = session.run();
         long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(seconds);
-        List<String> missing = bridge.unservedChannels();
+        List<String> missing = busRun.unservedChannels();
         if (!missing.isEmpty()) {
             out.println("dtron run: waiting up to " + seconds + " s until an adapter on bus '" + clusterName()
                     + "' serves every channel of the model; missing: " + String.join(", ", missing));
@@ -786,31 +768,31 @@ final class RunCommand implements Callable<Integer> {
             if (left <= 0) {
                 err.println("dtron run: within " + seconds + " s no adapter on bus '" + clusterName() + "' at "
                         + busWhere() + " served " + String.join(", ", missing)
-                        + servedSummary(bridge) + ". Start the adapters with the same cluster name and address"
+                        + servedSummary(busRun) + ". Start the adapters with the same cluster name and address"
                         + " (adapters declare the channels they send with Dtron.declareOutputs), wait longer with"
                         + " --wait-timeout, or, for adapters that do not say which channels they serve, wait for a"
                         + " number of them with --wait-for-adapters N");
                 return false;
             }
-            bridge.awaitChannelsServed(Duration.ofNanos(Math.min(left, TimeUnit.SECONDS.toNanos(5))));
-            List<String> now = bridge.unservedChannels();
+            busRun.awaitChannelsServed(Duration.ofNanos(Math.min(left, TimeUnit.SECONDS.toNanos(5))));
+            List<String> now = busRun.unservedChannels();
             if (!now.isEmpty() && !now.equals(missing)) {
                 out.println("dtron run: still missing: " + String.join(", ", now));
                 out.flush();
             }
             missing = now;
         }
-        out.println("dtron run: every channel is served" + servedSummary(bridge));
+        out.println("dtron run: every channel is served" + servedSummary(busRun));
         out.flush();
         return true;
     }
 
     /**
      * Refuses the run, saying why in one line, when the owners of the model's outputs are ambiguous: two members send
-     * one output, or have one id (see {@link BusBridge#ownersConflict()}).
+     * one output, or have one id (see {@link BusRun#ownersConflict()}).
      */
-    private boolean refusedForOwners(BusBridge bridge, PrintWriter err) {
-        Optional<String> conflict = bridge.ownersConflict();
+    private boolean refusedForOwners(BusRun busRun, PrintWriter err) {
+        Optional<String> conflict = busRun.ownersConflict();
         conflict.ifPresent(reason -> {
             err.println("dtron run: bus '" + clusterName() + "' at " + busWhere() + ": " + reason + ". Stop all but"
                     + " one of them, or give this run a bus of its own with --cluster NAME (and its adapters the same"
@@ -821,10 +803,10 @@ final class RunCommand implements Callable<Integer> {
     }
 
     /** "; members: A receives [..] sends [..], ..." for what the adapters on the bus said they serve. */
-    private static String servedSummary(BusBridge bridge) {
-        Map<String, ServedChannels> served = bridge.servedChannels();
+    private static String servedSummary(BusRun busRun) {
+        Map<String, ServedChannels> served = busRun.servedChannels();
         if (served.isEmpty()) {
-            return "; no adapter on the bus said which channels it serves (members: " + bridge.members() + ")";
+            return "; no adapter on the bus said which channels it serves (members: " + busRun.members() + ")";
         }
         List<String> parts = new ArrayList<>();
         served.forEach((member, channels) -> parts.add(member + " receives " + channels.receives() + " and sends "
@@ -833,19 +815,19 @@ final class RunCommand implements Callable<Integer> {
     }
 
     /** Waits until the other testers of a run of several said they join it (--testers N). */
-    private boolean awaitTesters(BusBridge bridge, int others, long seconds, PrintWriter out, PrintWriter err)
+    private boolean awaitTesters(BusRun busRun, int others, long seconds, PrintWriter out, PrintWriter err)
             throws InterruptedException {
         out.println("dtron run: waiting up to " + seconds + " s for " + others + " other tester" + (others == 1 ? ""
                 : "s") + " to join the run with --join");
         out.flush();
-        if (!bridge.awaitJoiningTesters(others, Duration.ofSeconds(seconds))) {
-            err.println("dtron run: only " + bridge.joiningTesters().size() + " of " + others + " other testers joined"
+        if (!busRun.awaitJoiningTesters(others, Duration.ofSeconds(seconds))) {
+            err.println("dtron run: only " + busRun.joiningTesters().size() + " of " + others + " other testers joined"
                     + " the run on bus '" + clusterName() + "' within " + seconds + " s; start them with --join and"
                     + " the same cluster name (and --members where they are on other hosts)");
             return false;
         }
-        out.println("dtron run: the run's testers: " + bridge.memberId() + " (this one), " + String.join(", ",
-                bridge.joiningTesters()));
+        out.println("dtron run: the run's testers: " + busRun.memberId() + " (this one), " + String.join(", ",
+                busRun.joiningTesters()));
         out.flush();
         return true;
     }
@@ -860,13 +842,13 @@ final class RunCommand implements Callable<Integer> {
                 + " to join bus '" + clusterName() + "'");
         out.flush();
         if (!session.awaitAdapters(wanted, Duration.ofSeconds(seconds))) {
-            err.println("dtron run: only " + (session.bridge().members().size() - 1) + " of " + wanted
+            err.println("dtron run: only " + (session.run().members().size() - 1) + " of " + wanted
                     + " adapters joined bus '" + clusterName() + "' at " + busWhere()
                     + " within " + seconds + " s; start them with the same cluster name and address, or wait"
                     + " longer with --wait-timeout");
             return false;
         }
-        out.println("dtron run: members " + session.bridge().members());
+        out.println("dtron run: members " + session.run().members());
         out.flush();
         return true;
     }
@@ -1109,7 +1091,7 @@ final class RunCommand implements Callable<Integer> {
      * is measured; says what it found, warns about input windows narrower than the room their inputs need (the
      * margin for the lateness plus each channel's delay to its adapter), and returns the options with that margin.
      */
-    private TestOptions prepareOnBus(BusBridge bridge, Network network, TestInterface testInterface,
+    private TestOptions prepareOnBus(BusRun busRun, Network network, TestInterface testInterface,
             TestOptions options, PrintWriter out, PrintWriter err) throws InterruptedException {
         boolean warm = !options.virtualTime() && !parseBackend();
         SchedulingDelay[] lateness = new SchedulingDelay[1];
@@ -1120,8 +1102,7 @@ final class RunCommand implements Callable<Integer> {
             measuring.start();
         }
         if (!join) {
-            out.println(BusTiming.probingLine(bridge.probeUntilSteady(WARM_UP_PROBE_SPACING, warm ? PROBE_MINIMUM
-                    : Duration.ZERO, PROBE_LIMIT), warm));
+            out.println(BusTiming.probingLine(busRun.warmUp(warm), warm));
             out.flush();
         }
         if (!warm) {
@@ -1132,7 +1113,7 @@ final class RunCommand implements Callable<Integer> {
         out.println("dtron run: " + lateness[0].describe(unit) + ", and each input channel's delay to its adapter"
                 + " further inside");
         out.flush();
-        lateness[0].narrowInputWindow(network, testInterface, unit, "--virtual-time", bridge::inputDelayMicros)
+        lateness[0].narrowInputWindow(network, testInterface, unit, "--virtual-time", busRun::inputDelayMicros)
                 .ifPresent(warning -> {
                     err.println("dtron run: warning: " + warning);
                     err.flush();

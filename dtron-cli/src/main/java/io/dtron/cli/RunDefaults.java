@@ -6,11 +6,6 @@ final class RunDefaults {
     static final long MAX_WAIT_SECONDS = Long.MAX_VALUE / 1_000_000_000L;
     private static final long TIME_UNIT_MICROS = 1000;
     private static final long TIMEOUT_UNITS = 1000;
-    /**
-     * The reorder window of a bus run: messages on a loopback or LAN bus arrive within a millisecond, but a loaded
-     * machine or a fresh JVM holds one up for tens of milliseconds now and then.
-     */
-    static final long REORDER_WINDOW_MICROS = 50_000;
 
     private RunDefaults() {
     }

@@ -3,7 +3,7 @@ package io.dtron.cli;
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
-import io.dtron.bridge.BusBridge;
+import io.dtron.bridge.BusRun;
 import io.dtron.bridge.ChannelDelay;
 import io.dtron.engine.ObservableWindow;
 import io.dtron.model.ModelLoader;
@@ -32,22 +32,23 @@ class BusTimingTest {
                 + " input that reaches no listener, until their round trips were steady (the last rounds' round trips"
                 + " up to 0.812 ms); each input is aimed at least its adapters' round trip inside the end of its"
                 + " window, or the 99th percentile of its channel's delays once inputs are acknowledged",
-                BusTiming.probingLine(new BusBridge.Probing(14, true, 812, 450), true));
-        assertTrue(BusTiming.probingLine(new BusBridge.Probing(120, false, 31_000, 3_010), false).startsWith(
+                BusTiming.probingLine(new BusRun.Probing(14, true, 812, 450), true));
+        assertTrue(BusTiming.probingLine(new BusRun.Probing(120, false, 31_000, 3_010), false).startsWith(
                 "dtron run: probed the adapters in 120 rounds over 3.01 s, each probe an input that reaches no"
                         + " listener, until the limit, their round trips still uneven (the last rounds' round trips"
                         + " up to 31 ms)"));
         assertEquals("dtron run: no adapter on the bus to probe before the run",
-                BusTiming.probingLine(new BusBridge.Probing(0, false, 0, 0), true));
+                BusTiming.probingLine(new BusRun.Probing(0, false, 0, 0), true));
     }
 
     @Test
     void theAutomaticWindowCoversThreeTimesTheLongestDelayAndTwiceTheErrorWithAFloor() {
-        assertEquals(BusTiming.AUTO_FLOOR_MICROS, BusTiming.autoWindow(new BusBridge.Delays(400_000, 50_000, 20, 1)));
+        assertEquals(BusRun.AUTO_WINDOW_FLOOR_MICROS,
+                new BusRun.Delays(400_000, 50_000, 20, 1).autoWindowMicros());
         // 3 x 30 ms + 2 x 1.5 ms = 93 ms
-        assertEquals(93_000, BusTiming.autoWindow(new BusBridge.Delays(30_000_000, 1_500_000, 20, 1)));
+        assertEquals(93_000, new BusRun.Delays(30_000_000, 1_500_000, 20, 1).autoWindowMicros());
         // rounded up to a whole millisecond
-        assertEquals(91_000, BusTiming.autoWindow(new BusBridge.Delays(30_000_000, 100_000, 20, 1)));
+        assertEquals(91_000, new BusRun.Delays(30_000_000, 100_000, 20, 1).autoWindowMicros());
     }
 
     @Test
@@ -60,7 +61,7 @@ class BusTimingTest {
     @Test
     void delaysThatEatAFifthOfTheNarrowestWindowAreReportedWithATimeUnitThatFits() throws Exception {
         // 1 ms of delay against a window of 4 units: at 1000 us per unit it takes 25%
-        BusBridge.Delays delays = new BusBridge.Delays(900_000, 100_000, 20, 1);
+        BusRun.Delays delays = new BusRun.Delays(900_000, 100_000, 20, 1);
         String warning = BusTiming.windowWarning(tickerWindow(), delays, 1000).orElseThrow();
         assertTrue(warning.contains("the narrowest time window of an observable action, o_tick in Ticker (8 <= x <="
                 + " 12, "), warning);

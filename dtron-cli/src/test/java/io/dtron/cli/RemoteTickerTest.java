@@ -62,7 +62,7 @@ class RemoteTickerTest {
                 ChildJvm ticker = ChildJvm.start(RunClockTickerMain.class, dir.resolve("ticker.log"), cluster, member,
                         "correct", "0", "1", Integer.toString(port))) {
             ticker.awaitOutput("joined", Duration.ofSeconds(60));
-            assertTrue(bridge.awaitAdapters(1, Duration.ofSeconds(30)));
+            assertTrue(bridge.run().awaitAdapters(1, Duration.ofSeconds(30)));
             ticker.awaitOutput("offset", Waits.TIMEOUT);
             // 100 ms per unit: the model's 2 units of jitter, 200 ms, hold for a ticker JVM on a busy machine (at 25 ms
             // one was seen held up 225 ms)
@@ -70,7 +70,7 @@ class RemoteTickerTest {
             CompletableFuture<TestResult> run = CompletableFuture.supplyAsync(
                     () -> new OnlineTester(network, testInterface, bridge, options).run());
             // it goes silent once the run judged some of its ticks
-            Waits.await("ticks of the run").until(() -> bridge.outputLatency().count() >= 3);
+            Waits.await("ticks of the run").until(() -> bridge.run().outputLatency().count() >= 3);
             if (kill) {
                 ticker.kill();
             } else {
@@ -99,7 +99,7 @@ class RemoteTickerTest {
                     ChildJvm ticker = ChildJvm.start(RunClockTickerMain.class, dir.resolve("shifted" + shift + ".log"),
                             cluster, "shifted-ticker", "correct", shift, "1", Integer.toString(port))) {
                 ticker.awaitOutput("joined", Duration.ofSeconds(60));
-                assertTrue(bridge.awaitAdapters(1, Duration.ofSeconds(30)));
+                assertTrue(bridge.run().awaitAdapters(1, Duration.ofSeconds(30)));
                 ticker.awaitOutput("offset", Waits.TIMEOUT);
                 // 250 ms per unit: a clock 2 s off, uncorrected, would put every tick 8 units away from where the
                 // tester expects it, beyond the model's tolerance of 2 (500 ms, which a busy machine keeps)
@@ -110,7 +110,7 @@ class RemoteTickerTest {
                 // without one
                 assertTrue(result.outputs() >= 2 * result.inputs() && result.outputs() >= 2, result.toString());
                 // the tester's clock minus the ticker's: minus the shift, within the estimate's error bound
-                ClockOffset offset = bridge.clockOffsets().get("shifted-ticker");
+                ClockOffset offset = bridge.run().clockOffsets().get("shifted-ticker");
                 long expected = -Long.parseLong(shift) * 1_000_000;
                 assertTrue(offset != null && Math.abs(offset.offsetNanos() - expected) <= offset.errorNanos(),
                         "offset " + offset + ", expected " + expected + " ns");

@@ -1,5 +1,6 @@
 package io.dtron.cli;
 
+import io.dtron.api.internal.TesterSide;
 import static org.awaitility.Awaitility.await;
 import static org.junit.jupiter.api.Assertions.assertArrayEquals;
 import static org.junit.jupiter.api.Assertions.assertEquals;
@@ -349,7 +350,7 @@ class RunCommandTest {
         String shared = cluster();
         try (BusSession first = BusSession.open(testInterface,
                 () -> DtronOptions.builder().clusterName(shared).bindAddress(InetAddress.getLoopbackAddress()), false)) {
-            String tester = first.bridge().memberId();
+            String tester = first.run().memberId();
             CommandRun second = CommandRun.of(model.toString(), "--adapter", BusTicker.class.getName(), "--cluster", shared,
                     "--timeunit", "10000", "--timeout", "100");
             assertEquals(1, second.exit(), second.out() + second.err());
@@ -368,7 +369,7 @@ class RunCommandTest {
         // a member that stays on the bus through both, to see when the first tester is there
         try (Dtron watcher = Dtron.connect(DtronOptions.builder().clusterName(shared).memberName("watcher").build())) {
             CompletableFuture<CommandRun> first = CompletableFuture.supplyAsync(() -> CommandRun.of(args));
-            await().atMost(Duration.ofSeconds(60)).until(() -> !watcher.getOtherTesters().isEmpty());
+            await().atMost(Duration.ofSeconds(60)).until(() -> !TesterSide.of(watcher).getOtherTesters().isEmpty());
             CommandRun second = CommandRun.of(args);
             assertEquals(1, second.exit(), second.out() + second.err());
             assertTrue(second.err().contains("has a run in progress"), second.err());
@@ -425,7 +426,7 @@ class RunCommandTest {
         try (BusSession session = BusSession.open(testInterface,
                 () -> DtronOptions.builder().clusterName(cluster).bindAddress(InetAddress.getLoopbackAddress()), false)) {
             session.startAdapter(member::add);
-            assertTrue(session.awaitAdapters(1, Duration.ofSeconds(30)), session.bridge().members().toString());
+            assertTrue(session.awaitAdapters(1, Duration.ofSeconds(30)), session.run().members().toString());
             session.bridge().start(new AdapterContext() {
                 @Override
                 public void report(Event output) {
@@ -472,7 +473,7 @@ class RunCommandTest {
             IDtronChannel tick = IDtronChannel.of("tick", "seq");
             member.get(0).send(tick.constructValued(Map.of("seq", 1)));
             member.get(0).send(tick.constructValued(Map.of("seq", 2)));
-            Waits.await("2 outputs after the end").until(() -> session.bridge().outputsAfterEnd() >= 2);
+            Waits.await("2 outputs after the end").until(() -> session.run().outputsAfterEnd() >= 2);
             StringWriter summary = new StringWriter();
             session.printSummary(new PrintWriter(summary, true));
             assertTrue(summary.toString().contains(", 2 outputs after the end (not judged)"), summary.toString());

@@ -118,7 +118,7 @@ public final class BusLatencyBench {
     private static void measure(Network network, TestInterface testInterface, DtronOptions.Builder options, long unit,
                                 long deadlineNanos, int ticks) throws InterruptedException {
         try (BusBridge bridge = BusBridge.connect(testInterface, options)) {
-            if (!bridge.awaitAdapters(1, ADAPTERS)) {
+            if (!bridge.run().awaitAdapters(1, ADAPTERS)) {
                 throw new IllegalStateException("the adapter did not join within " + ADAPTERS);
             }
             Map<Verdict, Integer> verdicts = new EnumMap<>(Verdict.class);
@@ -126,8 +126,8 @@ public final class BusLatencyBench {
             String firstFailure = null;
             long start = System.nanoTime();
             long seed = 1;
-            while (System.nanoTime() < deadlineNanos && bridge.outputLatency().count() < ticks) {
-                long left = ticks - bridge.outputLatency().count();
+            while (System.nanoTime() < deadlineNanos && bridge.run().outputLatency().count() < ticks) {
+                long left = ticks - bridge.run().outputLatency().count();
                 long units = Math.min(2_000_000_000L, Math.max(25, left / 2 * 25));
                 TestResult result = new OnlineTester(network, testInterface, bridge,
                         new TestOptions(seed++, unit, units, DelayPolicy.EAGER, 0, false)).run();
@@ -143,9 +143,9 @@ public final class BusLatencyBench {
             if (firstFailure != null) {
                 System.out.println("first run that did not pass: " + firstFailure);
             }
-            System.out.println("latency t2 - t1 of ticks: " + bridge.outputLatency());
-            System.out.println("latency t2 - t1 of resets back from the bus: " + bridge.inputLatency());
-            System.out.println("bus: " + bridge.stats());
+            System.out.println("latency t2 - t1 of ticks: " + bridge.run().outputLatency());
+            System.out.println("latency t2 - t1 of resets back from the bus: " + bridge.run().inputLatency());
+            System.out.println("bus: " + bridge.run().stats());
         }
     }
 }

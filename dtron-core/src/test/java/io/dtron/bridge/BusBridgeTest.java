@@ -1,5 +1,6 @@
 package io.dtron.bridge;
 
+import io.dtron.api.internal.TesterSide;
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertNotNull;
@@ -142,7 +143,7 @@ class BusBridgeTest {
     void connect() throws Exception {
         bridge = BusBridge.connect(testInterface(MODEL), DtronOptions.builder().clusterName(cluster).inJvm(true));
         adapter = Dtron.connect(DtronOptions.builder().clusterName(cluster).memberName("adapter").inJvm(true).build());
-        assertTrue(bridge.awaitAdapters(1, WAIT));
+        assertTrue(bridge.run().awaitAdapters(1, WAIT));
     }
 
     @AfterEach
@@ -166,7 +167,7 @@ class BusBridgeTest {
         bridge.start(context);
         IDtronChannelValued announced = start.take();
         assertEquals(Map.of("timeunit", 250), announced.getVariables());
-        assertEquals(bridge.memberId(), announced.getSender());
+        assertEquals(bridge.run().memberId(), announced.getSender());
 
         bridge.perform(Event.of("move", "amount", 7));
         IDtronChannelValued move = moves.take();
@@ -175,12 +176,12 @@ class BusBridgeTest {
         assertEquals(Event.of("done", "amount", 14), context.outputs.poll(10, TimeUnit.SECONDS));
         assertNull(context.outputs.poll(200, TimeUnit.MILLISECONDS), "the bridge's own input is no output");
 
-        assertEquals(1, bridge.outputLatency().count());
-        assertTrue(bridge.outputLatency().minMicros() >= 0, bridge.outputLatency().toString());
-        assertEquals(1, bridge.inputLatency().count(), "the input came back through the bus");
+        assertEquals(1, bridge.run().outputLatency().count());
+        assertTrue(bridge.run().outputLatency().minMicros() >= 0, bridge.run().outputLatency().toString());
+        assertEquals(1, bridge.run().inputLatency().count(), "the input came back through the bus");
         bridge.stop();
-        assertEquals(bridge.memberId(), stop.take().getSender(), "the end of the run is announced");
-        DtronStats stats = bridge.stats();
+        assertEquals(bridge.run().memberId(), stop.take().getSender(), "the end of the run is announced");
+        DtronStats stats = bridge.run().stats();
         assertEquals(3, stats.getPublished(), stats.toString());
         assertEquals(0, stats.getRejectedTotal(), stats.toString());
         assertTrue(context.inconclusive.isEmpty(), context.inconclusive.toString());
@@ -222,7 +223,7 @@ class BusBridgeTest {
     @Test
     void anAutomaticWindowIsWidenedByAMessageThatTookMoreThanHalfOfIt() throws Exception {
         awaitOffset();
-        bridge.reorderWindow(40_000, true);
+        bridge.run().reorderWindow(40_000, true);
         Inbox start = new Inbox(Dtron.RUN_START);
         adapter.addDtronListener(start);
         bridge.start(context);
@@ -231,35 +232,38 @@ class BusBridgeTest {
         adapter.send(X.constructValued(Map.of()), adapter.currentTimeNanos() - 30_000_000);
         long widened = context.widened.poll(10, TimeUnit.SECONDS);
         assertTrue(widened >= 50_000 && widened % 1000 == 0, "twice the delay, in whole ms: " + widened);
-        assertEquals(widened, bridge.reorderWindowMicros());
-        assertEquals(1, bridge.widenings().size(), bridge.widenings().toString());
-        assertTrue(bridge.widenings().get(0).contains("output x from adapter took "), bridge.widenings().toString());
-        assertTrue(bridge.runDelays().get(0).highMicros() >= 25_000, "30 ms, give or take the clocks' error: " + bridge.runDelays());
-        assertEquals("output", bridge.runDelays().get(0).direction());
+        assertEquals(widened, bridge.run().reorderWindowMicros());
+        assertEquals(1, bridge.run().widenings().size(), bridge.run().widenings().toString());
+        assertTrue(bridge.run().widenings().get(0).contains("output x from adapter took "),
+                bridge.run().widenings().toString());
+        assertTrue(bridge.run().runDelays().get(0).highMicros() >= 25_000, "30 ms, give or take the clocks' error: "
+                + bridge.run().runDelays());
+        assertEquals("output", bridge.run().runDelays().get(0).direction());
         // a delay within half of the wider window changes nothing
         adapter.send(X.constructValued(Map.of()), adapter.currentTimeNanos() - 5_000_000);
         assertNotNull(context.outputs.poll(10, TimeUnit.SECONDS));
         assertNotNull(context.outputs.poll(10, TimeUnit.SECONDS));
-        assertEquals(1, bridge.widenings().size(), bridge.widenings().toString());
+        assertEquals(1, bridge.run().widenings().size(), bridge.run().widenings().toString());
     }
 
     @Test
     void aFixedWindowIsNotWidened() throws Exception {
         awaitOffset();
-        bridge.reorderWindow(40_000, false);
+        bridge.run().reorderWindow(40_000, false);
         bridge.start(context);
         adapter.send(X.constructValued(Map.of()), adapter.currentTimeNanos() - 30_000_000);
         assertNotNull(context.outputs.poll(10, TimeUnit.SECONDS));
         assertTrue(context.widened.isEmpty(), context.widened.toString());
-        assertEquals(40_000, bridge.reorderWindowMicros());
-        assertTrue(bridge.runDelays().get(0).highMicros() >= 25_000, "30 ms, give or take the clocks' error: " + bridge.runDelays());
-        assertEquals("output", bridge.runDelays().get(0).direction());
+        assertEquals(40_000, bridge.run().reorderWindowMicros());
+        assertTrue(bridge.run().runDelays().get(0).highMicros() >= 25_000, "30 ms, give or take the clocks' error: "
+                + bridge.run().runDelays());
+        assertEquals("output", bridge.run().runDelays().get(0).direction());
     }
 
     @Test
     void delaysAreMeasuredBeforeARun() throws Exception {
         awaitOffset();
-        BusBridge.Delays delays = bridge.measureDelays(3, Duration.ofMillis(10));
+        BusRun.Delays delays = bridge.run().measureDelays(3, Duration.ofMillis(10));
         assertEquals(1, delays.members(), delays.toString());
         assertTrue(delays.messages() >= 3, "at least the answers to the probes: " + delays);
         assertTrue(delays.maxDelayNanos() < TimeUnit.SECONDS.toNanos(1), delays.toString());
@@ -269,7 +273,7 @@ class BusBridgeTest {
     @Test
     void probesGoOnUntilSteadyWithinTheirLimitAndGiveTheRoomOfTheInputs() throws Exception {
         awaitOffset();
-        BusBridge.Probing probing = bridge.probeUntilSteady(Duration.ofMillis(5), Duration.ofMillis(50),
+        BusRun.Probing probing = bridge.run().probeUntilSteady(Duration.ofMillis(5), Duration.ofMillis(50),
                 Duration.ofSeconds(2));
         assertTrue(probing.rounds() >= 1, probing.toString());
         // steady takes twice five rounds at least; else the limit ended them (plus a round of at most a second)
@@ -296,7 +300,7 @@ class BusBridgeTest {
         assertTrue(first[1] >= 0 && first[1] <= second[1] + 1000, first[1] + " " + second[1]);
         assertTrue(second[1] <= context.clock().nowMicros() + 1000, "applied before now: " + second[1]);
         // the inputs' delays, published to applied, make the channel's interval
-        ChannelDelay delay = bridge.runDelays().get(0);
+        ChannelDelay delay = bridge.run().runDelays().get(0);
         assertEquals("move", delay.channel());
         assertEquals("input", delay.direction());
         assertEquals(2, delay.count());
@@ -308,13 +312,13 @@ class BusBridgeTest {
         bridge.start(context);
         try (Dtron other = Dtron.connect(DtronOptions.builder().clusterName(cluster).memberName("other-run")
                 .inJvm(true).build())) {
-            other.setRunId("another-run");
+            TesterSide.of(other).setRunId("another-run");
             other.send(DONE.constructValued(Map.of("amount", 5)));
             adapter.send(DONE.constructValued(Map.of("amount", 6)));
             assertEquals(Event.of("done", "amount", 6), context.outputs.poll(10, TimeUnit.SECONDS),
                     "the other run's output is not this run's");
-            Waits.await("the other run's message counted").until(() -> bridge.messagesOfOtherRuns() >= 1);
-            assertEquals(1, bridge.messagesOfOtherRuns());
+            Waits.await("the other run's message counted").until(() -> bridge.run().messagesOfOtherRuns() >= 1);
+            assertEquals(1, bridge.run().messagesOfOtherRuns());
             assertTrue(context.outputs.isEmpty(), context.outputs.toString());
         }
     }
@@ -325,7 +329,7 @@ class BusBridgeTest {
         adapter.addDtronListener(xs);
         bridge.start(context);
         bridge.perform(Event.of("x"));
-        assertEquals(bridge.memberId(), xs.take().getSender());
+        assertEquals(bridge.run().memberId(), xs.take().getSender());
         adapter.send(X.constructValued(Map.of()));
         assertEquals(Event.of("x"), context.outputs.poll(10, TimeUnit.SECONDS));
         assertNull(context.outputs.poll(200, TimeUnit.MILLISECONDS), "one output only: " + context.outputs);
@@ -337,12 +341,12 @@ class BusBridgeTest {
         awaitOutputsSeen(1);
         bridge.start(context);
         bridge.stop();
-        assertEquals(0, bridge.outputsAfterEnd());
-        try (LogCapture log = new LogCapture(BusBridge.class)) {
+        assertEquals(0, bridge.run().outputsAfterEnd());
+        try (LogCapture log = new LogCapture(BusRun.class)) {
             adapter.send(DONE.constructValued(Map.of("amount", 2)));
             adapter.send(DONE.constructValued(Map.of("amount", 3)));
             awaitOutputsSeen(3);
-            assertEquals(2, bridge.outputsAfterEnd(), "outputs after the end are counted");
+            assertEquals(2, bridge.run().outputsAfterEnd(), "outputs after the end are counted");
             assertTrue(log.events(Level.WARN).isEmpty(), "and not logged as warnings after the verdict: "
                     + log.messages());
         }
@@ -371,18 +375,18 @@ class BusBridgeTest {
             adapter.send(DONE.constructValued(Map.of("amount", 3)));
             assertEquals(Event.of("done", "amount", 3), context.outputs.poll(10, TimeUnit.SECONDS));
             assertNull(context.outputs.poll(100, TimeUnit.MILLISECONDS), "the bad message is no output");
-            DtronStats stats = bridge.stats();
+            DtronStats stats = bridge.run().stats();
             assertEquals(1, stats.getRejected(reason), stats.toString());
             assertEquals(1, stats.getRejectedTotal(), stats.toString());
-            assertEquals(1, bridge.outputLatency().count());
+            assertEquals(1, bridge.run().outputLatency().count());
         }
     }
 
     /** The adapter says it sends {@code done}, and the bridge has heard it: it serves the run. */
     private void adapterServesDone() {
         adapter.declareOutputs(DONE);
-        Waits.await("the adapter's channels").until(() -> bridge.servedChannels().containsKey("adapter")
-                && bridge.servedChannels().get("adapter").sends().contains("done"));
+        Waits.await("the adapter's channels").until(() -> bridge.run().servedChannels().containsKey("adapter")
+                && bridge.run().servedChannels().get("adapter").sends().contains("done"));
     }
 
     @Test
@@ -392,7 +396,8 @@ class BusBridgeTest {
         adapter.close();
         String reason = context.inconclusive.poll(10, TimeUnit.SECONDS);
         assertNotNull(reason, "no inconclusive verdict");
-        assertTrue(reason.startsWith("adapter member adapter left the bus (members now [" + bridge.memberId() + "])"),
+        assertTrue(reason.startsWith("adapter member adapter left the bus (members now [" + bridge.run().memberId()
+                + "])"),
                 reason);
     }
 
@@ -421,8 +426,8 @@ class BusBridgeTest {
             // it watches an output and listens to a channel of no model: it applies no input, sends no output
             observer.addDtronListener(new Inbox(DONE));
             observer.addDtronListener(new Inbox(IDtronChannel.of("weather")));
-            Waits.await("the observer's channels").until(() -> bridge.servedChannels().containsKey("observer")
-                    && bridge.servedChannels().get("observer").receives().contains("weather"));
+            Waits.await("the observer's channels").until(() -> bridge.run().servedChannels().containsKey("observer")
+                    && bridge.run().servedChannels().get("observer").receives().contains("weather"));
             bridge.start(context);
         }
         awaitMembers(2);
@@ -435,7 +440,7 @@ class BusBridgeTest {
     @Test
     void aSecondMemberSendingAnOutputDuringTheRunEndsItInconclusiveNamingBoth() throws Exception {
         adapterServesDone();
-        assertEquals(java.util.Optional.empty(), bridge.ownersConflict());
+        assertEquals(java.util.Optional.empty(), bridge.run().ownersConflict());
         bridge.start(context);
         try (Dtron second = Dtron.connect(DtronOptions.builder().clusterName(cluster).memberName("second")
                 .inJvm(true).build())) {
@@ -443,11 +448,11 @@ class BusBridgeTest {
             String reason = context.inconclusive.poll(10, TimeUnit.SECONDS);
             assertEquals("output done is sent by 2 members, adapter (receives [], sends [done]) and second (receives"
                     + " [], sends [done]), and the tester would judge their messages as one system's", reason);
-            assertTrue(bridge.ownersConflict().isPresent(), "and a run would be refused now");
+            assertTrue(bridge.run().ownersConflict().isPresent(), "and a run would be refused now");
             // its message came after it said it sends done: named, and no output
             assertNull(context.outputs.poll(200, TimeUnit.MILLISECONDS), context.outputs.toString());
         }
-        Waits.await("the second member gone").until(() -> bridge.ownersConflict().isEmpty());
+        Waits.await("the second member gone").until(() -> bridge.run().ownersConflict().isEmpty());
     }
 
     @Test
@@ -477,7 +482,7 @@ class BusBridgeTest {
     @Test
     void membersLeavingBeforeTheStartOrAfterTheStopAreNoReason() throws Exception {
         try (Dtron early = Dtron.connect(DtronOptions.builder().clusterName(cluster).inJvm(true).build())) {
-            assertTrue(bridge.awaitAdapters(2, WAIT));
+            assertTrue(bridge.run().awaitAdapters(2, WAIT));
         }
         awaitMembers(2);
         bridge.start(context);
@@ -490,8 +495,8 @@ class BusBridgeTest {
     @Test
     void anAwaitedAdapterThatLeftBeforeTheStartEndsTheRunInconclusiveAtOnce() throws Exception {
         try (Dtron early = Dtron.connect(DtronOptions.builder().clusterName(cluster).inJvm(true).build())) {
-            assertTrue(bridge.awaitAdapters(2, WAIT));
-            bridge.expectAdapters();
+            assertTrue(bridge.run().awaitAdapters(2, WAIT));
+            bridge.run().expectAdapters();
         }
         awaitMembers(2);
         bridge.start(context);
@@ -503,7 +508,7 @@ class BusBridgeTest {
     }
 
     private void awaitMembers(int count) {
-        Waits.await(count + " members").until(() -> bridge.members().size() == count);
+        Waits.await(count + " members").until(() -> bridge.run().members().size() == count);
     }
 
     @Test
@@ -528,8 +533,8 @@ class BusBridgeTest {
 
     /** Waits until the bridge has handled {@code count} outputs (it records the latency of each). */
     private void awaitOutputsSeen(long count) {
-        Waits.await(count + " outputs handled").until(() -> bridge.outputLatency().count() >= count);
-        assertEquals(count, bridge.outputLatency().count());
+        Waits.await(count + " outputs handled").until(() -> bridge.run().outputLatency().count() >= count);
+        assertEquals(count, bridge.run().outputLatency().count());
     }
 
     private static Variable variable(String name, int value) {

@@ -99,7 +99,7 @@ class NatsForgedRunTest {
                     options.insecure(true);
                 }
                 try (BusBridge bridge = BusBridge.connect(testInterface, options)) {
-                    assertTrue(bridge.awaitAdapters(1, Duration.ofSeconds(60)), "the ticker joined");
+                    assertTrue(bridge.run().awaitAdapters(1, Duration.ofSeconds(60)), "the ticker joined");
                     Subscription ticks = raw.subscribe("dtron." + bus + ".c.tick");
                     raw.flush(Duration.ofSeconds(10));
                     CompletableFuture<TestResult> run = CompletableFuture.supplyAsync(() -> new OnlineTester(network,
@@ -107,12 +107,12 @@ class NatsForgedRunTest {
                             .run());
                     Message tick = ticks.nextMessage(Duration.ofSeconds(60)); // the run is under way
                     assertTrue(tick != null, "a tick during the run");
-                    forge(raw.jetStream(), bus, tick, bridge.memberId());
+                    forge(raw.jetStream(), bus, tick, bridge.run().memberId());
                     TestResult result = run.get(2, TimeUnit.MINUTES);
                     // the forged messages came long before the end; still, the tester's receive thread has its pace
                     Waits.await("the tester read the forged messages").until(
-                            () -> bridge.stats().getRejectedTotal() >= (secure ? 6 : 0));
-                    return new Outcome(result, bridge.stats(), bridge.memberId(), bridge.members());
+                            () -> bridge.run().stats().getRejectedTotal() >= (secure ? 6 : 0));
+                    return new Outcome(result, bridge.run().stats(), bridge.run().memberId(), bridge.run().members());
                 }
             }
         }

@@ -1,2 +1,2 @@
-/** Not API: the parts of {@link io.dtron.bridge.BusBridge}. */
+/** Not API: the parts of {@link io.dtron.bridge.BusRun}. */
 package io.dtron.bridge.internal;
