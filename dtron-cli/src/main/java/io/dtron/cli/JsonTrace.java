@@ -19,14 +19,19 @@ import java.util.function.Consumer;
 
 /**
  * Writes a run as JSON lines: a {@code start} line with the seed and settings, one line per input and output
- * with its time, an {@code edges} line for each of them once the tester has committed to it (the edges it took for
- * certain and possibly), and a {@code verdict} line. In virtual time the same seed gives the same file, byte for byte. On
+ * with its time, a {@code due} line when the deadline of the next output changes (the time by which the model
+ * requires an output while the tester waits for it, -1 when it waits for something else), an {@code edges} line for
+ * each of them once the tester has committed to it (the edges it took for certain and possibly), a {@code coverage}
+ * line with what the run covered (the coverage file's object, on one line), and the {@code verdict} line. In
+ * virtual time the same seed gives the same file, byte for byte. On
  * the bus, a {@code bus} line for every message on the bus while the run lasts, in the bus's order, with its sender's
  * stamps and its receive time: the global trace, the same order at every member.
  */
 final class JsonTrace implements TestListener {
     private final Writer out;
     private final long unitMicros;
+    /** The deadline the last {@code due} line said; written on the tester's thread only. */
+    private long due = -1;
 
     JsonTrace(Writer out, long unitMicros) {
         this.out = out;
@@ -96,6 +101,15 @@ final class JsonTrace implements TestListener {
     }
 
     @Override
+    public void waiting(long nowMicros, long untilMicros, Until until) {
+        long deadline = until == Until.OUTPUT_DEADLINE ? untilMicros : -1;
+        if (deadline != due) {
+            due = deadline;
+            line("{\"kind\":\"due\",\"t_us\":" + nowMicros + ",\"until_us\":" + deadline + "}");
+        }
+    }
+
+    @Override
     public void edgesTaken(Event event, boolean input, long micros, java.util.List<String> certainly,
                            java.util.List<String> possibly) {
         line("{\"kind\":\"edges\",\"t_us\":" + micros + ",\"channel\":" + quote(event.channel()) + ",\"input\":"
@@ -112,9 +126,14 @@ final class JsonTrace implements TestListener {
 
     @Override
     public void finished(TestResult r) {
-        line("{\"kind\":\"verdict\",\"t_us\":" + r.durationMicros() + ",\"verdict\":\"" + r.verdict() + "\",\"seed\":"
-                + r.seed() + ",\"inputs\":" + r.inputs() + ",\"outputs\":" + r.outputs() + ",\"explanation\":"
-                + quote(r.explanation()) + "}");
+        if (r.coverage() != null) {
+            // the coverage file's text has line breaks only between its tokens: strings escape theirs
+            line("{\"kind\":\"coverage\",\"coverage\":" + CoverageJson.write(r.coverage()).replace("\n", "")
+                    + "}");
+        }
+        line("{\"kind\":\"verdict\",\"t_us\":" + r.durationMicros() + ",\"verdict\":\"" + r.verdict()
+                + "\",\"seed\":" + r.seed() + ",\"inputs\":" + r.inputs() + ",\"outputs\":" + r.outputs()
+                + ",\"explanation\":" + quote(r.explanation()) + "}");
     }
 
     private void event(String kind, Event e, long micros) {
