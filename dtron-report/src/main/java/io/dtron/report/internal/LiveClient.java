@@ -21,8 +21,13 @@ public final class LiveClient {
     private static final String END = "\u0000end";
     private static final long KEEP_ALIVE_SECONDS = 10;
 
-    private final BlockingQueue<String> queue = new ArrayBlockingQueue<>(QUEUE);
+    private final BlockingQueue<String> queue;
     private final AtomicLong dropped = new AtomicLong();
+
+    /** A browser that may be {@code size} updates behind. */
+    public LiveClient(int size) {
+        queue = new ArrayBlockingQueue<>(size);
+    }
 
     /** Queues {@code update} for the browser; never waits. Called by the run's thread. */
     public void offer(String update) {
