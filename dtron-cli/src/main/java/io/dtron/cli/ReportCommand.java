@@ -102,7 +102,9 @@ final class ReportCommand implements Callable<Integer> {
                 try {
                     o = Json.parse(line) instanceof Map<?, ?> m ? m : null;
                 } catch (IllegalArgumentException e) {
-                    throw new IllegalArgumentException(where + "not JSON: " + e.getMessage());
+                    // the line is the parser's whole text: its place is a column
+                    throw new IllegalArgumentException(where + "not JSON: " + e.getMessage()
+                            .replaceFirst("^line 1, column", "column"));
                 }
                 Object kind = o == null ? null : o.get("kind");
                 if (!(kind instanceof String)) {
