@@ -58,7 +58,7 @@ final class MutantsCommand implements Callable<Integer> {
     private static final Set<String> NOT_FOR_MUTANTS = Set.of("--sut", "--sut-seed", "--classpath", "--cluster",
             "--bind", "--members", "--port", "--port-range", "--testers", "--join", "--key-file", "--insecure",
             "--wait-for-adapters", "--wait-timeout", "--adapter", "--tron-adapter", "--backend", "--delta", "--trace",
-            "--delta-report", "--delta-from", "--bus", "--timeout");
+            "--delta-report", "--delta-from", "--bus", "--timeout", "--report", "--live");
 
     @Spec
     private CommandSpec spec;

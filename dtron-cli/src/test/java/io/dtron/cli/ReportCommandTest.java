@@ -121,6 +121,10 @@ class ReportCommandTest {
                 "--bind", "127.0.0.1");
         assertEquals(1, bind.exit());
         assertTrue(bind.err().contains("leave it out (or give --live PORT: the live view listens there)"), bind.err());
+        CommandRun mutants = CommandRun.of("mutants", model, "--report", "x.html");
+        assertEquals(1, mutants.exit());
+        assertTrue(mutants.err().startsWith("dtron mutants: --report is an option of a run against one system under"
+                + " test"), mutants.err());
         CommandRun tron = CommandRun.of("run", model, "--backend", "tron", "--report", "x.html");
         assertEquals(1, tron.exit());
         assertTrue(tron.err().startsWith("dtron run: --report and --live show DTRON's engine's run"), tron.err());

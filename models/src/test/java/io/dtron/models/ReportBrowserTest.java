@@ -184,6 +184,48 @@ class ReportBrowserTest {
     }
 
     @Test
+    void aModelWithoutPositionsIsLaidOutWithEveryLocationAndEdgeApart(@TempDir Path dir) throws Exception {
+        Path model = Files.writeString(dir.resolve("lamp.xta"), """
+                chan i_press, o_level;
+                int[0,2] o_level_n;
+                process Lamp() { clock x; state off, low { x <= 5 }, bright { x <= 5 }; init off;
+                    trans off -> low { sync i_press?; assign x = 0; },
+                          low -> bright { guard x >= 1; sync i_press?; assign x = 0; },
+                          low -> off { guard x >= 5; sync o_level!; assign o_level_n = 0; },
+                          bright -> off { guard x >= 5; sync o_level!; assign o_level_n = 0; },
+                          bright -> bright { sync i_press?; }; }
+                process User() { clock u; state idle; init idle;
+                    trans idle -> idle { guard u >= 2; sync i_press!; assign u = 0; },
+                          idle -> idle { sync o_level?; }; }
+                system Lamp, User;
+                """);
+        Path page = dir.resolve("lamp.html");
+        String[] run = dtron("run", model.toString(), "--sut", "model", "--virtual-time", "--seed", "2", "--timeout",
+                "100", "--report", page.toString());
+        assertEquals("0", run[0], run[1] + run[2]);
+        WebDriver browser = HeadlessChrome.defaults().create();
+        try {
+            browser.get(page.toUri().toString());
+            awaitRendered(browser);
+            assertEquals(2, browser.findElements(By.xpath("//h3[contains(., 'laid out automatically')]")).size());
+            List<WebElement> lamp = browser.findElements(By.cssSelector("svg[data-template='Lamp'] g.location"));
+            assertEquals(List.of("off", "low", "bright"), lamp.stream().map(e -> e.getAttribute("data-name")).toList());
+            assertEquals(5, browser.findElements(By.cssSelector("svg[data-template='Lamp'] g.edge")).size());
+            java.util.Set<String> places = new java.util.HashSet<>();
+            for (WebElement l : lamp) {
+                WebElement body = l.findElement(By.cssSelector("circle.body"));
+                places.add(body.getAttribute("cx") + "," + body.getAttribute("cy"));
+            }
+            assertEquals(3, places.size(), "no two locations on one spot: " + places);
+            assertTrue(browser.findElements(By.cssSelector("svg[data-template='Lamp'] text")).stream()
+                    .anyMatch(t -> t.getText().equals("x >= 1")), "the guards as written");
+            screenshot(browser, "report-xta.png");
+        } finally {
+            browser.quit();
+        }
+    }
+
+    @Test
     void theLiveViewUpdatesWhileTheRunGoesOnOnLoopbackOnly(@TempDir Path dir) throws Exception {
         Path model = lamp(dir);
         // the browser starts before the run, so that the run's 30 s are for watching it

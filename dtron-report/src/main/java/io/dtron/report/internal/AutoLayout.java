@@ -8,12 +8,14 @@ import java.util.Deque;
 import java.util.List;
 
 /**
- * A readable drawing of a template that has no saved positions: the locations in columns by their distance (in
- * edges) from the initial location, the unreachable ones in a last column; labels are placed by the page.
+ * A readable drawing of a template that has no saved positions: up to {@link #CIRCLE} locations on a circle, in the
+ * order of their distance (in edges) from the initial location, so that no edge crosses a location; more in columns
+ * by that distance, the unreachable ones in a last column. Labels are placed by the page.
  */
 final class AutoLayout {
     static final int COLUMN = 220;
     static final int ROW = 130;
+    static final int CIRCLE = 12;
 
     private AutoLayout() {
     }
@@ -45,13 +47,30 @@ final class AutoLayout {
             }
         }
         int[] rows = new int[deepest + 2];
+        List<Integer> order = new ArrayList<>();
+        for (int d = 0; d <= deepest + 1; d++) {
+            for (int i = 0; i < n; i++) {
+                if ((depth[i] < 0 ? deepest + 1 : depth[i]) == d) {
+                    order.add(i);
+                }
+            }
+        }
+        double radius = Math.max(110, n * 45);
         List<Layout.Location> locations = new ArrayList<>();
         for (int i = 0; i < n; i++) {
             int column = depth[i] < 0 ? deepest + 1 : depth[i];
             Layout.Location l = t.locations().get(i);
             int row = rows[column]++;
-            // a column's rows alternate a little to the side, so that edges along a column do not cross locations
-            Layout.Point at = new Layout.Point(column * COLUMN + (row % 2) * 40, row * ROW);
+            Layout.Point at;
+            if (n <= CIRCLE) {
+                // on a circle a straight edge between two locations passes by every other one
+                double angle = Math.PI + 2 * Math.PI * order.indexOf(i) / n;
+                at = new Layout.Point((int) Math.round(radius + radius * Math.cos(angle)),
+                        (int) Math.round(radius + radius * Math.sin(angle)));
+            } else {
+                // a column's rows alternate a little to the side, so that edges along a column miss locations
+                at = new Layout.Point(column * COLUMN + (row % 2) * 40, row * ROW);
+            }
             List<Layout.Label> labels = l.labels().stream().map(x -> new Layout.Label(x.kind(), x.text(), null))
                     .toList();
             locations.add(new Layout.Location(l.name(), l.kind(), l.initial(), at, labels));
