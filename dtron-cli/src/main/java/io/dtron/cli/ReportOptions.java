@@ -40,6 +40,10 @@ final class ReportOptions {
         if (port != null && (port < 0 || port > 65535)) {
             return "--live takes a port of 0 to 65535 (0: any free port): " + port;
         }
+        Path folder = file == null ? null : file.toAbsolutePath().getParent();
+        if (folder != null && !java.nio.file.Files.isDirectory(folder)) {
+            return "--report " + file + ": there is no folder " + folder + " to write it in";
+        }
         return null;
     }
 

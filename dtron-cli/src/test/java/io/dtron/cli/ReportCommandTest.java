@@ -121,6 +121,11 @@ class ReportCommandTest {
                 "--bind", "127.0.0.1");
         assertEquals(1, bind.exit());
         assertTrue(bind.err().contains("leave it out (or give --live PORT: the live view listens there)"), bind.err());
+        CommandRun folder = CommandRun.of("run", model, "--sut", TickerForTests.class.getName(), "--virtual-time",
+                "--report", dir.resolve("no/such/folder/r.html").toString());
+        assertEquals(1, folder.exit());
+        assertTrue(folder.err().startsWith("dtron run: --report " + dir.resolve("no/such/folder/r.html")
+                + ": there is no folder " + dir.resolve("no/such/folder") + " to write it in"), folder.err());
         CommandRun mutants = CommandRun.of("mutants", model, "--report", "x.html");
         assertEquals(1, mutants.exit());
         assertTrue(mutants.err().startsWith("dtron mutants: --report is an option of a run against one system under"
