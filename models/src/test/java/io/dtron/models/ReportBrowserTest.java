@@ -61,8 +61,12 @@ class ReportBrowserTest {
                 .getAttribute("data-ready")));
     }
 
+    /** A screenshot of the whole page (the window made as tall as the page, up to 6,000 pixels). */
     static void screenshot(WebDriver browser, String name) throws Exception {
         Files.createDirectories(SCREENSHOTS);
+        long height = (Long) ((org.openqa.selenium.JavascriptExecutor) browser).executeScript(
+                "return document.documentElement.scrollHeight");
+        browser.manage().window().setSize(new org.openqa.selenium.Dimension(1280, (int) Math.min(6000, height)));
         Path shot = ((TakesScreenshot) browser).getScreenshotAs(OutputType.FILE).toPath();
         Files.copy(shot, SCREENSHOTS.resolve(name), StandardCopyOption.REPLACE_EXISTING);
     }
