@@ -68,10 +68,11 @@ public final class DtronCommand implements Callable<Integer> {
         cli.setExecutionStrategy(parseResult -> {
             CommandLine.ParseResult command = parseResult.subcommand();
             boolean quiet = command == null ? parseResult.isVersionHelpRequested() || parseResult.isUsageHelpRequested()
-                    : command.commandSpec().userObject() instanceof CheckCommand;
+                    : command.commandSpec().userObject() instanceof CheckCommand
+                    || command.commandSpec().userObject() instanceof ReportCommand;
             if (!quiet) {
                 // logging (logback reads its configuration: about 0.3 s) is set up before a command that logs
-                // starts, not in the middle of a timed run; check and --version log nothing and start faster
+                // starts, not in the middle of a timed run; check, report and --version log nothing and start faster
                 LoggerFactory.getILoggerFactory();
             }
             return new CommandLine.RunLast().execute(parseResult);

@@ -35,6 +35,13 @@ import picocli.CommandLine.Spec;
                 + " writes.", "Exit code 0 when written, 1 when the trace cannot be read."})
 final class ReportCommand implements Callable<Integer> {
     private static final String COVERAGE_LINE = "{\"kind\":\"coverage\",\"coverage\":";
+    private static final String EDGES_LINE = "{\"kind\":\"edges\",\"t_us\":";
+    private static final String EDGE_LISTS = ",\"certainly\":";
+    /** How many different lists of edges are kept parsed: a run's commitments repeat. */
+    private static final int EDGE_LISTS_KEPT = 20_000;
+
+    /** The edges lists of the trace's {@code edges} lines, parsed, by their text. */
+    private final java.util.Map<String, List<List<String>>> edgeLists = new java.util.HashMap<>();
 
     @Spec
     private CommandSpec spec;
@@ -98,6 +105,9 @@ final class ReportCommand implements Callable<Integer> {
                     }
                     continue;
                 }
+                if (line.startsWith(EDGES_LINE) && record != null && edges(line, record, where)) {
+                    continue;
+                }
                 Map<?, ?> o;
                 try {
                     o = Json.parse(line) instanceof Map<?, ?> m ? m : null;
@@ -137,6 +147,41 @@ final class ReportCommand implements Callable<Integer> {
             throw new IllegalArgumentException(trace + " is not a trace of dtron run: it has no start line");
         }
         return record;
+    }
+
+    /**
+     * An {@code edges} line as {@code dtron run --trace} writes it, read without parsing its lists again when an
+     * earlier line had the same (a long run takes the same edges again and again); false when it is written otherwise
+     * (then it is read as any line).
+     */
+    private boolean edges(String line, RunRecord record, String where) {
+        int comma = line.indexOf(',', EDGES_LINE.length());
+        int lists = line.indexOf(EDGE_LISTS, Math.max(comma, 0));
+        if (comma < 0 || lists < 0 || !line.endsWith("}")) {
+            return false;
+        }
+        long micros;
+        try {
+            micros = Long.parseLong(line, EDGES_LINE.length(), comma, 10);
+        } catch (NumberFormatException e) {
+            return false;
+        }
+        String text = line.substring(lists + 1, line.length() - 1);
+        List<List<String>> parsed = edgeLists.get(text);
+        if (parsed == null) {
+            Map<?, ?> o;
+            try {
+                o = (Map<?, ?>) Json.parse("{" + text + "}");
+            } catch (IllegalArgumentException | ClassCastException e) {
+                return false;
+            }
+            parsed = List.of(strings(o, "certainly", where), strings(o, "possibly", where));
+            if (edgeLists.size() < EDGE_LISTS_KEPT) {
+                edgeLists.put(text, parsed);
+            }
+        }
+        record.edges(micros, parsed.get(0), parsed.get(1));
+        return true;
     }
 
     private RunRecord start(Map<?, ?> o, String where, PrintWriter err) {
