@@ -47,7 +47,8 @@ class ReportCommandTest {
         assertTrue(html.contains("\"coverage\":{\"summary\":\"coverage: "), "the coverage");
         assertFalse(html.contains("src=\"http") || html.contains("href=\"http"), "nothing fetched from a network");
         String traced = Files.readString(trace);
-        assertTrue(traced.contains("{\"kind\":\"due\",\"t_us\":0,\"until_us\":12000}"), "the deadline of the first tick");
+        assertTrue(traced.contains("{\"kind\":\"due\",\"t_us\":0,\"until_us\":12000}"),
+                "the deadline of the first tick");
         assertTrue(traced.lines().anyMatch(l -> l.startsWith("{\"kind\":\"coverage\",\"coverage\":{")), "coverage");
 
         Path again = dir.resolve("again.html");
@@ -143,5 +144,10 @@ class ReportCommandTest {
         assertEquals(0, r.exit(), r.out() + r.err());
         assertTrue(r.out().lines().anyMatch(l -> l.matches("dtron run: live view at http://127\\.0\\.0\\.1:\\d+/")),
                 r.out());
+        CommandRun bound = CommandRun.of("run", model, "--sut", TickerForTests.class.getName(), "--virtual-time",
+                "--seed", "3", "--timeout", "100", "--live", "0", "--bind", "127.0.0.2");
+        assertEquals(0, bound.exit(), bound.out() + bound.err());
+        assertTrue(bound.out().lines().anyMatch(l -> l.matches("dtron run: live view at http://127\\.0\\.0\\.2:\\d+/")),
+                bound.out());
     }
 }
