@@ -20,7 +20,8 @@ import picocli.CommandLine.UnmatchedArgumentException;
  * MODEL} tests a system under test against a model, in process ({@code --sut CLASS}), through a TRON adapter
  * ({@code --tron-adapter}) or on the bus; {@code dtron tron} takes Uppaal TRON's command line; {@code dtron
  * MODEL ...} is short for {@code dtron run MODEL ...}; {@code dtron delta} writes the Delta-extended model;
- * {@code dtron mutants MODEL} runs the tester against mutants of the model's implementation part. Exit
+ * {@code dtron mutants MODEL} runs the tester against mutants of the model's implementation part; {@code dtron
+ * report TRACE -o FILE.html} makes the HTML report of a recorded run. Exit
  * codes follow TRON's: 0 passed, 2 failed, 3 inconclusive; 1 for a usage or model error.
  */
 @Command(name = "dtron", mixinStandardHelpOptions = true, versionProvider = DtronCommand.Version.class,
@@ -28,7 +29,8 @@ import picocli.CommandLine.UnmatchedArgumentException;
         description = {"Online model-based testing and control of timed systems with Uppaal timed automata.",
                 "dtron MODEL [OPTIONS] is short for dtron run MODEL [OPTIONS]."},
         subcommands = {CheckCommand.class, RunCommand.class, TronCommand.class, VerifyCommand.class, DeltaCommand.class,
-                CoverageCommand.class, MutantsCommand.class, ControlCommand.class, CommandLine.HelpCommand.class})
+                CoverageCommand.class, MutantsCommand.class, ControlCommand.class, ReportCommand.class,
+                CommandLine.HelpCommand.class})
 public final class DtronCommand implements Callable<Integer> {
     @Spec
     private CommandSpec spec;
@@ -67,10 +69,11 @@ public final class DtronCommand implements Callable<Integer> {
         cli.setExecutionStrategy(parseResult -> {
             CommandLine.ParseResult command = parseResult.subcommand();
             boolean quiet = command == null ? parseResult.isVersionHelpRequested() || parseResult.isUsageHelpRequested()
-                    : command.commandSpec().userObject() instanceof CheckCommand;
+                    : command.commandSpec().userObject() instanceof CheckCommand
+                    || command.commandSpec().userObject() instanceof ReportCommand;
             if (!quiet) {
                 // logging (logback reads its configuration: about 0.3 s) is set up before a command that logs
-                // starts, not in the middle of a timed run; check and --version log nothing and start faster
+                // starts, not in the middle of a timed run; check, report and --version log nothing and start faster
                 LoggerFactory.getILoggerFactory();
             }
             return new CommandLine.RunLast().execute(parseResult);

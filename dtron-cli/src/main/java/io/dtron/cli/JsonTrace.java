@@ -19,15 +19,18 @@ import java.util.function.Consumer;
 
 /**
  * Writes a run as JSON lines: a {@code start} line with the seed and settings, one line per input and output
- * with its time, an {@code edges} line for each of them once the tester has committed to it (the edges it took for
- * certain and possibly), and a {@code verdict} line. In virtual time the same seed gives the same file, byte for byte. On
+ * with its time, a {@code due} line when the deadline of the next output changes (the time by which the model
+ * requires an output while the tester waits for it, -1 when it waits for something else), an {@code edges} line for
+ * each of them once the tester has committed to it (the edges it took for certain and possibly), a {@code coverage}
+ * line with what the run covered (the coverage file's object, on one line), and the {@code verdict} line. In
+ * virtual time the same seed gives the same file, byte for byte. On
  * the bus, a {@code bus} line for every message on the bus while the run lasts, in the bus's order, with its sender's
  * stamps and its receive time: the global trace, the same order at every member.
  *
  * <p>A trace may be bounded ({@code --trace-max-size}): it stops there. The lines of events that would take it past
  * the bound are left out, and a {@code truncated} line (the bound, how many lines were left out, the time of the last
- * event written) comes before the {@code verdict} line, which always ends the trace: the file holds the start of the
- * run and its verdict, at most the bound plus those two lines.
+ * event written) comes before the {@code coverage} and {@code verdict} lines; the verdict always ends the trace: the
+ * file holds the start of the run, its coverage and its verdict, at most the bound plus those three lines.
  */
 final class JsonTrace implements TestListener {
     /** No bound. */
@@ -40,6 +43,8 @@ final class JsonTrace implements TestListener {
     private long lastMicros = -1;
     private long omitted;
     private long omittedAfterMicros = -1;
+    /** The deadline the last {@code due} line said; written on the tester's thread only. */
+    private long due = -1;
 
     private JsonTrace(Writer out, long unitMicros, Counted counted, long maxBytes) {
         this.out = out;
@@ -154,6 +159,15 @@ final class JsonTrace implements TestListener {
     }
 
     @Override
+    public void waiting(long nowMicros, long untilMicros, Until until) {
+        long deadline = until == Until.OUTPUT_DEADLINE ? untilMicros : -1;
+        if (deadline != due) {
+            due = deadline;
+            bounded(nowMicros, "{\"kind\":\"due\",\"t_us\":" + nowMicros + ",\"until_us\":" + deadline + "}");
+        }
+    }
+
+    @Override
     public void edgesTaken(Event event, boolean input, long micros, java.util.List<String> certainly,
                            java.util.List<String> possibly) {
         bounded(micros, "{\"kind\":\"edges\",\"t_us\":" + micros + ",\"channel\":" + quote(event.channel())
@@ -177,9 +191,14 @@ final class JsonTrace implements TestListener {
                         + ",\"after_t_us\":" + omittedAfterMicros + "}");
             }
         }
-        line("{\"kind\":\"verdict\",\"t_us\":" + r.durationMicros() + ",\"verdict\":\"" + r.verdict() + "\",\"seed\":"
-                + r.seed() + ",\"inputs\":" + r.inputs() + ",\"outputs\":" + r.outputs() + ",\"explanation\":"
-                + quote(r.explanation()) + "}");
+        if (r.coverage() != null) {
+            // the coverage file's text has line breaks only between its tokens: strings escape theirs
+            line("{\"kind\":\"coverage\",\"coverage\":" + CoverageJson.write(r.coverage()).replace("\n", "")
+                    + "}");
+        }
+        line("{\"kind\":\"verdict\",\"t_us\":" + r.durationMicros() + ",\"verdict\":\"" + r.verdict()
+                + "\",\"seed\":" + r.seed() + ",\"inputs\":" + r.inputs() + ",\"outputs\":" + r.outputs()
+                + ",\"explanation\":" + quote(r.explanation()) + "}");
     }
 
     private void event(String kind, Event e, long micros) {

@@ -60,7 +60,7 @@ final class MutantsCommand implements Callable<Integer> {
             "--bind", "--members", "--port", "--port-range", "--testers", "--join", "--key-file", "--insecure",
             "--wait-for-adapters", "--wait-timeout", "--adapter", "--tron-adapter", "--backend", "--delta", "--trace",
             "--trace-max-size",
-            "--delta-report", "--delta-from", "--bus", "--timeout");
+            "--delta-report", "--delta-from", "--bus", "--timeout", "--report", "--live");
 
     @Spec
     private CommandSpec spec;

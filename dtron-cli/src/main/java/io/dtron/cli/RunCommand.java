@@ -98,7 +98,8 @@ final class RunCommand implements Callable<Integer> {
 
     @Option(names = "--bind", paramLabel = "ADDR",
             description = "Bus mode: the network interface to bind to and to find members at; with --tron-adapter"
-                    + " PORT: the address to listen on (default: loopback).")
+                    + " PORT: the address to listen on; with --live: where the live view listens (default:"
+                    + " loopback).")
     private String bind;
 
     @Option(names = "--members", split = ",", paramLabel = "HOST[:PORT]",
@@ -239,6 +240,9 @@ final class RunCommand implements Callable<Integer> {
 
     @picocli.CommandLine.Mixin
     private CoverageOptions coverage = new CoverageOptions();
+
+    @Mixin
+    private ReportOptions report = new ReportOptions();
 
     /** The goals a stop condition's reached(N) asks about. */
     private io.dtron.engine.coverage.Goals goals = io.dtron.engine.coverage.Goals.NONE;
@@ -549,9 +553,16 @@ final class RunCommand implements Callable<Integer> {
         nats.check(clusterName(), this::usage);
         boolean tronListens = tronAdapter != null
                 && TronAddress.parse(tronAdapter).map(a -> a.host() == null).orElse(false);
-        if (bind != null && !busMode && !tronListens) {
+        if (bind != null && !busMode && !tronListens && report.port == null) {
             throw usage("--bind is the bus's network interface, or where --tron-adapter PORT listens; with "
-                    + (sut != null ? "--sut" : "--tron-adapter HOST:PORT (DTRON connects)") + " leave it out");
+                    + (sut != null ? "--sut" : "--tron-adapter HOST:PORT (DTRON connects)") + " leave it out (or give"
+                    + " --live PORT: the live view listens there)");
+        }
+        if (report.problem() != null) {
+            throw usage(report.problem());
+        }
+        if (tronBackend && report.given()) {
+            throw usage("--report and --live show DTRON's engine's run; with --backend tron, TRON keeps its own log");
         }
         if (busMode && virtualTime) {
             throw usage("--virtual-time needs --sut or --tron-adapter: the adapters on a bus live in real time");
@@ -938,17 +949,33 @@ final class RunCommand implements Callable<Integer> {
         coverage.configure(tester, goals);
         goalOptions.apply(tester, out, this::usage);
         TestResult result;
+        ReportOptions.Session reporting;
+        try {
+            reporting = report.open(model, network, options, bindAddress(), out);
+        } catch (IOException e) {
+            throw usage(e.getMessage());
+        }
         try (Progress progress = new Progress(out, options)) {
             tester.addListener(progress);
+            if (reporting != null) {
+                tester.addListener(reporting.recorder());
+            }
             result = JsonTrace.run(tester, trace, model, options, adapter, traceMaxBytes(), note -> {
                 out.println("dtron run: " + note);
                 out.flush();
             });
+        } finally {
+            if (reporting != null) {
+                reporting.stopLive();
+            }
         }
         printVerdict(result, out);
         coverage.report(result, out, spec.commandLine().getErr());
         goalOptions.report(tester, options.timeUnitMicros(), out);
         writeJunit(result, options, tester.steeringReport());
+        if (reporting != null) {
+            reporting.write(out, spec.commandLine().getErr());
+        }
         return result;
     }
 
