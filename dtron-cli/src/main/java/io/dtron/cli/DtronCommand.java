@@ -28,7 +28,7 @@ import picocli.CommandLine.UnmatchedArgumentException;
         description = {"Online model-based testing and control of timed systems with Uppaal timed automata.",
                 "dtron MODEL [OPTIONS] is short for dtron run MODEL [OPTIONS]."},
         subcommands = {CheckCommand.class, RunCommand.class, TronCommand.class, VerifyCommand.class, DeltaCommand.class,
-                CoverageCommand.class, MutantsCommand.class, CommandLine.HelpCommand.class})
+                CoverageCommand.class, MutantsCommand.class, MonitorCommand.class, CommandLine.HelpCommand.class})
 public final class DtronCommand implements Callable<Integer> {
     @Spec
     private CommandSpec spec;

@@ -228,6 +228,20 @@ public final class Monitor {
         return alarm;
     }
 
+    /**
+     * Forgets what the events so far said: the monitor starts again from every state the model can reach, at the
+     * time of the next event or tick, as after an event it could not read (so that the missing event raises no
+     * alarm). Ignored once the monitor has stopped.
+     */
+    public void forgetHistory() {
+        if (stopped) {
+            return;
+        }
+        current = reachable();
+        started = false;
+        since = "the gap in the events";
+    }
+
     private void start(long micros) {
         if (!started) {
             started = true;

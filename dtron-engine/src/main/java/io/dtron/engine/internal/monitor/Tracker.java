@@ -25,6 +25,8 @@ import java.util.function.Predicate;
 public final class Tracker {
     /** The most states a closure or the exploration of the reachable states may visit. */
     public static final int MAX_STATES = 200_000;
+    /** How long the exploration of the reachable states may take: 10 s. */
+    static final long REACHABLE_NANOS = 10_000_000_000L;
     /** How many nodes are interned before the table and the transitions remembered start again. */
     static final int NODE_LIMIT = 20_000;
     /** How many transitions one node remembers before it forgets them all. */
@@ -244,9 +246,10 @@ public final class Tracker {
      * Every state the closed network can be in (its reachable symbolic states, each closed under delay) with the
      * elapsed clock at 0, those {@code keep} accepts; explored with the same semantics as the events.
      *
-     * @throws UnsupportedModelException past {@link #MAX_STATES} states
+     * @throws UnsupportedModelException past {@link #MAX_STATES} states or {@link #REACHABLE_NANOS}
      */
     public Node reachable(Predicate<SymState> keep) {
+        long began = System.nanoTime();
         Passed passed = new Passed();
         Deque<SymState> waiting = new ArrayDeque<>();
         waiting.add(semantics.initial());
@@ -261,9 +264,11 @@ public final class Tracker {
             if (!passed.add(s)) {
                 continue;
             }
-            if (passed.size() > MAX_STATES) {
-                throw new UnsupportedModelException("more than " + MAX_STATES + " reachable symbolic states: name"
-                        + " a state to start from");
+            if (passed.size() > MAX_STATES || passed.size() % 1024 == 0
+                    && System.nanoTime() - began > REACHABLE_NANOS) {
+                throw new UnsupportedModelException("the model has too many reachable symbolic states to start from"
+                        + " all of them (" + passed.size() + " found in " + (System.nanoTime() - began) / 1_000_000
+                        + " ms): start from the initial state");
             }
             all.moves(s, sink);
         }
