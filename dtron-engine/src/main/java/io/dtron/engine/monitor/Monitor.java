@@ -40,6 +40,8 @@ public final class Monitor {
     private static final int MAX_TICKS_PER_UNIT = 1000;
     /** How far past a violation the alarm looks for what the model allowed: 100 time units. */
     private static final int WINDOW_HORIZON_UNITS = 100;
+    /** The most allowed events an explanation names; the alarm lists them all. */
+    private static final int DESCRIBED = 4;
 
     private final Network network;
     private final MonitorOptions options;
@@ -75,6 +77,10 @@ public final class Monitor {
         List<TestInterface.ObservableChannel> all = new ArrayList<>(testInterface.inputs());
         all.addAll(testInterface.outputs());
         for (TestInterface.ObservableChannel c : all) {
+            if (c.name().equals(Alarm.CHANNEL)) {
+                throw new UnsupportedModelException("the channel name '" + Alarm.CHANNEL + "' is reserved for the"
+                        + " monitor's alarms");
+            }
             observed[c.channel()] = true;
             int n = c.variables().size();
             int[] slots = new int[n];
@@ -100,8 +106,8 @@ public final class Monitor {
      * A monitor of the closed network {@code network} whose observable channels are those of {@code
      * testInterface}, inputs and outputs alike.
      *
-     * @throws UnsupportedModelException when the engine cannot run the model, or it has too many reachable states
-     *                                   to start from all of them
+     * @throws UnsupportedModelException when the engine cannot run the model, it names a channel {@link
+     *                                   Alarm#CHANNEL}, or it has too many reachable states to start from all of them
      * @throws QueryException            when the start property does not compile or no reachable state satisfies it
      */
     public static Monitor of(Network network, TestInterface testInterface, MonitorOptions options) {
@@ -306,11 +312,14 @@ public final class Monitor {
      */
     private List<Alarm.Window> allowed(long ticks) {
         List<SymState> reach;
+        long horizon = 2 * ticks + (long) WINDOW_HORIZON_UNITS * ticksPerUnit;
         try {
-            reach = tracker.reach(current, Math.max(ticks, 2 * ticks) + (long) WINDOW_HORIZON_UNITS * ticksPerUnit);
+            reach = tracker.reach(current, horizon);
         } catch (UnsupportedModelException e) {
-            reach = tracker.reach(current, ticks);
+            horizon = ticks;
+            reach = tracker.reach(current, horizon);
         }
+        long end = Math.min(horizon, Bound.MAX_VALUE);
         Map<String, long[]> windows = new LinkedHashMap<>();
         Map<String, Alarm.Window> keys = new LinkedHashMap<>();
         int elapsed = tracker.semantics().elapsedClock();
@@ -322,7 +331,8 @@ public final class Monitor {
                     Dbm z = t.zone();
                     long lo = -Bound.value(z.upperBound(0, elapsed));
                     int upper = z.upperBound(elapsed, 0);
-                    long hi = upper == Bound.INFINITY ? -1 : Bound.value(upper);
+                    // a window open at the horizon is open as far as this looked: said as without end
+                    long hi = upper == Bound.INFINITY || Bound.value(upper) >= end ? -1 : Bound.value(upper);
                     long[] w = windows.get(key);
                     if (w == null) {
                         windows.put(key, new long[] {lo, hi});
@@ -350,6 +360,10 @@ public final class Monitor {
         }
         List<String> parts = new ArrayList<>();
         for (Alarm.Window w : allowed) {
+            if (parts.size() == DESCRIBED) {
+                parts.add("and " + (allowed.size() - DESCRIBED) + " more");
+                break;
+            }
             parts.add(new Event(w.channel(), w.values()) + " in [" + time(w.fromMicros()) + ", "
                     + (w.toMicros() < 0 ? "t=inf)" : time(w.toMicros()) + "]"));
         }
