@@ -119,9 +119,8 @@ public final class Tracker {
         if (cached != null) {
             return cached;
         }
-        Node atTime = afterWindow(from, fromTicks, toTicks);
         List<SymState> out = new ArrayList<>();
-        for (SymState s : atTime.states) {
+        for (SymState s : delayed(from, fromTicks, toTicks)) {
             observable.moves(s, channel, (move, next) -> {
                 if (matches(next, slots, values)) {
                     out.add(next);
@@ -167,6 +166,11 @@ public final class Tracker {
      * back to 0; {@link #empty} if time cannot pass that far.
      */
     public Node afterWindow(Node from, long fromTicks, long toTicks) {
+        return intern(delayed(from, fromTicks, toTicks));
+    }
+
+    /** {@link #afterWindow}'s states, not interned (the step of an event needs no node of them). */
+    private List<SymState> delayed(Node from, long fromTicks, long toTicks) {
         Passed out = new Passed();
         for (SymState t : reach(from, toTicks)) {
             Dbm z = t.zone();
@@ -177,7 +181,7 @@ public final class Tracker {
             semantics.extrapolate(t);
             out.add(t);
         }
-        return intern(out.states());
+        return out.states();
     }
 
     /**
