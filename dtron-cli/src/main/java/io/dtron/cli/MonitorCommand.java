@@ -68,6 +68,11 @@ final class MonitorCommand implements Callable<Integer> {
                     + " 'Lamp.off' or 'Server.Busy && n == 3' (the reachable states where it holds).")
     private String from;
 
+    @Option(names = "--tolerance", paramLabel = "US", defaultValue = "0",
+            description = "Take each event's time give or take US microseconds (the clock error of the recorder;"
+                    + " default: 0).")
+    private long toleranceMicros;
+
     @Option(names = "--continue", description = "Go on after a violation: count them, and start again after each"
             + " from every reachable state consistent with the event.")
     private boolean keepGoing;
@@ -81,6 +86,9 @@ final class MonitorCommand implements Callable<Integer> {
         PrintWriter err = spec.commandLine().getErr();
         if (timeUnit != null && timeUnit <= 0) {
             throw usage("--timeunit must be a positive number of microseconds: " + timeUnit);
+        }
+        if (toleranceMicros < 0) {
+            throw usage("--tolerance must not be negative: " + toleranceMicros);
         }
         if (!Files.isReadable(replay) || Files.isDirectory(replay)) {
             err.println("dtron monitor: cannot read " + replay);
@@ -122,6 +130,7 @@ final class MonitorCommand implements Callable<Integer> {
         }
         out.println("dtron monitor: " + model + ", replay of " + replay + " (" + (format == TraceReader.Format.CSV
                 ? "CSV" : "JSON lines") + "), from " + start() + ", time units of " + unit + " us"
+                + (toleranceMicros > 0 ? ", event times give or take " + toleranceMicros + " us" : "")
                 + (keepGoing ? ", going on after violations" : ""));
         Replay r = new Replay(monitor, out, err, unit);
         long began = System.nanoTime();
@@ -186,7 +195,7 @@ final class MonitorCommand implements Callable<Integer> {
         public void event(Event event, long micros, int line) {
             Alarm a;
             try {
-                a = monitor.observe(event, micros);
+                a = monitor.observe(event, micros, toleranceMicros);
             } catch (IllegalArgumentException e) {
                 rejected(line, e.getMessage());
                 return;

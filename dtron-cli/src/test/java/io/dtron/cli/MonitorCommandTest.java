@@ -213,6 +213,18 @@ class MonitorCommandTest {
     }
 
     @Test
+    void aToleranceTakesEachEventsTimeGiveOrTake(@TempDir Path dir) throws Exception {
+        List<String> log = List.of("t_us,channel,values", "1000,req,n=1", "1800,resp,n=2");
+        assertEquals(2, monitor(dir, "l.csv", log, SERVER.toString()).exit());
+        CommandRun r = monitor(dir, "l.csv", log, SERVER.toString(), "--tolerance", "300");
+        assertEquals(0, r.exit(), r.out() + r.err());
+        assertTrue(r.out().contains("event times give or take 300 us"), r.out());
+        CommandRun negative = monitor(dir, "l.csv", log, SERVER.toString(), "--tolerance", "-1");
+        assertEquals(1, negative.exit());
+        assertTrue(negative.err().startsWith("dtron monitor: --tolerance must not be negative"), negative.err());
+    }
+
+    @Test
     void aWrongStartOrFileIsAOneLineError(@TempDir Path dir) throws Exception {
         List<String> trace = record(dir, SERVER, 7, 100);
         CommandRun r = monitor(dir, "t.jsonl", trace, SERVER.toString(), "--from", "Server.Nowhere");

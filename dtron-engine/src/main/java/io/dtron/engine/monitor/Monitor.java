@@ -151,6 +151,20 @@ public final class Monitor {
      * @throws UnsupportedModelException on a model error or a model too nondeterministic to follow
      */
     public Alarm observe(Event event, long micros) {
+        return observe(event, micros, 0);
+    }
+
+    /**
+     * {@link #observe(Event, long)} of an event whose time is known give or take {@code uncertaintyMicros} (the
+     * clock error of whoever stamped it): it is allowed when the model allows it at some time of that window (but
+     * not before the last event).
+     *
+     * @throws IllegalArgumentException as {@link #observe(Event, long)} does, and for a negative uncertainty
+     */
+    public Alarm observe(Event event, long micros, long uncertaintyMicros) {
+        if (uncertaintyMicros < 0) {
+            throw new IllegalArgumentException("negative uncertainty " + uncertaintyMicros);
+        }
         if (stopped) {
             return null;
         }
@@ -174,8 +188,8 @@ public final class Monitor {
             throw new IllegalArgumentException("event " + event + " at " + time(micros) + " comes before the last one,"
                     + " at " + time(lastMicros));
         }
-        long fromTicks = ticksFloor(micros - lastMicros);
-        long toTicks = ticksCeil(micros - lastMicros);
+        long fromTicks = ticksFloor(Math.max(0, micros - uncertaintyMicros - lastMicros));
+        long toTicks = ticksCeil(micros + uncertaintyMicros - lastMicros);
         events++;
         Tracker.Node next;
         try {

@@ -201,6 +201,30 @@ class MonitorTest {
     }
 
     @Test
+    void anEventKnownWithinAWindowIsAllowedWhenTheModelAllowsItSomewhereInIt() throws Exception {
+        Network n = server();
+        Monitor exact = Monitor.of(n, TestInterface.fromNames(n), MonitorOptions.initial(UNIT));
+        exact.observe(Event.of("req", "n", 1), 1_000);
+        assertNotNull(exact.observe(Event.of("resp", "n", 2), 1_800), "0.8 units after the request is too early");
+        Monitor window = Monitor.of(n, TestInterface.fromNames(n), MonitorOptions.initial(UNIT));
+        window.observe(Event.of("req", "n", 1), 1_000);
+        assertNull(window.observe(Event.of("resp", "n", 2), 1_800, 300), "at 2.1 it is allowed");
+        assertThrows(IllegalArgumentException.class, () -> window.observe(Event.of("req", "n", 1), 3_000, -1));
+        Monitor tooEarly = Monitor.of(n, TestInterface.fromNames(n), MonitorOptions.initial(UNIT));
+        tooEarly.observe(Event.of("req", "n", 1), 1_000);
+        assertNotNull(tooEarly.observe(Event.of("resp", "n", 2), 1_800, 100), "not even at 1.9");
+    }
+
+    @Test
+    void aModelNamingTheAlarmChannelIsRefused() throws Exception {
+        Network n = ModelLoader.load("alarm.xta", "chan i_dtron_alarm; process P() { state S; init S; trans S -> S"
+                + " { sync i_dtron_alarm?; }; } system P;");
+        io.dtron.engine.UnsupportedModelException e = assertThrows(io.dtron.engine.UnsupportedModelException.class,
+                () -> Monitor.of(n, TestInterface.fromNames(n), MonitorOptions.initial(UNIT)));
+        assertTrue(e.getMessage().contains("'dtron_alarm' is reserved"), e.getMessage());
+    }
+
+    @Test
     void continuingCountsViolationsAndResynchronises() throws Exception {
         Network n = server();
         Monitor m = Monitor.of(n, TestInterface.fromNames(n), MonitorOptions.initial(UNIT).keepGoing(true));
