@@ -12,8 +12,10 @@ import java.util.Arrays;
 import java.util.Collections;
 import java.util.Deque;
 import java.util.HashMap;
+import java.util.IdentityHashMap;
 import java.util.List;
 import java.util.Map;
+import java.util.Set;
 import java.util.function.Predicate;
 
 /**
@@ -358,6 +360,8 @@ public final class Tracker {
     private static final class Passed {
         private final Map<Integer, List<SymState>> groups = new HashMap<>();
         private final List<SymState> order = new ArrayList<>();
+        /** The states of {@link #order} a later one covered: left out of {@link #states()}. */
+        private final Set<SymState> dropped = Collections.newSetFromMap(new IdentityHashMap<>());
 
         /** Adds {@code s} unless a state of its group covers it; drops the states it covers. */
         boolean add(SymState s) {
@@ -367,22 +371,28 @@ public final class Tracker {
                     return false;
                 }
             }
-            int before = group.size();
-            group.removeIf(o -> o.sameDiscrete(s) && o.zone().isSubsetOf(s.zone()));
-            if (group.size() != before) {
-                order.removeIf(o -> o.sameDiscrete(s) && o.zone().isSubsetOf(s.zone()));
-            }
+            group.removeIf(o -> o.sameDiscrete(s) && o.zone().isSubsetOf(s.zone()) && dropped.add(o));
             group.add(s);
             order.add(s);
             return true;
         }
 
         int size() {
-            return order.size();
+            return order.size() - dropped.size();
         }
 
+        /** The states added and not covered by a later one, in the order they were added. */
         List<SymState> states() {
-            return order;
+            if (dropped.isEmpty()) {
+                return order;
+            }
+            List<SymState> kept = new ArrayList<>(order.size() - dropped.size());
+            for (SymState s : order) {
+                if (!dropped.contains(s)) {
+                    kept.add(s);
+                }
+            }
+            return kept;
         }
     }
 }
