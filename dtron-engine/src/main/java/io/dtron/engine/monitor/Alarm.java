@@ -9,8 +9,8 @@ import java.util.Objects;
 
 /**
  * A violation a {@link Monitor} found: why, when, the event (if an event revealed it), what the model allowed
- * then, and the states it could be in. Immutable; {@link #toJson()} is its one-line JSON form, the body of an
- * alarm on the bus's reserved channel {@link #CHANNEL}.
+ * then, and the states it could be in. Immutable; {@link #toJson()} is its one-line JSON form, {@link #busValues()}
+ * its variables on the bus's reserved channel {@link #CHANNEL}.
  *
  * @param number      the violation's number in the run, from 1
  * @param reason      why it is a violation
@@ -41,6 +41,11 @@ public record Alarm(int number, Reason reason, long micros, Event event, String 
         /** The name in JSON: {@code unexpected_event}, {@code wrong_values}, {@code deadline_missed}. */
         public String json() {
             return name().toLowerCase(java.util.Locale.ROOT);
+        }
+
+        /** The number on the bus: 1 unexpected event, 2 wrong values, 3 deadline missed. */
+        public int code() {
+            return ordinal() + 1;
         }
     }
 
@@ -75,6 +80,17 @@ public record Alarm(int number, Reason reason, long micros, Event event, String 
         Objects.requireNonNull(explanation, "explanation");
         allowed = List.copyOf(allowed);
         states = List.copyOf(states);
+    }
+
+    /**
+     * The alarm's variables on the bus, where a message carries integers only: {@code number} and {@code reason}
+     * ({@link Reason#code()}); the message's event time is the alarm's time, and {@link #toJson()} the whole alarm.
+     */
+    public Map<String, Integer> busValues() {
+        Map<String, Integer> values = new LinkedHashMap<>();
+        values.put("number", number);
+        values.put("reason", reason.code());
+        return Collections.unmodifiableMap(values);
     }
 
     /**

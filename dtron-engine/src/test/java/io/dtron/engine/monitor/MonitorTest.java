@@ -196,6 +196,8 @@ class MonitorTest {
         assertEquals(Alarm.Reason.UNEXPECTED_EVENT, b.reason());
         assertEquals(1_500, b.micros());
         assertTrue(b.explanation().contains("resp(n=2) in [t=2.000, t=4.000]"), b.explanation());
+        assertEquals(Map.of("number", 1, "reason", 1), b.busValues());
+        assertEquals(List.of(1, 2, 3), java.util.Arrays.stream(Alarm.Reason.values()).map(Alarm.Reason::code).toList());
         assertTrue(b.toJson().startsWith("{\"kind\":\"alarm\",\"number\":1,\"reason\":\"unexpected_event\",\"t_us\":1500,"
                 + "\"channel\":\"resp\",\"values\":{\"n\":2},"), b.toJson());
     }
