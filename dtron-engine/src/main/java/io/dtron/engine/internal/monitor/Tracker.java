@@ -33,6 +33,8 @@ public final class Tracker {
     static final int NODE_LIMIT = 20_000;
     /** How many transitions one node remembers before it forgets them all. */
     static final int TRANSITION_LIMIT = 4_096;
+    /** How many transitions all nodes remember before the tracker forgets all nodes and transitions. */
+    static final int REMEMBERED_LIMIT = 200_000;
 
     private final Semantics semantics;
     private final int elapsed;
@@ -41,6 +43,8 @@ public final class Tracker {
     private final DiscreteCache all;
     private final Map<NodeKey, Node> nodes = new HashMap<>();
     private final TransitionKey probe = new TransitionKey();
+    /** Transitions remembered since the tracker last forgot. */
+    private int remembered;
     /** The empty set: where an event that no state allows leads. */
     public final Node empty = new Node(List.of());
 
@@ -102,7 +106,7 @@ public final class Tracker {
         Node n = nodes.get(key);
         if (n == null) {
             if (nodes.size() >= NODE_LIMIT) {
-                nodes.clear();
+                forget();
             }
             n = new Node(states);
             nodes.put(key, n);
@@ -133,8 +137,24 @@ public final class Tracker {
         if (from.next.size() >= TRANSITION_LIMIT) {
             from.next.clear();
         }
+        if (++remembered > REMEMBERED_LIMIT) {
+            forget();
+        }
         from.next.put(k.copy(), result);
         return result;
+    }
+
+    /**
+     * Forgets the interned nodes and their transitions: a run that keeps meeting new sets (clocks that are not
+     * reset, delays that do not repeat) would otherwise keep every set it met, each reachable from the one before
+     * it. A node made before is still right; it is only no longer shared.
+     */
+    private void forget() {
+        for (Node n : nodes.values()) {
+            n.next.clear();
+        }
+        nodes.clear();
+        remembered = 0;
     }
 
     private static boolean matches(SymState s, int[] slots, int[] values) {
