@@ -17,7 +17,8 @@ import java.util.Map;
  *
  * <p>JSON lines: an object with {@code "t_us"} (microseconds on the run's clock), {@code "channel"} and optionally
  * {@code "values"} (an object of integers) is an event when its {@code "kind"} is {@code "input"}, {@code "output"}
- * or absent; {@code "verdict"} (its {@code t_us} the end of the run) ends the observation; {@code start}, {@code
+ * or absent; {@code "verdict"} ends the observation at its {@code t_us}, or at the {@code start} line's timeout
+ * when that comes first; {@code start}, {@code
  * edges}, {@code bus} and {@code alarm} lines are skipped. CSV: one event a line, {@code t_us,channel,values} with
  * the values as {@code name=value} pairs separated by {@code ;} (empty for none); a first line starting with {@code
  * t_us} is a header; blank lines and lines starting with {@code #} are skipped.
@@ -79,6 +80,7 @@ final class TraceReader {
             String line;
             int number = 0;
             boolean first = true;
+            long[] timeout = {Long.MAX_VALUE};
             while ((line = in.readLine()) != null) {
                 number++;
                 String trimmed = line.strip();
@@ -94,7 +96,7 @@ final class TraceReader {
                         first = false;
                         csv(trimmed, number, sink);
                     } else {
-                        json(trimmed, number, sink);
+                        json(trimmed, number, sink, timeout);
                     }
                 } catch (IllegalArgumentException e) {
                     sink.rejected(number, e.getMessage());
@@ -103,13 +105,23 @@ final class TraceReader {
         }
     }
 
-    private static void json(String line, int number, Sink sink) {
+    /**
+     * One JSON line; {@code timeout} holds the end of the test a {@code start} line set (its timeout in time units
+     * times its time unit), for the {@code verdict} line after it.
+     */
+    private static void json(String line, int number, Sink sink, long[] timeout) {
         if (!(Json.parse(line) instanceof Map<?, ?> m)) {
             throw new IllegalArgumentException("not a JSON object");
         }
         Object kind = m.get("kind");
+        if ("start".equals(kind) && m.get("timeout") instanceof Long units && m.get("timeunit_us") instanceof Long unit
+                && units > 0 && unit > 0 && units <= Long.MAX_VALUE / unit) {
+            timeout[0] = units * unit;
+            return;
+        }
         if ("verdict".equals(kind)) {
-            sink.end(micros(m.get("t_us")), number);
+            // the tester observes until its timeout; its verdict's time may be later, when the run wound up
+            sink.end(Math.min(micros(m.get("t_us")), timeout[0]), number);
             return;
         }
         if (kind != null && !"input".equals(kind) && !"output".equals(kind)) {

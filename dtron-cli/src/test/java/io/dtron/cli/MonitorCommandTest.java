@@ -154,6 +154,12 @@ class MonitorCommandTest {
         CommandRun e = monitor(dir, "e.jsonl", end, SERVER.toString());
         assertEquals(2, e.exit(), e.out() + e.err());
         assertTrue(e.out().contains("violation 1 at t=4.000: no event by t=4.000"), e.out());
+        // the tester observed until its timeout, t=3 here, though its verdict came later: the deadline is after it
+        List<String> timeout = new ArrayList<>(end);
+        timeout.set(0, "{\"kind\":\"start\",\"seed\":1,\"model\":\"server.xta\",\"timeunit_us\":1000,\"timeout\":3,"
+                + "\"virtual_time\":false}");
+        CommandRun t = monitor(dir, "t.jsonl", timeout, SERVER.toString());
+        assertEquals(0, t.exit(), t.out() + t.err());
     }
 
     @Test
