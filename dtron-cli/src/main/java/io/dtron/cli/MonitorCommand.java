@@ -1,0 +1,262 @@
+package io.dtron.cli;
+
+import io.dtron.engine.Event;
+import io.dtron.engine.UnsupportedModelException;
+import io.dtron.engine.monitor.Alarm;
+import io.dtron.engine.monitor.Monitor;
+import io.dtron.engine.monitor.MonitorOptions;
+import io.dtron.engine.verify.QueryException;
+import io.dtron.model.ModelException;
+import io.dtron.model.ModelLoader;
+import io.dtron.model.Network;
+import io.dtron.model.TestInterface;
+import java.io.IOException;
+import java.io.PrintWriter;
+import java.io.Writer;
+import java.nio.charset.StandardCharsets;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.util.Locale;
+import java.util.concurrent.Callable;
+import picocli.CommandLine.Command;
+import picocli.CommandLine.Model.CommandSpec;
+import picocli.CommandLine.Option;
+import picocli.CommandLine.ParameterException;
+import picocli.CommandLine.Parameters;
+import picocli.CommandLine.Spec;
+
+/**
+ * {@code dtron monitor MODEL --replay TRACE}: runtime verification of a recorded run. Every event of the trace, on
+ * any observable channel of the closed model, is checked against the model with its time, and a missed deadline
+ * is found at its time; prints the first violation (or each, with {@code --continue}) and the counts.
+ */
+@Command(name = "monitor", mixinStandardHelpOptions = true, exitCodeOnInvalidInput = 1, exitCodeOnExecutionException = 1,
+        description = {"Runtime verification: check a recorded run against a closed model.",
+                "Every event of TRACE (inputs and outputs alike) is checked with its time against the states the model"
+                        + " can be in; a deadline the model sets is found when time passes it. TRACE is JSON lines"
+                        + " (dtron run --trace, or lines {\"t_us\":..,\"channel\":..,\"values\":{..}}) or, for a name"
+                        + " ending in .csv, lines t_us,channel,name=value;name=value. A line that cannot be read is"
+                        + " reported and counted, and the monitor starts again from every reachable state after it.",
+                "Exit code 0 no violation, 2 a violation, 3 no violation but lines were rejected, 1 usage or model"
+                        + " error."})
+final class MonitorCommand implements Callable<Integer> {
+    /** With --continue, the violations printed in full; the others are counted. */
+    private static final int PRINTED = 10;
+
+    @Spec
+    private CommandSpec spec;
+
+    @Parameters(index = "0", paramLabel = "MODEL", description = "The closed model (.xml, .xta, or an Uppaal 3 .ta).")
+    private Path model;
+
+    @Option(names = "--interface", paramLabel = "FILE.trn",
+            description = "Take the observable channels from a TRON interface file instead of the i_/o_ names.")
+    private Path interfaceFile;
+
+    @Option(names = "--replay", paramLabel = "TRACE", required = true,
+            description = "The recorded run to check (live monitoring on the bus is not built yet).")
+    private Path replay;
+
+    @Option(names = "--timeunit", paramLabel = "US",
+            description = "Microseconds per model time unit (default: the trace's, else the interface file's"
+                    + " precision, else 1000).")
+    private Long timeUnit;
+
+    @Option(names = "--from", paramLabel = "STATE", defaultValue = "initial",
+            description = "Where the model starts: initial (its initial state at time 0, the default), any (every"
+                    + " state it can reach, at the first event: the history is unknown), or a state property such as"
+                    + " 'Lamp.off' or 'Server.Busy && n == 3' (the reachable states where it holds).")
+    private String from;
+
+    @Option(names = "--tolerance", paramLabel = "US", defaultValue = "0",
+            description = "Take each event's time give or take US microseconds (the clock error of the recorder;"
+                    + " default: 0).")
+    private long toleranceMicros;
+
+    @Option(names = "--continue", description = "Go on after a violation: count them, and start again after each"
+            + " from every reachable state consistent with the event.")
+    private boolean keepGoing;
+
+    @Option(names = "--alarms", paramLabel = "FILE", description = "Write every alarm as a line of JSON to FILE.")
+    private Path alarmsFile;
+
+    @Override
+    public Integer call() {
+        PrintWriter out = spec.commandLine().getOut();
+        PrintWriter err = spec.commandLine().getErr();
+        if (timeUnit != null && timeUnit <= 0) {
+            throw usage("--timeunit must be a positive number of microseconds: " + timeUnit);
+        }
+        if (toleranceMicros < 0) {
+            throw usage("--tolerance must not be negative: " + toleranceMicros);
+        }
+        if (!Files.isReadable(replay) || Files.isDirectory(replay)) {
+            err.println("dtron monitor: cannot read " + replay);
+            return 1;
+        }
+        Network network;
+        TestInterface testInterface;
+        try {
+            network = ModelLoader.load(model);
+            testInterface = interfaceFile == null ? TestInterface.fromNames(network)
+                    : TestInterface.fromFile(network, interfaceFile);
+        } catch (ModelException e) {
+            CheckCommand.printErrors(model, e, err);
+            return 1;
+        } catch (OutOfMemoryError e) {
+            err.println("dtron monitor: " + JvmLimits.modelTooLarge("monitor", model));
+            return 1;
+        }
+        if (testInterface.inputs().isEmpty() && testInterface.outputs().isEmpty()) {
+            err.println("dtron monitor: " + model + " has no observable channels: name channels i_x / o_y, or give"
+                    + " --interface FILE.trn");
+            return 1;
+        }
+        TraceReader.Format format = TraceReader.formatOf(replay);
+        Monitor monitor;
+        long unit;
+        try {
+            unit = RunDefaults.timeUnit(timeUnit, format == TraceReader.Format.JSON_LINES
+                    ? TraceReader.timeUnit(replay) : null, testInterface.timeUnitMicros());
+            monitor = Monitor.of(network, testInterface, options(unit));
+        } catch (IOException e) {
+            err.println("dtron monitor: cannot read " + replay + ": " + e.getMessage());
+            return 1;
+        } catch (QueryException e) {
+            throw usage("--from: " + e.getMessage());
+        } catch (UnsupportedModelException e) {
+            err.println("dtron monitor: " + model + ": " + e.getMessage());
+            return 1;
+        }
+        out.println("dtron monitor: " + model + ", replay of " + replay + " (" + (format == TraceReader.Format.CSV
+                ? "CSV" : "JSON lines") + "), from " + start() + ", time units of " + unit + " us"
+                + (toleranceMicros > 0 ? ", event times give or take " + toleranceMicros + " us" : "")
+                + (keepGoing ? ", going on after violations" : ""));
+        Replay r = new Replay(monitor, out, err, unit);
+        long began = System.nanoTime();
+        try (Writer alarms = alarmsFile == null ? Writer.nullWriter()
+                : Files.newBufferedWriter(alarmsFile, StandardCharsets.UTF_8)) {
+            r.alarms = alarms;
+            TraceReader.read(replay, format, r);
+            r.report(r.endMicros >= 0 ? monitor.advanceTo(r.endMicros) : null);
+        } catch (IOException e) {
+            err.println("dtron monitor: cannot read " + replay + " or write the alarms: " + e.getMessage());
+            return 1;
+        } catch (UnsupportedModelException e) {
+            err.println("dtron monitor: " + model + ": " + e.getMessage());
+            return 1;
+        }
+        double seconds = (System.nanoTime() - began) / 1e9;
+        int violations = monitor.violations();
+        out.println("dtron monitor: " + (violations == 0 ? "no violation" : violations + " violation"
+                + (violations == 1 ? "" : "s")) + ", " + monitor.events() + " event" + (monitor.events() == 1 ? "" : "s")
+                + " checked" + (monitor.stopped() ? " (stopped at the first violation)" : "") + ", " + r.rejected
+                + " line" + (r.rejected == 1 ? "" : "s") + " rejected, in " + String.format(Locale.ROOT, "%.2f s",
+                seconds));
+        return violations > 0 ? 2 : r.rejected > 0 ? 3 : 0;
+    }
+
+    private MonitorOptions options(long unit) {
+        MonitorOptions o = switch (from) {
+            case "initial" -> MonitorOptions.initial(unit);
+            case "any" -> MonitorOptions.anyState(unit);
+            default -> MonitorOptions.from(unit, from);
+        };
+        return o.keepGoing(keepGoing);
+    }
+
+    private String start() {
+        return switch (from) {
+            case "initial" -> "the initial state";
+            case "any" -> "every reachable state";
+            default -> "the reachable states where " + from + " holds";
+        };
+    }
+
+    /** The replay: feeds the monitor, prints the alarms and the rejected lines. */
+    private final class Replay implements TraceReader.Sink {
+        private final Monitor monitor;
+        private final PrintWriter out;
+        private final PrintWriter err;
+        private final long unit;
+        private Writer alarms;
+        private int rejected;
+        private long endMicros = -1;
+        private long lastMicros = -1;
+
+        Replay(Monitor monitor, PrintWriter out, PrintWriter err, long unit) {
+            this.monitor = monitor;
+            this.out = out;
+            this.err = err;
+            this.unit = unit;
+        }
+
+        @Override
+        public void event(Event event, long micros, int line) {
+            Alarm a;
+            try {
+                a = monitor.observe(event, micros, toleranceMicros);
+            } catch (IllegalArgumentException e) {
+                rejected(line, e.getMessage());
+                return;
+            }
+            lastMicros = Math.max(lastMicros, micros);
+            endMicros = Math.max(endMicros, micros);
+            report(a);
+        }
+
+        @Override
+        public void end(long micros, int line) {
+            if (micros < lastMicros) {
+                rejected(line, "the run ends at " + micros + " us, before its last event at " + lastMicros + " us");
+                return;
+            }
+            endMicros = micros;
+        }
+
+        @Override
+        public void rejected(int line, String reason) {
+            rejected++;
+            err.println(replay + ":" + line + ": " + reason);
+            monitor.forgetHistory();
+        }
+
+        void report(Alarm a) {
+            if (a == null) {
+                return;
+            }
+            try {
+                alarms.write(a.toJson());
+                alarms.write('\n');
+            } catch (IOException e) {
+                throw new java.io.UncheckedIOException(e);
+            }
+            if (a.number() > PRINTED) {
+                return;
+            }
+            out.println("violation " + a.number() + " at t=" + units(a.micros()) + ": " + a.explanation());
+            if (a.number() == 1) {
+                for (Alarm.State s : a.states()) {
+                    out.println("  the model could be in " + String.join(", ", s.locations()) + (s.variables().isEmpty()
+                            ? "" : " with " + s.variables()) + (s.clocks().isEmpty() ? "" : ", " + s.clocks()));
+                }
+                if (a.moreStates() > 0) {
+                    out.println("  and " + a.moreStates() + " more states");
+                }
+            }
+            if (a.number() == PRINTED) {
+                out.println("(further violations are counted, not printed)");
+            }
+        }
+
+        private String units(long micros) {
+            long whole = Math.floorDiv(micros, unit);
+            long rest = Math.floorMod(micros, unit) * 1000 / unit;
+            return whole + "." + String.format(Locale.ROOT, "%03d", rest);
+        }
+    }
+
+    private ParameterException usage(String message) {
+        return new ParameterException(spec.commandLine(), "dtron monitor: " + message);
+    }
+}

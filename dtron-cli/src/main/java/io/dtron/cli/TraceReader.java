@@ -1,0 +1,206 @@
+package io.dtron.cli;
+
+import io.dtron.engine.Event;
+import java.io.BufferedReader;
+import java.io.IOException;
+import java.nio.charset.StandardCharsets;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.util.LinkedHashMap;
+import java.util.Locale;
+import java.util.Map;
+
+/**
+ * Reads the events of a recorded run for {@code dtron monitor --replay}, line by line: JSON lines (DTRON's own
+ * traces, {@code dtron run --trace}, and logs of the same shape) or CSV ({@code t_us,channel,values}). A line that
+ * cannot be read is handed on as rejected, with the reason, and the reading goes on.
+ *
+ * <p>JSON lines: an object with {@code "t_us"} (microseconds on the run's clock), {@code "channel"} and optionally
+ * {@code "values"} (an object of integers) is an event when its {@code "kind"} is {@code "input"}, {@code "output"}
+ * or absent; {@code "verdict"} ends the observation at its {@code t_us}, or at the {@code start} line's timeout
+ * when that comes first; {@code start}, {@code
+ * edges}, {@code bus} and {@code alarm} lines are skipped. CSV: one event a line, {@code t_us,channel,values} with
+ * the values as {@code name=value} pairs separated by {@code ;} (empty for none); a first line starting with {@code
+ * t_us} is a header; blank lines and lines starting with {@code #} are skipped.
+ */
+final class TraceReader {
+    /** The formats. */
+    enum Format { JSON_LINES, CSV }
+
+    /** Receives what the lines say. */
+    interface Sink {
+        /** An event at {@code micros}, on line {@code line}. */
+        void event(Event event, long micros, int line);
+
+        /** The end of the run at {@code micros} (a verdict line). */
+        void end(long micros, int line);
+
+        /** Line {@code line} could not be read, for {@code reason}. */
+        void rejected(int line, String reason);
+    }
+
+    private TraceReader() {
+    }
+
+    /** The format of {@code file}: CSV when its name ends with {@code .csv}, else JSON lines. */
+    static Format formatOf(Path file) {
+        return file.getFileName().toString().toLowerCase(Locale.ROOT).endsWith(".csv") ? Format.CSV : Format.JSON_LINES;
+    }
+
+    /**
+     * The time unit a DTRON trace names on its {@code start} line ({@code timeunit_us}), or null.
+     *
+     * @throws IOException if the file cannot be read
+     */
+    static Long timeUnit(Path file) throws IOException {
+        try (BufferedReader in = Files.newBufferedReader(file, StandardCharsets.UTF_8)) {
+            String first = in.readLine();
+            if (first == null || !first.startsWith("{")) {
+                return null;
+            }
+            try {
+                if (Json.parse(first) instanceof Map<?, ?> m && "start".equals(m.get("kind"))
+                        && m.get("timeunit_us") instanceof Long unit && unit > 0) {
+                    return unit;
+                }
+            } catch (IllegalArgumentException e) {
+                return null;
+            }
+            return null;
+        }
+    }
+
+    /**
+     * Reads {@code file} in {@code format}, handing each line's meaning to {@code sink}.
+     *
+     * @throws IOException if the file cannot be read
+     */
+    static void read(Path file, Format format, Sink sink) throws IOException {
+        try (BufferedReader in = Files.newBufferedReader(file, StandardCharsets.UTF_8)) {
+            String line;
+            int number = 0;
+            boolean first = true;
+            long[] timeout = {Long.MAX_VALUE};
+            while ((line = in.readLine()) != null) {
+                number++;
+                String trimmed = line.strip();
+                if (trimmed.isEmpty()) {
+                    continue;
+                }
+                try {
+                    if (format == Format.CSV) {
+                        if (trimmed.startsWith("#") || first && trimmed.startsWith("t_us")) {
+                            first = false;
+                            continue;
+                        }
+                        first = false;
+                        csv(trimmed, number, sink);
+                    } else {
+                        json(trimmed, number, sink, timeout);
+                    }
+                } catch (IllegalArgumentException e) {
+                    sink.rejected(number, e.getMessage());
+                }
+            }
+        }
+    }
+
+    /**
+     * One JSON line; {@code timeout} holds the end of the test a {@code start} line set (its timeout in time units
+     * times its time unit), for the {@code verdict} line after it.
+     */
+    private static void json(String line, int number, Sink sink, long[] timeout) {
+        if (!(Json.parse(line) instanceof Map<?, ?> m)) {
+            throw new IllegalArgumentException("not a JSON object");
+        }
+        Object kind = m.get("kind");
+        if ("start".equals(kind) && m.get("timeout") instanceof Long units && m.get("timeunit_us") instanceof Long unit
+                && units > 0 && unit > 0 && units <= Long.MAX_VALUE / unit) {
+            timeout[0] = units * unit;
+            return;
+        }
+        if ("verdict".equals(kind)) {
+            // the tester observes until its timeout; its verdict's time may be later, when the run wound up
+            sink.end(Math.min(micros(m.get("t_us")), timeout[0]), number);
+            return;
+        }
+        if (kind != null && !"input".equals(kind) && !"output".equals(kind)) {
+            if ("start".equals(kind) || "edges".equals(kind) || "bus".equals(kind) || "alarm".equals(kind)) {
+                return;
+            }
+            throw new IllegalArgumentException("unknown kind " + kind + " (an event is of kind input or output, or"
+                    + " has none)");
+        }
+        if (!(m.get("channel") instanceof String channel) || channel.isEmpty()) {
+            throw new IllegalArgumentException("no \"channel\" string");
+        }
+        Map<String, Integer> values = new LinkedHashMap<>();
+        Object v = m.get("values");
+        if (v != null) {
+            if (!(v instanceof Map<?, ?> vm)) {
+                throw new IllegalArgumentException("\"values\" is not an object");
+            }
+            for (Map.Entry<?, ?> e : vm.entrySet()) {
+                values.put((String) e.getKey(), integer(e.getKey() + "", e.getValue()));
+            }
+        }
+        sink.event(new Event(channel, values), micros(m.get("t_us")), number);
+    }
+
+    private static long micros(Object t) {
+        if (!(t instanceof Long micros)) {
+            throw new IllegalArgumentException("no \"t_us\" integer (the time in microseconds)");
+        }
+        if (micros < 0) {
+            throw new IllegalArgumentException("negative time " + micros);
+        }
+        return micros;
+    }
+
+    private static int integer(String name, Object value) {
+        if (!(value instanceof Long l) || l < Integer.MIN_VALUE || l > Integer.MAX_VALUE) {
+            throw new IllegalArgumentException("value of '" + name + "' is not a 32-bit integer: " + value);
+        }
+        return (int) (long) l;
+    }
+
+    private static void csv(String line, int number, Sink sink) {
+        String[] fields = line.split(",", -1);
+        if (fields.length < 2 || fields.length > 3) {
+            throw new IllegalArgumentException("expected t_us,channel,values: " + fields.length + " fields");
+        }
+        long micros;
+        try {
+            micros = Long.parseLong(fields[0].strip());
+        } catch (NumberFormatException e) {
+            throw new IllegalArgumentException("time '" + fields[0].strip() + "' is no whole number of microseconds");
+        }
+        if (micros < 0) {
+            throw new IllegalArgumentException("negative time " + micros);
+        }
+        String channel = fields[1].strip();
+        if (channel.isEmpty()) {
+            throw new IllegalArgumentException("no channel");
+        }
+        Map<String, Integer> values = new LinkedHashMap<>();
+        String given = fields.length == 3 ? fields[2].strip() : "";
+        if (!given.isEmpty()) {
+            for (String pair : given.split(";", -1)) {
+                int eq = pair.indexOf('=');
+                String name = eq < 0 ? "" : pair.substring(0, eq).strip();
+                if (name.isEmpty()) {
+                    throw new IllegalArgumentException("value '" + pair.strip() + "' is not name=value");
+                }
+                try {
+                    if (values.put(name, Integer.parseInt(pair.substring(eq + 1).strip())) != null) {
+                        throw new IllegalArgumentException("'" + name + "' given twice");
+                    }
+                } catch (NumberFormatException e) {
+                    throw new IllegalArgumentException("value of '" + name + "' is not a 32-bit integer: "
+                            + pair.substring(eq + 1).strip());
+                }
+            }
+        }
+        sink.event(new Event(channel, values), micros, number);
+    }
+}

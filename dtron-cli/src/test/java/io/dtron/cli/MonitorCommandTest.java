@@ -1,0 +1,242 @@
+package io.dtron.cli;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertFalse;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+import java.nio.charset.StandardCharsets;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.util.ArrayList;
+import java.util.List;
+import java.util.Map;
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.io.TempDir;
+
+/**
+ * {@code dtron monitor --replay} on traces that {@code dtron run --sut model} records in virtual time: correct runs
+ * of the samples have no violation, faults seeded into a trace are found at their event (a missed deadline at the
+ * deadline), {@code --continue} counts them, and lines that cannot be read are reported with file and line, counted,
+ * and raise no alarm.
+ */
+class MonitorCommandTest {
+    static final Path SHARED = Path.of(System.getProperty("dtron.shared", "../../shared"), "models");
+    static final Path SERVER = Path.of("../dtron-engine/src/test/resources/io/dtron/engine/monitor/server.xta");
+    static final Path TICKER = Path.of("../models/src/main/resources/io/dtron/models/ticker.xml");
+    static final Path STREET = Path.of("../models/src/main/resources/io/dtron/models/streetlight/streetlight.xml");
+    static final Path LAMP = SHARED.resolve("tron/LightContr.xml");
+    static final Path LAMP_TRN = SHARED.resolve("tron/LightContr.trn");
+
+    /** Records a run of {@code model} against its own implementation part in virtual time; the trace's lines. */
+    static List<String> record(Path dir, Path model, long seed, long timeout, String... more) throws Exception {
+        Path trace = dir.resolve("run-" + seed + ".jsonl");
+        List<String> args = new ArrayList<>(List.of("run", model.toString(), "--sut", "model", "--virtual-time",
+                "--seed", String.valueOf(seed), "--timeout", String.valueOf(timeout), "--trace", trace.toString()));
+        args.addAll(List.of(more));
+        CommandRun r = CommandRun.of(args.toArray(String[]::new));
+        assertEquals(0, r.exit(), r.out() + r.err());
+        return Files.readAllLines(trace, StandardCharsets.UTF_8);
+    }
+
+    static CommandRun monitor(Path dir, String name, List<String> lines, String... args) throws Exception {
+        Path file = dir.resolve(name);
+        Files.write(file, lines, StandardCharsets.UTF_8);
+        List<String> all = new ArrayList<>(List.of("monitor"));
+        all.addAll(List.of(args));
+        all.addAll(List.of("--replay", file.toString()));
+        CommandRun r = CommandRun.of(all.toArray(String[]::new));
+        assertFalse(r.err().contains("\tat "), "no stack trace: " + r.err());
+        return r;
+    }
+
+    /** The events of a trace as CSV lines: t_us,channel,name=value;... */
+    static List<String> csv(List<String> trace) {
+        List<String> out = new ArrayList<>(List.of("t_us,channel,values"));
+        for (String line : trace) {
+            Map<?, ?> m = (Map<?, ?>) Json.parse(line);
+            if ("input".equals(m.get("kind")) || "output".equals(m.get("kind"))) {
+                List<String> values = new ArrayList<>();
+                ((Map<?, ?>) m.get("values")).forEach((k, v) -> values.add(k + "=" + v));
+                out.add(m.get("t_us") + "," + m.get("channel") + "," + String.join(";", values));
+            }
+        }
+        return out;
+    }
+
+    static int events(List<String> trace) {
+        return (int) trace.stream().filter(l -> l.startsWith("{\"kind\":\"input\"") || l.startsWith("{\"kind\":\"output\""))
+                .count();
+    }
+
+    @Test
+    void correctRunsOfTheSamplesReplayWithoutViolation(@TempDir Path dir) throws Exception {
+        List<Object[]> samples = List.of(new Object[] {SERVER, 500L, new String[0], List.of("initial", "any")},
+                new Object[] {TICKER, 500L, new String[0], List.of("initial", "any")},
+                new Object[] {LAMP, 3000L, new String[] {"--interface", LAMP_TRN.toString()}, List.of("initial", "any")},
+                new Object[] {STREET, 500L, new String[0], List.of("initial", "any")});
+        for (Object[] s : samples) {
+            Path model = (Path) s[0];
+            String[] more = (String[]) s[2];
+            for (long seed = 1; seed <= 3; seed++) {
+                List<String> trace = record(dir, model, seed, (Long) s[1], more);
+                int events = events(trace);
+                assertTrue(events > 3, model + " seed " + seed + ": " + events + " events");
+                for (Object from : (List<?>) s[3]) {
+                    List<String> args = new ArrayList<>(List.of(model.toString(), "--from", from.toString()));
+                    args.addAll(List.of(more));
+                    CommandRun r = monitor(dir, "t.jsonl", trace, args.toArray(String[]::new));
+                    assertEquals(0, r.exit(), r.out() + r.err());
+                    assertTrue(r.out().contains("no violation, " + events + " events checked, 0 lines rejected"), r.out());
+                    CommandRun c = monitor(dir, "t.csv", csv(trace), args.toArray(String[]::new));
+                    assertEquals(0, c.exit(), c.out() + c.err());
+                    assertTrue(c.out().contains("(CSV)"), c.out());
+                }
+            }
+        }
+    }
+
+    @Test
+    void aWrongValueSeededIntoATraceIsFoundAtItsEvent(@TempDir Path dir) throws Exception {
+        List<String> trace = record(dir, LAMP, 2, 3000, "--interface", LAMP_TRN.toString());
+        int k = -1;
+        for (int i = 0; i < trace.size(); i++) {
+            if (trace.get(i).startsWith("{\"kind\":\"output\"") && trace.get(i).contains("\"channel\":\"level\"")) {
+                k = i; // the last output
+            }
+        }
+        assertTrue(k > 0, "the run has an output");
+        Map<?, ?> output = (Map<?, ?>) Json.parse(trace.get(k));
+        long level = (Long) ((Map<?, ?>) output.get("values")).get("adapLevel");
+        List<String> faulty = new ArrayList<>(trace);
+        faulty.set(k, trace.get(k).replace("\"adapLevel\":" + level, "\"adapLevel\":" + (level + 7)));
+        Path alarms = dir.resolve("alarms.jsonl");
+        CommandRun r = monitor(dir, "f.jsonl", faulty, LAMP.toString(), "--interface", LAMP_TRN.toString(), "--alarms",
+                alarms.toString());
+        assertEquals(2, r.exit(), r.out() + r.err());
+        long t = (Long) output.get("t_us");
+        assertTrue(r.out().contains("violation 1 at t=" + String.format("%d.%03d", t / 1000, t % 1000) + ": level(adapLevel="
+                + (level + 7) + ")"), r.out());
+        assertTrue(r.out().contains("it allowed level with {adapLevel=" + level + "}"), r.out());
+        List<String> lines = Files.readAllLines(alarms);
+        assertEquals(1, lines.size());
+        Map<?, ?> alarm = (Map<?, ?>) Json.parse(lines.get(0));
+        assertEquals("wrong_values", alarm.get("reason"));
+        assertEquals(t, alarm.get("t_us"));
+        assertEquals("level", alarm.get("channel"));
+    }
+
+    @Test
+    void aDroppedResponseIsFoundAtItsDeadline(@TempDir Path dir) throws Exception {
+        List<String> trace = record(dir, SERVER, 4, 500);
+        int resp = -1;
+        for (int i = 0; i < trace.size() && resp < 0; i++) {
+            if (trace.get(i).startsWith("{\"kind\":\"output\"")) {
+                resp = i;
+            }
+        }
+        long request = -1;
+        for (int i = resp - 1; i >= 0 && request < 0; i--) {
+            if (trace.get(i).startsWith("{\"kind\":\"input\"")) {
+                request = (Long) ((Map<?, ?>) Json.parse(trace.get(i))).get("t_us");
+            }
+        }
+        List<String> dropped = new ArrayList<>(trace);
+        dropped.remove(resp);
+        CommandRun r = monitor(dir, "d.jsonl", dropped, SERVER.toString());
+        assertEquals(2, r.exit(), r.out() + r.err());
+        long deadline = request + 3000;
+        assertTrue(r.out().contains("violation 1 at t=" + String.format("%d.%03d", deadline / 1000, deadline % 1000)
+                + ": no event by t=" + String.format("%d.%03d", deadline / 1000, deadline % 1000)), r.out());
+        assertTrue(r.out().contains("the model could be in Server.Busy, Client.Waiting"), r.out());
+        // the end of the run is a time too: a response dropped at the end is found at its deadline
+        List<String> end = new ArrayList<>(List.of(trace.get(0), "{\"kind\":\"input\",\"t_us\":1000,\"channel\":\"req\","
+                + "\"values\":{\"n\":1}}", "{\"kind\":\"verdict\",\"t_us\":9000,\"verdict\":\"PASSED\"}"));
+        CommandRun e = monitor(dir, "e.jsonl", end, SERVER.toString());
+        assertEquals(2, e.exit(), e.out() + e.err());
+        assertTrue(e.out().contains("violation 1 at t=4.000: no event by t=4.000"), e.out());
+        // the tester observed until its timeout, t=3 here, though its verdict came later: the deadline is after it
+        List<String> timeout = new ArrayList<>(end);
+        timeout.set(0, "{\"kind\":\"start\",\"seed\":1,\"model\":\"server.xta\",\"timeunit_us\":1000,\"timeout\":3,"
+                + "\"virtual_time\":false}");
+        CommandRun t = monitor(dir, "t.jsonl", timeout, SERVER.toString());
+        assertEquals(0, t.exit(), t.out() + t.err());
+    }
+
+    @Test
+    void continuingCountsTheViolations(@TempDir Path dir) throws Exception {
+        List<String> trace = record(dir, SERVER, 5, 2000);
+        List<String> faulty = new ArrayList<>();
+        int changed = 0;
+        int outputs = 0;
+        for (String line : trace) {
+            if (line.startsWith("{\"kind\":\"output\"") && changed < 3 && outputs++ % 2 == 0) {
+                Map<?, ?> m = (Map<?, ?>) Json.parse(line);
+                long n = (Long) ((Map<?, ?>) m.get("values")).get("n");
+                line = line.replace("\"n\":" + n, "\"n\":" + (n + 5) % 10);
+                changed++;
+            }
+            faulty.add(line);
+        }
+        assertEquals(3, changed, "three responses given a wrong value");
+        Path alarms = dir.resolve("alarms.jsonl");
+        CommandRun r = monitor(dir, "c.jsonl", faulty, SERVER.toString(), "--continue", "--alarms", alarms.toString());
+        assertEquals(2, r.exit(), r.out() + r.err());
+        assertTrue(r.out().contains("3 violations, " + events(trace) + " events checked, 0 lines rejected"), r.out());
+        assertEquals(List.of(1L, 2L, 3L), Files.readAllLines(alarms).stream()
+                .map(l -> (Long) ((Map<?, ?>) Json.parse(l)).get("number")).toList());
+        CommandRun stop = monitor(dir, "c.jsonl", faulty, SERVER.toString());
+        assertTrue(stop.out().contains("1 violation, ") && stop.out().contains("(stopped at the first violation)"),
+                stop.out());
+    }
+
+    @Test
+    void badLinesAreReportedWithTheirPlaceCountedAndRaiseNoAlarm(@TempDir Path dir) throws Exception {
+        List<String> trace = record(dir, SERVER, 6, 500);
+        List<String> json = new ArrayList<>(trace);
+        json.add(3, "{\"kind\":\"output\",\"t_us\":");
+        json.add(5, "{\"kind\":\"output\",\"t_us\":1,\"channel\":\"nothing\",\"values\":{}}");
+        json.add(7, "{\"kind\":\"input\",\"channel\":\"req\",\"values\":{\"n\":1}}");
+        CommandRun r = monitor(dir, "bad.jsonl", json, SERVER.toString());
+        assertEquals(3, r.exit(), r.out() + r.err());
+        assertTrue(r.out().contains("no violation, " + events(trace) + " events checked, 3 lines rejected"), r.out());
+        List<String> err = r.err().lines().toList();
+        assertEquals(3, err.size(), r.err());
+        assertTrue(err.get(0).startsWith(dir.resolve("bad.jsonl") + ":4: "), err.get(0));
+        assertTrue(err.get(1).startsWith(dir.resolve("bad.jsonl") + ":6: 'nothing' is not an observable channel"),
+                err.get(1));
+        assertTrue(err.get(2).startsWith(dir.resolve("bad.jsonl") + ":8: no \"t_us\""), err.get(2));
+        List<String> csv = new ArrayList<>(csv(trace));
+        csv.add(2, "soon,req,n=1");
+        csv.add(4, "5,resp,n");
+        csv.add(6, "6,resp,n=1,extra");
+        CommandRun c = monitor(dir, "bad.csv", csv, SERVER.toString());
+        assertEquals(3, c.exit(), c.out() + c.err());
+        assertTrue(c.out().contains("3 lines rejected"), c.out());
+        assertEquals(List.of(dir.resolve("bad.csv") + ":3: time 'soon' is no whole number of microseconds",
+                dir.resolve("bad.csv") + ":5: value 'n' is not name=value",
+                dir.resolve("bad.csv") + ":7: expected t_us,channel,values: 4 fields"), c.err().lines().toList());
+    }
+
+    @Test
+    void aToleranceTakesEachEventsTimeGiveOrTake(@TempDir Path dir) throws Exception {
+        List<String> log = List.of("t_us,channel,values", "1000,req,n=1", "1800,resp,n=2");
+        assertEquals(2, monitor(dir, "l.csv", log, SERVER.toString()).exit());
+        CommandRun r = monitor(dir, "l.csv", log, SERVER.toString(), "--tolerance", "300");
+        assertEquals(0, r.exit(), r.out() + r.err());
+        assertTrue(r.out().contains("event times give or take 300 us"), r.out());
+        CommandRun negative = monitor(dir, "l.csv", log, SERVER.toString(), "--tolerance", "-1");
+        assertEquals(1, negative.exit());
+        assertTrue(negative.err().startsWith("dtron monitor: --tolerance must not be negative"), negative.err());
+    }
+
+    @Test
+    void aWrongStartOrFileIsAOneLineError(@TempDir Path dir) throws Exception {
+        List<String> trace = record(dir, SERVER, 7, 100);
+        CommandRun r = monitor(dir, "t.jsonl", trace, SERVER.toString(), "--from", "Server.Nowhere");
+        assertEquals(1, r.exit());
+        assertTrue(r.err().startsWith("dtron monitor: --from: "), r.err());
+        CommandRun missing = CommandRun.of("monitor", SERVER.toString(), "--replay", dir.resolve("none.jsonl").toString());
+        assertEquals(1, missing.exit());
+        assertEquals("dtron monitor: cannot read " + dir.resolve("none.jsonl"), missing.err().strip());
+    }
+}

@@ -1,0 +1,61 @@
+package io.dtron.cli;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertFalse;
+
+import io.dtron.testsupport.DocPage;
+import io.dtron.testsupport.ShellWords;
+import java.nio.charset.StandardCharsets;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.util.ArrayList;
+import java.util.List;
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.io.TempDir;
+
+/**
+ * The sessions of the monitoring page ({@code monitoring.md}) run as written, in a folder with the page's files
+ * ({@code server.xta}, the monitor tests' model, {@code log.csv}, {@code midway.csv}): every line the page shows is
+ * printed, in its order, but for the wall time of a replay ({@code in 0.05 s}).
+ */
+class MonitoringPageTest {
+    private static final String COMMAND = "$ java -jar dtron.jar ";
+
+    @Test
+    void theSessionsPrintWhatThePageShows(@TempDir Path dir) throws Exception {
+        DocPage page = DocPage.read("monitoring.md");
+        String model = page.blockAfter("The server, `server.xta`:").code();
+        assertEquals(Files.readString(MonitorCommandTest.SERVER, StandardCharsets.UTF_8), model,
+                "the page's server is the monitor tests'");
+        Files.writeString(dir.resolve("server.xta"), model);
+        Files.writeString(dir.resolve("log.csv"), page.blockAfter("A log of a real server, `log.csv`").code());
+        Files.writeString(dir.resolve("midway.csv"), page.blockAfter("`midway.csv` starts with").code());
+        List<String> expected = new ArrayList<>();
+        List<String> printed = new ArrayList<>();
+        int sessions = 0;
+        for (DocPage.Block b : page.blocksStartingWith(COMMAND)) {
+            List<String> lines = b.code().lines().toList();
+            for (String line : lines) {
+                if (!line.startsWith(COMMAND)) {
+                    expected.add(line.replaceAll("in \\d+\\.\\d\\d s$", "in (time) s"));
+                    continue;
+                }
+                sessions++;
+                List<String> args = new ArrayList<>(ShellWords.split(line.substring(COMMAND.length())));
+                for (int i = 0; i < args.size(); i++) {
+                    if (args.get(i).matches("[a-z]+\\.(xta|csv|jsonl)")) {
+                        args.set(i, dir.resolve(args.get(i)).toString());
+                    }
+                }
+                CommandRun r = CommandRun.of(args.toArray(String[]::new));
+                assertFalse(r.err().contains("\tat "), "no stack trace: " + r.err());
+                assertEquals(r.out().contains("violation 1 at") ? 2 : 0, r.exit(), line + "\n" + r.out() + r.err());
+                for (String out : ShellWords.lines(r.out(), dir)) {
+                    printed.add(out.replaceAll("in \\d+\\.\\d\\d s$", "in (time) s"));
+                }
+            }
+        }
+        assertEquals(5, sessions, "record, replay, a log with faults, --continue, --from any");
+        assertEquals(expected, printed);
+    }
+}

@@ -1,0 +1,418 @@
+package io.dtron.engine.internal.monitor;
+
+import io.dtron.engine.UnsupportedModelException;
+import io.dtron.engine.internal.sem.DiscreteCache;
+import io.dtron.engine.internal.sem.Semantics;
+import io.dtron.engine.internal.sem.SymState;
+import io.dtron.engine.zone.Bound;
+import io.dtron.engine.zone.Dbm;
+import java.util.ArrayDeque;
+import java.util.ArrayList;
+import java.util.Arrays;
+import java.util.Collections;
+import java.util.Deque;
+import java.util.HashMap;
+import java.util.IdentityHashMap;
+import java.util.List;
+import java.util.Map;
+import java.util.Set;
+import java.util.function.Predicate;
+
+/**
+ * The monitor's knowledge of a closed network: sets of symbolic states at the time of the last event (the elapsed
+ * clock is 0 in every zone), every channel of the interface observable and the others internal. Sets are interned
+ * as {@link Node}s, and a node remembers where each event (channel, values, delay in ticks) took it, so that a
+ * run that comes back to the same states and delays costs a hash lookup per event. Not thread-safe.
+ */
+public final class Tracker {
+    /** The most states a closure or the exploration of the reachable states may visit. */
+    public static final int MAX_STATES = 200_000;
+    /** How long the exploration of the reachable states may take: 10 s. */
+    static final long REACHABLE_NANOS = 10_000_000_000L;
+    /** How many nodes are interned before the table and the transitions remembered start again. */
+    static final int NODE_LIMIT = 20_000;
+    /** How many transitions one node remembers before it forgets them all. */
+    static final int TRANSITION_LIMIT = 4_096;
+    /** How many transitions all nodes remember before the tracker forgets all nodes and transitions. */
+    static final int REMEMBERED_LIMIT = 200_000;
+
+    private final Semantics semantics;
+    private final int elapsed;
+    private final DiscreteCache internal;
+    private final DiscreteCache observable;
+    private final DiscreteCache all;
+    private final Map<NodeKey, Node> nodes = new HashMap<>();
+    private final TransitionKey probe = new TransitionKey();
+    /** Transitions remembered since the tracker last forgot. */
+    private int remembered;
+    /** The empty set: where an event that no state allows leads. */
+    public final Node empty = new Node(List.of());
+
+    /** A tracker of {@code semantics} (made with the tester's clock) in which the channels of {@code observed} are seen. */
+    public Tracker(Semantics semantics, boolean[] observed) {
+        this.semantics = semantics;
+        this.elapsed = semantics.elapsedClock();
+        this.internal = new DiscreteCache(semantics, c -> c < 0 || !observed[c], 2_000);
+        this.observable = new DiscreteCache(semantics, c -> c >= 0 && observed[c], 2_000);
+        this.all = new DiscreteCache(semantics, c -> true, 2_000);
+    }
+
+    /** The semantics. */
+    public Semantics semantics() {
+        return semantics;
+    }
+
+    /**
+     * A set of states at one time, interned: equal sets are one node. Its states are not to be changed. It
+     * remembers the transitions taken from it and the delays it has been found to allow.
+     */
+    public static final class Node {
+        private final List<SymState> states;
+        private final Map<TransitionKey, Node> next = new HashMap<>();
+        /** The most elapsed ticks known to be allowed (-1: none known). */
+        long allowedUntil = -1;
+        /** The raw bound on elapsed ticks beyond which no state is left, once found; {@link Bound#INFINITY} if none. */
+        int deadline = Integer.MIN_VALUE;
+
+        Node(List<SymState> states) {
+            this.states = Collections.unmodifiableList(states);
+        }
+
+        /** The states (zones not to be changed). */
+        public List<SymState> states() {
+            return states;
+        }
+
+        /** Whether no state is left. */
+        public boolean isEmpty() {
+            return states.isEmpty();
+        }
+    }
+
+    /** The node of the set holding {@code states} (deduplicated by inclusion first). */
+    public Node node(List<SymState> states) {
+        Passed passed = new Passed();
+        for (SymState s : states) {
+            passed.add(s);
+        }
+        return intern(passed.states());
+    }
+
+    private Node intern(List<SymState> states) {
+        if (states.isEmpty()) {
+            return empty;
+        }
+        NodeKey key = new NodeKey(states);
+        Node n = nodes.get(key);
+        if (n == null) {
+            if (nodes.size() >= NODE_LIMIT) {
+                forget();
+            }
+            n = new Node(states);
+            nodes.put(key, n);
+        }
+        return n;
+    }
+
+    /**
+     * The node after the event on channel {@code channel} whose attached variables (state slots {@code slots})
+     * carry {@code values}, some time in {@code [fromTicks, toTicks]} after {@code from}'s time; {@link #empty}
+     * when no state allows it then.
+     */
+    public Node step(Node from, int channel, int[] slots, int[] values, long fromTicks, long toTicks) {
+        TransitionKey k = probe.set(channel, values, fromTicks, toTicks);
+        Node cached = from.next.get(k);
+        if (cached != null) {
+            return cached;
+        }
+        List<SymState> out = new ArrayList<>();
+        for (SymState s : delayed(from, fromTicks, toTicks)) {
+            observable.moves(s, channel, (move, next) -> {
+                if (matches(next, slots, values)) {
+                    out.add(next);
+                }
+            });
+        }
+        Node result = node(out);
+        if (from.next.size() >= TRANSITION_LIMIT) {
+            from.next.clear();
+        }
+        if (++remembered > REMEMBERED_LIMIT) {
+            forget();
+        }
+        from.next.put(k.copy(), result);
+        return result;
+    }
+
+    /**
+     * Forgets the interned nodes and their transitions: a run that keeps meeting new sets (clocks that are not
+     * reset, delays that do not repeat) would otherwise keep every set it met, each reachable from the one before
+     * it. A node made before is still right; it is only no longer shared.
+     */
+    private void forget() {
+        for (Node n : nodes.values()) {
+            n.next.clear();
+        }
+        nodes.clear();
+        remembered = 0;
+    }
+
+    private static boolean matches(SymState s, int[] slots, int[] values) {
+        for (int i = 0; i < slots.length; i++) {
+            if (s.var(slots[i]) != values[i]) {
+                return false;
+            }
+        }
+        return true;
+    }
+
+    /** The successors of {@code at}'s states by the moves on {@code channel}, with any values. */
+    public List<Semantics.Move> moves(Node at, int channel, List<SymState> targets) {
+        List<Semantics.Move> moves = new ArrayList<>();
+        for (SymState s : at.states) {
+            observable.moves(s, channel, (move, next) -> {
+                moves.add(move);
+                targets.add(next);
+            });
+        }
+        return moves;
+    }
+
+    /** The successors of {@code s} by the moves on observable channel {@code channel}. */
+    public void observableMoves(SymState s, int channel, Semantics.MoveSink sink) {
+        observable.moves(s, channel, sink);
+    }
+
+    /**
+     * The set after a delay somewhere in {@code [fromTicks, toTicks]} without an event, with the elapsed clock set
+     * back to 0; {@link #empty} if time cannot pass that far.
+     */
+    public Node afterWindow(Node from, long fromTicks, long toTicks) {
+        return intern(delayed(from, fromTicks, toTicks));
+    }
+
+    /** {@link #afterWindow}'s states, not interned (the step of an event needs no node of them). */
+    private List<SymState> delayed(Node from, long fromTicks, long toTicks) {
+        Passed out = new Passed();
+        for (SymState t : reach(from, toTicks)) {
+            Dbm z = t.zone();
+            if (!z.constrain(0, elapsed, Bound.le((int) -Math.min(fromTicks, Bound.MAX_VALUE)))) {
+                continue;
+            }
+            z.reset(elapsed, 0);
+            semantics.extrapolate(t);
+            out.add(t);
+        }
+        return out.states();
+    }
+
+    /**
+     * Every state reachable from {@code from} by delays and internal moves while the elapsed clock stays within
+     * {@code [0, horizonTicks]}; copies, whose zones keep the elapsed clock.
+     */
+    public List<SymState> reach(Node from, long horizonTicks) {
+        int horizon = (int) Math.min(horizonTicks, Bound.MAX_VALUE);
+        Passed passed = new Passed();
+        Deque<SymState> waiting = new ArrayDeque<>();
+        for (SymState s : from.states) {
+            waiting.add(s.copy());
+        }
+        int visited = 0;
+        Semantics.MoveSink sink = (move, next) -> waiting.add(next);
+        while (!waiting.isEmpty()) {
+            SymState s = waiting.poll();
+            if (!internal.delay(s, elapsed, Bound.le(horizon)) || !passed.add(s)) {
+                continue;
+            }
+            if (++visited > MAX_STATES) {
+                throw new UnsupportedModelException("more than " + MAX_STATES + " symbolic states between two"
+                        + " events: the model is too nondeterministic to follow");
+            }
+            internal.moves(s, sink);
+        }
+        return passed.states();
+    }
+
+    /**
+     * Whether time may pass {@code ticks} after {@code n}'s time without an event; the answer is remembered, and a
+     * closure asked for is made at least twice as long as the last, so that a clock ticking toward a far deadline
+     * costs few closures.
+     */
+    public boolean allows(Node n, long ticks) {
+        if (ticks <= n.allowedUntil) {
+            return true;
+        }
+        if (n.deadline != Integer.MIN_VALUE) {
+            return n.deadline == Bound.INFINITY || Bound.compare(Bound.le((int) Math.min(ticks, Bound.MAX_VALUE)),
+                    n.deadline) <= 0;
+        }
+        long horizon = Math.max(ticks, Math.max(2 * n.allowedUntil, semantics.ticksPerUnit()));
+        int latest = latest(reach(n, horizon));
+        if (latest == Bound.INFINITY || Bound.compare(latest, Bound.le((int) Math.min(horizon, Bound.MAX_VALUE))) >= 0) {
+            n.allowedUntil = horizon;
+            return true;
+        }
+        n.deadline = latest;
+        return Bound.compare(Bound.le((int) Math.min(ticks, Bound.MAX_VALUE)), latest) <= 0;
+    }
+
+    /** The raw bound of the latest elapsed time of {@code states} (their zones' upper bounds on the elapsed clock). */
+    public int latest(List<SymState> states) {
+        int latest = Bound.LT_ZERO;
+        for (SymState s : states) {
+            int b = s.zone().upperBound(elapsed, 0);
+            if (Bound.compare(b, latest) > 0) {
+                latest = b;
+            }
+        }
+        return latest;
+    }
+
+    /**
+     * Every state the closed network can be in (its reachable symbolic states, each closed under delay) with the
+     * elapsed clock at 0, those {@code keep} accepts; explored with the same semantics as the events.
+     *
+     * @throws UnsupportedModelException past {@link #MAX_STATES} states or {@link #REACHABLE_NANOS}
+     */
+    public Node reachable(Predicate<SymState> keep) {
+        long began = System.nanoTime();
+        Passed passed = new Passed();
+        Deque<SymState> waiting = new ArrayDeque<>();
+        waiting.add(semantics.initial());
+        Semantics.MoveSink sink = (move, next) -> waiting.add(next);
+        while (!waiting.isEmpty()) {
+            SymState s = waiting.poll();
+            if (!all.delay(s, elapsed, Bound.INFINITY)) {
+                continue;
+            }
+            s.zone().reset(elapsed, 0);
+            semantics.extrapolate(s);
+            if (!passed.add(s)) {
+                continue;
+            }
+            if (passed.size() > MAX_STATES || passed.size() % 1024 == 0
+                    && System.nanoTime() - began > REACHABLE_NANOS) {
+                throw new UnsupportedModelException("the model has too many reachable symbolic states to start from"
+                        + " all of them (" + passed.size() + " found in " + (System.nanoTime() - began) / 1_000_000
+                        + " ms): start from the initial state");
+            }
+            all.moves(s, sink);
+        }
+        List<SymState> kept = new ArrayList<>();
+        for (SymState s : passed.states()) {
+            if (keep.test(s)) {
+                kept.add(s);
+            }
+        }
+        return node(kept);
+    }
+
+    /** A key of an event's transition: channel, values and delay window; reused as the probe of lookups. */
+    private static final class TransitionKey {
+        int channel;
+        int[] values;
+        long fromTicks;
+        long toTicks;
+        int hash;
+
+        TransitionKey set(int channel, int[] values, long fromTicks, long toTicks) {
+            this.channel = channel;
+            this.values = values;
+            this.fromTicks = fromTicks;
+            this.toTicks = toTicks;
+            this.hash = ((31 * channel + Arrays.hashCode(values)) * 31 + Long.hashCode(fromTicks)) * 31
+                    + Long.hashCode(toTicks);
+            return this;
+        }
+
+        TransitionKey copy() {
+            return new TransitionKey().set(channel, values.clone(), fromTicks, toTicks);
+        }
+
+        @Override
+        public boolean equals(Object o) {
+            return o instanceof TransitionKey k && k.hash == hash && k.channel == channel && k.fromTicks == fromTicks
+                    && k.toTicks == toTicks && Arrays.equals(k.values, values);
+        }
+
+        @Override
+        public int hashCode() {
+            return hash;
+        }
+    }
+
+    /** A set's states as a hash key: equal when the states are equal, in order. */
+    private static final class NodeKey {
+        final List<SymState> states;
+        final int hash;
+
+        NodeKey(List<SymState> states) {
+            this.states = states;
+            int h = 1;
+            for (SymState s : states) {
+                h = 31 * h + 31 * s.discreteHash() + s.zone().hashCode();
+            }
+            this.hash = h;
+        }
+
+        @Override
+        public boolean equals(Object o) {
+            if (!(o instanceof NodeKey k) || k.hash != hash || k.states.size() != states.size()) {
+                return false;
+            }
+            for (int i = 0; i < states.size(); i++) {
+                SymState a = states.get(i);
+                SymState b = k.states.get(i);
+                if (!a.sameDiscrete(b) || !a.zone().equals(b.zone())) {
+                    return false;
+                }
+            }
+            return true;
+        }
+
+        @Override
+        public int hashCode() {
+            return hash;
+        }
+    }
+
+    /** States grouped by their discrete part, a new state compared by zone inclusion with its group only. */
+    private static final class Passed {
+        private final Map<Integer, List<SymState>> groups = new HashMap<>();
+        private final List<SymState> order = new ArrayList<>();
+        /** The states of {@link #order} a later one covered: left out of {@link #states()}. */
+        private final Set<SymState> dropped = Collections.newSetFromMap(new IdentityHashMap<>());
+
+        /** Adds {@code s} unless a state of its group covers it; drops the states it covers. */
+        boolean add(SymState s) {
+            List<SymState> group = groups.computeIfAbsent(s.discreteHash(), k -> new ArrayList<>(2));
+            for (SymState o : group) {
+                if (o.sameDiscrete(s) && s.zone().isSubsetOf(o.zone())) {
+                    return false;
+                }
+            }
+            group.removeIf(o -> o.sameDiscrete(s) && o.zone().isSubsetOf(s.zone()) && dropped.add(o));
+            group.add(s);
+            order.add(s);
+            return true;
+        }
+
+        int size() {
+            return order.size() - dropped.size();
+        }
+
+        /** The states added and not covered by a later one, in the order they were added. */
+        List<SymState> states() {
+            if (dropped.isEmpty()) {
+                return order;
+            }
+            List<SymState> kept = new ArrayList<>(order.size() - dropped.size());
+            for (SymState s : order) {
+                if (!dropped.contains(s)) {
+                    kept.add(s);
+                }
+            }
+            return kept;
+        }
+    }
+}

@@ -1,0 +1,318 @@
+package io.dtron.engine.monitor;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertNotNull;
+import static org.junit.jupiter.api.Assertions.assertNull;
+import static org.junit.jupiter.api.Assertions.assertThrows;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+import io.dtron.engine.DelayPolicy;
+import io.dtron.engine.Event;
+import io.dtron.engine.OnlineTester;
+import io.dtron.engine.TestListener;
+import io.dtron.engine.TestOptions;
+import io.dtron.engine.TestResult;
+import io.dtron.engine.Verdict;
+import io.dtron.engine.sim.ModelSystem;
+import io.dtron.engine.sim.Mutant;
+import io.dtron.engine.sim.Mutants;
+import io.dtron.engine.verify.QueryException;
+import io.dtron.model.ModelLoader;
+import io.dtron.model.Network;
+import io.dtron.model.TestInterface;
+import java.nio.charset.StandardCharsets;
+import java.nio.file.Path;
+import java.time.Duration;
+import java.util.ArrayList;
+import java.util.List;
+import java.util.Map;
+import org.junit.jupiter.api.Test;
+
+class MonitorTest {
+    static final Path SHARED = Path.of(System.getProperty("dtron.shared", "../../shared"), "models");
+    static final long UNIT = 1000;
+
+    /** An event of a run with its time. */
+    record Timed(Event event, long micros) {
+    }
+
+    /** A run of the tester in virtual time: its events in order and its result. */
+    record Run(List<Timed> events, TestResult result) {
+    }
+
+    static Network server() throws Exception {
+        return ModelLoader.load("server.xta", new String(MonitorTest.class.getResourceAsStream("server.xta")
+                .readAllBytes(), StandardCharsets.UTF_8));
+    }
+
+    /** Runs the tester against {@code system} (the model's implementation part, or a mutant's) in virtual time. */
+    static Run run(Network spec, Network system, TestInterface ti, long seed, long timeout) {
+        TestOptions o = new TestOptions(seed, UNIT, timeout, DelayPolicy.RANDOM, 0, true);
+        OnlineTester tester = new OnlineTester(spec, ti, new ModelSystem(system, ti, seed * 7919), o);
+        List<Timed> events = new ArrayList<>();
+        tester.addListener(new TestListener() {
+            @Override
+            public void inputApplied(Event input, long micros) {
+                events.add(new Timed(input, micros));
+            }
+
+            @Override
+            public void outputObserved(Event output, long micros) {
+                events.add(new Timed(output, micros));
+            }
+        });
+        TestResult r = tester.run();
+        return new Run(events, r);
+    }
+
+    /** Feeds {@code events} to {@code m}; the alarms raised, in order. */
+    static List<Alarm> feed(Monitor m, List<Timed> events) {
+        List<Alarm> alarms = new ArrayList<>();
+        for (Timed t : events) {
+            Alarm a = m.observe(t.event(), t.micros());
+            if (a != null) {
+                alarms.add(a);
+            }
+        }
+        return alarms;
+    }
+
+    static Timed at(double units, String channel, String variable, int value) {
+        return new Timed(Event.of(channel, variable, value), Math.round(units * UNIT));
+    }
+
+    static void correctRunsRaiseNoAlarm(Network n, TestInterface ti, long timeout, int seeds) {
+        long events = 0;
+        for (long seed = 1; seed <= seeds; seed++) {
+            Run r = run(n, n, ti, seed, timeout);
+            assertEquals(Verdict.PASSED, r.result().verdict(), r.result().explanation());
+            Monitor m = Monitor.of(n, ti, MonitorOptions.initial(UNIT));
+            assertEquals(List.of(), feed(m, r.events()), "seed " + seed);
+            assertNull(m.advanceTo(r.result().durationMicros()), "seed " + seed);
+            assertEquals(r.events().size(), m.events());
+            events += m.events();
+        }
+        assertTrue(events > seeds, "the runs had events: " + events);
+    }
+
+    @Test
+    void correctRunsOfTheSamplesRaiseNoAlarm() throws Exception {
+        correctRunsRaiseNoAlarm(server(), TestInterface.fromNames(server()), 200, 10);
+        Network ticker = ModelLoader.load(Path.of("../models/src/main/resources/io/dtron/models/ticker.xml"));
+        correctRunsRaiseNoAlarm(ticker, TestInterface.fromNames(ticker), 300, 10);
+        Network lamp = ModelLoader.load(SHARED.resolve("tron/LightContr.xml"));
+        correctRunsRaiseNoAlarm(lamp, TestInterface.fromFile(lamp, SHARED.resolve("tron/LightContr.trn")), 300, 10);
+        Network street = ModelLoader.load(Path.of(
+                "../models/src/main/resources/io/dtron/models/streetlight/streetlight.xml"));
+        correctRunsRaiseNoAlarm(street, TestInterface.fromNames(street), 300, 5);
+    }
+
+    @Test
+    void aMonitorStartedBetweenARequestAndItsResponseRaisesNoAlarm() throws Exception {
+        Network n = server();
+        TestInterface ti = TestInterface.fromNames(n);
+        // the request req(n=4) at t=9 came before the monitor started
+        List<Timed> seen = List.of(at(10, "resp", "n", 5), at(12, "req", "n", 3), at(13.5, "resp", "n", 4));
+        Monitor unknown = Monitor.of(n, ti, MonitorOptions.anyState(UNIT));
+        assertEquals(List.of(), feed(unknown, seen));
+        assertNull(unknown.advanceTo(100 * UNIT));
+        // from the initial state, the same events are a violation at the first: the history explains them
+        Monitor initial = Monitor.of(n, ti, MonitorOptions.initial(UNIT));
+        List<Alarm> alarms = feed(initial, seen);
+        assertEquals(1, alarms.size());
+        assertEquals(Alarm.Reason.UNEXPECTED_EVENT, alarms.get(0).reason());
+        assertEquals(10 * UNIT, alarms.get(0).micros());
+        // history unknown, the monitor still narrows: a second response without a request is a violation
+        Monitor narrowing = Monitor.of(n, ti, MonitorOptions.anyState(UNIT));
+        assertNull(narrowing.observe(Event.of("resp", "n", 5), 10 * UNIT));
+        Alarm second = narrowing.observe(Event.of("resp", "n", 6), 11 * UNIT);
+        assertNotNull(second);
+        assertEquals(Alarm.Reason.UNEXPECTED_EVENT, second.reason());
+        assertEquals(11 * UNIT, second.micros());
+        assertEquals(List.of("Server.Idle", "Client.Ready"), second.states().get(0).locations());
+    }
+
+    @Test
+    void aMonitorStartedAnywhereInACorrectRunRaisesNoAlarm() throws Exception {
+        Network lamp = ModelLoader.load(SHARED.resolve("tron/LightContr.xml"));
+        TestInterface lampTi = TestInterface.fromFile(lamp, SHARED.resolve("tron/LightContr.trn"));
+        Network n = server();
+        for (Object[] c : List.of(new Object[] {n, TestInterface.fromNames(n)}, new Object[] {lamp, lampTi})) {
+            Network model = (Network) c[0];
+            TestInterface ti = (TestInterface) c[1];
+            Run r = run(model, model, ti, 3, 2000);
+            assertEquals(Verdict.PASSED, r.result().verdict(), r.result().explanation());
+            assertTrue(r.events().size() > 10, "events: " + r.events().size());
+            for (int k = 0; k < r.events().size(); k++) {
+                Monitor m = Monitor.of(model, ti, MonitorOptions.anyState(UNIT));
+                List<Timed> rest = r.events().subList(k, r.events().size());
+                assertEquals(List.of(), feed(m, rest), "started at event " + k);
+                assertNull(m.advanceTo(r.result().durationMicros()), "started at event " + k);
+            }
+        }
+    }
+
+    @Test
+    void aMissedDeadlineIsFoundWhenTimePassesIt() throws Exception {
+        Network n = server();
+        Monitor m = Monitor.of(n, TestInterface.fromNames(n), MonitorOptions.initial(UNIT));
+        assertNull(m.observe(Event.of("req", "n", 1), 1000 * 1));
+        assertNull(m.advanceTo(3_500));
+        assertNull(m.advanceTo(4_000), "the response may come at t=4 itself");
+        Alarm a = m.advanceTo(4_001);
+        assertNotNull(a);
+        assertEquals(Alarm.Reason.DEADLINE_MISSED, a.reason());
+        assertEquals(4_000, a.micros(), "the alarm is at the deadline");
+        assertNull(a.event());
+        assertEquals(1_000, a.sinceMicros());
+        assertEquals(List.of(new Alarm.Window("resp", Map.of("n", 2), 2_000, 4_000)), a.allowed());
+        assertTrue(a.explanation().startsWith("no event by t=4.000, the deadline after the last event at t=1.000"),
+                a.explanation());
+        assertTrue(m.stopped());
+        assertNull(m.observe(Event.of("resp", "n", 2), 5_000), "a stopped monitor ignores events");
+        // found by the next event too, at the deadline's time
+        Monitor late = Monitor.of(n, TestInterface.fromNames(n), MonitorOptions.initial(UNIT));
+        late.observe(Event.of("req", "n", 1), 1_000);
+        Alarm b = late.observe(Event.of("resp", "n", 2), 7_000);
+        assertEquals(Alarm.Reason.DEADLINE_MISSED, b.reason());
+        assertEquals(4_000, b.micros());
+        assertEquals(Event.of("resp", "n", 2), b.event());
+    }
+
+    @Test
+    void wrongValuesAndEarlyEventsAreNamed() throws Exception {
+        Network n = server();
+        Monitor m = Monitor.of(n, TestInterface.fromNames(n), MonitorOptions.initial(UNIT));
+        m.observe(Event.of("req", "n", 1), 1_000);
+        Alarm a = m.observe(Event.of("resp", "n", 7), 2_500);
+        assertEquals(Alarm.Reason.WRONG_VALUES, a.reason());
+        assertTrue(a.explanation().contains("it allowed resp with {n=2}"), a.explanation());
+        assertEquals(List.of("Server.Busy", "Client.Waiting"), a.states().get(0).locations());
+        assertEquals(1, a.states().get(0).variables().get("Server.n") == null
+                ? a.states().get(0).variables().get("n") : a.states().get(0).variables().get("Server.n"));
+        Monitor early = Monitor.of(n, TestInterface.fromNames(n), MonitorOptions.initial(UNIT));
+        early.observe(Event.of("req", "n", 1), 1_000);
+        Alarm b = early.observe(Event.of("resp", "n", 2), 1_500);
+        assertEquals(Alarm.Reason.UNEXPECTED_EVENT, b.reason());
+        assertEquals(1_500, b.micros());
+        assertTrue(b.explanation().contains("resp(n=2) in [t=2.000, t=4.000]"), b.explanation());
+        assertEquals(Map.of("number", 1, "reason", 1), b.busValues());
+        assertEquals(List.of(1, 2, 3), java.util.Arrays.stream(Alarm.Reason.values()).map(Alarm.Reason::code).toList());
+        assertTrue(b.toJson().startsWith("{\"kind\":\"alarm\",\"number\":1,\"reason\":\"unexpected_event\",\"t_us\":1500,"
+                + "\"channel\":\"resp\",\"values\":{\"n\":2},"), b.toJson());
+    }
+
+    @Test
+    void anEventKnownWithinAWindowIsAllowedWhenTheModelAllowsItSomewhereInIt() throws Exception {
+        Network n = server();
+        Monitor exact = Monitor.of(n, TestInterface.fromNames(n), MonitorOptions.initial(UNIT));
+        exact.observe(Event.of("req", "n", 1), 1_000);
+        assertNotNull(exact.observe(Event.of("resp", "n", 2), 1_800), "0.8 units after the request is too early");
+        Monitor window = Monitor.of(n, TestInterface.fromNames(n), MonitorOptions.initial(UNIT));
+        window.observe(Event.of("req", "n", 1), 1_000);
+        assertNull(window.observe(Event.of("resp", "n", 2), 1_800, 300), "at 2.1 it is allowed");
+        assertThrows(IllegalArgumentException.class, () -> window.observe(Event.of("req", "n", 1), 3_000, -1));
+        Monitor tooEarly = Monitor.of(n, TestInterface.fromNames(n), MonitorOptions.initial(UNIT));
+        tooEarly.observe(Event.of("req", "n", 1), 1_000);
+        assertNotNull(tooEarly.observe(Event.of("resp", "n", 2), 1_800, 100), "not even at 1.9");
+    }
+
+    @Test
+    void aModelNamingTheAlarmChannelIsRefused() throws Exception {
+        Network n = ModelLoader.load("alarm.xta", "chan i_dtron_alarm; process P() { state S; init S; trans S -> S"
+                + " { sync i_dtron_alarm?; }; } system P;");
+        io.dtron.engine.UnsupportedModelException e = assertThrows(io.dtron.engine.UnsupportedModelException.class,
+                () -> Monitor.of(n, TestInterface.fromNames(n), MonitorOptions.initial(UNIT)));
+        assertTrue(e.getMessage().contains("'dtron_alarm' is reserved"), e.getMessage());
+    }
+
+    @Test
+    void continuingCountsViolationsAndResynchronises() throws Exception {
+        Network n = server();
+        Monitor m = Monitor.of(n, TestInterface.fromNames(n), MonitorOptions.initial(UNIT).keepGoing(true));
+        List<Timed> events = List.of(at(1, "req", "n", 1), at(2, "resp", "n", 9), // wrong value
+                at(3, "req", "n", 2), at(4, "resp", "n", 3), // fine again
+                at(5, "resp", "n", 4), // no request before it
+                at(6, "req", "n", 5)); // fine: the server is idle
+        List<Alarm> alarms = feed(m, events);
+        assertEquals(List.of(2_000L, 5_000L), alarms.stream().map(Alarm::micros).toList());
+        assertEquals(List.of(1, 2), alarms.stream().map(Alarm::number).toList());
+        Alarm deadline = m.advanceTo(20_000);
+        assertNotNull(deadline, "the request at t=6 is not answered by t=9");
+        assertEquals(9_000, deadline.micros());
+        assertEquals(3, m.violations());
+        assertEquals(2_000, m.firstAlarm().micros());
+        assertNull(m.advanceTo(30_000), "re-synchronised at the deadline, with every state possible");
+        assertEquals(6, m.events());
+    }
+
+    @Test
+    void aNamedStartNarrowsTheStatesAndABadOneIsRefused() throws Exception {
+        Network n = server();
+        TestInterface ti = TestInterface.fromNames(n);
+        Monitor idle = Monitor.of(n, ti, MonitorOptions.from(UNIT, "Server.Idle"));
+        Alarm a = idle.observe(Event.of("resp", "n", 1), 5_000);
+        assertNotNull(a, "started idle, a response is a violation");
+        Monitor busy = Monitor.of(n, ti, MonitorOptions.from(UNIT, "Server.Busy && Server.n == 3"));
+        assertNotNull(busy.observe(Event.of("resp", "n", 5), 5_000), "started with n=3, only resp(n=4) is allowed");
+        Monitor busy2 = Monitor.of(n, ti, MonitorOptions.from(UNIT, "Server.Busy && Server.n == 3"));
+        assertNull(busy2.observe(Event.of("resp", "n", 4), 5_000));
+        assertThrows(QueryException.class, () -> Monitor.of(n, ti, MonitorOptions.from(UNIT, "Server.Nowhere")));
+        assertThrows(QueryException.class, () -> Monitor.of(n, ti, MonitorOptions.from(UNIT, "Server.n == 12")));
+    }
+
+    @Test
+    void badEventsAreRefusedAndLeaveTheMonitorAsItWas() throws Exception {
+        Network n = server();
+        Monitor m = Monitor.of(n, TestInterface.fromNames(n), MonitorOptions.initial(UNIT));
+        assertNull(m.observe(Event.of("req", "n", 1), 1_000));
+        assertThrows(IllegalArgumentException.class, () -> m.observe(Event.of("nothing"), 2_000));
+        assertThrows(IllegalArgumentException.class, () -> m.observe(Event.of("resp", "m", 2), 2_000));
+        assertThrows(IllegalArgumentException.class, () -> m.observe(Event.of("resp", "n", 2), 500));
+        assertNull(m.observe(Event.of("resp", "n", 2), 2_000));
+        assertEquals(2, m.events());
+    }
+
+    @Test
+    void seededFaultsAreFoundAtTheEventTheTesterFailed() throws Exception {
+        Network lamp = ModelLoader.load(SHARED.resolve("tron/LightContr.xml"));
+        int found = seededFaultsFound(lamp, TestInterface.fromFile(lamp, SHARED.resolve("tron/LightContr.trn")));
+        found += seededFaultsFound(server(), TestInterface.fromNames(server()));
+        assertTrue(found >= 5, "faults found: " + found);
+    }
+
+    /** Runs the tester against each mutant for a few seeds; the monitor finds each failure the tester finds. */
+    static int seededFaultsFound(Network lamp, TestInterface ti) {
+        int found = 0;
+        for (Mutant mutant : Mutants.derive(lamp, ti, Duration.ofSeconds(5))) {
+            if (mutant.invalid() != null || mutant.equivalent() != null) {
+                continue;
+            }
+            for (long seed = 1; seed <= 3; seed++) {
+                Run r = run(lamp, mutant.network(), ti, seed, 300);
+                if (r.result().verdict() != Verdict.FAILED) {
+                    continue;
+                }
+                Monitor m = Monitor.of(lamp, ti, MonitorOptions.initial(UNIT));
+                List<Alarm> alarms = feed(m, r.events());
+                Alarm a = alarms.isEmpty() ? m.advanceTo(r.result().durationMicros()) : alarms.get(0);
+                String what = mutant.kind().label() + " " + mutant.where() + " seed " + seed + ": "
+                        + r.result().explanation();
+                assertNotNull(a, what);
+                if (a.reason() == Alarm.Reason.DEADLINE_MISSED) {
+                    assertTrue(a.micros() <= r.result().durationMicros(), what + " / " + a.explanation());
+                    if (a.event() != null) {
+                        assertEquals(r.events().get(r.events().size() - 1).event(), a.event(), what);
+                    }
+                } else {
+                    Timed last = r.events().get(r.events().size() - 1);
+                    assertEquals(last.event(), a.event(), what + " / " + a.explanation());
+                    assertEquals(last.micros(), a.micros(), what);
+                }
+                found++;
+                break;
+            }
+        }
+        return found;
+    }
+}
