@@ -1,0 +1,113 @@
+package io.dtron.models.robotarm;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertFalse;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+import io.dtron.cli.DtronCommand;
+import io.dtron.models.ticker.NatsClients;
+import io.dtron.testsupport.NatsServer;
+import java.io.PrintWriter;
+import java.io.StringWriter;
+import java.math.BigDecimal;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.util.ArrayList;
+import java.util.List;
+import java.util.UUID;
+import java.util.concurrent.TimeUnit;
+import java.util.regex.Matcher;
+import java.util.regex.Pattern;
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.Timeout;
+import org.junit.jupiter.api.io.TempDir;
+
+/**
+ * {@code dtron control --bus nats://...} against the robot arm's Python plant ({@code
+ * clients/python/examples/robot_arm.py}) in its own process on a nats-server of the test's, in real time at 100 ms a
+ * time unit (the arm's tightest window, a grip's reading 1 to 2 units after the grip, is then 100 ms wide: two busy
+ * cores do not hold a thread up that long). The correct arm: the run lasts its duration, no alarm, the plant never
+ * gets the safe action. The stalling arm: the alarm names the missing reading and the model's deadline, 5 units after
+ * the move (the arrival window 2 to 5 units after it), comes no earlier than that deadline, and the plant receives
+ * the safe action, stop. Skipped without nats-server or a Python with the dtron package, as the other NATS tests.
+ */
+@Timeout(value = 3, unit = TimeUnit.MINUTES)
+class RobotArmBusControlTest {
+    private static final String ARM = "src/main/resources/io/dtron/models/robotarm/robot-arm.xta";
+    private static final Path PLANT = NatsClients.PYTHON.resolve("examples/robot_arm.py");
+    private static final Pattern ALARM = Pattern.compile("ALARM at t=([0-9.]+): no reading came by t=([0-9.]+): the"
+            + " model required the plant to act by then\\. The model allowed these readings: arrived between"
+            + " t=([0-9.]+) and t=([0-9.]+) \\(Arm: Moving -> Arrived\\)\\. At the last observation the plant was in"
+            + " Arm\\.Moving\\.");
+
+    @TempDir
+    Path dir;
+
+    record Run(int exit, String out, String err, String plant) {
+        String shown() {
+            return "exit " + exit + "\n" + out + err + "\nplant:\n" + plant;
+        }
+    }
+
+    /** Runs the controller against the arm, started with {@code flags}, for {@code duration} time units. */
+    private Run control(NatsServer server, long duration, String... flags) throws Exception {
+        String cluster = "arm-" + UUID.randomUUID().toString().substring(0, 8);
+        Path log = dir.resolve(cluster + ".log");
+        List<String> command = new ArrayList<>(List.of(NatsClients.python(), PLANT.toString(), "--bus", server.url(),
+                "--cluster", cluster, "--runs", "1"));
+        command.addAll(List.of(flags));
+        Process plant = new ProcessBuilder(command).redirectErrorStream(true).redirectOutput(log.toFile()).start();
+        try {
+            StringWriter out = new StringWriter();
+            StringWriter err = new StringWriter();
+            int exit = DtronCommand.run(new String[] {"control", ARM, "--bus", server.url(), "--cluster", cluster,
+                "--duration", Long.toString(duration), "--timeunit", "100000", "--seed", "1", "--safe-action",
+                "i_stop", "--wait-timeout", "60"}, new PrintWriter(out, true), new PrintWriter(err, true));
+            boolean exited = plant.waitFor(30, TimeUnit.SECONDS);
+            Run run = new Run(exit, out.toString(), err.toString(), Files.readString(log));
+            assertTrue(exited, "the plant exits after its run: " + run.shown());
+            return run;
+        } finally {
+            plant.destroyForcibly();
+        }
+    }
+
+    @Test
+    void theCorrectArmIsControlledForTheWholeRunWithoutAlarm() throws Exception {
+        try (NatsServer server = NatsServer.start(dir)) {
+            Run run = control(server, 40);
+            assertEquals(0, run.exit(), run.shown());
+            assertTrue(run.out().contains("against the plant on bus 'arm-") && run.out().contains(server.url()),
+                    run.shown());
+            assertTrue(run.out().contains("in real time"), run.shown());
+            assertTrue(run.out().lines().anyMatch(l -> l.startsWith("control COMPLETED at t=40.000: ")
+                    && l.contains(" 0 alarms")), run.shown());
+            assertFalse(run.out().contains("ALARM"), run.shown());
+            assertFalse(run.plant().contains("stopped at"), "no safe action was sent: " + run.shown());
+            assertFalse(run.plant().contains("ignored"), "every command came in a state that takes it: "
+                    + run.shown());
+        }
+    }
+
+    @Test
+    void theStallingArmRaisesTheAlarmAtTheModelsDeadlineAndIsStopped() throws Exception {
+        try (NatsServer server = NatsServer.start(dir)) {
+            Run run = control(server, 100, "--stall");
+            assertEquals(2, run.exit(), run.shown());
+            Matcher alarm = ALARM.matcher(run.out());
+            assertTrue(alarm.find(), run.shown());
+            BigDecimal at = new BigDecimal(alarm.group(1));
+            BigDecimal deadline = new BigDecimal(alarm.group(2));
+            BigDecimal earliest = new BigDecimal(alarm.group(3));
+            assertEquals(deadline, new BigDecimal(alarm.group(4)), run.shown());
+            // the window 2 to 5 units after the move: the deadline is the model's bound, MOVE_MAX after the move
+            assertEquals(0, deadline.subtract(earliest).compareTo(new BigDecimal("3.000")), run.shown());
+            assertTrue(at.compareTo(deadline) > 0, "no alarm before the deadline has passed: " + run.shown());
+            assertTrue(run.out().contains("safe action stop() sent at t=" + alarm.group(1)), run.shown());
+            // the run ends once the safe action is published, a moment after the alarm in real time
+            assertTrue(run.out().lines().anyMatch(l -> l.startsWith("control ALARM at t=") && l.contains(": 2"
+                    + " commands sent, 0 readings, 1 alarm, safe action stop() taken")), run.shown());
+            assertTrue(run.plant().contains("stopped at t="), "the plant received stop: " + run.shown());
+        }
+    }
+}
