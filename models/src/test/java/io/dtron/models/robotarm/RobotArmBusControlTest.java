@@ -6,7 +6,9 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import io.dtron.cli.DtronCommand;
 import io.dtron.models.ticker.NatsClients;
+import io.dtron.testsupport.DocPage;
 import io.dtron.testsupport.NatsServer;
+import io.dtron.testsupport.ShellWords;
 import java.io.PrintWriter;
 import java.io.StringWriter;
 import java.math.BigDecimal;
@@ -29,10 +31,13 @@ import org.junit.jupiter.api.io.TempDir;
  * cores do not hold a thread up that long). The correct arm: the run lasts its duration, no alarm, the plant never
  * gets the safe action. The stalling arm: the alarm names the missing reading and the model's deadline, 5 units after
  * the move (the arrival window 2 to 5 units after it), comes no earlier than that deadline, and the plant receives
- * the safe action, stop. Skipped without nats-server or a Python with the dtron package, as the other NATS tests.
+ * the safe action, stop. The control page's session of the stalling arm runs as written, on a server and a bus name of
+ * the test's, and prints what the page shows but for the times and the member id, which differ from run to run.
+ * Skipped without nats-server or a Python with the dtron package, as the other NATS tests.
  */
 @Timeout(value = 3, unit = TimeUnit.MINUTES)
 class RobotArmBusControlTest {
+    private static final Path ROOT = Path.of("..").toAbsolutePath().normalize();
     private static final String ARM = "src/main/resources/io/dtron/models/robotarm/robot-arm.xta";
     private static final Path PLANT = NatsClients.PYTHON.resolve("examples/robot_arm.py");
     private static final Pattern ALARM = Pattern.compile("ALARM at t=([0-9.]+): no reading came by t=([0-9.]+): the"
@@ -109,5 +114,64 @@ class RobotArmBusControlTest {
                     + " commands sent, 0 readings, 1 alarm, safe action stop() taken")), run.shown());
             assertTrue(run.plant().contains("stopped at t="), "the plant received stop: " + run.shown());
         }
+    }
+
+    @Test
+    void thePagesSessionPrintsWhatThePageShows() throws Exception {
+        List<String> page = DocPage.read("control.md").blockAfter("the stalling arm on a NATS server of its own:")
+                .code().lines().toList();
+        assertTrue(page.get(0).startsWith("$ nats-server "), page.get(0));
+        String plantLine = page.get(1);
+        String controlLine = page.get(2);
+        assertTrue(plantLine.startsWith("$ python3 clients/python/examples/robot_arm.py ") && plantLine.endsWith(" &"),
+                plantLine);
+        assertTrue(controlLine.startsWith("$ java -jar dtron.jar control "), controlLine);
+        String cluster = "page-" + UUID.randomUUID().toString().substring(0, 8);
+        try (NatsServer server = NatsServer.start(dir)) {
+            List<String> plant = args(plantLine.substring(2, plantLine.indexOf(" >")), server, cluster);
+            plant.set(0, NatsClients.python());
+            Path log = dir.resolve("arm.log");
+            Process arm = new ProcessBuilder(plant).redirectErrorStream(true).redirectOutput(log.toFile()).start();
+            try {
+                List<String> control = args(controlLine.substring("$ java -jar dtron.jar ".length()), server,
+                        cluster);
+                StringWriter out = new StringWriter();
+                StringWriter err = new StringWriter();
+                int exit = DtronCommand.run(control.toArray(String[]::new), new PrintWriter(out, true),
+                        new PrintWriter(err, true));
+                assertTrue(arm.waitFor(30, TimeUnit.SECONDS), "the plant leaves after its run");
+                String shown = out + "" + err + "\nplant:\n" + Files.readString(log);
+                assertEquals(2, exit, shown);
+                List<String> printed = new ArrayList<>(ShellWords.lines(out.toString(), ROOT));
+                printed.addAll(ShellWords.lines(err.toString(), ROOT));
+                assertEquals(masked(page.subList(3, page.size()), "nats://127.0.0.1:4222", "'arm'"),
+                        masked(printed, server.url(), "'" + cluster + "'"), shown);
+                assertTrue(Files.readString(log).contains("stopped at t="), shown);
+            } finally {
+                arm.destroyForcibly();
+            }
+        }
+    }
+
+    /** The words of a command line of the page, on the test's server and bus, its paths from the checkout. */
+    private static List<String> args(String line, NatsServer server, String cluster) {
+        List<String> args = new ArrayList<>(ShellWords.split(line));
+        for (int a = 0; a < args.size(); a++) {
+            String word = args.get(a);
+            if (word.equals("nats://127.0.0.1:4222")) {
+                args.set(a, server.url());
+            } else if (word.equals("arm") && args.get(a - 1).equals("--cluster")) {
+                args.set(a, cluster);
+            } else if (word.startsWith("models/") || word.startsWith("clients/")) {
+                args.set(a, ROOT.resolve(word).toString());
+            }
+        }
+        return args;
+    }
+
+    /** The lines with the times and the member id masked, and the bus named alike. */
+    private static List<String> masked(List<String> lines, String url, String bus) {
+        return lines.stream().map(l -> l.replace(url, "URL").replace(bus, "BUS").replaceAll("t=[0-9]+\\.[0-9]{3}", "t=T")
+                .replaceAll("dtron-[0-9]+-[0-9a-f]{8}", "MEMBER")).toList();
     }
 }
