@@ -26,9 +26,10 @@ import org.junit.jupiter.api.io.TempDir;
 
 /**
  * {@code dtron control --bus nats://...} against the robot arm's Python plant ({@code
- * clients/python/examples/robot_arm.py}) in its own process on a nats-server of the test's, in real time at 100 ms a
- * time unit (the arm's tightest window, a grip's reading 1 to 2 units after the grip, is then 100 ms wide: two busy
- * cores do not hold a thread up that long). The correct arm: the run lasts its duration, no alarm, the plant never
+ * clients/python/examples/robot_arm.py}) in its own process on a nats-server of the test's, in real time at 250 ms a
+ * time unit: the arm's tightest windows, a grip's reading 1 to 2 units after the grip and the release 3 to 4 units
+ * after it, are then 250 ms wide (at 100 ms, with two cores kept busy beside the other builds of this machine, a
+ * controller thread held up 145 ms and a Python plant whose grip came 2.5 units late were seen). The correct arm: the run lasts its duration, no alarm, the plant never
  * gets the safe action. The stalling arm: the alarm names the missing reading and the model's deadline, 5 units after
  * the move (the arrival window 2 to 5 units after it), comes no earlier than that deadline, and the plant receives
  * the safe action, stop. The control page's session of the stalling arm runs as written, on a server and a bus name of
@@ -66,7 +67,7 @@ class RobotArmBusControlTest {
             StringWriter out = new StringWriter();
             StringWriter err = new StringWriter();
             int exit = DtronCommand.run(new String[] {"control", ARM, "--bus", server.url(), "--cluster", cluster,
-                "--duration", Long.toString(duration), "--timeunit", "100000", "--seed", "1", "--safe-action",
+                "--duration", Long.toString(duration), "--timeunit", "250000", "--seed", "1", "--safe-action",
                 "i_stop", "--wait-timeout", "60"}, new PrintWriter(out, true), new PrintWriter(err, true));
             boolean exited = plant.waitFor(30, TimeUnit.SECONDS);
             Run run = new Run(exit, out.toString(), err.toString(), Files.readString(log));
@@ -143,7 +144,9 @@ class RobotArmBusControlTest {
                 String shown = out + "" + err + "\nplant:\n" + Files.readString(log);
                 assertEquals(2, exit, shown);
                 List<String> printed = new ArrayList<>(ShellWords.lines(out.toString(), ROOT));
-                printed.addAll(ShellWords.lines(err.toString(), ROOT));
+                // a warning that the commands' margin measured on this machine is wider than a window: load says it
+                printed.addAll(ShellWords.lines(err.toString(), ROOT).stream()
+                        .filter(l -> !l.startsWith("dtron control: warning: the window of input ")).toList());
                 assertEquals(masked(page.subList(3, page.size()), "nats://127.0.0.1:4222", "'arm'"),
                         masked(printed, server.url(), "'" + cluster + "'"), shown);
                 assertTrue(Files.readString(log).contains("stopped at t="), shown);
