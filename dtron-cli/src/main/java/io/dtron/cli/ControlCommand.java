@@ -50,8 +50,9 @@ import picocli.CommandLine.Spec;
                 "A plant that deviates from the model raises an alarm; the controller then takes the safe action"
                         + " (--safe-action, --safe-location) and the run ends. A new model version (--reload-from) is"
                         + " checked with its queries and taken at the next reset point.",
-                "The plant: --plant model (the model's own plant part, in this process, in virtual time), or a plant"
-                        + " on a bus (--cluster NAME, JGroups on loopback; --bus nats://HOST:PORT, NATS), in real time.",
+                "The plant: --plant model (the model's own plant part, in this process, in virtual time), or a"
+                        + " plant on a bus (--cluster NAME, JGroups on loopback; --bus nats://HOST:PORT, NATS), in real"
+                        + " time.",
                 "Exit code 0 when the run lasted its duration, 2 after an alarm, 3 when it stopped for another reason,"
                         + " 1 usage or model error."})
 final class ControlCommand implements Callable<Integer> {

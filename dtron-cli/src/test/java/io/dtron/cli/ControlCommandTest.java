@@ -6,6 +6,7 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import java.nio.file.Files;
 import java.nio.file.Path;
+import java.util.List;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
 
@@ -70,10 +71,13 @@ class ControlCommandTest {
         CommandRun r = CommandRun.of("control", ARM, "--cluster", cluster, "--duration", "10", "--timeunit", "100000",
                 "--wait-timeout", "1");
         assertEquals(1, r.exit(), r.out() + r.err());
-        assertEquals(1, r.err().strip().lines().count(), r.err());
-        assertTrue(r.err().startsWith("dtron control: bus '" + cluster + "' at 127.0.0.1: within 1 s no member on the"
-                + " bus served input grip, input move, input release, input stop, output arrived, output gripped"),
-                r.err());
+        // on a busy machine the margin measured for commands may be wider than the arm's 100 ms windows: a warning
+        List<String> lines = r.err().strip().lines()
+                .filter(l -> !l.startsWith("dtron control: warning: the window of input ")).toList();
+        assertEquals(1, lines.size(), r.err());
+        assertTrue(lines.get(0).startsWith("dtron control: bus '" + cluster + "' at 127.0.0.1: within 1 s no member"
+                + " on the bus served input grip, input move, input release, input stop, output arrived, output"
+                + " gripped"), r.err());
     }
 
     @Test

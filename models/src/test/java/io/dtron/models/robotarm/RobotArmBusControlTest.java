@@ -29,12 +29,13 @@ import org.junit.jupiter.api.io.TempDir;
  * clients/python/examples/robot_arm.py}) in its own process on a nats-server of the test's, in real time at 250 ms a
  * time unit: the arm's tightest windows, a grip's reading 1 to 2 units after the grip and the release 3 to 4 units
  * after it, are then 250 ms wide (at 100 ms, with two cores kept busy beside the other builds of this machine, a
- * controller thread held up 145 ms and a Python plant whose grip came 2.5 units late were seen). The correct arm: the run lasts its duration, no alarm, the plant never
- * gets the safe action. The stalling arm: the alarm names the missing reading and the model's deadline, 5 units after
- * the move (the arrival window 2 to 5 units after it), comes no earlier than that deadline, and the plant receives
- * the safe action, stop. The control page's session of the stalling arm runs as written, on a server and a bus name of
- * the test's, and prints what the page shows but for the times and the member id, which differ from run to run.
- * Skipped without nats-server or a Python with the dtron package, as the other NATS tests.
+ * controller thread held up 145 ms and a Python plant whose grip came 2.5 units late were seen). The correct arm: the
+ * run lasts its duration, no alarm, the plant never gets the safe action. The stalling arm: the alarm names the
+ * missing reading and the model's deadline, 5 units after the move (the arrival window 2 to 5 units after it), comes
+ * no earlier than that deadline, and the plant receives the safe action, stop. The control page's session of the
+ * stalling arm runs as written, on a server and a bus name of the test's, and prints what the page shows but for the
+ * times and the member id, which differ from run to run. Skipped without nats-server or a Python with the dtron
+ * package, as the other NATS tests.
  */
 @Timeout(value = 3, unit = TimeUnit.MINUTES)
 class RobotArmBusControlTest {
@@ -174,7 +175,7 @@ class RobotArmBusControlTest {
 
     /** The lines with the times and the member id masked, and the bus named alike. */
     private static List<String> masked(List<String> lines, String url, String bus) {
-        return lines.stream().map(l -> l.replace(url, "URL").replace(bus, "BUS").replaceAll("t=[0-9]+\\.[0-9]{3}", "t=T")
-                .replaceAll("dtron-[0-9]+-[0-9a-f]{8}", "MEMBER")).toList();
+        return lines.stream().map(l -> l.replace(url, "URL").replace(bus, "BUS")
+                .replaceAll("t=[0-9]+\\.[0-9]{3}", "t=T").replaceAll("dtron-[0-9]+-[0-9a-f]{8}", "MEMBER")).toList();
     }
 }
