@@ -259,8 +259,13 @@ final class ControlCommand implements Callable<Integer> {
         }
         try (bridge) {
             // the controller's thread wakes up late on a busy machine: commands are aimed that far inside their windows
-            long margin = SchedulingDelay.inputMarginForRun("control", network, testInterface, unit, "--plant model"
-                    + " --virtual-time", null, err);
+            SchedulingDelay lateness = SchedulingDelay.measureWarmingUp(network, testInterface);
+            lateness.narrowInputWindow(network, testInterface, unit, "--plant model --virtual-time", channel -> 0)
+                    .ifPresent(warning -> err.println("dtron control: warning: " + warning.replace("(INCONCLUSIVE,"
+                            + " input executed too late)", "(the controller then stops: the command's window had"
+                            + " closed)")));
+            err.flush();
+            long margin = lateness.marginMicros();
             Controller controller = controller(network, testInterface, bridge, options.withInputMargin(margin),
                     chosen);
             long seconds = waitTimeout == null ? 30 : waitTimeout;
