@@ -1,5 +1,9 @@
 package io.dtron.cli;
 
+import io.dtron.api.DtronException;
+import io.dtron.api.DtronOptions;
+import io.dtron.bridge.BusBridge;
+import io.dtron.engine.Adapter;
 import io.dtron.engine.Event;
 import io.dtron.engine.TestOptions;
 import io.dtron.engine.UnsupportedModelException;
@@ -23,8 +27,11 @@ import java.nio.file.Path;
 import java.time.Duration;
 import java.util.ArrayList;
 import java.util.List;
+import java.util.Optional;
 import java.util.concurrent.Callable;
+import java.util.function.Supplier;
 import picocli.CommandLine.Command;
+import picocli.CommandLine.Mixin;
 import picocli.CommandLine.Model.CommandSpec;
 import picocli.CommandLine.Option;
 import picocli.CommandLine.ParameterException;
@@ -32,7 +39,8 @@ import picocli.CommandLine.Parameters;
 import picocli.CommandLine.Spec;
 
 /**
- * {@code dtron control MODEL}: the model as controller. Parses the options, builds the plant and the {@link
+ * {@code dtron control MODEL}: the model as controller. Parses the options, builds the plant (the model's own plant
+ * part, or the plant on a bus through a {@link BusBridge}, whose run owner prepares and keeps the run) and the {@link
  * Controller}, watches the file of new model versions, and prints what happens and the summary; the engine runs the
  * control.
  */
@@ -42,8 +50,9 @@ import picocli.CommandLine.Spec;
                 "A plant that deviates from the model raises an alarm; the controller then takes the safe action"
                         + " (--safe-action, --safe-location) and the run ends. A new model version (--reload-from) is"
                         + " checked with its queries and taken at the next reset point.",
-                "The plant: --plant model (the model's own plant part, in this process). The bus (--cluster, --bus)"
-                        + " is not wired yet.",
+                "The plant: --plant model (the model's own plant part, in this process, in virtual time), or a"
+                        + " plant on a bus (--cluster NAME, JGroups on loopback; --bus nats://HOST:PORT, NATS), in real"
+                        + " time.",
                 "Exit code 0 when the run lasted its duration, 2 after an alarm, 3 when it stopped for another reason,"
                         + " 1 usage or model error."})
 final class ControlCommand implements Callable<Integer> {
@@ -57,8 +66,8 @@ final class ControlCommand implements Callable<Integer> {
             description = "Take commands (inputs) and readings (outputs) from a TRON interface file instead of i_/o_.")
     private Path interfaceFile;
 
-    @Option(names = "--plant", paramLabel = "model", required = true,
-            description = "The plant: 'model', the model's own plant part simulated in this process.")
+    @Option(names = "--plant", paramLabel = "model",
+            description = "The plant: 'model', the model's own plant part simulated in this process (without a bus).")
     private String plant;
 
     @Option(names = "--plant-mutant", paramLabel = "N",
@@ -105,9 +114,17 @@ final class ControlCommand implements Callable<Integer> {
             description = "Microseconds per model time unit (default: the interface file's precision, else 1000).")
     private Long timeUnit;
 
-    @Option(names = {"--cluster", "--bus"}, paramLabel = "NAME|URL",
-            description = "Not yet: control on the bus comes with the bus run's owner.")
-    private String bus;
+    @Option(names = "--cluster", paramLabel = "NAME",
+            description = "The plant is on the bus of this name (default '" + DtronOptions.DEFAULT_CLUSTER + "' with"
+                    + " --bus): the embedded JGroups bus on loopback, or the NATS bus of --bus.")
+    private String cluster;
+
+    @Mixin
+    private NatsBusOptions nats;
+
+    @Option(names = "--wait-timeout", paramLabel = "SECONDS",
+            description = "On the bus: how long to wait for the plant to serve every command and reading (default 30).")
+    private Long waitTimeout;
 
     @Override
     public Integer call() {
@@ -131,16 +148,37 @@ final class ControlCommand implements Callable<Integer> {
     }
 
     private int control(PrintWriter out, PrintWriter err) throws ModelException {
-        if (bus != null) {
-            throw usage("the bus (--cluster, --bus) is not wired to control yet: it comes with the bus run's owner;"
-                    + " run against an in-process plant with --plant model");
-        }
-        if (!"model".equals(plant)) {
-            throw usage("--plant must be 'model' (the model's own plant part): the plant on the bus is not wired yet");
-        }
-        if (!virtualTime) {
-            throw usage("--plant model runs in virtual time: add --virtual-time (a plant in this process is simulated on"
-                    + " the controller's clock; real time is for a plant on the bus, not wired yet)");
+        boolean onBus = cluster != null || nats.given();
+        if (onBus) {
+            if (plant != null || plantMutant != null || plantSeed != null) {
+                throw usage("the plant is on the bus (--cluster, --bus): leave out --plant, --plant-mutant and"
+                        + " --plant-seed");
+            }
+            if (virtualTime) {
+                throw usage("a plant on the bus runs in real time: leave out --virtual-time");
+            }
+            if (waitTimeout != null && (waitTimeout <= 0 || waitTimeout > RunDefaults.MAX_WAIT_SECONDS)) {
+                throw usage("--wait-timeout must be a positive number of seconds, at most "
+                        + RunDefaults.MAX_WAIT_SECONDS + ": " + waitTimeout);
+            }
+            if (cluster != null && cluster.isBlank()) {
+                throw usage("--cluster: the bus name is blank");
+            }
+            nats.check(clusterName(), this::usage);
+        } else {
+            if (!"model".equals(plant)) {
+                throw usage(plant == null ? "name the plant: --plant model (the model's own plant part), or a bus"
+                        + " (--cluster NAME, --bus nats://HOST:PORT)" : "--plant must be 'model' (the model's own"
+                        + " plant part), or leave it out and give the plant's bus (--cluster, --bus)");
+            }
+            if (!virtualTime) {
+                throw usage("--plant model runs in virtual time: add --virtual-time (a plant in this process is"
+                        + " simulated on the controller's clock; real time is for a plant on the bus, --cluster or"
+                        + " --bus)");
+            }
+            if (waitTimeout != null) {
+                throw usage("--wait-timeout is how long to wait for a plant on the bus (--cluster, --bus)");
+            }
         }
         if (duration <= 0) {
             throw usage("--duration must be a positive number of time units: " + duration);
@@ -176,6 +214,9 @@ final class ControlCommand implements Callable<Integer> {
         long runSeed = RunDefaults.seed(seed);
         TestOptions options = TestOptions.defaults(runSeed).withTimeUnit(unit).withTimeout(duration)
                 .withVirtualTime(virtualTime);
+        if (onBus) {
+            return controlOnBus(network, testInterface, options, chosen, out, err);
+        }
         Network plantModel = network;
         String plantName = "the model's own plant part";
         if (plantMutant != null) {
@@ -186,7 +227,74 @@ final class ControlCommand implements Callable<Integer> {
         }
         ModelSystem plantSystem = new ModelSystem(plantModel, testInterface,
                 plantSeed != null ? plantSeed : ModelSystem.seedFor(runSeed));
-        Controller controller = new Controller(network, testInterface, plantSystem, options);
+        Controller controller = controller(network, testInterface, plantSystem, options, chosen);
+        out.println("dtron control: " + model + " against " + plantName + ", policy " + policy + ", " + duration
+                + " time units in virtual time, seed " + runSeed);
+        out.flush();
+        return run(controller, testInterface, unit, out);
+    }
+
+    /**
+     * Control of a plant on the bus, in real time: the run's owner on the bus ({@link io.dtron.bridge.BusRun}, through
+     * its {@link BusBridge}, the controller's plant) waits for the plant and prepares the run; the controller runs it.
+     */
+    private int controlOnBus(Network network, TestInterface testInterface, TestOptions options, ControlPolicy chosen,
+            PrintWriter out, PrintWriter err) throws ModelException {
+        long unit = options.timeUnitMicros();
+        String where = "bus '" + clusterName() + "' at " + (nats.given() ? String.join(",", nats.servers(this::usage))
+                : "127.0.0.1");
+        Supplier<DtronOptions.Builder> busOptions = nats.given() ? nats.memberOptions(clusterName(), this::usage)
+                : () -> DtronOptions.builder().clusterName(clusterName())
+                        .bindAddress(java.net.InetAddress.getLoopbackAddress());
+        BusBridge bridge;
+        try {
+            bridge = BusBridge.connect(testInterface, busOptions.get());
+        } catch (IllegalArgumentException e) {
+            err.println("dtron control: " + model + ": " + e.getMessage());
+            return 1;
+        } catch (DtronException e) {
+            err.println("dtron control: " + e.getMessage() + (e.getCause() == null ? "" : ": "
+                    + e.getCause().getMessage()));
+            return 1;
+        }
+        try (bridge) {
+            // the controller's thread wakes up late on a busy machine: commands are aimed that far inside their windows
+            SchedulingDelay lateness = SchedulingDelay.measureWarmingUp(network, testInterface);
+            lateness.narrowInputWindow(network, testInterface, unit, "--plant model --virtual-time", channel -> 0)
+                    .ifPresent(warning -> err.println("dtron control: warning: " + warning.replace("(INCONCLUSIVE,"
+                            + " input executed too late)", "(the controller then stops: the command's window had"
+                            + " closed)")));
+            err.flush();
+            long margin = lateness.marginMicros();
+            Controller controller = controller(network, testInterface, bridge, options.withInputMargin(margin),
+                    chosen);
+            long seconds = waitTimeout == null ? 30 : waitTimeout;
+            out.println("dtron control: " + model + " against the plant on " + where + " as " + bridge.run().memberId()
+                    + ", policy " + policy + ", " + duration + " time units of " + unit + " us in real time, seed "
+                    + options.seed());
+            out.println("dtron control: waiting up to " + seconds + " s for the plant to serve every command and"
+                    + " reading");
+            out.flush();
+            Optional<String> refused;
+            try {
+                refused = bridge.run().prepareForControl(Duration.ofSeconds(seconds));
+            } catch (InterruptedException e) {
+                Thread.currentThread().interrupt();
+                err.println("dtron control: interrupted while waiting for the plant");
+                return 1;
+            }
+            if (refused.isPresent()) {
+                err.println("dtron control: " + where + ": " + refused.get());
+                return 1;
+            }
+            return run(controller, testInterface, unit, out);
+        }
+    }
+
+    /** A controller of {@code plant} with the policy and the safe action of the options. */
+    private Controller controller(Network network, TestInterface testInterface, Adapter plant, TestOptions options,
+            ControlPolicy chosen) {
+        Controller controller = new Controller(network, testInterface, plant, options);
         try {
             controller.policy(chosen, goals);
             controller.safeAction(safeAction != null ? SafeAction.channel(safeAction)
@@ -194,9 +302,12 @@ final class ControlCommand implements Callable<Integer> {
         } catch (IllegalArgumentException e) {
             throw usage(e.getMessage());
         }
-        out.println("dtron control: " + model + " against " + plantName + ", policy " + policy + ", " + duration
-                + " time units" + (virtualTime ? " in virtual time" : "") + ", seed " + runSeed);
-        out.flush();
+        return controller;
+    }
+
+    /** Runs the controller, with the file of new versions watched, and prints its end. */
+    private int run(Controller controller, TestInterface testInterface, long unit, PrintWriter out)
+            throws ModelException {
         controller.addListener(new Printer(out, unit));
         ModelVersionFile versions = reloadFrom == null ? null : new ModelVersionFile(reloadFrom, model, interfaceFile,
                 testInterface, new ModelVersionFile.Sink() {
@@ -246,6 +357,11 @@ final class ControlCommand implements Callable<Integer> {
             throw usage("--plant-mutant " + number + " cannot be run: " + mutant.invalid());
         }
         return mutant;
+    }
+
+    /** The bus's name: {@code --cluster}, or the default. */
+    private String clusterName() {
+        return cluster != null ? cluster : DtronOptions.DEFAULT_CLUSTER;
     }
 
     private ParameterException usage(String message) {

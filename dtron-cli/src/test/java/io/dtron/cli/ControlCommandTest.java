@@ -6,12 +6,13 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import java.nio.file.Files;
 import java.nio.file.Path;
+import java.util.List;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
 
 /**
  * {@code dtron control}'s usage errors on the robot-arm sample: each one line naming what is wrong, exit code 1, no
- * stack trace; the bus is refused as not wired yet.
+ * stack trace; a bus with no plant on it is one line too.
  */
 class ControlCommandTest {
     private static final String ARM = Path.of("../models/src/main/resources/io/dtron/models/robotarm/robot-arm.xta")
@@ -30,8 +31,16 @@ class ControlCommandTest {
 
     @Test
     void badOptionsAreOneLineErrors() {
-        refused("the bus (--cluster, --bus) is not wired to control yet", "--plant", "model", "--duration", "10",
+        refused("the plant is on the bus (--cluster, --bus): leave out --plant", "--plant", "model", "--duration", "10",
+                "--cluster", "arm");
+        refused("a plant on the bus runs in real time: leave out --virtual-time", "--duration", "10",
                 "--virtual-time", "--cluster", "arm");
+        refused("name the plant: --plant model (the model's own plant part), or a bus", "--duration", "10",
+                "--virtual-time");
+        refused("--wait-timeout is how long to wait for a plant on the bus", "--plant", "model", "--duration", "10",
+                "--virtual-time", "--wait-timeout", "5");
+        refused("--wait-timeout must be a positive number of seconds", "--cluster", "arm", "--duration", "10",
+                "--wait-timeout", "0");
         refused("--plant must be 'model'", "--plant", "python", "--duration", "10", "--virtual-time");
         refused("--plant model runs in virtual time: add --virtual-time", "--plant", "model", "--duration", "10");
         refused("--duration must be a positive number of time units: 0", "--plant", "model", "--duration", "0",
@@ -53,6 +62,25 @@ class ControlCommandTest {
                 "--virtual-time", "--plant-mutant", "99");
         refused("--reload-from /no/such/folder/v2.xta: its folder does not exist", "--plant", "model", "--duration",
                 "10", "--virtual-time", "--reload-from", "/no/such/folder/v2.xta");
+    }
+
+    @Test
+    void aBusWithoutThePlantIsOneLineAfterTheWarningOfWindowsTooNarrow() {
+        // the embedded JGroups bus on loopback, a name of its own: no member serves the arm's channels; at 1 ms a time
+        // unit the arm's release window (1 unit) is narrower than the 2 ms margin commands get at least
+        String cluster = "no-arm-" + ProcessHandle.current().pid();
+        CommandRun r = CommandRun.of("control", ARM, "--cluster", cluster, "--duration", "10", "--timeunit", "1000",
+                "--wait-timeout", "1");
+        assertEquals(1, r.exit(), r.out() + r.err());
+        List<String> lines = r.err().strip().lines().toList();
+        assertEquals(2, lines.size(), r.err());
+        assertTrue(lines.get(0).startsWith("dtron control: warning: the window of input i_release in Controller (3 <="
+                + " c <= 4, "), r.err());
+        assertTrue(lines.get(0).endsWith("inputs in such a window are aimed at its start and may still come late (the"
+                + " controller then stops: the command's window had closed)"), r.err());
+        assertTrue(lines.get(1).startsWith("dtron control: bus '" + cluster + "' at 127.0.0.1: within 1 s no member"
+                + " on the bus served input grip, input move, input release, input stop, output arrived, output"
+                + " gripped"), r.err());
     }
 
     @Test

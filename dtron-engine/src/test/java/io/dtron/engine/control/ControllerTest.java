@@ -24,8 +24,9 @@ import org.junit.jupiter.api.Test;
 /**
  * The controller on a small closed model, in virtual time: a controller that may command a or b, each answered by
  * done 2 to 3 units later; the goal policy steers toward the goal, a reading too early raises the alarm at once, a
- * lost plant stops the run, and a version the controller cannot run (its safe location gone) is refused when it would
- * be taken, the run going on.
+ * reading on its way when its deadline passes is judged at its own time (no false alarm), a lost plant stops the run,
+ * and a version the controller cannot run (its safe location gone) is refused when it would be taken, the run going
+ * on.
  */
 class ControllerTest {
     private static final String MODEL = """
@@ -129,6 +130,51 @@ class ControllerTest {
             }
         }
         assertTrue(alarmed, "a plant that may answer a unit early is caught within 20 seeds");
+    }
+
+    /**
+     * A plant whose readings are on their way when the deadline passes (a plant on the bus: the controller's question
+     * whether it is there flushes them): each done comes, at {@code units} after its command, only when asked.
+     */
+    private static Adapter inTransit(double units) {
+        return new Adapter() {
+            private AdapterContext context;
+            private long sentAt = -1;
+
+            @Override
+            public void start(AdapterContext runContext) {
+                context = runContext;
+            }
+
+            @Override
+            public void perform(Event input) {
+                sentAt = input.channel().equals("stop") ? -1 : context.clock().nowMicros();
+            }
+
+            @Override
+            public java.util.Optional<String> unreachable() {
+                if (sentAt >= 0) {
+                    context.report(new Event("done", java.util.Map.of()), sentAt + Math.round(units * 1000));
+                    sentAt = -1;
+                }
+                return java.util.Optional.empty();
+            }
+        };
+    }
+
+    @Test
+    void aReadingOnItsWayAtTheDeadlineIsTakenAtItsTimeAndOneAfterItIsLate() throws Exception {
+        Network n = model();
+        TestInterface names = TestInterface.fromNames(n);
+        // done 2.5 units after each command, within its window (2 to 3), comes when the deadline has passed
+        ControlResult taken = new Controller(n, names, inTransit(2.5), options(1)).run();
+        assertEquals(ControlResult.Outcome.COMPLETED, taken.outcome(), taken.toString());
+        assertEquals(0, taken.alarms());
+        assertTrue(taken.readings() > 10, taken.toString());
+        // 3.5 units after its command: it happened after the deadline, and is too late
+        ControlResult late = new Controller(n, names, inTransit(3.5), options(1)).run();
+        assertEquals(ControlResult.Outcome.ALARM, late.outcome(), late.toString());
+        assertTrue(late.reason().startsWith("reading done() at t=3.500 is too late"), late.reason());
     }
 
     @Test

@@ -11,9 +11,9 @@ import java.util.concurrent.TimeUnit;
  * client built with CMake into {@code target/clients-c}. A test whose client cannot be had is skipped, or fails under
  * {@code DTRON_REQUIRE_TOOLS=1}.
  */
-final class NatsClients {
+public final class NatsClients {
     /** The Python client's folder. */
-    static final Path PYTHON = Path.of("../clients/python").toAbsolutePath().normalize();
+    public static final Path PYTHON = Path.of("../clients/python").toAbsolutePath().normalize();
     /** The C client's folder. */
     static final Path C = Path.of("../clients/c").toAbsolutePath().normalize();
 
@@ -21,7 +21,7 @@ final class NatsClients {
     }
 
     /** A Python with the dtron package. */
-    static String python() throws InterruptedException {
+    public static String python() throws InterruptedException {
         String python = System.getenv().getOrDefault("DTRON_PYTHON", "python3");
         boolean usable;
         try {

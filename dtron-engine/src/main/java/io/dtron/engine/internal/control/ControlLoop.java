@@ -234,6 +234,12 @@ public final class ControlLoop {
             return end(ControlResult.Outcome.STOPPED, "no reading came by " + deadlineAt + ", and the plant may not"
                     + " have been able to act: " + unreachable.get(), null, -1);
         }
+        // the probe of a plant on the bus flushes what it sent before its answer: a reading still on its way at the
+        // deadline is judged at its own time (before the deadline it is taken, after it it is too late)
+        RunClock.TimedEvent inTransit = clock.drain();
+        if (inTransit != null) {
+            return receive(inTransit);
+        }
         return alarm("no reading came by " + deadlineAt + ": the model required the plant to act by then. "
                 + readings(plan));
     }
