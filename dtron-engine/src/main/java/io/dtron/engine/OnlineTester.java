@@ -471,8 +471,10 @@ public final class OnlineTester {
          * only when that set changed since).
          */
         private void announceWindow(Event event, TestInterface.ObservableChannel channel, long at) {
-            if (at < lastMicros) {
-                return; // it came before an event already judged: the set it is judged in is not the current one
+            if (at < lastMicros || held != null) {
+                // it came before an event already judged, or after one whose verdict is held: the set it is judged in
+                // is not the current one
+                return;
             }
             long[] w = plan().windowAt(channel.channel(), ticksFloor(at - lastMicros));
             if (w == null) {

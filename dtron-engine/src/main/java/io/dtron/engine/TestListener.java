@@ -13,7 +13,8 @@ public interface TestListener {
      * open to the end of the test: the window of its channel that holds {@code micros}, or, for an output at a time
      * the model did not allow it, the next window after it, else the last one before it. Called just before {@link
      * #outputObserved}, and not at all when the model allowed no such output before the end of the test, or when the
-     * output reached the tester after later events (on a bus with a reorder window).
+     * output reached the tester after later events or after an event whose verdict waits for the reorder window (on a
+     * bus).
      */
     default void outputWindow(Event output, long micros, long earliestMicros, long latestMicros) {
     }
