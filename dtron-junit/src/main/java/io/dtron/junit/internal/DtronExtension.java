@@ -145,8 +145,7 @@ public final class DtronExtension implements TestTemplateInvocationContextProvid
             Layout layout = null;
             String layoutNote = null;
             try {
-                layout = modelFile != null ? Layout.read(modelFile) : Layout.of(model, ModelSyntax.decode(
-                        testClass.getClassLoader().getResourceAsStream(model).readAllBytes()));
+                layout = modelFile != null ? Layout.read(modelFile) : resourceLayout(testClass, model);
             } catch (ModelException | IOException e) {
                 layoutNote = "the model's drawing could not be read: " + e.getMessage().lines().findFirst().orElse("");
             }
@@ -155,6 +154,13 @@ public final class DtronExtension implements TestTemplateInvocationContextProvid
             throw new ExtensionConfigurationException(where + ": " + e.getMessage());
         } catch (IOException e) {
             throw new UncheckedIOException(where + ": cannot read " + test.interfaceFile() + ": " + e.getMessage(), e);
+        }
+    }
+
+    /** The drawing of the model that is the resource {@code resource}. */
+    private static Layout resourceLayout(Class<?> testClass, String resource) throws IOException, ModelException {
+        try (InputStream in = testClass.getClassLoader().getResourceAsStream(resource)) {
+            return Layout.of(resource, ModelSyntax.decode(in.readAllBytes()));
         }
     }
 
