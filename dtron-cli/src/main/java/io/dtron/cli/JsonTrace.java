@@ -19,9 +19,11 @@ import java.util.function.Consumer;
 
 /**
  * Writes a run as JSON lines: a {@code start} line with the seed and settings, one line per input and output
- * with its time, a {@code due} line when the deadline of the next output changes (the time by which the model
- * requires an output while the tester waits for it, -1 when it waits for something else), an {@code edges} line for
- * each of them once the tester has committed to it (the edges it took for certain and possibly), a {@code coverage}
+ * with its time (an output with the window the model allowed it in, {@code allowed_from_us} to {@code
+ * allowed_until_us}, -1 for the end of the test), a {@code due} line when the deadline of the next output changes
+ * (the time by which the model requires an output while the tester waits for it, -1 when it waits for something
+ * else), an {@code edges} line for each of them once the tester has committed to it (the edges it took for certain
+ * and possibly), a {@code coverage}
  * line with what the run covered (the coverage file's object, on one line), and the {@code verdict} line. In
  * virtual time the same seed gives the same file, byte for byte. On
  * the bus, a {@code bus} line for every message on the bus while the run lasts, in the bus's order, with its sender's
@@ -45,6 +47,9 @@ final class JsonTrace implements TestListener {
     private long omittedAfterMicros = -1;
     /** The deadline the last {@code due} line said; written on the tester's thread only. */
     private long due = -1;
+    /** The window the model allowed the next output in, as the tester last said; on the tester's thread only. */
+    private long windowFrom = -1;
+    private long windowUntil = -1;
 
     private JsonTrace(Writer out, long unitMicros, Counted counted, long maxBytes) {
         this.out = out;
@@ -150,12 +155,22 @@ final class JsonTrace implements TestListener {
 
     @Override
     public void inputApplied(Event input, long micros) {
-        event("input", input, micros);
+        event("input", input, micros, "");
+    }
+
+    @Override
+    public void outputWindow(Event output, long micros, long earliestMicros, long latestMicros) {
+        windowFrom = earliestMicros;
+        windowUntil = latestMicros;
     }
 
     @Override
     public void outputObserved(Event output, long micros) {
-        event("output", output, micros);
+        String window = windowFrom < 0 ? "" : ",\"allowed_from_us\":" + windowFrom + ",\"allowed_until_us\":"
+                + windowUntil;
+        windowFrom = -1;
+        windowUntil = -1;
+        event("output", output, micros, window);
     }
 
     @Override
@@ -201,9 +216,9 @@ final class JsonTrace implements TestListener {
                 + ",\"explanation\":" + quote(r.explanation()) + "}");
     }
 
-    private void event(String kind, Event e, long micros) {
+    private void event(String kind, Event e, long micros, String more) {
         bounded(micros, "{\"kind\":\"" + kind + "\",\"t_us\":" + micros + ",\"channel\":" + quote(e.channel())
-                + ",\"values\":" + values(e.values()) + "}");
+                + ",\"values\":" + values(e.values()) + more + "}");
     }
 
     private static String values(Map<String, Integer> variables) {

@@ -129,8 +129,14 @@ final class ReportCommand implements Callable<Integer> {
                             + " start line");
                 }
                 switch ((String) kind) {
-                    case "input", "output" -> record.event(kind.equals("input"), number(o, "t_us", where),
-                            string(o, "channel", where), values(o, where));
+                    case "input", "output" -> {
+                        if (o.containsKey("allowed_from_us")) {
+                            // traces before the windows were recorded have none
+                            record.window(number(o, "allowed_from_us", where), number(o, "allowed_until_us", where));
+                        }
+                        record.event(kind.equals("input"), number(o, "t_us", where), string(o, "channel", where),
+                                values(o, where));
+                    }
                     case "due" -> record.due(number(o, "t_us", where), number(o, "until_us", where));
                     case "edges" -> record.edges(number(o, "t_us", where), strings(o, "certainly", where),
                             strings(o, "possibly", where));

@@ -111,6 +111,9 @@ class JunitPageIT {
                 + " time; it runs first"), second.output());
         assertTrue(Files.readString(project.resolve("target/dtron-reports/LateLampTest/lateLamp-seed-" + failed.get(0)
                 + ".txt")).contains("\nFAILED: no output came by t="));
+        assertTrue(Files.readString(project.resolve("target/dtron-reports/LateLampTest/lateLamp-seed-" + failed.get(0)
+                + ".html")).contains("\"verdict\":{\"verdict\":\"FAILED\",\"explanation\":\"no output came by t="),
+                "the run's page");
     }
 
     @Test

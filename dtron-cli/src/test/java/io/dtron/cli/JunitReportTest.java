@@ -201,12 +201,15 @@ class JunitReportTest {
                 "--trace-max-size", "2KB");
         assertEquals(0, r.exit(), r.out() + r.err());
         List<String> lines = Files.readAllLines(trace);
-        String truncated = lines.get(lines.size() - 2);
+        // the truncated line comes before the coverage and verdict lines, which end every trace
+        String truncated = lines.get(lines.size() - 3);
+        String coverage = lines.get(lines.size() - 2);
         String verdict = lines.get(lines.size() - 1);
+        assertTrue(coverage.startsWith("{\"kind\":\"coverage\","), coverage);
         assertTrue(lines.get(0).startsWith("{\"kind\":\"start\",\"seed\":7,"), lines.get(0));
         assertTrue(verdict.startsWith("{\"kind\":\"verdict\",\"t_us\":100000000,\"verdict\":\"PASSED\""), verdict);
         assertTrue(truncated.startsWith("{\"kind\":\"truncated\",\"max_bytes\":2048,\"omitted_lines\":"), truncated);
-        long events = Files.size(trace) - (truncated.length() + 1) - (verdict.length() + 1);
+        long events = Files.size(trace) - (truncated.length() + 1) - (coverage.length() + 1) - (verdict.length() + 1);
         assertTrue(events <= 2048 && events > 2048 - 300, "the events take the bound, less than one line: " + events);
         assertTrue(r.out().contains("dtron run: the trace " + trace + " stopped at its bound of 2048 bytes after the"
                 + " event at t_us "), r.out());

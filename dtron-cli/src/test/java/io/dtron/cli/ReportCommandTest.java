@@ -61,12 +61,52 @@ class ReportCommandTest {
     }
 
     @Test
+    void eachOutputCarriesTheWindowTheModelAllowedItInFromTheRunToItsTraceAndPage(@TempDir Path dir)
+            throws Exception {
+        // the ticker's model allows a tick 8 to 12 units after the last tick or reset
+        Path model = Files.writeString(dir.resolve("ticker.xta"), TICKER);
+        Path trace = dir.resolve("run.jsonl");
+        Path page = dir.resolve("run.html");
+        CommandRun run = CommandRun.of("run", model.toString(), "--sut", TickerForTests.class.getName(),
+                "--virtual-time", "--seed", "7", "--timeout", "100", "--trace", trace.toString(), "--report",
+                page.toString());
+        assertEquals(0, run.exit(), run.out() + run.err());
+        java.util.regex.Pattern event = java.util.regex.Pattern.compile(
+                "\\{\"kind\":\"(input|output)\",\"t_us\":(\\d+),.*?(?:,\"allowed_from_us\":(-?\\d+),"
+                        + "\"allowed_until_us\":(-?\\d+))?}");
+        long last = 0;
+        int outputs = 0;
+        String html = Files.readString(page);
+        for (String line : Files.readAllLines(trace)) {
+            java.util.regex.Matcher m = event.matcher(line);
+            if (!m.matches()) {
+                continue;
+            }
+            long at = Long.parseLong(m.group(2));
+            if (m.group(1).equals("output")) {
+                outputs++;
+                long until = last + 12_000 >= 100_000 ? -1 : last + 12_000;
+                assertEquals(last + 8_000 + " " + until, m.group(3) + " " + m.group(4), line);
+                assertTrue(java.util.regex.Pattern.compile("\\[1," + at + ",\"tick\",\"seq=\\d+\",-?\\d+,"
+                        + (last + 8_000) + "," + until + "]").matcher(html).find(), "the window beside the tick at "
+                        + at);
+            }
+            last = at;
+        }
+        assertTrue(outputs > 0, "the ticker ticked");
+        Path again = dir.resolve("again.html");
+        assertEquals(0, CommandRun.of("report", trace.toString(), "-o", again.toString()).exit());
+        assertArrayEquals(Files.readAllBytes(page), Files.readAllBytes(again), "the same page, byte for byte");
+    }
+
+    @Test
     void aTraceWhoseModelIsGoneStillGivesItsRunSayingSo(@TempDir Path dir) throws Exception {
         Path trace = Files.writeString(dir.resolve("t.jsonl"), """
                 {"kind":"start","seed":1,"model":"gone.xta","timeunit_us":1000,"timeout":50,"virtual_time":true}
                 {"kind":"input","t_us":1000,"channel":"reset","values":{}}
                 {"kind":"bus","channel":"reset"}
                 {"kind":"output","t_us":2000,"channel":"tick","values":{"seq":1}}
+                {"kind":"output","t_us":9000,"channel":"tick","values":{"seq":2},"allowed_from_us":8000,"allowed_until_us":-1}
                 {"kind":"verdict","t_us":50000,"verdict":"PASSED","seed":1,"inputs":1,"outputs":1,"explanation":"ok"}
                 """);
         Path page = dir.resolve("t.html");
@@ -75,7 +115,9 @@ class ReportCommandTest {
         assertEquals("dtron report: warning: the model gone.xta was not found (as given, or beside the trace): give"
                 + " it with --model; the report shows the run without the model", r.err().strip());
         String html = Files.readString(page);
-        assertTrue(html.contains("\"events\":[[0,1000,\"reset\",\"\",-1],\n[1,2000,\"tick\",\"seq=1\",-1]]"), html);
+        // a trace from before outputs carried their windows (the first tick) is read as well
+        assertTrue(html.contains("\"events\":[[0,1000,\"reset\",\"\",-1,-1,-1],\n[1,2000,\"tick\",\"seq=1\",-1,-1,-1],"
+                + "\n[1,9000,\"tick\",\"seq=2\",-1,8000,-1]]"), html);
     }
 
     @Test

@@ -409,6 +409,11 @@ public final class OnlineTester {
         private final Map<Long, Pending> committedInputs = new LinkedHashMap<>();
         private StateSet set;
         private long lastMicros;
+        /** The last plan, and the state set, time and horizon it was made for: reused while they hold. */
+        private Plan lastPlan;
+        private StateSet lastPlanSet;
+        private long lastPlanMicros;
+        private long lastPlanHorizon;
         private Held held;
         /** How the last output observed was understood (the edges it was taken as), until the next input. */
         private String lastTaken;
@@ -450,7 +455,36 @@ public final class OnlineTester {
         }
 
         private Plan plan() {
-            return Plan.of(set, semantics, partition, testInterface, unit, ticksCeil(timeoutMicros - lastMicros));
+            long horizon = ticksCeil(timeoutMicros - lastMicros);
+            if (lastPlan == null || lastPlanSet != set || lastPlanMicros != lastMicros || lastPlanHorizon != horizon) {
+                lastPlan = Plan.of(set, semantics, partition, testInterface, unit, horizon);
+                lastPlanSet = set;
+                lastPlanMicros = lastMicros;
+                lastPlanHorizon = horizon;
+            }
+            return lastPlan;
+        }
+
+        /**
+         * Tells the listeners the window in which the model allowed output {@code event} on {@code channel} at {@code
+         * at}, from the plan of the state set after the last event (the tester's plan for its wait, computed again
+         * only when that set changed since).
+         */
+        private void announceWindow(Event event, TestInterface.ObservableChannel channel, long at) {
+            if (at < lastMicros || held != null) {
+                // it came before an event already judged, or after one whose verdict is held: the set it is judged in
+                // is not the current one
+                return;
+            }
+            long[] w = plan().windowAt(channel.channel(), ticksFloor(at - lastMicros));
+            if (w == null) {
+                return;
+            }
+            long earliest = lastMicros + micros(w[0]);
+            long latest = w[1] == Long.MAX_VALUE ? -1 : lastMicros + micros(w[1]);
+            for (TestListener l : listeners) {
+                l.outputWindow(event, at, earliest, latest);
+            }
         }
 
         /**
@@ -801,6 +835,9 @@ public final class OnlineTester {
             if (badValues != null) {
                 return result(Verdict.INCONCLUSIVE, "the adapter reported " + event + " at " + time(at) + ": "
                         + badValues);
+            }
+            if (!listeners.isEmpty()) {
+                announceWindow(event, channel, at);
             }
             for (TestListener l : listeners) {
                 l.outputObserved(event, at);

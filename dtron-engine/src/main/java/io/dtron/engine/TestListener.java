@@ -7,6 +7,18 @@ public interface TestListener {
     default void inputApplied(Event input, long micros) {
     }
 
+    /**
+     * Output {@code output}, observed at {@code micros} since the start, was allowed by the model (seen from the last
+     * event before it) from {@code earliestMicros} to {@code latestMicros} since the start, -1 when the window stays
+     * open to the end of the test: the window of its channel that holds {@code micros}, or, for an output at a time
+     * the model did not allow it, the next window after it, else the last one before it. Called just before {@link
+     * #outputObserved}, and not at all when the model allowed no such output before the end of the test, or when the
+     * output reached the tester after later events or after an event whose verdict waits for the reorder window (on a
+     * bus).
+     */
+    default void outputWindow(Event output, long micros, long earliestMicros, long latestMicros) {
+    }
+
     /** An output was observed at {@code micros} since the start. */
     default void outputObserved(Event output, long micros) {
     }

@@ -141,6 +141,55 @@ class OnlineTesterTest {
     }
 
     @Test
+    void listenersLearnTheWindowInWhichEachOutputWasAllowed() throws Exception {
+        // the model allows a tick 8 to 12 units after the last tick or reset; the run ends at t=500
+        Network n = ModelLoader.load("ticker.xta", TICKER);
+        List<long[]> windows = new ArrayList<>();
+        List<String> order = new ArrayList<>();
+        long[] last = {0};
+        TestListener listener = new TestListener() {
+            @Override
+            public void inputApplied(Event input, long micros) {
+                last[0] = micros;
+                order.add("in");
+            }
+
+            @Override
+            public void outputWindow(Event output, long micros, long earliestMicros, long latestMicros) {
+                windows.add(new long[] {last[0], micros, earliestMicros, latestMicros});
+                order.add("window");
+            }
+
+            @Override
+            public void outputObserved(Event output, long micros) {
+                last[0] = micros;
+                order.add("out");
+            }
+        };
+        TestResult r = new OnlineTester(n, TestInterface.fromNames(n), new Ticker(10),
+                TestOptions.defaults(4).withTimeout(500)).addListener(listener).run();
+        assertEquals(Verdict.PASSED, r.verdict(), r.explanation());
+        assertEquals(r.outputs(), windows.size(), "a window for every output");
+        for (long[] w : windows) {
+            long latest = w[0] + 12_000 >= 500_000 ? -1 : w[0] + 12_000;
+            assertEquals(List.of(w[0] + 8_000, latest), List.of(w[2], w[3]), "the tick at " + w[1] + " after "
+                    + w[0]);
+        }
+        for (int i = 0; i < order.size(); i++) {
+            assertEquals(order.get(i).equals("out"), i > 0 && order.get(i - 1).equals("window"), "order " + order);
+        }
+        // a ticker ticking after 7 units: too early; the window beside it is the one it missed, t=8 to 12
+        windows.clear();
+        last[0] = 0;
+        TestResult early = new OnlineTester(n, TestInterface.fromNames(n), new Ticker(7),
+                TestOptions.defaults(4).withTimeout(500)).addListener(listener).run();
+        assertEquals(Verdict.FAILED, early.verdict(), early.explanation());
+        assertEquals(1, windows.size());
+        assertEquals(List.of(0L, 7_000L, 8_000L, 12_000L), List.of(windows.get(0)[0], windows.get(0)[1],
+                windows.get(0)[2], windows.get(0)[3]));
+    }
+
+    @Test
     void delayPoliciesPlaceInputsAtTheStartOrTheEndOfTheirWindows() throws Exception {
         // the environment may reset from e >= 25 on, without an upper bound: eager resets at exactly 25
         Network n = ModelLoader.load("ticker.xta", TICKER);

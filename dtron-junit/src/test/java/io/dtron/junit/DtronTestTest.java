@@ -58,6 +58,8 @@ class DtronTestTest {
         assertTrue(text.startsWith("dtron: lamp.xta, seed 102, 1000 time units of 1000 us in virtual time\n"), text);
         assertTrue(text.contains(" input press()\n") && text.contains(" output light(level=1)\n"), text);
         assertTrue(text.contains("\nPASSED: ") && text.contains("\ncoverage: locations 3/3"), text);
+        String page = Files.readString(report.resolveSibling("lamp-seed-102.html"));
+        assertTrue(page.contains("\"verdict\":{\"verdict\":\"PASSED\""), "the run's page, with its verdict");
         assertTrue(!Files.exists(dir.resolve("seeds.properties")), "no seed failed, none is stored");
     }
 
@@ -105,9 +107,17 @@ class DtronTestTest {
                 failure.getMessage());
         assertTrue(failure.getMessage().contains("the seed runs first next time"), failure.getMessage());
         assertEquals("7,8,9", stored().getProperty(LampCases.Late.class.getName() + "#lamp"));
-        String report = Files.readString(dir.resolve("reports").resolve(LampCases.Late.class.getName())
-                .resolve("lamp-seed-8.txt"));
+        Path reports = dir.resolve("reports").resolve(LampCases.Late.class.getName());
+        String report = Files.readString(reports.resolve("lamp-seed-8.txt"));
         assertTrue(report.contains("\nFAILED: no output came by t="), report);
+        // the run's HTML page, as dtron run --report writes it: the verdict, the explanation, the model drawn
+        assertTrue(failure.getMessage().endsWith(", its page: " + reports.resolve("lamp-seed-7.html") + ")"),
+                failure.getMessage());
+        String page = Files.readString(reports.resolve("lamp-seed-8.html"));
+        assertTrue(page.startsWith("<!DOCTYPE html>"), page.substring(0, Math.min(100, page.length())));
+        assertTrue(page.contains("\"verdict\":{\"verdict\":\"FAILED\",\"explanation\":\"no output came by t="),
+                "the verdict and its explanation");
+        assertTrue(page.contains("\"name\":\"Lamp\",\"auto\":true"), "the model, laid out automatically");
     }
 
     @Test

@@ -12,10 +12,10 @@ import java.util.function.Consumer;
 
 /**
  * What a report shows of one run: its settings, its inputs and outputs with the deadline the model set each
- * output, the edges the tester committed to, the verdict and the coverage, with the model's drawing. Filled as the
- * run goes on ({@link RunRecorder}) or from a recorded trace; read as the page's data ({@link #json()}), and, for the
- * live view, as a stream of updates ({@link #onUpdate}). Thread-safe: the tester's thread appends, other threads
- * read; an append never waits for a reader.
+ * output and the window it allowed it in, the edges the tester committed to, the verdict and the coverage, with the
+ * model's drawing. Filled as the run goes on ({@link RunRecorder}) or from a recorded trace; read as the page's data
+ * ({@link #json()}), and, for the live view, as a stream of updates ({@link #onUpdate}). Thread-safe: the tester's
+ * thread appends, other threads read; an append never waits for a reader.
  */
 public final class RunRecord {
     /** The version of the page's data, its member {@code "report"}. */
@@ -31,6 +31,9 @@ public final class RunRecord {
     private String coverage = "null";
     private long seq;
     private long dueMicros = -1;
+    /** The window the model allowed the next output in, -1 unknown; -1 for its end: open to the end of the test. */
+    private long windowFrom = -1;
+    private long windowUntil = -1;
     private volatile Consumer<String> sink;
 
     /**
@@ -73,7 +76,19 @@ public final class RunRecord {
         dueMicros = untilMicros;
     }
 
-    /** An input applied ({@code input}) or an output observed at {@code micros}, with its values. */
+    /**
+     * The model allowed the next output from {@code fromMicros} to {@code untilMicros} since the start, -1 when the
+     * window stays open to the end of the test; its {@link #event} shows it beside it.
+     */
+    public synchronized void window(long fromMicros, long untilMicros) {
+        windowFrom = fromMicros;
+        windowUntil = untilMicros;
+    }
+
+    /**
+     * An input applied ({@code input}) or an output observed at {@code micros}, with its values; an output with the
+     * window the last {@link #window} gave, if any.
+     */
     public void event(boolean input, long micros, String channel, Map<String, Integer> values) {
         StringBuilder sb = new StringBuilder(48).append('[').append(input ? 0 : 1).append(',').append(micros)
                 .append(',');
@@ -82,7 +97,12 @@ public final class RunRecord {
         JsonText.values(values, sb);
         synchronized (this) {
             // the deadline the model set for an output: the one of the wait it came in
-            sb.append(',').append(input ? -1 : dueMicros).append(']');
+            sb.append(',').append(input ? -1 : dueMicros).append(',').append(input ? -1 : windowFrom).append(',')
+                    .append(input ? -1 : windowUntil).append(']');
+            if (!input) {
+                windowFrom = -1;
+                windowUntil = -1;
+            }
             String json = sb.toString();
             events.add(json);
             publish("\"event\":" + json);

@@ -20,6 +20,11 @@ public final class RunRecorder implements TestListener {
     }
 
     @Override
+    public void outputWindow(Event output, long micros, long earliestMicros, long latestMicros) {
+        record.window(earliestMicros, latestMicros);
+    }
+
+    @Override
     public void outputObserved(Event output, long micros) {
         record.event(false, micros, output.channel(), output.values());
     }

@@ -61,17 +61,35 @@ class RunRecordTest {
         assertTrue(json.startsWith("{\"report\":1,"), json.substring(0, 40));
         assertTrue(json.contains("\"verdict\":{\"verdict\":\"PASSED\""), "the verdict");
         assertTrue(json.contains("\"coverage\":{\"summary\":"), "the coverage");
-        // every output the lamp's model requires by a deadline carries it, after the output's own time
-        java.util.regex.Matcher m = java.util.regex.Pattern.compile("\\[1,(\\d+),\"level\",\"[^\"]*\",(-?\\d+)\\]")
-                .matcher(json);
+        // every output the lamp's model requires by a deadline carries it, after the output's own time, and every
+        // output of the run that passed, the window the model allowed it in, around its time
+        java.util.regex.Matcher m = java.util.regex.Pattern.compile(
+                "\\[1,(\\d+),\"level\",\"[^\"]*\",(-?\\d+),(-?\\d+),(-?\\d+)\\]").matcher(json);
         int outputs = 0;
         while (m.find()) {
             outputs++;
             long at = Long.parseLong(m.group(1));
             long due = Long.parseLong(m.group(2));
+            long from = Long.parseLong(m.group(3));
+            long until = Long.parseLong(m.group(4));
             assertTrue(due == -1 || due >= at, m.group());
+            assertTrue(from >= 0 && from <= at && (until == -1 || until >= at), m.group());
         }
         assertEquals(result.outputs(), outputs);
+    }
+
+    @Test
+    void anOutputCarriesTheWindowGivenBeforeItAndOnlyIt() {
+        RunRecord record = new RunRecord("ticker.xta", null, null, null);
+        record.window(8_000, 12_000);
+        record.event(false, 10_000, "tick", Map.of());
+        record.event(true, 11_000, "reset", Map.of());
+        record.event(false, 21_000, "tick", Map.of());
+        record.window(29_000, -1);
+        record.event(false, 30_000, "tick", Map.of());
+        String json = record.json();
+        assertTrue(json.contains("[1,10000,\"tick\",\"\",-1,8000,12000],\n[0,11000,\"reset\",\"\",-1,-1,-1],\n"
+                + "[1,21000,\"tick\",\"\",-1,-1,-1],\n[1,30000,\"tick\",\"\",-1,29000,-1]"), json);
     }
 
     @Test

@@ -223,6 +223,14 @@ class ReportBrowserTest {
             assertEquals(3, places.size(), "no two locations on one spot: " + places);
             assertTrue(browser.findElements(By.cssSelector("svg[data-template='Lamp'] text")).stream()
                     .anyMatch(t -> t.getText().equals("x >= 1")), "the guards as written");
+            // the model allows level exactly 5 units after x was reset (x >= 5 and x <= 5): each output's window is
+            // the instant it came
+            List<WebElement> outputs = browser.findElements(By.cssSelector("#events tr.event.output"));
+            assertFalse(outputs.isEmpty(), "the lamp showed its level");
+            for (WebElement row : outputs) {
+                String at = row.findElements(By.cssSelector("td.num")).get(1).getText();
+                assertEquals(at + " to " + at, row.findElement(By.cssSelector("td.window")).getText(), row.getText());
+            }
             screenshot(browser, "report-xta.png");
         } finally {
             browser.quit();

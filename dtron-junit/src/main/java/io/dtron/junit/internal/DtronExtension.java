@@ -4,10 +4,12 @@ import io.dtron.engine.DelayPolicy;
 import io.dtron.engine.TestOptions;
 import io.dtron.junit.DtronRun;
 import io.dtron.junit.DtronTest;
+import io.dtron.model.Layout;
 import io.dtron.model.ModelException;
 import io.dtron.model.ModelLoader;
 import io.dtron.model.Network;
 import io.dtron.model.TestInterface;
+import io.dtron.xta.ModelSyntax;
 import java.io.IOException;
 import java.io.InputStream;
 import java.io.UncheckedIOException;
@@ -105,20 +107,29 @@ public final class DtronExtension implements TestTemplateInvocationContextProvid
         return value != null ? value : fallback;
     }
 
-    /** The model and its test interface, with the name they were given by. */
-    record Model(String name, Network network, TestInterface testInterface) {
+    /**
+     * The model and its test interface, with the name they were given by, and its drawing for the runs' pages (null,
+     * with {@code layoutNote} saying why, when it could not be read).
+     */
+    record Model(String name, Network network, TestInterface testInterface, Layout layout, String layoutNote) {
     }
 
     /** What one run needs; {@code key} names its test method (and goal) in the store of failed seeds. */
     record Plan(Model model, TestOptions options, long seed, Optional<String> goal, SeedStore store, String key,
                 Path report) {
+        /** The run's HTML page: beside its text record, {@code .html} for {@code .txt}. */
+        Path page() {
+            String name = report.getFileName().toString();
+            return report.resolveSibling(name.substring(0, name.length() - ".txt".length()) + ".html");
+        }
     }
 
     private static Model load(Class<?> testClass, DtronTest test, Path base, String where) {
         try {
             String model = resource(testClass, test.model());
+            Path modelFile = model != null ? null : file(testClass, test.model(), base, where, "model");
             Network network = model != null ? ModelLoader.loadResource(testClass.getClassLoader(), model)
-                    : ModelLoader.load(file(testClass, test.model(), base, where, "model"));
+                    : ModelLoader.load(modelFile);
             TestInterface testInterface;
             if (test.interfaceFile().isEmpty()) {
                 testInterface = TestInterface.fromNames(network);
@@ -131,11 +142,25 @@ public final class DtronExtension implements TestTemplateInvocationContextProvid
                 testInterface = TestInterface.fromFile(network, file(testClass, test.interfaceFile(), base, where,
                         "interfaceFile"));
             }
-            return new Model(test.model(), network, testInterface);
+            Layout layout = null;
+            String layoutNote = null;
+            try {
+                layout = modelFile != null ? Layout.read(modelFile) : resourceLayout(testClass, model);
+            } catch (ModelException | IOException e) {
+                layoutNote = "the model's drawing could not be read: " + e.getMessage().lines().findFirst().orElse("");
+            }
+            return new Model(test.model(), network, testInterface, layout, layoutNote);
         } catch (ModelException e) {
             throw new ExtensionConfigurationException(where + ": " + e.getMessage());
         } catch (IOException e) {
             throw new UncheckedIOException(where + ": cannot read " + test.interfaceFile() + ": " + e.getMessage(), e);
+        }
+    }
+
+    /** The drawing of the model that is the resource {@code resource}. */
+    private static Layout resourceLayout(Class<?> testClass, String resource) throws IOException, ModelException {
+        try (InputStream in = testClass.getClassLoader().getResourceAsStream(resource)) {
+            return Layout.of(resource, ModelSyntax.decode(in.readAllBytes()));
         }
     }
 

@@ -8,6 +8,10 @@ import io.dtron.engine.TestOptions;
 import io.dtron.engine.TestResult;
 import io.dtron.engine.Verdict;
 import io.dtron.junit.DtronRun;
+import io.dtron.report.ReportPage;
+import io.dtron.report.RunRecorder;
+import java.io.IOException;
+import java.io.UncheckedIOException;
 import java.lang.reflect.Method;
 import java.util.List;
 import java.util.Optional;
@@ -95,8 +99,17 @@ final class SeedRun implements TestTemplateInvocationContext, ParameterResolver,
                     + options.timeUnitMicros() + " us in " + (options.virtualTime() ? "virtual" : "real") + " time",
                     options.timeUnitMicros());
             tester.addListener(record);
+            io.dtron.report.RunRecord page = new io.dtron.report.RunRecord(model.name(), model.network(),
+                    model.layout(), model.layoutNote());
+            page.start(plan.seed(), options.timeUnitMicros(), options.timeout(), options.virtualTime());
+            tester.addListener(new RunRecorder(page));
             TestResult result = tester.run();
             record.write(result, plan.report());
+            try {
+                ReportPage.write(page, plan.page());
+            } catch (IOException e) {
+                throw new UncheckedIOException("cannot write the run's page " + plan.page() + ": " + e.getMessage(), e);
+            }
             boolean passed = result.verdict() == Verdict.PASSED;
             plan.store().record(plan.key(), plan.seed(), passed);
             if (passed) {
@@ -104,7 +117,7 @@ final class SeedRun implements TestTemplateInvocationContext, ParameterResolver,
             }
             String message = result.verdict() + " with seed " + plan.seed() + ": " + result.explanation()
                     + "\n(the seed runs first next time, from " + plan.store().file() + "; the run: " + plan.report()
-                    + ")";
+                    + ", its page: " + plan.page() + ")";
             System.out.println("dtron: " + message);
             if (result.verdict() == Verdict.FAILED) {
                 throw new AssertionFailedError(message);

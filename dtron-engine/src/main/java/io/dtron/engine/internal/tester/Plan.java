@@ -165,6 +165,26 @@ public final class Plan {
         return merge(windows.getOrDefault(channel, List.of()));
     }
 
+    /**
+     * The window of elapsed ticks, {@code [lo, hi]}, in which channel number {@code channel} is allowed that holds
+     * {@code atTicks}, else the next one after it, else the last one before it; {@code hi} is {@link Long#MAX_VALUE}
+     * when the window stays open to the horizon. Null when the channel is not allowed at all before the horizon.
+     */
+    public long[] windowAt(int channel, long atTicks) {
+        List<Window> ws = windowsOf(channel);
+        if (ws.isEmpty()) {
+            return null;
+        }
+        Window pick = ws.get(ws.size() - 1);
+        for (Window w : ws) {
+            if (atTicks <= w.hi()) {
+                pick = w;
+                break;
+            }
+        }
+        return new long[] {pick.lo(), pick.hi() >= horizon ? Long.MAX_VALUE : pick.hi()};
+    }
+
     /** Whether something must happen before the horizon. */
     public boolean hasDeadline() {
         return deadline < horizon;
