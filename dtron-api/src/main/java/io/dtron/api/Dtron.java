@@ -35,7 +35,6 @@ import java.util.Optional;
 import java.util.Set;
 import java.util.concurrent.ConcurrentHashMap;
 import java.util.concurrent.CopyOnWriteArrayList;
-import java.util.concurrent.CountDownLatch;
 import java.util.concurrent.TimeUnit;
 import java.util.concurrent.atomic.AtomicLong;
 import org.slf4j.Logger;
@@ -159,6 +158,11 @@ public final class Dtron implements AutoCloseable {
         @Override
         public Set<String> probeAsInput(Collection<String> members, Duration timeout) throws InterruptedException {
             return Dtron.this.probe(members, timeout, true);
+        }
+
+        @Override
+        public boolean awaitListeners(Duration timeout) throws InterruptedException {
+            return dispatcher.awaitQueued(timeout);
         }
 
         @Override
@@ -576,9 +580,7 @@ public final class Dtron implements AutoCloseable {
         Set<String> answered = new LinkedHashSet<>(clockSync.probe(members, timeout, asInput));
         answered.retainAll(members);
         // what the members sent before their answers is delivered once the listeners' queue has passed this point
-        CountDownLatch delivered = new CountDownLatch(1);
-        dispatcher.execute(delivered::countDown);
-        delivered.await(Math.max(0, deadline - System.nanoTime()), TimeUnit.NANOSECONDS);
+        dispatcher.awaitQueued(Duration.ofNanos(Math.max(0, deadline - System.nanoTime())));
         return answered;
     }
 

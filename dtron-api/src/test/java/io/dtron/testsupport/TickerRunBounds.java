@@ -3,8 +3,12 @@ package io.dtron.testsupport;
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
+import io.dtron.testadapter.BusTicker;
+import java.time.Duration;
+import java.util.concurrent.Callable;
 import java.util.regex.Matcher;
 import java.util.regex.Pattern;
+import org.awaitility.core.ConditionTimeoutException;
 
 /**
  * What a PASSED real-time run of the bundled ticker model ({@code models/.../ticker.xml}: a tick 8 to 12 units after
@@ -14,6 +18,18 @@ import java.util.regex.Pattern;
  * not), so only the model's bounds are asserted.
  */
 public final class TickerRunBounds {
+    /** A FAILED verdict on a tick: one that came too late or too early, or none by its deadline. */
+    private static final Pattern TICK_FAILED = Pattern.compile("(?m)^FAILED: .*(output tick|no output came by )");
+    /**
+     * The tester's own words for being held up (as the other pages' runs accept): an input of its came too late, or
+     * an event reached it more than the reorder window after it happened, when it had committed to later ones.
+     */
+    private static final Pattern TESTER_LATE = Pattern.compile("(?m)^INCONCLUSIVE: .*(\\((input executed too late"
+            + "|too late for the window the environment allowed)\\)|more than the reorder window)");
+
+    /** What a {@link BusTicker} logs when it was held up past its tolerance. */
+    private static final String HELD_UP = "(this JVM was held up)";
+
     private TickerRunBounds() {
     }
 
@@ -43,6 +59,51 @@ public final class TickerRunBounds {
         assertEquals(inputs + 2, Integer.parseInt(bus.group(1)), out);
         assertTrue(Integer.parseInt(bus.group(2)) >= outputs, out);
         return inputs;
+    }
+
+    /**
+     * Asserts the verdict of a real-time run of the ticker model against the {@link BusTicker} in this JVM, as it holds
+     * whatever the machine's load: PASSED as {@link #assertPassed} says; or FAILED on a tick, and only when the ticker
+     * says it was held up past the model's tolerance ({@link BusTicker#heldUpTicks()} grew from {@code heldUpBefore},
+     * read before the run): its timer thread fired late, so the system really was late; or INCONCLUSIVE, and only
+     * when the tester says that it was held up (its input came too late, or an event reached it later than its
+     * reorder window allows). Anything else fails.
+     *
+     * @return the run's exit code: 0, 2 or 3
+     */
+    public static int assertPassedUnlessHeldUp(int exit, String out, int timeoutUnits, int heldUpBefore) {
+        // the ticker counts a late tick before it publishes it, and an overdue one when it stops at the latest
+        return verdictUnlessHeldUp(exit, out, timeoutUnits, () -> BusTicker.heldUpTicks() > heldUpBefore);
+    }
+
+    /**
+     * Asserts the verdict as {@link #assertPassedUnlessHeldUp(int, String, int, int)} does, of a run against a
+     * {@link BusTicker} in another JVM, whose log ({@code tickerLog}, read until it says so or for 10 s) says "(this
+     * JVM was held up)" when it was.
+     *
+     * @return the run's exit code: 0, 2 or 3
+     */
+    public static int assertPassedUnlessHeldUp(int exit, String out, int timeoutUnits, Callable<String> tickerLog) {
+        return verdictUnlessHeldUp(exit, out, timeoutUnits, () -> tickerLog.call().contains(HELD_UP));
+    }
+
+    private static int verdictUnlessHeldUp(int exit, String out, int timeoutUnits, Callable<Boolean> heldUp) {
+        switch (exit) {
+            case 0 -> assertPassed(out, timeoutUnits);
+            case 2 -> {
+                assertTrue(TICK_FAILED.matcher(out).find(), "FAILED on something else than a tick: " + out);
+                try {
+                    Waits.await("the ticker to say that it was held up, as the FAILED verdict says it was late")
+                            .atMost(Duration.ofSeconds(10)).until(heldUp);
+                } catch (ConditionTimeoutException e) {
+                    throw new AssertionError("FAILED, yet the ticker kept its period: " + out, e);
+                }
+            }
+            case 3 -> assertTrue(TESTER_LATE.matcher(out).find(),
+                    "INCONCLUSIVE for another reason than the tester being held up: " + out);
+            default -> throw new AssertionError("exit " + exit + ": " + out);
+        }
+        return exit;
     }
 
     /**

@@ -96,11 +96,15 @@ class BusSecretTest {
                 Integer.toString(port), Integer.toString(FreePorts.BUS_RANGE), key);
     }
 
-    /** The run passed, heard nothing of the stranger, printed no stack trace and at most one line of dropped frames. */
+    /**
+     * The run passed (unless a busy machine held the ticker or the tester up, which they say), heard nothing of the
+     * stranger, printed no stack trace and at most one line of dropped frames.
+     */
     private static void assertPassedUntouched(ChildJvm dtron, ChildJvm stranger) throws Exception {
-        assertEquals(0, dtron.waitFor(WAIT), dtron.output());
+        int exit = dtron.waitFor(WAIT);
         String out = dtron.output();
-        TickerRunBounds.assertPassed(out, 100);
+        // the ticker in the tester's JVM says in its log, the same output, when a busy machine held it up
+        TickerRunBounds.assertPassedUnlessHeldUp(exit, out, 100, dtron::output);
         BusSummary.assertNothingOfTheRunRejected(out); // the stranger's frames, dropped, are unauthenticated
         assertFalse(out.contains("stranger"), "the stranger is never a member: " + out);
         assertQuiet(out);
@@ -174,9 +178,9 @@ class BusSecretTest {
                     sendQuietly(listening, connection);
                 }
             }
-            assertEquals(0, dtron.waitFor(WAIT), dtron.output());
+            int exit = dtron.waitFor(WAIT);
             String out = dtron.output();
-            TickerRunBounds.assertPassed(out, 100);
+            TickerRunBounds.assertPassedUnlessHeldUp(exit, out, 100, dtron::output);
             // besides frames of other processes on the ports without the secret (see BusSummary), if any
             Matcher summary = Pattern.compile("(?m)^bus: published \\d+, accepted \\d+, rejected \\d+ "
                     + "\\((unauthenticated \\d+, )?replayed [1-9]\\d*\\), ").matcher(out);

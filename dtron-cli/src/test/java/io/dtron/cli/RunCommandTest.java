@@ -323,12 +323,13 @@ class RunCommandTest {
 
     @Test
     void aBusAdapterInThisJvmPassesAndPrintsTheLatency() {
-        // 25 ms per unit: the model's 2 units of jitter, 50 ms, hold on a busy machine
+        // 25 ms per unit: the model's 2 units of jitter, 50 ms; a machine that holds the ticker's timer up longer
+        // makes the system late (FAILED, and the ticker says so), or the tester's own input (INCONCLUSIVE, it says so)
+        int heldUp = BusTicker.heldUpTicks();
         CommandRun r = CommandRun.of(model.toString(), "--adapter", BusTicker.class.getName(), "--cluster", cluster(), "--timeunit",
                 "25000", "--timeout", "100", "--delay-policy", "eager", "--seed", "3");
-        assertEquals(0, r.exit(), r.out() + r.err());
-        assertTrue(r.out().contains("adapter " + BusTicker.class.getName() + " joined as "), r.out());
-        TickerRunBounds.assertPassed(r.out(), 100);
+        assertTrue(r.out().contains("adapter " + BusTicker.class.getName() + " joined as "), r.out() + r.err());
+        TickerRunBounds.assertPassedUnlessHeldUp(r.exit(), r.out() + r.err(), 100, heldUp);
         assertTrue(r.out().contains("latency t2 - t1 of inputs back from the bus: count "), r.out());
         BusSummary.assertNothingOfTheRunRejected(r.out());
         assertTrue(r.out().contains(", listener failures 0"), r.out());

@@ -93,6 +93,11 @@ public final class BusRun implements AutoCloseable {
     static final Duration WARM_UP_MINIMUM = Duration.ofMillis(400);
     /** How long the probes before a run last at most, steady or not. */
     static final Duration WARM_UP_LIMIT = Duration.ofSeconds(3);
+    /**
+     * How long a run's start waits for the listeners' thread to catch up with what the bus told this member (who
+     * serves what), so that it decides which members serve the run on one view (see {@link #startRun}).
+     */
+    static final Duration CATCH_UP_TIMEOUT = Duration.ofSeconds(2);
     /** How long a tester waits for every member on the bus to tell whether it is a tester. */
     static final Duration ROLL_CALL = Duration.ofSeconds(3);
     /** The smallest automatic reorder window, in microseconds (see {@link Delays#autoWindowMicros()}). */
@@ -841,8 +846,20 @@ public final class BusRun implements AutoCloseable {
         window.newRun();
         runLeader = joining ? dtron.getTester().orElse(null) : null;
         owners.newRun();
-        Map<String, ServedChannels> servedNow = served;
+        // the members and what they serve, on one view: the announcements of the members on the bus now that the
+        // bus has delivered reach the listeners' thread (which keeps served, in order with the members' messages)
+        // before the run decides by them; else a member that serves nothing of the model, whose announcement was
+        // still queued there, would count as one that said nothing, and its leaving would end the run
         startMembers = Set.copyOf(dtron.getMembers());
+        try {
+            if (!tester.awaitListeners(CATCH_UP_TIMEOUT)) {
+                LOG.warn("The bus's listeners did not catch up within {} ms; the run starts with what they know",
+                        CATCH_UP_TIMEOUT.toMillis());
+            }
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+        }
+        Map<String, ServedChannels> servedNow = served;
         // a member that said it serves no channel of the model (an observer) never serves the run, and may leave;
         // one that said nothing may serve anything
         startMembers.stream().filter(m -> !servedNow.containsKey(m) || owners.servesTheModel(servedNow.get(m)))

@@ -426,6 +426,8 @@ class BusBridgeTest {
             // it watches an output and listens to a channel of no model: it applies no input, sends no output
             observer.addDtronListener(new Inbox(DONE));
             observer.addDtronListener(new Inbox(IDtronChannel.of("weather")));
+            // what the bus told the tester's member; the start catches its listeners' thread up with it, so the run
+            // decides on the same view that the observer serves no channel of the model
             Waits.await("the observer's channels").until(() -> bridge.run().servedChannels().containsKey("observer")
                     && bridge.run().servedChannels().get("observer").receives().contains("weather"));
             bridge.start(context);

@@ -2,7 +2,9 @@ package io.dtron.api.internal;
 
 import java.time.Duration;
 import java.util.concurrent.BlockingQueue;
+import java.util.concurrent.CountDownLatch;
 import java.util.concurrent.LinkedBlockingQueue;
+import java.util.concurrent.TimeUnit;
 import org.slf4j.Logger;
 import org.slf4j.LoggerFactory;
 
@@ -31,6 +33,22 @@ public final class SerialExecutor {
         if (!stopping) {
             queue.add(task);
         }
+    }
+
+    /**
+     * Waits until the tasks queued before this call have run, at most {@code timeout}; returns at once on this
+     * executor's own thread (they have run by the time its current task ends) and once {@link #shutdown} was called.
+     *
+     * @return whether they have run (or run before the caller's task, on this thread)
+     * @throws InterruptedException if the thread was interrupted while waiting
+     */
+    public boolean awaitQueued(Duration timeout) throws InterruptedException {
+        if (inExecutorThread()) {
+            return true;
+        }
+        CountDownLatch passed = new CountDownLatch(1);
+        execute(passed::countDown);
+        return !stopping && passed.await(timeout.toNanos(), TimeUnit.NANOSECONDS);
     }
 
     /** Returns whether the caller runs on this executor's thread. */

@@ -56,6 +56,18 @@ public interface TesterSide {
     Set<String> probeAsInput(Collection<String> members, Duration timeout) throws InterruptedException;
 
     /**
+     * Waits until the thread of the {@link io.dtron.api.DtronListener}s has handled what this member had received when
+     * called: the messages, the members' announcements of what they serve (the {@linkplain
+     * #addServedChannelsListener served-channels listeners}) and the news of who joined or left. So what the
+     * listeners know then is at least what {@link #getMembersServedChannels()} and {@link Dtron#getMembers()} said
+     * before the call. Returns at once on that thread, and once the member is closed.
+     *
+     * @return whether the listeners' thread has handled it, within the timeout
+     * @throws InterruptedException if the thread was interrupted while waiting
+     */
+    boolean awaitListeners(Duration timeout) throws InterruptedException;
+
+    /**
      * Returns the other members that announced themselves as a tester (connected with the {@linkplain
      * io.dtron.api.DtronOptions.Builder#tester tester} option, or by publishing {@link Dtron#RUN_START}), by a
      * greeting or in the handshake, and are on the bus now. A tester that finds another one here shares its bus with
