@@ -18,8 +18,9 @@ import java.util.Map;
  * <p>JSON lines: an object with {@code "t_us"} (microseconds on the run's clock), {@code "channel"} and optionally
  * {@code "values"} (an object of integers) is an event when its {@code "kind"} is {@code "input"}, {@code "output"}
  * or absent; {@code "verdict"} ends the observation at its {@code t_us}, or at the {@code start} line's timeout
- * when that comes first; {@code start}, {@code
- * edges}, {@code bus} and {@code alarm} lines are skipped. CSV: one event a line, {@code t_us,channel,values} with
+ * when that comes first, or at the last event a {@code truncated} line (a trace bounded by {@code --trace-max-size})
+ * names; {@code start}, {@code edges}, {@code due}, {@code coverage}, {@code bus} and {@code alarm} lines are skipped.
+ * CSV: one event a line, {@code t_us,channel,values} with
  * the values as {@code name=value} pairs separated by {@code ;} (empty for none); a first line starting with {@code
  * t_us} is a header; blank lines and lines starting with {@code #} are skipped.
  */
@@ -119,13 +120,20 @@ final class TraceReader {
             timeout[0] = units * unit;
             return;
         }
+        if ("truncated".equals(kind)) {
+            // a bounded trace (--trace-max-size) left out the events after this time: the observation ends there,
+            // or a deadline those events met would look missed
+            timeout[0] = Math.min(timeout[0], m.get("after_t_us") instanceof Long after ? Math.max(0, after) : 0);
+            return;
+        }
         if ("verdict".equals(kind)) {
             // the tester observes until its timeout; its verdict's time may be later, when the run wound up
             sink.end(Math.min(micros(m.get("t_us")), timeout[0]), number);
             return;
         }
         if (kind != null && !"input".equals(kind) && !"output".equals(kind)) {
-            if ("start".equals(kind) || "edges".equals(kind) || "bus".equals(kind) || "alarm".equals(kind)) {
+            if ("start".equals(kind) || "edges".equals(kind) || "bus".equals(kind) || "alarm".equals(kind)
+                    || "due".equals(kind) || "coverage".equals(kind)) {
                 return;
             }
             throw new IllegalArgumentException("unknown kind " + kind + " (an event is of kind input or output, or"
