@@ -8,18 +8,30 @@ package io.dtron.engine.internal.clock;
 public final class RealClock extends RunClock {
     /** How long before a target the clock stops sleeping and spins, in microseconds. */
     private static final long SPIN_MICROS = 1000;
-    private volatile long start = System.nanoTime();
+    private final java.util.function.LongSupplier nanoTime;
+    private volatile long start;
     private volatile long worstLateness;
+
+    /** A clock of {@link System#nanoTime()}. */
+    public RealClock() {
+        this(System::nanoTime);
+    }
+
+    /** A clock of the given nanosecond source (tests make it jump, as a descheduled thread sees it). */
+    RealClock(java.util.function.LongSupplier nanoTime) {
+        this.nanoTime = nanoTime;
+        this.start = nanoTime.getAsLong();
+    }
 
     @Override
     public void begin(java.util.OptionalLong zeroNanoTime) {
         if (zeroNanoTime.isEmpty()) {
-            start = System.nanoTime();
+            start = nanoTime.getAsLong();
             return;
         }
         long zero = zeroNanoTime.getAsLong();
         long ahead;
-        while ((ahead = zero - System.nanoTime()) > SPIN_MICROS * 1000) {
+        while ((ahead = zero - nanoTime.getAsLong()) > SPIN_MICROS * 1000) {
             try {
                 java.util.concurrent.TimeUnit.NANOSECONDS.sleep(ahead - SPIN_MICROS * 1000);
             } catch (InterruptedException e) {
@@ -27,7 +39,7 @@ public final class RealClock extends RunClock {
                 break;
             }
         }
-        while (System.nanoTime() < zero && !Thread.currentThread().isInterrupted()) {
+        while (nanoTime.getAsLong() < zero && !Thread.currentThread().isInterrupted()) {
             Thread.onSpinWait();
         }
         start = zero;
@@ -35,7 +47,7 @@ public final class RealClock extends RunClock {
 
     @Override
     public long nowMicros() {
-        return (System.nanoTime() - start) / 1000;
+        return (nanoTime.getAsLong() - start) / 1000;
     }
 
     @Override
