@@ -12,7 +12,8 @@ import org.junit.jupiter.api.extension.ExtendWith;
 /**
  * Tests a system under test against an Uppaal model, once per seed (and per goal): each run is a test of its own,
  * named by its seed ({@code seed 4711}, with a goal {@code seed 4711, goal E<> Lamp.bright}), that fails with the
- * verdict's explanation. The method takes a {@link DtronRun} and hands it the system, a fresh one for every run:
+ * verdict's explanation. The method takes a {@link DtronRun} and hands it the system (an {@link
+ * io.dtron.engine.Adapter} in the test's JVM), a fresh one for every run:
  *
  * <pre>{@code
  * @DtronTest(model = "lamp.xta", seeds = 20)
@@ -29,6 +30,11 @@ import org.junit.jupiter.api.extension.ExtendWith;
  * next time, until it passes; every run's events and verdict are written to {@code
  * target/dtron-reports/CLASS/METHOD-seed-SEED.txt} (system property {@code dtron.reportDirectory}), beside
  * Surefire's reports.
+ *
+ * <p>A method that takes a {@link DtronBusRun} instead tests systems behind bus adapters ({@link
+ * io.dtron.api.DtronAdapter}), in real time, on a bus of the run's own: by default JGroups on loopback under a fresh
+ * {@link #cluster() cluster} name, or the NATS servers of {@link #nats()}. It needs {@code io.dtron:dtron-core} on the
+ * test classpath; {@link #virtualTime()} does not apply to it.
  */
 @Target(ElementType.METHOD)
 @Retention(RetentionPolicy.RUNTIME)
@@ -63,6 +69,21 @@ public @interface DtronTest {
      */
     String[] goals() default {};
 
-    /** Whether the runs are in virtual time (the default) rather than in real time. */
+    /**
+     * Whether the runs are in virtual time (the default) rather than in real time. Runs over the bus ({@link
+     * DtronBusRun}) are in real time whatever this says: the adapters live in real time.
+     */
     boolean virtualTime() default true;
+
+    /**
+     * Over the bus: the bus's cluster name, for adapters started elsewhere under a name they know; empty (the
+     * default): a fresh name for every run ({@code dtron-junit-} and a random part), so that runs never meet.
+     */
+    String cluster() default "";
+
+    /** Over the bus: the NATS servers' URLs ({@code nats://127.0.0.1:4222}); none (the default): JGroups on loopback. */
+    String[] nats() default {};
+
+    /** Over the bus: how many seconds a run waits until every channel of the model is served (default 30). */
+    int busWait() default 30;
 }

@@ -182,11 +182,62 @@ class DtronTestTest {
 
         Events noRun = runMethod(LampCases.Mistakes.class, "noRun");
         assertTrue(thrown(noRun.failed().list().get(0)).getMessage().endsWith(": the method takes one parameter, a"
-                + " DtronRun, and calls run.test(system)"));
+                + " DtronRun, and calls run.test(system), or, for systems behind bus adapters, a DtronBusRun, and"
+                + " calls run.test(adapters)"));
 
         Events nothing = runMethod(LampCases.Mistakes.class, "testsNothing", DtronRun.class);
         assertTrue(thrown(nothing.failed().list().get(0)).getMessage().startsWith("the @DtronTest method returned"
-                + " without testing a system"));
+                + " without testing: call run.test(system)"));
+    }
+
+    @Test
+    void theCorrectLampBehindABusAdapterPassesInRealTimeOnAFreshBusOfItsOwn() throws Exception {
+        Events tests = run(LampBusCases.Correct.class);
+        assertEquals(List.of("seed 10", "seed 11"), names(tests.started()));
+        assertEquals(2, tests.succeeded().count(), () -> "every run passes: " + tests.failed().list() + printed);
+        Path reports = dir.resolve("reports").resolve(LampBusCases.Correct.class.getName());
+        String first = Files.readString(reports.resolve("lamp-seed-10.txt"));
+        String second = Files.readString(reports.resolve("lamp-seed-11.txt"));
+        String header = "dtron: lamp.xta, seed 10, 40 time units of 50000 us in real time over bus 'dtron-junit-";
+        assertTrue(first.startsWith(header), first);
+        assertTrue(first.lines().findFirst().orElseThrow().endsWith("' on 127.0.0.1"), first);
+        assertTrue(!first.lines().findFirst().equals(second.lines().findFirst()), "each run has a bus of its own");
+        // the user presses by t=10 and the lamp shows its level within 2 units: both are in a run that passed
+        assertTrue(first.contains(" input press()\n") && first.contains(" output light(level=1)\n"), first);
+        assertTrue(first.contains("\nPASSED: "), first);
+        assertTrue(Files.readString(reports.resolve("lamp-seed-10.html")).contains(
+                "\"verdict\":{\"verdict\":\"PASSED\""), "the run's page, with its verdict");
+        assertTrue(!Files.exists(dir.resolve("seeds.properties")), "no seed failed, none is stored");
+    }
+
+    @Test
+    void theLateLampBehindABusAdapterFailsWithTheExplanationAndItsSeedRunsFirstNextTime() throws Exception {
+        Events first = run(LampBusCases.Late.class);
+        assertEquals(1, first.failed().count(), () -> "the late lamp fails: " + printed);
+        String seed = names(first.failed()).get(0);
+        Throwable failure = thrown(first.failed().list().get(0));
+        assertInstanceOf(AssertionFailedError.class, failure);
+        // the deadline passes, or the light comes within the bus's reorder window after it, 3 units after the press
+        assertTrue(failure.getMessage().startsWith("FAILED with " + seed + ": no output came by t=")
+                || failure.getMessage().matches("(?s)FAILED with " + seed + ": output light\\(level=1\\) observed at"
+                + " t=[0-9.]+ is too late: .*"), failure.getMessage());
+        assertTrue(failure.getMessage().contains("The model allowed these outputs: light between t="),
+                failure.getMessage());
+        assertEquals(seed.substring("seed ".length()), stored().getProperty(LampBusCases.Late.class.getName()
+                + "#lamp"));
+        Events second = run(LampBusCases.Late.class);
+        assertEquals(List.of(seed), names(second.started()), "the failed seed runs first (and alone: seeds = 1)");
+        assertTrue(printed.contains("dtron: Late.lamp: " + seed + " did not pass last time; it runs first"), printed);
+    }
+
+    @Test
+    void aBusRunWithoutAnAdapterSaysWhichChannelsNoAdapterServed() {
+        Events tests = run(LampBusCases.NoAdapter.class);
+        Throwable error = thrown(tests.failed().list().get(0));
+        assertInstanceOf(IllegalStateException.class, error);
+        assertTrue(error.getMessage().matches("within 1000 ms no adapter on bus 'dtron-junit-[0-9a-f]{8}' on"
+                + " 127\\.0\\.0\\.1 served input press, output light; no adapter said which channels it serves"
+                + " \\(members: \\[.*\\]\\)"), error.getMessage());
     }
 
     /** Runs the test class's tests; what they print goes to {@link #printed}. */

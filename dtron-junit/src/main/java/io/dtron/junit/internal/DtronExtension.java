@@ -50,10 +50,13 @@ public final class DtronExtension implements TestTemplateInvocationContextProvid
         Class<?> testClass = context.getRequiredTestClass();
         DtronTest test = method.getAnnotation(DtronTest.class);
         String where = "@DtronTest on " + testClass.getSimpleName() + "." + method.getName();
-        if (method.getParameterCount() != 1 || method.getParameterTypes()[0] != DtronRun.class) {
+        Class<?> parameter = method.getParameterCount() == 1 ? method.getParameterTypes()[0] : null;
+        if (parameter != DtronRun.class && !BusSettings.RUN.equals(parameter == null ? null : parameter.getName())) {
             throw new ExtensionConfigurationException(where + ": the method takes one parameter, a DtronRun, and"
-                    + " calls run.test(system)");
+                    + " calls run.test(system), or, for systems behind bus adapters, a DtronBusRun, and calls"
+                    + " run.test(adapters)");
         }
+        BusSettings bus = parameter == DtronRun.class ? null : BusSettings.of(test, where);
         if (test.seeds() < 1) {
             throw new ExtensionConfigurationException(where + ": seeds must be at least 1, not " + test.seeds());
         }
@@ -67,7 +70,7 @@ public final class DtronExtension implements TestTemplateInvocationContextProvid
         try {
             long unit = test.timeUnit() > 0 ? test.timeUnit() : orElse(model.testInterface().timeUnitMicros(), 1000);
             long timeout = test.timeout() > 0 ? test.timeout() : orElse(model.testInterface().timeout(), 1000);
-            options = new TestOptions(0, unit, timeout, DelayPolicy.RANDOM, 0, test.virtualTime());
+            options = new TestOptions(0, unit, timeout, DelayPolicy.RANDOM, 0, bus == null && test.virtualTime());
         } catch (IllegalArgumentException e) {
             throw new ExtensionConfigurationException(where + ": " + e.getMessage());
         }
@@ -92,11 +95,11 @@ public final class DtronExtension implements TestTemplateInvocationContextProvid
         List<TestTemplateInvocationContext> runs = new ArrayList<>();
         for (long seed : seeds) {
             if (goals.isEmpty()) {
-                runs.add(new SeedRun(new Plan(model, options, seed, Optional.empty(), store, keys.get(0),
+                runs.add(new SeedRun(new Plan(model, options, bus, seed, Optional.empty(), store, keys.get(0),
                         reports.resolve(method.getName() + "-seed-" + seed + ".txt"))));
             }
             for (int g = 0; g < goals.size(); g++) {
-                runs.add(new SeedRun(new Plan(model, options, seed, Optional.of(goals.get(g)), store, keys.get(g),
+                runs.add(new SeedRun(new Plan(model, options, bus, seed, Optional.of(goals.get(g)), store, keys.get(g),
                         reports.resolve(method.getName() + "-seed-" + seed + "-goal-" + (g + 1) + ".txt"))));
             }
         }
@@ -114,8 +117,11 @@ public final class DtronExtension implements TestTemplateInvocationContextProvid
     record Model(String name, Network network, TestInterface testInterface, Layout layout, String layoutNote) {
     }
 
-    /** What one run needs; {@code key} names its test method (and goal) in the store of failed seeds. */
-    record Plan(Model model, TestOptions options, long seed, Optional<String> goal, SeedStore store, String key,
+    /**
+     * What one run needs; {@code bus} is null for a system in the test's JVM; {@code key} names its test method (and
+     * goal) in the store of failed seeds.
+     */
+    record Plan(Model model, TestOptions options, BusSettings bus, long seed, Optional<String> goal, SeedStore store, String key,
                 Path report) {
         /** The run's HTML page: beside its text record, {@code .html} for {@code .txt}. */
         Path page() {

@@ -26,15 +26,14 @@ import org.opentest4j.AssertionFailedError;
 
 /**
  * One run of a {@code @DtronTest} method: its display name carries the seed (and the goal); it hands the method its
- * {@link DtronRun} and checks afterwards that the method tested a system.
+ * {@link DtronRun} (or, over the bus, its {@code DtronBusRun}) and checks afterwards that the method tested.
  */
 final class SeedRun implements TestTemplateInvocationContext, ParameterResolver, InvocationInterceptor {
     private final DtronExtension.Plan plan;
-    private final Run run;
+    private boolean tested;
 
     SeedRun(DtronExtension.Plan plan) {
         this.plan = plan;
-        this.run = new Run();
     }
 
     @Override
@@ -49,12 +48,14 @@ final class SeedRun implements TestTemplateInvocationContext, ParameterResolver,
 
     @Override
     public boolean supportsParameter(ParameterContext parameter, ExtensionContext context) {
-        return parameter.getParameter().getType() == DtronRun.class;
+        Class<?> type = parameter.getParameter().getType();
+        return plan.bus() == null ? type == DtronRun.class : type.getName().equals(BusSettings.RUN);
     }
 
     @Override
     public Object resolveParameter(ParameterContext parameter, ExtensionContext context) {
-        return run;
+        // the bus's run is made only for a method that asks for it: its class needs dtron-core
+        return plan.bus() == null ? new Run() : BusSeedRun.of(this);
     }
 
     @Override
@@ -62,16 +63,79 @@ final class SeedRun implements TestTemplateInvocationContext, ParameterResolver,
                                             ReflectiveInvocationContext<Method> invocationContext,
                                             ExtensionContext extensionContext) throws Throwable {
         invocation.proceed();
-        if (!run.tested) {
-            throw new AssertionFailedError("the @DtronTest method returned without testing a system: call"
-                    + " run.test(system) with the system under test");
+        if (!tested) {
+            throw new AssertionFailedError("the @DtronTest method returned without testing: call run.test(system)"
+                    + " with the system under test" + (plan.bus() == null ? "" : " (over the bus, with its adapters)"));
         }
     }
 
-    /** The {@link DtronRun} of this invocation. */
-    private final class Run implements DtronRun {
-        private boolean tested;
+    DtronExtension.Plan plan() {
+        return plan;
+    }
 
+    /**
+     * Marks this run as tested.
+     *
+     * @throws IllegalStateException if it was already
+     */
+    void claim() {
+        if (tested) {
+            throw new IllegalStateException("this run tested already: call run.test once per run");
+        }
+        tested = true;
+    }
+
+    /** The options of this run: the method's, with this run's seed. */
+    TestOptions options() {
+        TestOptions base = plan.options();
+        return new TestOptions(plan.seed(), base.timeUnitMicros(), base.timeout(), base.delayPolicy(),
+                base.delayBound(), base.virtualTime());
+    }
+
+    /**
+     * Tests {@code system} with {@code options}, writes the run's record and page, stores or takes out the seed, and
+     * returns the result when it PASSED; {@code against} ends the record's first line (empty, or what was tested).
+     *
+     * @throws AssertionFailedError if the run is FAILED
+     * @throws Inconclusive if it is INCONCLUSIVE
+     */
+    TestResult judge(Adapter system, TestOptions options, String against) {
+        DtronExtension.Model model = plan.model();
+        OnlineTester tester = new OnlineTester(model.network(), model.testInterface(), system, options);
+        plan.goal().ifPresent(g -> tester.steer(Steering.of(Strategy.GOAL, List.of(g))));
+        RunRecord record = new RunRecord("dtron: " + model.name() + ", seed " + plan.seed()
+                + plan.goal().map(g -> ", goal " + g).orElse("") + ", " + options.timeout() + " time units of "
+                + options.timeUnitMicros() + " us in " + (options.virtualTime() ? "virtual" : "real") + " time"
+                + against, options.timeUnitMicros());
+        tester.addListener(record);
+        io.dtron.report.RunRecord page = new io.dtron.report.RunRecord(model.name(), model.network(),
+                model.layout(), model.layoutNote());
+        page.start(plan.seed(), options.timeUnitMicros(), options.timeout(), options.virtualTime());
+        tester.addListener(new RunRecorder(page));
+        TestResult result = tester.run();
+        record.write(result, plan.report());
+        try {
+            ReportPage.write(page, plan.page());
+        } catch (IOException e) {
+            throw new UncheckedIOException("cannot write the run's page " + plan.page() + ": " + e.getMessage(), e);
+        }
+        boolean passed = result.verdict() == Verdict.PASSED;
+        plan.store().record(plan.key(), plan.seed(), passed);
+        if (passed) {
+            return result;
+        }
+        String message = result.verdict() + " with seed " + plan.seed() + ": " + result.explanation()
+                + "\n(the seed runs first next time, from " + plan.store().file() + "; the run: " + plan.report()
+                + ", its page: " + plan.page() + ")";
+        System.out.println("dtron: " + message);
+        if (result.verdict() == Verdict.FAILED) {
+            throw new AssertionFailedError(message);
+        }
+        throw new Inconclusive(message);
+    }
+
+    /** The {@link DtronRun} of this invocation: the system in the test's JVM. */
+    private final class Run implements DtronRun {
         @Override
         public long seed() {
             return plan.seed();
@@ -84,45 +148,8 @@ final class SeedRun implements TestTemplateInvocationContext, ParameterResolver,
 
         @Override
         public TestResult test(Adapter system) {
-            if (tested) {
-                throw new IllegalStateException("this run tested a system already: call run.test once per run");
-            }
-            tested = true;
-            TestOptions base = plan.options();
-            TestOptions options = new TestOptions(plan.seed(), base.timeUnitMicros(), base.timeout(),
-                    base.delayPolicy(), base.delayBound(), base.virtualTime());
-            DtronExtension.Model model = plan.model();
-            OnlineTester tester = new OnlineTester(model.network(), model.testInterface(), system, options);
-            plan.goal().ifPresent(g -> tester.steer(Steering.of(Strategy.GOAL, List.of(g))));
-            RunRecord record = new RunRecord("dtron: " + model.name() + ", seed " + plan.seed()
-                    + plan.goal().map(g -> ", goal " + g).orElse("") + ", " + options.timeout() + " time units of "
-                    + options.timeUnitMicros() + " us in " + (options.virtualTime() ? "virtual" : "real") + " time",
-                    options.timeUnitMicros());
-            tester.addListener(record);
-            io.dtron.report.RunRecord page = new io.dtron.report.RunRecord(model.name(), model.network(),
-                    model.layout(), model.layoutNote());
-            page.start(plan.seed(), options.timeUnitMicros(), options.timeout(), options.virtualTime());
-            tester.addListener(new RunRecorder(page));
-            TestResult result = tester.run();
-            record.write(result, plan.report());
-            try {
-                ReportPage.write(page, plan.page());
-            } catch (IOException e) {
-                throw new UncheckedIOException("cannot write the run's page " + plan.page() + ": " + e.getMessage(), e);
-            }
-            boolean passed = result.verdict() == Verdict.PASSED;
-            plan.store().record(plan.key(), plan.seed(), passed);
-            if (passed) {
-                return result;
-            }
-            String message = result.verdict() + " with seed " + plan.seed() + ": " + result.explanation()
-                    + "\n(the seed runs first next time, from " + plan.store().file() + "; the run: " + plan.report()
-                    + ", its page: " + plan.page() + ")";
-            System.out.println("dtron: " + message);
-            if (result.verdict() == Verdict.FAILED) {
-                throw new AssertionFailedError(message);
-            }
-            throw new Inconclusive(message);
+            claim();
+            return judge(system, options(), "");
         }
     }
 }
