@@ -86,6 +86,27 @@ class JunitPageIT {
     }
 
     @Test
+    void noPartOfTheBusIsOnTheClasspathOfASuiteThatDependsOnDtronJunitAlone() {
+        String classpath = property(builds.get(0).lamp(), "surefire.test.class.path");
+        assertTrue(classpath.contains("dtron-junit-" + PageProjects.version() + ".jar"), classpath);
+        for (String bus : List.of("dtron-core", "dtron-api", "jgroups", "jnats", "protobuf-java")) {
+            assertTrue(!classpath.contains("/" + bus + "-"), "dtron-core is optional: no " + bus + " on " + classpath);
+        }
+    }
+
+    /** The value of a property in the {@code properties} of a suite of Surefire's XML report. */
+    static String property(Element suite, String name) {
+        NodeList properties = suite.getElementsByTagName("property");
+        for (int i = 0; i < properties.getLength(); i++) {
+            Element property = (Element) properties.item(i);
+            if (property.getAttribute("name").equals(name)) {
+                return property.getAttribute("value");
+            }
+        }
+        throw new AssertionError("Surefire's report has no property " + name);
+    }
+
+    @Test
     void theLateLampFailsWithTheExplanationAndItsSeedsComeFirstTheNextTime() throws Exception {
         Build first = builds.get(0);
         Build second = builds.get(1);
@@ -150,6 +171,14 @@ class JunitPageIT {
 
     /** The page's one session that starts with {@code start}, its first line as a command for this build's Maven. */
     private static List<String> command(String start) {
+        return command(page, repository, start);
+    }
+
+    /**
+     * The one session of {@code page} that starts with {@code start}, its first line as a command for the Maven on
+     * the {@code PATH} with {@code repository} as its local repository.
+     */
+    static List<String> command(DocPage page, Path repository, String start) {
         List<DocPage.Block> blocks = page.blocksStartingWith(start);
         assertEquals(1, blocks.size(), "junit.md should have one session starting with '" + start + "'");
         List<String> words = ShellWords.split(blocks.get(0).code().lines().findFirst().orElseThrow().substring(2));
@@ -160,6 +189,11 @@ class JunitPageIT {
     }
 
     private static String javaClass(String name) {
+        return javaClass(page, name);
+    }
+
+    /** The one java block of {@code page} that declares class {@code name}. */
+    static String javaClass(DocPage page, String name) {
         Pattern declaration = Pattern.compile("(?m)^(public )?class " + name + "\\b");
         List<String> found = page.blocks("java").stream().filter(b -> declaration.matcher(b).find()).toList();
         assertEquals(1, found.size(), "junit.md should declare class " + name + " once");
@@ -167,16 +201,22 @@ class JunitPageIT {
     }
 
     private static Element report(String testClass) throws Exception {
+        return report(project, testClass);
+    }
+
+    /** Surefire's XML report of {@code testClass} in {@code project}. */
+    static Element report(Path project, String testClass) throws Exception {
         return JunitReportTest.parse(project.resolve("target/surefire-reports/TEST-" + testClass + ".xml"))
                 .getDocumentElement();
     }
 
-    private static List<String> counts(Element suite) {
+    /** A suite's numbers of tests, failures and errors. */
+    static List<String> counts(Element suite) {
         return List.of(suite.getAttribute("tests"), suite.getAttribute("failures"), suite.getAttribute("errors"));
     }
 
     /** The seeds in the names of the suite's test cases, in their order; every name must match {@code name}. */
-    private static List<String> seeds(Element suite, Pattern name) {
+    static List<String> seeds(Element suite, Pattern name) {
         List<String> seeds = new ArrayList<>();
         NodeList cases = suite.getElementsByTagName("testcase");
         for (int i = 0; i < cases.getLength(); i++) {

@@ -192,22 +192,32 @@ class DtronTestTest {
 
     @Test
     void theCorrectLampBehindABusAdapterPassesInRealTimeOnAFreshBusOfItsOwn() throws Exception {
+        int heldUp = LampBusAdapter.heldUp();
         Events tests = run(LampBusCases.Correct.class);
         assertEquals(List.of("seed 10", "seed 11"), names(tests.started()));
-        assertEquals(2, tests.succeeded().count(), () -> "every run passes: " + tests.failed().list() + printed);
+        for (Event failed : tests.failed().list()) {
+            assertPassedUnlessHeldUp(thrown(failed), heldUp);
+        }
         Path reports = dir.resolve("reports").resolve(LampBusCases.Correct.class.getName());
-        String first = Files.readString(reports.resolve("lamp-seed-10.txt"));
-        String second = Files.readString(reports.resolve("lamp-seed-11.txt"));
-        String header = "dtron: lamp.xta, seed 10, 40 time units of 50000 us in real time over bus 'dtron-junit-";
-        assertTrue(first.startsWith(header), first);
-        assertTrue(first.lines().findFirst().orElseThrow().endsWith("' on 127.0.0.1"), first);
-        assertTrue(!first.lines().findFirst().equals(second.lines().findFirst()), "each run has a bus of its own");
-        // the user presses by t=10 and the lamp shows its level within 2 units: both are in a run that passed
-        assertTrue(first.contains(" input press()\n") && first.contains(" output light(level=1)\n"), first);
-        assertTrue(first.contains("\nPASSED: "), first);
-        assertTrue(Files.readString(reports.resolve("lamp-seed-10.html")).contains(
-                "\"verdict\":{\"verdict\":\"PASSED\""), "the run's page, with its verdict");
-        assertTrue(!Files.exists(dir.resolve("seeds.properties")), "no seed failed, none is stored");
+        List<String> buses = new java.util.ArrayList<>();
+        for (long seed : List.of(10L, 11L)) {
+            String text = Files.readString(reports.resolve("lamp-seed-" + seed + ".txt"));
+            String header = text.lines().findFirst().orElseThrow();
+            assertTrue(header.matches("dtron: lamp\\.xta, seed " + seed + ", 40 time units of 50000 us in real time"
+                    + " over bus 'dtron-junit-[0-9a-f]{8}' on 127\\.0\\.0\\.1"), header);
+            buses.add(header.substring(header.indexOf(" over bus ")));
+            if (names(tests.succeeded()).contains("seed " + seed)) {
+                // the user presses by t=10 and the lamp shows its level within 2 units: both are in a run that passed
+                assertTrue(text.contains(" input press()\n") && text.contains(" output light(level=1)\n"), text);
+                assertTrue(text.contains("\nPASSED: "), text);
+                assertTrue(Files.readString(reports.resolve("lamp-seed-" + seed + ".html")).contains(
+                        "\"verdict\":{\"verdict\":\"PASSED\""), "the run's page, with its verdict");
+            }
+        }
+        assertTrue(!buses.get(0).equals(buses.get(1)), "each run has a bus of its own: " + buses);
+        if (tests.succeeded().count() == 2) {
+            assertTrue(!Files.exists(dir.resolve("seeds.properties")), "no seed failed, none is stored");
+        }
     }
 
     @Test
@@ -238,6 +248,25 @@ class DtronTestTest {
         assertTrue(error.getMessage().matches("within 1000 ms no adapter on bus 'dtron-junit-[0-9a-f]{8}' on"
                 + " 127\\.0\\.0\\.1 served input press, output light; no adapter said which channels it serves"
                 + " \\(members: \\[.*\\]\\)"), error.getMessage());
+    }
+
+    /**
+     * Fails unless {@code failure} of a run of the correct lamp over the bus is what a busy machine may cause: FAILED
+     * on the light, when the lamp says it was held up past its tolerance ({@link LampBusAdapter#heldUp()} grew from
+     * {@code heldUpBefore}); or INCONCLUSIVE, when the tester says it was held up (its input came too late, or an
+     * event reached it later than the reorder window allows).
+     */
+    private static void assertPassedUnlessHeldUp(Throwable failure, int heldUpBefore) {
+        String message = failure.getMessage();
+        if (failure instanceof AssertionFailedError) {
+            assertTrue(message.matches("(?s)FAILED with seed \\d+: (output light.* is too late|no output came by).*"),
+                    message);
+            assertTrue(LampBusAdapter.heldUp() > heldUpBefore, "a FAILED correct lamp that was not late: " + message);
+        } else {
+            assertInstanceOf(Inconclusive.class, failure, message);
+            assertTrue(message.matches("(?s)INCONCLUSIVE with seed \\d+: .*(\\((input executed too late|too late for"
+                    + " the window the environment allowed)\\)|more than the reorder window).*"), message);
+        }
     }
 
     /** Runs the test class's tests; what they print goes to {@link #printed}. */
