@@ -8,10 +8,14 @@ import static org.junit.platform.engine.discovery.DiscoverySelectors.selectMetho
 
 import io.dtron.junit.internal.DtronExtension;
 import io.dtron.junit.internal.Inconclusive;
+import java.io.File;
 import java.nio.file.Files;
 import java.nio.file.Path;
 import java.util.List;
 import java.util.Properties;
+import java.util.concurrent.TimeUnit;
+import java.util.stream.Collectors;
+import java.util.stream.Stream;
 import java.io.ByteArrayOutputStream;
 import java.io.PrintStream;
 import java.io.Reader;
@@ -196,7 +200,7 @@ class DtronTestTest {
         Events tests = run(LampBusCases.Correct.class);
         assertEquals(List.of("seed 10", "seed 11"), names(tests.started()));
         for (Event failed : tests.failed().list()) {
-            assertPassedUnlessHeldUp(thrown(failed), heldUp);
+            assertPassedUnlessHeldUp(thrown(failed), LampBusAdapter.heldUp() > heldUp);
         }
         Path reports = dir.resolve("reports").resolve(LampBusCases.Correct.class.getName());
         List<String> buses = new java.util.ArrayList<>();
@@ -241,6 +245,35 @@ class DtronTestTest {
     }
 
     @Test
+    void theLampInAJvmOfItsOwnJoinsTheRunsFreshBusByItsNameAndPasses() throws Exception {
+        Events tests = run(LampBusCases.OtherProcess.class);
+        assertEquals(List.of("seed 30"), names(tests.started()));
+        String log = Files.readString(dir.resolve("reports").resolve("lamp-process.log"));
+        Path reports = dir.resolve("reports").resolve(LampBusCases.OtherProcess.class.getName());
+        String header = Files.readString(reports.resolve("lamp-seed-30.txt")).lines().findFirst().orElseThrow();
+        String cluster = header.substring(header.indexOf("over bus '") + "over bus '".length(), header.indexOf("' on "));
+        assertTrue(log.lines().anyMatch(line -> line.startsWith("lamp joined bus " + cluster + " as ")), log);
+        for (Event failed : tests.failed().list()) {
+            assertPassedUnlessHeldUp(thrown(failed), log.contains("this JVM was held up"));
+        }
+    }
+
+    @Test
+    void aSuiteWithoutDtronCoreIsToldToAddItWhenATestTakesADtronBusRun() throws Exception {
+        String classpath = Stream.of(System.getProperty("java.class.path").split(File.pathSeparator))
+                .filter(entry -> !entry.contains("dtron-core") && !entry.contains("jgroups"))
+                .collect(Collectors.joining(File.pathSeparator));
+        Process process = new ProcessBuilder(Path.of(System.getProperty("java.home"), "bin", "java").toString(), "-cp",
+                classpath, WithoutCore.class.getName(), LampBusCases.Correct.class.getName())
+                .redirectErrorStream(true).redirectOutput(dir.resolve("without-core.log").toFile()).start();
+        assertTrue(process.waitFor(60, TimeUnit.SECONDS), "the JVM without dtron-core ends");
+        String out = Files.readString(dir.resolve("without-core.log"));
+        assertTrue(out.contains("failure: @DtronTest on Correct.lamp: a DtronBusRun tests over the DTRON bus, which"
+                + " needs the artifact io.dtron:dtron-core on the test classpath: add it as a test dependency, of the"
+                + " version of dtron-junit\n"), out);
+    }
+
+    @Test
     void aBusRunWithoutAnAdapterSaysWhichChannelsNoAdapterServed() {
         Events tests = run(LampBusCases.NoAdapter.class);
         Throwable error = thrown(tests.failed().list().get(0));
@@ -252,16 +285,16 @@ class DtronTestTest {
 
     /**
      * Fails unless {@code failure} of a run of the correct lamp over the bus is what a busy machine may cause: FAILED
-     * on the light, when the lamp says it was held up past its tolerance ({@link LampBusAdapter#heldUp()} grew from
-     * {@code heldUpBefore}); or INCONCLUSIVE, when the tester says it was held up (its input came too late, or an
+     * on the light, when the lamp says it was held up past its tolerance ({@code heldUp}: {@link
+     * LampBusAdapter#heldUp()} grew, or the lamp's JVM said so); or INCONCLUSIVE, when the tester says it was held up (its input came too late, or an
      * event reached it later than the reorder window allows).
      */
-    private static void assertPassedUnlessHeldUp(Throwable failure, int heldUpBefore) {
+    private static void assertPassedUnlessHeldUp(Throwable failure, boolean heldUp) {
         String message = failure.getMessage();
         if (failure instanceof AssertionFailedError) {
             assertTrue(message.matches("(?s)FAILED with seed \\d+: (output light.* is too late|no output came by).*"),
                     message);
-            assertTrue(LampBusAdapter.heldUp() > heldUpBefore, "a FAILED correct lamp that was not late: " + message);
+            assertTrue(heldUp, "a FAILED correct lamp that was not late: " + message);
         } else {
             assertInstanceOf(Inconclusive.class, failure, message);
             assertTrue(message.matches("(?s)INCONCLUSIVE with seed \\d+: .*(\\((input executed too late|too late for"

@@ -58,7 +58,7 @@ final class LampBusAdapter implements DtronAdapter {
     /** The run ended: a light due long before and never shown counts as held up. */
     private synchronized void stopped() {
         if (pending != null && late()) {
-            HELD_UP.incrementAndGet();
+            heldUp("not shown by the end of the run");
         }
     }
 
@@ -79,6 +79,13 @@ final class LampBusAdapter implements DtronAdapter {
         return HELD_UP.get();
     }
 
+    /** Counts a light held up, and says so (a lamp in a JVM of its own says it to its output). */
+    private void heldUp(String what) {
+        HELD_UP.incrementAndGet();
+        System.out.println("LampBusAdapter: a light was " + what + " more than " + HELD_UP_UNITS + " time units after it"
+                + " was due: this JVM was held up");
+    }
+
     private boolean late() {
         return System.nanoTime() - dueNanos > HELD_UP_UNITS * unitNanos;
     }
@@ -86,7 +93,7 @@ final class LampBusAdapter implements DtronAdapter {
     private void show(int shown) {
         synchronized (this) {
             if (late()) {
-                HELD_UP.incrementAndGet();
+                heldUp("shown");
             }
             pending = null;
         }

@@ -1,5 +1,10 @@
 package io.dtron.junit;
 
+import io.dtron.api.ChildJvm;
+import io.dtron.junit.internal.DtronExtension;
+import java.nio.file.Files;
+import java.nio.file.Path;
+
 /**
  * Test classes with {@code @DtronTest} methods over the bus that {@link DtronTestTest} runs through the JUnit
  * Platform: the lamp behind a bus adapter, a member of a fresh JGroups bus on loopback, in real time at 50 ms per
@@ -23,6 +28,21 @@ final class LampBusCases {
         @DtronTest(model = "lamp.xta", seeds = 1, timeout = 40, timeUnit = 50_000)
         void lamp(DtronBusRun run) {
             run.test(new LampBusAdapter(3));
+        }
+    }
+
+    /**
+     * The correct lamp in a JVM of its own, which joins the run's bus by its name; its output goes to {@code
+     * lamp-process.log} in the folder of the reports.
+     */
+    static class OtherProcess {
+        @DtronTest(model = "lamp.xta", seeds = 1, seed = 30, timeout = 40, timeUnit = 50_000)
+        void lamp(DtronBusRun run) throws Exception {
+            Path log = Path.of(System.getProperty(DtronExtension.REPORT_DIRECTORY)).resolve("lamp-process.log");
+            Files.createDirectories(log.getParent());
+            try (ChildJvm lamp = ChildJvm.start(LampProcess.class, log, run.cluster())) {
+                run.test();
+            }
         }
     }
 
