@@ -81,7 +81,12 @@ public @interface DtronTest {
      */
     String cluster() default "";
 
-    /** Over the bus: the NATS servers' URLs ({@code nats://127.0.0.1:4222}); none (the default): JGroups on loopback. */
+    /**
+     * Over the bus: the NATS servers' URLs ({@code nats://127.0.0.1:4222}); none (the default): those of the system
+     * property {@code dtron.nats} (comma-separated), so that a CI job with a NATS server can run the suite's bus tests
+     * over it, else JGroups on loopback. Each fresh cluster name makes a stream on the server, whose messages expire
+     * after 10 minutes; {@link #cluster()} keeps to one.
+     */
     String[] nats() default {};
 
     /** Over the bus: how many seconds a run waits until every channel of the model is served (default 30). */

@@ -8,12 +8,14 @@ import static org.junit.platform.engine.discovery.DiscoverySelectors.selectMetho
 
 import io.dtron.junit.internal.DtronExtension;
 import io.dtron.junit.internal.Inconclusive;
+import io.dtron.testsupport.NatsServer;
 import java.io.File;
 import java.nio.file.Files;
 import java.nio.file.Path;
 import java.util.List;
 import java.util.Properties;
 import java.util.concurrent.TimeUnit;
+import java.util.regex.Pattern;
 import java.util.stream.Collectors;
 import java.util.stream.Stream;
 import java.io.ByteArrayOutputStream;
@@ -221,6 +223,25 @@ class DtronTestTest {
         assertTrue(!buses.get(0).equals(buses.get(1)), "each run has a bus of its own: " + buses);
         if (tests.succeeded().count() == 2) {
             assertTrue(!Files.exists(dir.resolve("seeds.properties")), "no seed failed, none is stored");
+        }
+    }
+
+    @Test
+    void theCorrectLampPassesOverTheNatsServerOfTheSystemPropertyDtronNats() throws Exception {
+        try (NatsServer nats = NatsServer.start(dir)) {
+            System.setProperty(DtronExtension.NATS, " " + nats.url() + " ,");
+            int heldUp = LampBusAdapter.heldUp();
+            Events tests = run(LampBusCases.Correct.class);
+            assertEquals(List.of("seed 10", "seed 11"), names(tests.started()));
+            for (Event failed : tests.failed().list()) {
+                assertPassedUnlessHeldUp(thrown(failed), LampBusAdapter.heldUp() > heldUp);
+            }
+            String header = Files.readString(dir.resolve("reports").resolve(LampBusCases.Correct.class.getName())
+                    .resolve("lamp-seed-10.txt")).lines().findFirst().orElseThrow();
+            assertTrue(header.matches(".* in real time over bus 'dtron-junit-[0-9a-f]{8}' on " + Pattern.quote(
+                    nats.url())), header);
+        } finally {
+            System.clearProperty(DtronExtension.NATS);
         }
     }
 

@@ -3,6 +3,7 @@ package io.dtron.junit.internal;
 import io.dtron.junit.DtronTest;
 import java.time.Duration;
 import java.util.List;
+import java.util.stream.Stream;
 import org.junit.jupiter.api.extension.ExtensionConfigurationException;
 
 /**
@@ -10,7 +11,8 @@ import org.junit.jupiter.api.extension.ExtensionConfigurationException;
  * Names nothing of the bus's classes, so that a test suite without dtron-core loads it.
  *
  * @param cluster the cluster name, or empty for a fresh one every run
- * @param nats    the NATS servers' URLs, or none for JGroups on loopback
+ * @param nats    the NATS servers' URLs (the annotation's, else those of system property {@value
+ *                DtronExtension#NATS}), or none for JGroups on loopback
  * @param busWait how long a run waits until every channel of the model is served
  */
 record BusSettings(String cluster, List<String> nats, Duration busWait) {
@@ -42,6 +44,10 @@ record BusSettings(String cluster, List<String> nats, Duration busWait) {
         List<String> nats = List.of(test.nats());
         if (nats.stream().anyMatch(String::isBlank)) {
             throw new ExtensionConfigurationException(where + ": nats has a blank URL");
+        }
+        if (nats.isEmpty()) {
+            nats = Stream.of(System.getProperty(DtronExtension.NATS, "").split(",")).map(String::strip)
+                    .filter(url -> !url.isEmpty()).toList();
         }
         return new BusSettings(test.cluster(), nats, Duration.ofSeconds(test.busWait()));
     }

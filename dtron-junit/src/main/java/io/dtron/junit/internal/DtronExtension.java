@@ -38,6 +38,11 @@ public final class DtronExtension implements TestTemplateInvocationContextProvid
     public static final String SEED_FILE = "dtron.seedFile";
     /** System property: the folder of the runs' reports (default {@code target/dtron-reports}). */
     public static final String REPORT_DIRECTORY = "dtron.reportDirectory";
+    /**
+     * System property: the NATS servers' URLs (comma-separated) of the runs over the bus whose {@link DtronTest#nats()}
+     * gives none; unset: JGroups on loopback.
+     */
+    public static final String NATS = "dtron.nats";
 
     @Override
     public boolean supportsTestTemplate(ExtensionContext context) {
