@@ -33,7 +33,8 @@ import org.w3c.dom.NodeList;
 class JunitBusPageIT {
     private static final Pattern LAMP_TEST = Pattern.compile("lamp\\(DtronBusRun\\) seed (\\d+)");
     private static final Pattern LATE_TEST = Pattern.compile("lateLamp\\(DtronBusRun\\) seed (\\d+)");
-    private static final Pattern BUS = Pattern.compile(" in real time over bus 'dtron-junit-[0-9a-f]{8}' on 127\\.0\\.0\\.1");
+    private static final Pattern BUS = Pattern.compile(" in real time over bus 'dtron-junit-[0-9a-f]{8}' on"
+            + " 127\\.0\\.0\\.1");
 
     @TempDir
     static Path dir;
@@ -54,8 +55,8 @@ class JunitBusPageIT {
         String dependency = page.block("xml", "<artifactId>dtron-core</artifactId>");
         assertTrue(dependency.contains("<version>" + PageProjects.version() + "</version>"), dependency);
         assertTrue(pom.contains("\n  </dependencies>"), pom);
-        Files.writeString(project.resolve("pom.xml"), pom.replace("\n  </dependencies>", "\n" + dependency.stripTrailing()
-                + "\n  </dependencies>"));
+        Files.writeString(project.resolve("pom.xml"), pom.replace("\n  </dependencies>", "\n"
+                + dependency.stripTrailing() + "\n  </dependencies>"));
         Path tests = Files.createDirectories(project.resolve("src/test/java"));
         for (String name : List.of("LampBusAdapter", "LampBusTest", "LateLampBusTest")) {
             Files.writeString(tests.resolve(name + ".java"), JunitPageIT.javaClass(page, name));

@@ -272,7 +272,8 @@ class DtronTestTest {
         String log = Files.readString(dir.resolve("reports").resolve("lamp-process.log"));
         Path reports = dir.resolve("reports").resolve(LampBusCases.OtherProcess.class.getName());
         String header = Files.readString(reports.resolve("lamp-seed-30.txt")).lines().findFirst().orElseThrow();
-        String cluster = header.substring(header.indexOf("over bus '") + "over bus '".length(), header.indexOf("' on "));
+        String cluster = header.substring(header.indexOf("over bus '") + "over bus '".length(),
+                header.indexOf("' on "));
         assertTrue(log.lines().anyMatch(line -> line.startsWith("lamp joined bus " + cluster + " as ")), log);
         for (Event failed : tests.failed().list()) {
             assertPassedUnlessHeldUp(thrown(failed), log.contains("this JVM was held up"));
@@ -307,8 +308,8 @@ class DtronTestTest {
     /**
      * Fails unless {@code failure} of a run of the correct lamp over the bus is what a busy machine may cause: FAILED
      * on the light, when the lamp says it was held up past its tolerance ({@code heldUp}: {@link
-     * LampBusAdapter#heldUp()} grew, or the lamp's JVM said so); or INCONCLUSIVE, when the tester says it was held up (its input came too late, or an
-     * event reached it later than the reorder window allows).
+     * LampBusAdapter#heldUp()} grew, or the lamp's JVM said so); or INCONCLUSIVE, when the tester says it was held up
+     * (its input came too late, or an event reached it later than the reorder window allows).
      */
     private static void assertPassedUnlessHeldUp(Throwable failure, boolean heldUp) {
         String message = failure.getMessage();

@@ -82,8 +82,8 @@ final class LampBusAdapter implements DtronAdapter {
     /** Counts a light held up, and says so (a lamp in a JVM of its own says it to its output). */
     private void heldUp(String what) {
         HELD_UP.incrementAndGet();
-        System.out.println("LampBusAdapter: a light was " + what + " more than " + HELD_UP_UNITS + " time units after it"
-                + " was due: this JVM was held up");
+        System.out.println("LampBusAdapter: a light was " + what + " more than " + HELD_UP_UNITS + " time units"
+                + " after it was due: this JVM was held up");
     }
 
     private boolean late() {

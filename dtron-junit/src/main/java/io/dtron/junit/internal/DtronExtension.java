@@ -104,8 +104,9 @@ public final class DtronExtension implements TestTemplateInvocationContextProvid
                         reports.resolve(method.getName() + "-seed-" + seed + ".txt"))));
             }
             for (int g = 0; g < goals.size(); g++) {
-                runs.add(new SeedRun(new Plan(model, options, bus, seed, Optional.of(goals.get(g)), store, keys.get(g),
-                        reports.resolve(method.getName() + "-seed-" + seed + "-goal-" + (g + 1) + ".txt"))));
+                runs.add(new SeedRun(new Plan(model, options, bus, seed, Optional.of(goals.get(g)), store,
+                        keys.get(g), reports.resolve(method.getName() + "-seed-" + seed + "-goal-" + (g + 1)
+                        + ".txt"))));
             }
         }
         return runs.stream();
@@ -126,8 +127,8 @@ public final class DtronExtension implements TestTemplateInvocationContextProvid
      * What one run needs; {@code bus} is null for a system in the test's JVM; {@code key} names its test method (and
      * goal) in the store of failed seeds.
      */
-    record Plan(Model model, TestOptions options, BusSettings bus, long seed, Optional<String> goal, SeedStore store, String key,
-                Path report) {
+    record Plan(Model model, TestOptions options, BusSettings bus, long seed, Optional<String> goal, SeedStore store,
+                String key, Path report) {
         /** The run's HTML page: beside its text record, {@code .html} for {@code .txt}. */
         Path page() {
             String name = report.getFileName().toString();
