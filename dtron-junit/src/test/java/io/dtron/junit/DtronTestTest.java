@@ -227,6 +227,25 @@ class DtronTestTest {
     }
 
     @Test
+    void aBusRunSteeredTowardAGoalPassesWhenItIsReached() throws Exception {
+        int heldUp = LampBusAdapter.heldUp();
+        Events tests = run(LampBusCases.Goal.class);
+        assertEquals(List.of("seed 5, goal E<> Lamp.Switching and Lamp.level == 0"), names(tests.started()));
+        for (Event failed : tests.failed().list()) {
+            assertPassedUnlessHeldUp(thrown(failed), LampBusAdapter.heldUp() > heldUp);
+        }
+        if (tests.succeeded().count() == 1) {
+            String text = Files.readString(dir.resolve("reports").resolve(LampBusCases.Goal.class.getName())
+                    .resolve("lamp-seed-5-goal-1.txt"));
+            assertTrue(text.lines().findFirst().orElseThrow().startsWith("dtron: lamp.xta, seed 5, goal E<>"
+                    + " Lamp.Switching and Lamp.level == 0, 100 time units of 50000 us in real time over bus '"), text);
+            // the goal: the second press switches the lamp back to 0, after the first light
+            assertTrue(text.contains(" output light(level=1)\n"), text);
+            assertTrue(text.contains("\nPASSED: "), text);
+        }
+    }
+
+    @Test
     void theCorrectLampPassesOverTheNatsServerOfTheSystemPropertyDtronNats() throws Exception {
         try (NatsServer nats = NatsServer.start(dir)) {
             System.setProperty(DtronExtension.NATS, " " + nats.url() + " ,");

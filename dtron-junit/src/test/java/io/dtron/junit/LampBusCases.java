@@ -23,6 +23,15 @@ final class LampBusCases {
         }
     }
 
+    /** The correct lamp steered toward a goal it reaches after its second press. */
+    static class Goal {
+        @DtronTest(model = "lamp.xta", seeds = 1, seed = 5, timeout = 100, timeUnit = 50_000,
+                goals = "E<> Lamp.Switching and Lamp.level == 0")
+        void lamp(DtronBusRun run) {
+            run.test(new LampBusAdapter(1.5));
+        }
+    }
+
     /** The late lamp (3 time units), one new seed every time. */
     static class Late {
         @DtronTest(model = "lamp.xta", seeds = 1, timeout = 40, timeUnit = 50_000)
