@@ -23,13 +23,9 @@ import java.util.function.ToLongFunction;
  *                     TestOptions#DEFAULT_INPUT_MARGIN_MICROS}
  */
 record SchedulingDelay(long worstMicros, long marginMicros) {
-    /** The waits measured, in microseconds: short ones, and longer ones after which a busy machine wakes later. */
-    private static final long[] WAITS_MICROS = {500, 500, 500, 500, 2000, 5000, 500, 500, 10_000, 500, 500, 20_000};
-    private static final int ROUNDS = 4;
-
-    /** Measures: {@value #ROUNDS} rounds of waits of 0.5 to 20 ms, about 160 ms in all, as the tester waits. */
+    /** Measures as {@link SchedulingLateness#measureMicros()} does, about 160 ms of waits as the tester waits. */
     static SchedulingDelay measure() {
-        return of(SchedulingLateness.worstMicros(WAITS_MICROS, ROUNDS));
+        return of(SchedulingLateness.measureMicros());
     }
 
     /**
@@ -79,7 +75,7 @@ record SchedulingDelay(long worstMicros, long marginMicros) {
     /** The margin for a measured worst lateness. */
     static SchedulingDelay of(long worstMicros) {
         long worst = Math.max(0, worstMicros);
-        return new SchedulingDelay(worst, Math.max(TestOptions.DEFAULT_INPUT_MARGIN_MICROS, 2 * worst));
+        return new SchedulingDelay(worst, SchedulingLateness.inputMarginMicros(worst));
     }
 
     /**

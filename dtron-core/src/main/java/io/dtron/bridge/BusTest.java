@@ -5,6 +5,7 @@ import io.dtron.api.DtronAdapter;
 import io.dtron.api.DtronException;
 import io.dtron.api.DtronOptions;
 import io.dtron.engine.Adapter;
+import io.dtron.engine.SchedulingLateness;
 import io.dtron.engine.TestOptions;
 import io.dtron.model.TestInterface;
 import java.time.Duration;
@@ -19,9 +20,9 @@ import org.slf4j.LoggerFactory;
  * A tester's run on a DTRON bus from code (a test suite's, such as dtron-junit's), prepared as {@code dtron run}
  * prepares one without {@code --sut}: joins the bus as the tester of a model, connects the bus adapters it is given
  * to the bus as members of their own in this JVM, waits until every channel of the model is served, probes the
- * adapters until their round trips are steady and sets the reorder window from the delays measured. The engine then
- * tests {@link #adapter()} in real time with the options {@link #prepare} returned. Closing stops the adapters and
- * leaves the bus.
+ * adapters until their round trips are steady and sets the reorder window from the delays measured and the input
+ * margin from how late this machine wakes the tester. The engine then tests {@link #adapter()} in real time with the
+ * options {@link #prepare} returned. Closing stops the adapters and leaves the bus.
  */
 public final class BusTest implements AutoCloseable {
     private static final Logger LOG = LoggerFactory.getLogger(BusTest.class);
@@ -71,8 +72,10 @@ public final class BusTest implements AutoCloseable {
 
     /**
      * Waits (at most {@code wait}) until every channel of the model is served by an adapter on the bus, checks that
-     * each output has one owner, probes the adapters until their round trips are steady, and returns {@code options}
-     * in real time with the reorder window the delays measured call for.
+     * each output has one owner, probes the adapters until their round trips are steady while it measures how late
+     * this machine wakes the tester ({@link SchedulingLateness}), and returns {@code options} in real time with the
+     * reorder window the delays measured call for and the input margin the lateness calls for (or {@code options}'
+     * own, when larger).
      *
      * @throws IllegalStateException if a channel is still not served after {@code wait}, naming it and what each
      *                               member serves, or two members send one output
@@ -92,10 +95,19 @@ public final class BusTest implements AutoCloseable {
             throw new IllegalStateException(where + ": " + conflict);
         });
         run.expectAdapters();
-        BusRun.Probing probing = run.warmUp(false);
-        LOG.debug("Probed the adapters {} times in {} ms", probing.rounds(), probing.millis());
+        // how late this machine wakes the tester, measured while the probes keep it busy, as before dtron run's runs
+        long[] lateness = new long[1];
+        Thread measuring = new Thread(() -> lateness[0] = SchedulingLateness.measureMicros(), "dtron-lateness");
+        measuring.setDaemon(true);
+        measuring.start();
+        BusRun.Probing probing = run.warmUp(true);
+        measuring.join();
         long window = run.reorderWindow(run.measuredDelays(), OptionalLong.empty());
-        return options.withVirtualTime(false).withReorderWindow(window);
+        long margin = Math.max(options.inputMarginMicros(), SchedulingLateness.inputMarginMicros(lateness[0]));
+        LOG.info("Probed the adapters {} times in {} ms; the tester wakes up to {} us late here, so inputs are aimed"
+                + " {} us inside the end of their windows; reorder window {} us", probing.rounds(), probing.millis(),
+                lateness[0], margin, window);
+        return options.withVirtualTime(false).withInputMargin(margin).withReorderWindow(window);
     }
 
     /** The engine's adapter of the run: the systems under test behind the adapters on the bus. */

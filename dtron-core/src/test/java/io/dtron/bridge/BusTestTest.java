@@ -66,6 +66,7 @@ class BusTestTest {
             assertFalse(prepared.virtualTime(), "a run on the bus is in real time");
             assertEquals(7, prepared.seed());
             assertTrue(prepared.reorderWindowMicros() >= BusRun.AUTO_WINDOW_FLOOR_MICROS, prepared.toString());
+            assertTrue(prepared.inputMarginMicros() >= TestOptions.DEFAULT_INPUT_MARGIN_MICROS, prepared.toString());
             assertTrue(test.run().unservedChannels().isEmpty());
         }
     }
