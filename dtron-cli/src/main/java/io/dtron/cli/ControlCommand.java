@@ -122,6 +122,17 @@ final class ControlCommand implements Callable<Integer> {
     @Mixin
     private NatsBusOptions nats;
 
+    @Option(names = "--key-file", paramLabel = "FILE",
+            description = "On the bus: the file holding the bus's secret, which every member of the bus holds (default:"
+                    + " $DTRON_HOME/bus.key, else ~/.dtron/bus.key, made when missing); it must be readable by its"
+                    + " owner only (chmod 600).")
+    private Path keyFile;
+
+    @Option(names = "--insecure",
+            description = "On the bus: use no secret, for plants that have none; the controller then hears insecure"
+                    + " members only, and anyone who can reach the bus may speak on it.")
+    private boolean insecure;
+
     @Option(names = "--wait-timeout", paramLabel = "SECONDS",
             description = "On the bus: how long to wait for the plant to serve every command and reading (default 30).")
     private Long waitTimeout;
@@ -164,6 +175,9 @@ final class ControlCommand implements Callable<Integer> {
             if (cluster != null && cluster.isBlank()) {
                 throw usage("--cluster: the bus name is blank");
             }
+            if (keyFile != null && insecure) {
+                throw usage("--insecure uses no secret: leave out --key-file");
+            }
             nats.check(clusterName(), this::usage);
         } else {
             if (!"model".equals(plant)) {
@@ -176,8 +190,8 @@ final class ControlCommand implements Callable<Integer> {
                         + " simulated on the controller's clock; real time is for a plant on the bus, --cluster or"
                         + " --bus)");
             }
-            if (waitTimeout != null) {
-                throw usage("--wait-timeout is how long to wait for a plant on the bus (--cluster, --bus)");
+            if (waitTimeout != null || keyFile != null || insecure) {
+                throw usage("--wait-timeout, --key-file and --insecure are for a plant on the bus (--cluster, --bus)");
             }
         }
         if (duration <= 0) {
@@ -243,12 +257,16 @@ final class ControlCommand implements Callable<Integer> {
         long unit = options.timeUnitMicros();
         String where = "bus '" + clusterName() + "' at " + (nats.given() ? String.join(",", nats.servers(this::usage))
                 : "127.0.0.1");
-        Supplier<DtronOptions.Builder> busOptions = nats.given() ? nats.memberOptions(clusterName(), this::usage)
+        Supplier<DtronOptions.Builder> transport = nats.given() ? nats.memberOptions(clusterName(), this::usage)
                 : () -> DtronOptions.builder().clusterName(clusterName())
                         .bindAddress(java.net.InetAddress.getLoopbackAddress());
+        DtronOptions.Builder busOptions = transport.get().insecure(insecure);
+        if (keyFile != null) {
+            busOptions.keyFile(keyFile);
+        }
         BusBridge bridge;
         try {
-            bridge = BusBridge.connect(testInterface, busOptions.get());
+            bridge = BusBridge.connect(testInterface, busOptions);
         } catch (IllegalArgumentException e) {
             err.println("dtron control: " + model + ": " + e.getMessage());
             return 1;
@@ -287,7 +305,12 @@ final class ControlCommand implements Callable<Integer> {
                 err.println("dtron control: " + where + ": " + refused.get());
                 return 1;
             }
-            return run(controller, testInterface, unit, out);
+            out.println("dtron control: every command and reading is served" + RunCommand.servedSummary(bridge.run()));
+            out.flush();
+            int exit = run(controller, testInterface, unit, out);
+            BusSession.printSummary(bridge.run(), "controller", out);
+            BusTiming.runDelays(bridge.run()).ifPresent(out::println);
+            return exit;
         }
     }
 
