@@ -48,8 +48,8 @@ import picocli.CommandLine.Spec;
         description = {"Run the model as a controller: DTRON sends the commands (i_ channels) the model's controller"
                 + " part chooses and takes the plant's readings (o_ channels) as the model allows them.",
                 "A plant that deviates from the model raises an alarm; the controller then takes the safe action"
-                        + " (--safe-action, --safe-location) and the run ends. A new model version (--reload-from) is"
-                        + " checked with its queries and taken at the next reset point.",
+                        + " (--safe-action, --safe-location) and the run ends. A new model version (--reload-from,"
+                        + " --reload-from-bus) is checked with its queries and taken at the next reset point.",
                 "The plant: --plant model (the model's own plant part, in this process, in virtual time), or a"
                         + " plant on a bus (--cluster NAME, JGroups on loopback; --bus nats://HOST:PORT, NATS), in real"
                         + " time.",
@@ -102,6 +102,12 @@ final class ControlCommand implements Callable<Integer> {
             description = "A new version of the model: checked (it loads, its queries hold) when the run starts and"
                     + " whenever the file changes, and taken at the next reset point; refused with the reason otherwise.")
     private Path reloadFrom;
+
+    @Option(names = "--reload-from-bus",
+            description = "On a bus with a secret: new versions of the model from the bus (channel dtron_model, as"
+                    + " dtron reload sends them), checked and taken as those of --reload-from; what became of each is"
+                    + " published back (dtron_model_outcome).")
+    private boolean reloadFromBus;
 
     @Option(names = "--virtual-time", description = "Run in virtual time: deterministic, as fast as the CPU allows"
             + " (--plant model needs it).")
@@ -178,6 +184,10 @@ final class ControlCommand implements Callable<Integer> {
             if (keyFile != null && insecure) {
                 throw usage("--insecure uses no secret: leave out --key-file");
             }
+            if (reloadFromBus && insecure) {
+                throw usage("--reload-from-bus takes model versions only from a bus with a secret: leave out"
+                        + " --insecure");
+            }
             nats.check(clusterName(), this::usage);
         } else {
             if (!"model".equals(plant)) {
@@ -190,8 +200,9 @@ final class ControlCommand implements Callable<Integer> {
                         + " simulated on the controller's clock; real time is for a plant on the bus, --cluster or"
                         + " --bus)");
             }
-            if (waitTimeout != null || keyFile != null || insecure) {
-                throw usage("--wait-timeout, --key-file and --insecure are for a plant on the bus (--cluster, --bus)");
+            if (waitTimeout != null || keyFile != null || insecure || reloadFromBus) {
+                throw usage("--wait-timeout, --key-file, --insecure and --reload-from-bus are for a plant on the bus"
+                        + " (--cluster, --bus)");
             }
         }
         if (duration <= 0) {
@@ -305,9 +316,18 @@ final class ControlCommand implements Callable<Integer> {
                 err.println("dtron control: " + where + ": " + refused.get());
                 return 1;
             }
-            out.println("dtron control: every command and reading is served" + RunCommand.servedSummary(bridge.run()));
-            out.flush();
-            int exit = run(controller, testInterface, unit, out);
+            int exit;
+            try (ModelVersionBus versions = reloadFromBus ? new ModelVersionBus(bridge.run().member(), controller,
+                    model, interfaceFile, testInterface, unit) : null) {
+                if (versions != null) {
+                    versions.listen();
+                }
+                out.println("dtron control: every command and reading is served"
+                        + RunCommand.servedSummary(bridge.run()) + (versions == null ? "" : "; model versions are"
+                        + " taken from the bus"));
+                out.flush();
+                exit = run(controller, testInterface, unit, out);
+            }
             BusSession.printSummary(bridge.run(), "controller", out);
             BusTiming.runDelays(bridge.run()).ifPresent(out::println);
             return exit;
