@@ -99,8 +99,8 @@ final class ReloadCommand implements Callable<Integer> {
             return 1;
         }
         if (text.getBytes(StandardCharsets.UTF_8).length > ModelVersionBus.MAX_TEXT_BYTES) {
-            err.println("dtron reload: " + version + ": the version is larger than the " + ModelVersionBus.MAX_TEXT_BYTES
-                    + " bytes a controller takes from the bus");
+            err.println("dtron reload: " + version + ": the version is larger than the "
+                    + ModelVersionBus.MAX_TEXT_BYTES + " bytes a controller takes from the bus");
             return 1;
         }
         DtronOptions.Builder options = nats.given() ? nats.memberOptions(bus, this::usage).get()

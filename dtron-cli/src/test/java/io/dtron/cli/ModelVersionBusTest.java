@@ -60,7 +60,8 @@ class ModelVersionBusTest {
             assertTrue(sender.awaitMembers(2, Duration.ofSeconds(10)));
             Inbox outcomes = new Inbox(Dtron.MODEL_OUTCOME);
             sender.addDtronListener(outcomes);
-            ModelVersionBus versions = new ModelVersionBus(controllerMember, controller, arm, null, testInterface, 1000);
+            ModelVersionBus versions = new ModelVersionBus(controllerMember, controller, arm, null, testInterface,
+                    1000);
             versions.listen();
             String from = " (bus version %d from " + sender.getMemberId() + ")";
 
@@ -77,7 +78,8 @@ class ModelVersionBusTest {
                 assertEquals(Map.of("version", i + 1, "outcome", 2), outcome.getVariables(), outcome.getText());
                 assertTrue(outcome.getText().contains(" refused: " + reasons.get(i)), outcome.getText());
             }
-            assertEquals(messages.size(), refusedByController.size(), "each refusal is counted: " + refusedByController);
+            assertEquals(messages.size(), refusedByController.size(), "each refusal is counted: "
+                    + refusedByController);
 
             sender.send(Dtron.MODEL_VERSION.constructValued(Map.of("version", 20)), json("v2",
                     SAMPLE.resolve("robot-arm-v2.xta")));

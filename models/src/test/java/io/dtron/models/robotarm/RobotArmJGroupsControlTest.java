@@ -6,14 +6,12 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import io.dtron.cli.DtronCommand;
 import io.dtron.testsupport.DocPage;
-import io.dtron.testsupport.ShellWords;
 import java.io.PrintWriter;
 import java.io.StringWriter;
 import java.math.BigDecimal;
 import java.nio.file.Files;
 import java.nio.file.Path;
 import java.nio.file.attribute.PosixFilePermissions;
-import java.util.ArrayList;
 import java.util.HexFormat;
 import java.util.List;
 import java.util.UUID;
@@ -36,7 +34,6 @@ import org.junit.jupiter.api.io.TempDir;
  */
 @Timeout(value = 3, unit = TimeUnit.MINUTES)
 class RobotArmJGroupsControlTest {
-    private static final Path ROOT = Path.of("..").toAbsolutePath().normalize();
     private static final String ARM = "src/main/resources/io/dtron/models/robotarm/robot-arm.xta";
 
     @TempDir
@@ -64,12 +61,7 @@ class RobotArmJGroupsControlTest {
      */
     private Run control(List<String> plantArgs, List<String> controlArgs) throws Exception {
         Path log = dir.resolve("plant.log");
-        String java = ProcessHandle.current().info().command().orElse(Path.of(System.getProperty("java.home"), "bin",
-                "java").toString());
-        String classPath = System.getProperty("surefire.test.class.path", System.getProperty("java.class.path"));
-        List<String> command = new ArrayList<>(List.of(java, "-cp", classPath, RobotArmPlant.class.getName()));
-        command.addAll(plantArgs);
-        Process plant = new ProcessBuilder(command).redirectErrorStream(true).redirectOutput(log.toFile()).start();
+        Process plant = ArmProcess.start(plantArgs, log);
         try {
             StringWriter out = new StringWriter();
             StringWriter err = new StringWriter();
@@ -82,20 +74,6 @@ class RobotArmJGroupsControlTest {
         } finally {
             plant.destroyForcibly();
         }
-    }
-
-    /** The words of a command line of the page, on the test's bus, its paths from the checkout. */
-    private static List<String> args(String line, String cluster) {
-        List<String> args = new ArrayList<>(ShellWords.split(line));
-        for (int a = 0; a < args.size(); a++) {
-            String word = args.get(a);
-            if (word.equals("arm") && args.get(a - 1).equals("--cluster")) {
-                args.set(a, cluster);
-            } else if (word.startsWith("models/")) {
-                args.set(a, ROOT.resolve(word).toString());
-            }
-        }
-        return args;
     }
 
     /** The summary of the bus that ends a run on it: who served what, the latencies and the counters. */
@@ -127,14 +105,13 @@ class RobotArmJGroupsControlTest {
     @Test
     void thePagesStallingArmRaisesTheAlarmAtTheModelsDeadlineAndIsStopped() throws Exception {
         List<String> page = DocPage.read("control.md").blockAfter("## A plant in Java").code().lines().toList();
-        String prefix = "$ java -cp models/target/classes:dtron-cli/target/dtron.jar " + RobotArmPlant.class.getName()
-                + " ";
+        String prefix = ArmProcess.PAGE_PREFIX;
         assertTrue(page.get(0).startsWith(prefix), page.get(0));
         assertTrue(page.get(1).startsWith("$ java -jar dtron.jar control "), page.get(1));
         String cluster = "page-" + UUID.randomUUID().toString().substring(0, 8);
         // the page's lines as written, on the test's bus and with the test's class path for the plant's JVM
-        Run run = control(args(page.get(0).substring(prefix.length()), cluster),
-                args(page.get(1).substring("$ java -jar dtron.jar ".length()), cluster));
+        Run run = control(ArmProcess.args(page.get(0).substring(prefix.length()), cluster),
+                ArmProcess.args(page.get(1).substring("$ java -jar dtron.jar ".length()), cluster));
         assertEquals(2, run.exit(), run.shown());
         Matcher alarm = RobotArmBusControlTest.ALARM.matcher(run.out());
         assertTrue(alarm.find(), run.shown());

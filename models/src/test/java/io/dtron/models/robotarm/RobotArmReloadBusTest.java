@@ -42,7 +42,6 @@ import org.junit.jupiter.api.io.TempDir;
  */
 @Timeout(value = 4, unit = TimeUnit.MINUTES)
 class RobotArmReloadBusTest {
-    private static final Path ROOT = Path.of("..").toAbsolutePath().normalize();
     private static final String PROMPT = "$ java -jar dtron.jar ";
     private static final Pattern TAKEN = Pattern.compile("taken at t=([0-9.]+) \\(a reset point\\)");
 
@@ -52,23 +51,19 @@ class RobotArmReloadBusTest {
     @Test
     void thePagesVersionsAreTakenAndRefusedMidRunAndTheSenderHearsIt() throws Exception {
         List<String> page = DocPage.read("control.md").blockAfter("### From the bus").code().lines().toList();
-        String plantPrefix = "$ java -cp models/target/classes:dtron-cli/target/dtron.jar "
-                + RobotArmPlant.class.getName() + " ";
+        String plantPrefix = ArmProcess.PAGE_PREFIX;
         assertTrue(page.get(0).startsWith(plantPrefix) && page.get(0).endsWith(" > /tmp/arm.log &"), page.get(0));
         assertTrue(page.get(1).startsWith(PROMPT + "control ") && page.get(1).endsWith(" > /tmp/control.log &"),
                 page.get(1));
         String cluster = "reload-" + UUID.randomUUID().toString().substring(0, 8);
         Path log = dir.resolve("arm.log");
-        String java = ProcessHandle.current().info().command().orElse(Path.of(System.getProperty("java.home"), "bin",
-                "java").toString());
-        List<String> plantCommand = new ArrayList<>(List.of(java, "-cp", System.getProperty("surefire.test.class.path",
-                System.getProperty("java.class.path")), RobotArmPlant.class.getName()));
-        plantCommand.addAll(args(page.get(0).substring(plantPrefix.length(), page.get(0).indexOf(" >")), cluster));
-        Process plant = new ProcessBuilder(plantCommand).redirectErrorStream(true).redirectOutput(log.toFile()).start();
+        Process plant = ArmProcess.start(ArmProcess.args(page.get(0).substring(plantPrefix.length(),
+                page.get(0).indexOf(" >")), cluster), log);
         try {
             StringWriter controlOut = new StringWriter();
             StringWriter controlErr = new StringWriter();
-            List<String> control = args(page.get(1).substring(PROMPT.length(), page.get(1).indexOf(" >")), cluster);
+            List<String> control = ArmProcess.args(page.get(1).substring(PROMPT.length(), page.get(1).indexOf(" >")),
+                    cluster);
             CompletableFuture<Integer> controller = CompletableFuture.supplyAsync(() -> DtronCommand.run(
                     control.toArray(String[]::new), new PrintWriter(controlOut, true), new PrintWriter(controlErr,
                             true)));
@@ -89,11 +84,11 @@ class RobotArmReloadBusTest {
                 }
                 StringWriter out = new StringWriter();
                 StringWriter err = new StringWriter();
-                int exit = DtronCommand.run(args(line.substring(PROMPT.length()), cluster).toArray(String[]::new),
-                        new PrintWriter(out, true), new PrintWriter(err, true));
+                int exit = DtronCommand.run(ArmProcess.args(line.substring(PROMPT.length()), cluster)
+                        .toArray(String[]::new), new PrintWriter(out, true), new PrintWriter(err, true));
                 String shown = "exit " + exit + "\n" + out + err + "\ncontroller:\n" + controlOut + controlErr;
                 assertEquals(masked(page.subList(at + 1, end), "'arm'"), masked(ShellWords.lines(out.toString(),
-                        ROOT), "'" + cluster + "'"), shown);
+                        ArmProcess.ROOT), "'" + cluster + "'"), shown);
                 assertEquals("", err.toString(), shown);
                 Matcher t = TAKEN.matcher(out.toString());
                 if (t.find()) {
@@ -145,20 +140,6 @@ class RobotArmReloadBusTest {
             assertTrue(answer != null && answer.startsWith("2 "), "the controller refused it: " + answer);
             return answer.substring(2);
         }
-    }
-
-    /** The words of a command line of the page, on the test's bus, its paths from the checkout. */
-    private static List<String> args(String line, String cluster) {
-        List<String> args = new ArrayList<>(ShellWords.split(line));
-        for (int a = 0; a < args.size(); a++) {
-            String word = args.get(a);
-            if (word.equals("arm") && args.get(a - 1).equals("--cluster")) {
-                args.set(a, cluster);
-            } else if (word.startsWith("models/")) {
-                args.set(a, ROOT.resolve(word).toString());
-            }
-        }
-        return args;
     }
 
     /** The lines with the times, the versions' numbers and the member ids masked, and the bus named alike. */
