@@ -91,16 +91,39 @@ public final class Dtron implements AutoCloseable {
      */
     public static final IDtronChannel RUN_VERDICT = IDtronChannel.of("dtron_verdict", "verdict");
 
+    /**
+     * The channel on which a model version is handed to a controller that runs on the bus and takes versions from
+     * it ({@code dtron control --reload-from-bus}): variable {@code version}, the sender's number for it, which the
+     * {@link #MODEL_OUTCOME} answering it carries; the version itself in the message's {@linkplain
+     * IDtronChannelValued#getText() text}, a JSON object with {@code label}, {@code model} (the text of an
+     * {@code .xml} or {@code .xta} model) and {@code queries} (the text of its {@code .q}), sent with {@link
+     * #send(IDtronChannelValued, String)}. A controller honours it only on a bus with a secret. A model channel may
+     * not have this name.
+     */
+    public static final IDtronChannel MODEL_VERSION = IDtronChannel.of("dtron_model", "version");
+
+    /**
+     * The channel on which a controller says what became of a {@link #MODEL_VERSION}: variable {@code version}, the
+     * number of the version it answers, and {@code outcome}: 0 taken at a reset point, 1 accepted (it passed the
+     * check and waits for the next reset point), 2 refused; the message's {@linkplain IDtronChannelValued#getText()
+     * text} says what happened, a refusal with its reason. A model channel may not have this name.
+     */
+    public static final IDtronChannel MODEL_OUTCOME = IDtronChannel.of("dtron_model_outcome", "version", "outcome");
+
     /** DTRON's channels, by name: the public ones and those of the clock-offset protocol. */
-    private static final Map<String, DtronChannel> RESERVED = Map.of(
-            RUN_START.getChannelName(), DtronChannel.copyOf(RUN_START),
-            RUN_STOP.getChannelName(), DtronChannel.copyOf(RUN_STOP),
-            ACK.getChannelName(), DtronChannel.copyOf(ACK),
-            RUN_VERDICT.getChannelName(), DtronChannel.copyOf(RUN_VERDICT),
-            ClockSync.HELLO, new DtronChannel(ClockSync.HELLO, List.of()),
-            ClockSync.PING, new DtronChannel(ClockSync.PING, List.of()),
-            ClockSync.PONG, new DtronChannel(ClockSync.PONG, List.of()),
-            ChannelHandshake.SERVE, new DtronChannel(ChannelHandshake.SERVE, List.of()));
+    private static final Map<String, DtronChannel> RESERVED = Map.ofEntries(
+            Map.entry(RUN_START.getChannelName(), DtronChannel.copyOf(RUN_START)),
+            Map.entry(RUN_STOP.getChannelName(), DtronChannel.copyOf(RUN_STOP)),
+            Map.entry(ACK.getChannelName(), DtronChannel.copyOf(ACK)),
+            Map.entry(RUN_VERDICT.getChannelName(), DtronChannel.copyOf(RUN_VERDICT)),
+            Map.entry(MODEL_VERSION.getChannelName(), DtronChannel.copyOf(MODEL_VERSION)),
+            Map.entry(MODEL_OUTCOME.getChannelName(), DtronChannel.copyOf(MODEL_OUTCOME)),
+            Map.entry(ClockSync.HELLO, new DtronChannel(ClockSync.HELLO, List.of())),
+            Map.entry(ClockSync.PING, new DtronChannel(ClockSync.PING, List.of())),
+            Map.entry(ClockSync.PONG, new DtronChannel(ClockSync.PONG, List.of())),
+            Map.entry(ChannelHandshake.SERVE, new DtronChannel(ChannelHandshake.SERVE, List.of())));
+    /** DTRON's channels whose messages carry a text. */
+    private static final Set<String> TEXT = Set.of(MODEL_VERSION.getChannelName(), MODEL_OUTCOME.getChannelName());
     /** The channels only Dtron itself sends on and listens to. */
     private static final Set<String> CONTROL = Set.of(ClockSync.HELLO, ClockSync.PING, ClockSync.PONG,
             ChannelHandshake.SERVE);
@@ -503,6 +526,22 @@ public final class Dtron implements AutoCloseable {
     }
 
     /**
+     * Publishes a message with a text, as {@link #send(IDtronChannelValued)} does: on DTRON's channels that carry
+     * one, {@link #MODEL_VERSION} and {@link #MODEL_OUTCOME}.
+     *
+     * @return the message as published
+     * @throws IllegalArgumentException if the channel carries no text
+     * @see #send(IDtronChannelValued)
+     */
+    public IDtronChannelValued send(IDtronChannelValued message, String text) {
+        Objects.requireNonNull(text, "text");
+        if (!TEXT.contains(Objects.requireNonNull(message, "message").getChannelName())) {
+            throw new IllegalArgumentException("channel '" + message.getChannelName() + "' carries no text");
+        }
+        return publish(message, 0, text);
+    }
+
+    /**
      * Acknowledges an input now: publishes on {@link #ACK} that this member applied it at {@link
      * #currentTimeNanos()}. For a listener that does not leave this to the {@code Dtron} (see {@link
      * DtronListener#autoAcknowledge()}).
@@ -705,6 +744,11 @@ public final class Dtron implements AutoCloseable {
 
     /** Publishes a message of a model channel, or RUN_START or RUN_STOP; event time 0 is the publish time. */
     private IDtronChannelValued publish(IDtronChannelValued message, long eventTimeNanos) {
+        return publish(message, eventTimeNanos, "");
+    }
+
+    /** Publishes a message, with {@code text} on a channel that carries one ("" on others). */
+    private IDtronChannelValued publish(IDtronChannelValued message, long eventTimeNanos, String text) {
         Objects.requireNonNull(message, "message");
         requireOpen();
         String name = message.getChannelName();
@@ -729,7 +773,7 @@ public final class Dtron implements AutoCloseable {
         }
         long now = currentTimeNanos();
         Stamp stamp = stamp(now, eventTimeNanos == 0 ? now : eventTimeNanos, "", 0);
-        byte[] bytes = SyncCodec.encode(name, message.getVariables(), stamp);
+        byte[] bytes = SyncCodec.encode(name, message.getVariables(), stamp, text);
         try {
             transport.publish(name, bytes);
         } catch (IOException e) {
@@ -737,7 +781,7 @@ public final class Dtron implements AutoCloseable {
         }
         counters.published();
         return DtronChannelValued.published(template != null ? template : DtronChannel.copyOf(message.getChannel()),
-                message.getVariables(), stamp);
+                message.getVariables(), stamp, text);
     }
 
     /** Stamps a message this member publishes now, with the next sequence number. */

@@ -39,6 +39,14 @@ public interface IDtronChannelValued extends IChannelSkeleton {
     long getReceiveTimeNanos();
 
     /**
+     * Returns the text the message carries: on {@link Dtron#MODEL_VERSION} the model version handed to a
+     * controller, on {@link Dtron#MODEL_OUTCOME} what became of it; "" on every other channel.
+     */
+    default String getText() {
+        return "";
+    }
+
+    /**
      * Returns when the event happened on the sender's wall clock, in nanoseconds since the epoch: for an output
      * when the system produced it (see {@link Dtron#send(IDtronChannelValued, long)}), for an acknowledgement
      * ({@link Dtron#ACK}) when the input was applied. Equals {@link #getPublishTimeNanos()} when the sender gave

@@ -55,6 +55,35 @@ class DtronInJvmTest {
     }
 
     @Test
+    void aModelVersionAndItsOutcomeCarryTheirTextOnlyOnDtronsChannelsOfText() throws Exception {
+        try (Dtron controller = Dtron.connect(TestClusters.inJvm(cluster).build());
+                Dtron sender = Dtron.connect(TestClusters.inJvm(cluster).build())) {
+            assertTrue(controller.awaitMembers(2, WAIT));
+            Inbox versions = new Inbox(Dtron.MODEL_VERSION);
+            controller.addDtronListener(versions);
+            Inbox outcomes = new Inbox(Dtron.MODEL_OUTCOME);
+            sender.addDtronListener(outcomes);
+            String version = "{\"model\": \"chan i_move; // \u00e9t\u00e9\\n\"}";
+            IDtronChannelValued sent = sender.send(Dtron.MODEL_VERSION.constructValued(Map.of("version", 3)), version);
+            assertEquals(version, sent.getText());
+            IDtronChannelValued received = versions.take();
+            assertEquals(version, received.getText());
+            assertEquals(Map.of("version", 3), received.getVariables());
+            controller.send(Dtron.MODEL_OUTCOME.constructValued(Map.of("version", 3, "outcome", 2)), "refused: why");
+            IDtronChannelValued outcome = outcomes.take();
+            assertEquals("refused: why", outcome.getText());
+            assertEquals(Map.of("version", 3, "outcome", 2), outcome.getVariables());
+
+            Inbox moves = new Inbox(move);
+            controller.addDtronListener(moves);
+            assertThrows(IllegalArgumentException.class,
+                    () -> sender.send(move.constructValued(Map.of("amount", 1)), "text"));
+            sender.send(move.constructValued(Map.of("amount", 1)));
+            assertEquals("", moves.take().getText());
+        }
+    }
+
+    @Test
     void listenerRepliesInlineAndSeesItsOwnMessagesInOrder() throws Exception {
         try (Dtron tester = Dtron.connect(TestClusters.inJvm(cluster).build());
                 Dtron adapter = Dtron.connect(TestClusters.inJvm(cluster).build())) {

@@ -121,7 +121,7 @@ class EventTimeTest {
     @Test
     void reservedChannelNamesAreRefusedForModelChannels() {
         for (String name : List.of("dtron_start", "dtron_stop", "dtron_ack", "dtron_hello", "dtron_ping",
-                "dtron_pong")) {
+                "dtron_pong", "dtron_model", "dtron_model_outcome")) {
             assertTrue(Dtron.isReservedChannel(name), name);
         }
         assertTrue(!Dtron.isReservedChannel("move") && !Dtron.isReservedChannel("dtron_other"));
@@ -133,6 +133,7 @@ class EventTimeTest {
         assertThrows(IllegalArgumentException.class,
                 () -> options.channels(List.of(IDtronChannel.of("dtron_stop", "amount"))));
         assertThrows(IllegalArgumentException.class, () -> options.channels(List.of(IDtronChannel.of("dtron_ping"))));
+        assertThrows(IllegalArgumentException.class, () -> options.channels(List.of(Dtron.MODEL_VERSION)));
         try (Dtron member = Dtron.connect(TestClusters.inJvm(cluster).build())) {
             assertThrows(IllegalArgumentException.class,
                     () -> member.addDtronListener(new Inbox(IDtronChannel.of("dtron_ack", "amount"))));

@@ -103,14 +103,22 @@ final class BusSession implements AutoCloseable {
      * of the run (they are not judged).
      */
     void printSummary(PrintWriter out) {
-        out.println("latency t2 - t1 of outputs: " + bridge.run().outputLatency());
-        out.println("latency t2 - t1 of inputs back from the bus: " + bridge.run().inputLatency());
-        bridge.run().clockOffsets().forEach((member, offset) -> out.printf(Locale.ROOT,
-                "clock offset of %s to the tester: %.3f ms +/- %.3f ms%n", member, offset.offsetNanos() / 1e6,
+        printSummary(bridge.run(), "tester", out);
+    }
+
+    /**
+     * {@link #printSummary(PrintWriter)} of {@code run}, whose owner (the members' clock offsets are to its clock) is
+     * the {@code owner}: the tester, or the controller.
+     */
+    static void printSummary(BusRun run, String owner, PrintWriter out) {
+        out.println("latency t2 - t1 of outputs: " + run.outputLatency());
+        out.println("latency t2 - t1 of inputs back from the bus: " + run.inputLatency());
+        run.clockOffsets().forEach((member, offset) -> out.printf(Locale.ROOT,
+                "clock offset of %s to the %s: %.3f ms +/- %.3f ms%n", member, owner, offset.offsetNanos() / 1e6,
                 offset.errorNanos() / 1e6));
-        long late = bridge.run().outputsAfterEnd();
-        long others = bridge.run().messagesOfOtherRuns();
-        out.println("bus: " + bridge.run().stats() + (late == 0 ? "" : ", " + late + " output" + (late == 1 ? "" : "s")
+        long late = run.outputsAfterEnd();
+        long others = run.messagesOfOtherRuns();
+        out.println("bus: " + run.stats() + (late == 0 ? "" : ", " + late + " output" + (late == 1 ? "" : "s")
                 + " after the end (not judged)") + (others == 0 ? "" : ", " + others + " message"
                 + (others == 1 ? "" : "s") + " of other runs (ignored)"));
     }

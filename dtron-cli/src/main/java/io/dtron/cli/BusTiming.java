@@ -94,15 +94,21 @@ final class BusTiming {
         List<String> widenings = run.widenings();
         lines.add("reorder window (Delta): " + millis(run.reorderWindowMicros()) + (auto ? " (auto)" : " (--delta)")
                 + (widenings.isEmpty() ? (auto ? ", not widened" : "") : ", widened " + String.join("; ", widenings)));
-        List<ChannelDelay> delays = run.runDelays();
-        if (!delays.isEmpty()) {
-            List<String> parts = new ArrayList<>();
-            delays.forEach(d -> parts.add(d.direction() + " " + d.channel() + " " + millis(d.lowMicros()) + " to "
-                    + millis(d.highMicros()) + " (" + d.count() + ")"));
-            lines.add("delays in the run (inputs published to applied, outputs produced to received): "
-                    + String.join(", ", parts));
-        }
+        runDelays(run).ifPresent(lines::add);
         return lines;
+    }
+
+    /** The line of the delays measured in the run, per channel and direction, when some were. */
+    static Optional<String> runDelays(BusRun run) {
+        List<ChannelDelay> delays = run.runDelays();
+        if (delays.isEmpty()) {
+            return Optional.empty();
+        }
+        List<String> parts = new ArrayList<>();
+        delays.forEach(d -> parts.add(d.direction() + " " + d.channel() + " " + millis(d.lowMicros()) + " to "
+                + millis(d.highMicros()) + " (" + d.count() + ")"));
+        return Optional.of("delays in the run (inputs published to applied, outputs produced to received): "
+                + String.join(", ", parts));
     }
 
     /**

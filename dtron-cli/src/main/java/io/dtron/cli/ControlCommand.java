@@ -48,8 +48,8 @@ import picocli.CommandLine.Spec;
         description = {"Run the model as a controller: DTRON sends the commands (i_ channels) the model's controller"
                 + " part chooses and takes the plant's readings (o_ channels) as the model allows them.",
                 "A plant that deviates from the model raises an alarm; the controller then takes the safe action"
-                        + " (--safe-action, --safe-location) and the run ends. A new model version (--reload-from) is"
-                        + " checked with its queries and taken at the next reset point.",
+                        + " (--safe-action, --safe-location) and the run ends. A new model version (--reload-from,"
+                        + " --reload-from-bus) is checked with its queries and taken at the next reset point.",
                 "The plant: --plant model (the model's own plant part, in this process, in virtual time), or a"
                         + " plant on a bus (--cluster NAME, JGroups on loopback; --bus nats://HOST:PORT, NATS), in real"
                         + " time.",
@@ -103,6 +103,12 @@ final class ControlCommand implements Callable<Integer> {
                     + " whenever the file changes, and taken at the next reset point; refused with the reason otherwise.")
     private Path reloadFrom;
 
+    @Option(names = "--reload-from-bus",
+            description = "On a bus with a secret: new versions of the model from the bus (channel dtron_model, as"
+                    + " dtron reload sends them), checked and taken as those of --reload-from; what became of each is"
+                    + " published back (dtron_model_outcome).")
+    private boolean reloadFromBus;
+
     @Option(names = "--virtual-time", description = "Run in virtual time: deterministic, as fast as the CPU allows"
             + " (--plant model needs it).")
     private boolean virtualTime;
@@ -121,6 +127,17 @@ final class ControlCommand implements Callable<Integer> {
 
     @Mixin
     private NatsBusOptions nats;
+
+    @Option(names = "--key-file", paramLabel = "FILE",
+            description = "On the bus: the file holding the bus's secret, which every member of the bus holds (default:"
+                    + " $DTRON_HOME/bus.key, else ~/.dtron/bus.key, made when missing); it must be readable by its"
+                    + " owner only (chmod 600).")
+    private Path keyFile;
+
+    @Option(names = "--insecure",
+            description = "On the bus: use no secret, for plants that have none; the controller then hears insecure"
+                    + " members only, and anyone who can reach the bus may speak on it.")
+    private boolean insecure;
 
     @Option(names = "--wait-timeout", paramLabel = "SECONDS",
             description = "On the bus: how long to wait for the plant to serve every command and reading (default 30).")
@@ -164,6 +181,13 @@ final class ControlCommand implements Callable<Integer> {
             if (cluster != null && cluster.isBlank()) {
                 throw usage("--cluster: the bus name is blank");
             }
+            if (keyFile != null && insecure) {
+                throw usage("--insecure uses no secret: leave out --key-file");
+            }
+            if (reloadFromBus && insecure) {
+                throw usage("--reload-from-bus takes model versions only from a bus with a secret: leave out"
+                        + " --insecure");
+            }
             nats.check(clusterName(), this::usage);
         } else {
             if (!"model".equals(plant)) {
@@ -176,8 +200,9 @@ final class ControlCommand implements Callable<Integer> {
                         + " simulated on the controller's clock; real time is for a plant on the bus, --cluster or"
                         + " --bus)");
             }
-            if (waitTimeout != null) {
-                throw usage("--wait-timeout is how long to wait for a plant on the bus (--cluster, --bus)");
+            if (waitTimeout != null || keyFile != null || insecure || reloadFromBus) {
+                throw usage("--wait-timeout, --key-file, --insecure and --reload-from-bus are for a plant on the bus"
+                        + " (--cluster, --bus)");
             }
         }
         if (duration <= 0) {
@@ -243,12 +268,16 @@ final class ControlCommand implements Callable<Integer> {
         long unit = options.timeUnitMicros();
         String where = "bus '" + clusterName() + "' at " + (nats.given() ? String.join(",", nats.servers(this::usage))
                 : "127.0.0.1");
-        Supplier<DtronOptions.Builder> busOptions = nats.given() ? nats.memberOptions(clusterName(), this::usage)
+        Supplier<DtronOptions.Builder> transport = nats.given() ? nats.memberOptions(clusterName(), this::usage)
                 : () -> DtronOptions.builder().clusterName(clusterName())
                         .bindAddress(java.net.InetAddress.getLoopbackAddress());
+        DtronOptions.Builder busOptions = transport.get().insecure(insecure);
+        if (keyFile != null) {
+            busOptions.keyFile(keyFile);
+        }
         BusBridge bridge;
         try {
-            bridge = BusBridge.connect(testInterface, busOptions.get());
+            bridge = BusBridge.connect(testInterface, busOptions);
         } catch (IllegalArgumentException e) {
             err.println("dtron control: " + model + ": " + e.getMessage());
             return 1;
@@ -287,7 +316,21 @@ final class ControlCommand implements Callable<Integer> {
                 err.println("dtron control: " + where + ": " + refused.get());
                 return 1;
             }
-            return run(controller, testInterface, unit, out);
+            int exit;
+            try (ModelVersionBus versions = reloadFromBus ? new ModelVersionBus(bridge.run().member(), controller,
+                    model, interfaceFile, testInterface, unit) : null) {
+                if (versions != null) {
+                    versions.listen();
+                }
+                out.println("dtron control: every command and reading is served"
+                        + RunCommand.servedSummary(bridge.run()) + (versions == null ? "" : "; model versions are"
+                        + " taken from the bus"));
+                out.flush();
+                exit = run(controller, testInterface, unit, out);
+            }
+            BusSession.printSummary(bridge.run(), "controller", out);
+            BusTiming.runDelays(bridge.run()).ifPresent(out::println);
+            return exit;
         }
     }
 

@@ -29,7 +29,8 @@ import picocli.CommandLine.UnmatchedArgumentException;
         description = {"Online model-based testing and control of timed systems with Uppaal timed automata.",
                 "dtron MODEL [OPTIONS] is short for dtron run MODEL [OPTIONS]."},
         subcommands = {CheckCommand.class, RunCommand.class, TronCommand.class, VerifyCommand.class, DeltaCommand.class,
-                CoverageCommand.class, MutantsCommand.class, ControlCommand.class, MonitorCommand.class,
+                CoverageCommand.class, MutantsCommand.class, ControlCommand.class, ReloadCommand.class,
+                MonitorCommand.class,
                 ReportCommand.class,
                 CommandLine.HelpCommand.class})
 public final class DtronCommand implements Callable<Integer> {

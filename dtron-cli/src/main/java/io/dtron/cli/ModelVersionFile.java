@@ -94,14 +94,38 @@ final class ModelVersionFile implements AutoCloseable {
     }
 
     private void check() {
+        Path own = beside(file);
+        String ownQueries;
+        try {
+            ownQueries = Files.isRegularFile(own) ? Files.readString(own, StandardCharsets.UTF_8) : null;
+        } catch (IOException e) {
+            sink.unloadable(label, "its queries cannot be read: " + e.getMessage());
+            return;
+        }
+        check(label, () -> ModelLoader.load(file), ownQueries, started, interfaceFile, running, sink);
+    }
+
+    /** Loads a model version; a {@link ModelException} when it does not load. */
+    interface Loader {
+        Network load() throws ModelException;
+    }
+
+    /**
+     * Loads the version {@code label} and checks it against the running interface {@code running} (the i_/o_ names,
+     * or {@code interfaceFile}'s), with the queries {@code ownQueries} (the text of its {@code .q}; null when it has
+     * none: then those written in it, else those of the {@code .q} beside the model {@code started} with), and hands
+     * the outcome to {@code sink}.
+     */
+    static void check(String label, Loader loader, String ownQueries, Path started, Path interfaceFile,
+            TestInterface running, Sink sink) {
         Network network;
         TestInterface testInterface;
         List<Query> queries;
         try {
-            network = ModelLoader.load(file);
+            network = loader.load();
             testInterface = interfaceFile == null ? TestInterface.fromNames(network)
                     : TestInterface.fromFile(network, interfaceFile);
-            queries = queriesFor(network);
+            queries = ownQueries != null ? Query.parseFile(ownQueries) : queriesFor(network, started);
         } catch (ModelException e) {
             sink.unloadable(label, "it does not load: " + e.getMessage().lines().findFirst().orElse(""));
             return;
@@ -112,11 +136,7 @@ final class ModelVersionFile implements AutoCloseable {
         sink.checked(ModelVersion.check(new ModelVersion(label, network, testInterface), running, queries));
     }
 
-    private List<Query> queriesFor(Network network) throws IOException {
-        Path own = beside(file);
-        if (Files.isRegularFile(own)) {
-            return Query.parseFile(Files.readString(own, StandardCharsets.UTF_8));
-        }
+    private static List<Query> queriesFor(Network network, Path started) throws IOException {
         if (!network.queries().isEmpty()) {
             List<Query> written = new ArrayList<>();
             for (io.dtron.xta.ast.Query q : network.queries()) {
@@ -135,7 +155,7 @@ final class ModelVersionFile implements AutoCloseable {
     }
 
     /** {@code FILE.q} for {@code FILE.xta} (or .xml, .ta). */
-    private static Path beside(Path model) {
+    static Path beside(Path model) {
         String name = model.getFileName().toString();
         int dot = name.lastIndexOf('.');
         return model.resolveSibling((dot > 0 ? name.substring(0, dot) : name) + ".q");

@@ -814,7 +814,7 @@ final class RunCommand implements Callable<Integer> {
     }
 
     /** "; members: A receives [..] sends [..], ..." for what the adapters on the bus said they serve. */
-    private static String servedSummary(BusRun busRun) {
+    static String servedSummary(BusRun busRun) {
         Map<String, ServedChannels> served = busRun.servedChannels();
         if (served.isEmpty()) {
             return "; no adapter on the bus said which channels it serves (members: " + busRun.members() + ")";

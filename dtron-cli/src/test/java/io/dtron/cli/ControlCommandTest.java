@@ -37,8 +37,16 @@ class ControlCommandTest {
                 "--virtual-time", "--cluster", "arm");
         refused("name the plant: --plant model (the model's own plant part), or a bus", "--duration", "10",
                 "--virtual-time");
-        refused("--wait-timeout is how long to wait for a plant on the bus", "--plant", "model", "--duration", "10",
-                "--virtual-time", "--wait-timeout", "5");
+        refused("--wait-timeout, --key-file, --insecure and --reload-from-bus are for a plant on the bus", "--plant", "model",
+                "--duration", "10", "--virtual-time", "--wait-timeout", "5");
+        refused("--wait-timeout, --key-file, --insecure and --reload-from-bus are for a plant on the bus", "--plant", "model",
+                "--duration", "10", "--virtual-time", "--insecure");
+        refused("--wait-timeout, --key-file, --insecure and --reload-from-bus are for a plant on the bus",
+                "--plant", "model", "--duration", "10", "--virtual-time", "--reload-from-bus");
+        refused("--reload-from-bus takes model versions only from a bus with a secret: leave out --insecure",
+                "--cluster", "arm", "--duration", "10", "--insecure", "--reload-from-bus");
+        refused("--insecure uses no secret: leave out --key-file", "--cluster", "arm", "--duration", "10",
+                "--insecure", "--key-file", "bus.key");
         refused("--wait-timeout must be a positive number of seconds", "--cluster", "arm", "--duration", "10",
                 "--wait-timeout", "0");
         refused("--plant must be 'model'", "--plant", "python", "--duration", "10", "--virtual-time");

@@ -512,6 +512,14 @@ public final class BusRun implements AutoCloseable {
         return channels;
     }
 
+    /**
+     * Returns the bus member this run speaks through, for DTRON's channels beside the run's own: a controller's model
+     * versions ({@link io.dtron.api.Dtron#MODEL_VERSION}).
+     */
+    public Dtron member() {
+        return dtron;
+    }
+
     /** Returns this member's id on the bus. */
     public String memberId() {
         return dtron.getMemberId();

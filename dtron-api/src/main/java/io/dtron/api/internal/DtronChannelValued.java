@@ -13,20 +13,38 @@ public final class DtronChannelValued implements IDtronChannelValued {
     private final Map<String, Integer> variables;
     private final Stamp stamp;
     private final long receiveTimeNanos;
+    private final String text;
 
     DtronChannelValued(DtronChannel channel, Map<String, Integer> variables, Stamp stamp, long receiveTimeNanos) {
+        this(channel, variables, stamp, receiveTimeNanos, "");
+    }
+
+    DtronChannelValued(DtronChannel channel, Map<String, Integer> variables, Stamp stamp, long receiveTimeNanos,
+            String text) {
         this.channel = channel;
         this.variables = Collections.unmodifiableMap(new LinkedHashMap<>(variables));
         this.stamp = Objects.requireNonNull(stamp, "stamp");
         this.receiveTimeNanos = receiveTimeNanos;
+        this.text = Objects.requireNonNull(text, "text");
     }
 
     /** Returns a message as this member published it: stamped, not received (receive time 0). */
     public static DtronChannelValued published(DtronChannel channel, Map<String, Integer> variables, Stamp stamp) {
+        return published(channel, variables, stamp, "");
+    }
+
+    /** Returns a message with a {@code text} as this member published it. */
+    public static DtronChannelValued published(DtronChannel channel, Map<String, Integer> variables, Stamp stamp,
+            String text) {
         Map<String, Integer> ordered = new LinkedHashMap<>();
         channel.getVariableNames().forEach(name -> ordered.put(name, variables.get(name)));
         variables.forEach(ordered::putIfAbsent);
-        return new DtronChannelValued(channel, ordered, stamp, 0);
+        return new DtronChannelValued(channel, ordered, stamp, 0, text);
+    }
+
+    @Override
+    public String getText() {
+        return text;
     }
 
     /** Returns what the message carries besides its channel and variables, as on the wire. */
@@ -101,7 +119,7 @@ public final class DtronChannelValued implements IDtronChannelValued {
 
     @Override
     public byte[] toByteArray() {
-        return SyncCodec.encode(getChannelName(), variables, stamp);
+        return SyncCodec.encode(getChannelName(), variables, stamp, text);
     }
 
     @Override
@@ -110,12 +128,13 @@ public final class DtronChannelValued implements IDtronChannelValued {
                 && channel.equals(other.channel)
                 && variables.equals(other.variables)
                 && stamp.equals(other.stamp)
-                && receiveTimeNanos == other.receiveTimeNanos;
+                && receiveTimeNanos == other.receiveTimeNanos
+                && text.equals(other.text);
     }
 
     @Override
     public int hashCode() {
-        return Objects.hash(channel, variables, stamp, receiveTimeNanos);
+        return Objects.hash(channel, variables, stamp, receiveTimeNanos, text);
     }
 
     @Override

@@ -29,6 +29,11 @@ public final class SyncCodec {
         return builder(channelName, variables, stamp).build().toByteArray();
     }
 
+    /** Encodes a message with a text (field 18, on DTRON's channels that carry one); "" writes none. */
+    public static byte[] encode(String channelName, Map<String, Integer> variables, Stamp stamp, String text) {
+        return builder(channelName, variables, stamp).setText(text).build().toByteArray();
+    }
+
     private static Sync.Builder builder(String channelName, Map<String, Integer> variables, Stamp stamp) {
         Sync.Builder sync = Sync.newBuilder()
                 .setName(channelName)
@@ -132,6 +137,7 @@ public final class SyncCodec {
         template.checkVariables(values.keySet());
         Map<String, Integer> ordered = new LinkedHashMap<>();
         template.getVariableNames().forEach(name -> ordered.put(name, values.get(name)));
-        return new DtronChannelValued(template, ordered, stamp(sync, transportSender), receiveTimeNanos);
+        return new DtronChannelValued(template, ordered, stamp(sync, transportSender), receiveTimeNanos,
+                sync.getText());
     }
 }

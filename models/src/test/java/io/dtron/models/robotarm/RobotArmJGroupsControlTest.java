@@ -1,0 +1,131 @@
+package io.dtron.models.robotarm;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertFalse;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+import io.dtron.cli.DtronCommand;
+import io.dtron.testsupport.DocPage;
+import java.io.PrintWriter;
+import java.io.StringWriter;
+import java.math.BigDecimal;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.nio.file.attribute.PosixFilePermissions;
+import java.util.HexFormat;
+import java.util.List;
+import java.util.UUID;
+import java.util.concurrent.ThreadLocalRandom;
+import java.util.concurrent.TimeUnit;
+import java.util.regex.Matcher;
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.Timeout;
+import org.junit.jupiter.api.io.TempDir;
+
+/**
+ * {@code dtron control --cluster NAME --key-file FILE} against the robot arm's Java plant ({@link RobotArmPlant}) in
+ * its own JVM on the embedded JGroups bus on loopback, both holding the test's key file, in real time at 250 ms a time
+ * unit (as {@link RobotArmBusControlTest} on NATS, for the same reason: the arm's narrowest windows are 1 unit wide).
+ * What the model guarantees: the correct arm is controlled for the run's whole duration with no alarm and never gets
+ * the safe action; the stalling arm raises the alarm once the model's deadline, 5 units after the move, has passed,
+ * naming the missing reading, and the plant receives the safe action, stop; that run is the control page's two
+ * command lines as written (on a bus name of the test's, the plant's JVM on the test's class path, the default key
+ * file). The controller prints the bus's summary at the end, as {@code dtron run} does.
+ */
+@Timeout(value = 3, unit = TimeUnit.MINUTES)
+class RobotArmJGroupsControlTest {
+    private static final String ARM = "src/main/resources/io/dtron/models/robotarm/robot-arm.xta";
+
+    @TempDir
+    Path dir;
+
+    record Run(int exit, String out, String err, String plant) {
+        String shown() {
+            return "exit " + exit + "\n" + out + err + "\nplant:\n" + plant;
+        }
+    }
+
+    /** The bus's secret, in a key file of the test's that only its owner reads. */
+    private Path keyFile() throws Exception {
+        byte[] secret = new byte[32];
+        ThreadLocalRandom.current().nextBytes(secret);
+        Path key = dir.resolve("bus.key");
+        Files.writeString(key, HexFormat.of().formatHex(secret) + "\n");
+        Files.setPosixFilePermissions(key, PosixFilePermissions.fromString("rw-------"));
+        return key;
+    }
+
+    /**
+     * Starts the plant's JVM with {@code plantArgs} (after its class name) and runs {@code dtron control} with {@code
+     * controlArgs}, both on the bus {@code cluster} of the test's.
+     */
+    private Run control(List<String> plantArgs, List<String> controlArgs) throws Exception {
+        Path log = dir.resolve("plant.log");
+        Process plant = ArmProcess.start(plantArgs, log);
+        try {
+            StringWriter out = new StringWriter();
+            StringWriter err = new StringWriter();
+            int exit = DtronCommand.run(controlArgs.toArray(String[]::new), new PrintWriter(out, true),
+                    new PrintWriter(err, true));
+            boolean exited = plant.waitFor(30, TimeUnit.SECONDS);
+            Run run = new Run(exit, out.toString(), err.toString(), Files.readString(log));
+            assertTrue(exited, "the plant exits after its run: " + run.shown());
+            return run;
+        } finally {
+            plant.destroyForcibly();
+        }
+    }
+
+    /** The summary of the bus that ends a run on it: who served what, the latencies and the counters. */
+    private static void assertBusSummary(Run run) {
+        assertTrue(run.out().lines().anyMatch(l -> l.startsWith("dtron control: every command and reading is served; ")
+                && l.endsWith(" receives [grip, move, release, stop] and sends [arrived, gripped]")), run.shown());
+        assertTrue(run.out().contains("\nlatency t2 - t1 of outputs: "), run.shown());
+        assertTrue(run.out().contains("\nbus: "), run.shown());
+    }
+
+    @Test
+    void theCorrectArmIsControlledForTheWholeRunWithoutAlarm() throws Exception {
+        String cluster = "arm-" + UUID.randomUUID().toString().substring(0, 8);
+        String key = keyFile().toString();
+        Run run = control(List.of("--cluster", cluster, "--key-file", key, "--runs", "1"), List.of("control", ARM,
+                "--cluster", cluster, "--key-file", key, "--duration", "40", "--timeunit", "250000", "--seed", "1",
+                "--safe-action", "i_stop", "--wait-timeout", "60"));
+        assertEquals(0, run.exit(), run.shown());
+        assertTrue(run.out().contains("against the plant on bus '" + cluster + "' at 127.0.0.1")
+                && run.out().contains("in real time"), run.shown());
+        assertTrue(run.out().lines().anyMatch(l -> l.startsWith("control COMPLETED at t=40.000: ")
+                && l.contains(" 0 alarms")), run.shown());
+        assertFalse(run.out().contains("ALARM"), run.shown());
+        assertFalse(run.plant().contains("stopped at"), "no safe action was sent: " + run.shown());
+        assertFalse(run.plant().contains("ignored: "), "every command came in a state that takes it: " + run.shown());
+        assertBusSummary(run);
+    }
+
+    @Test
+    void thePagesStallingArmRaisesTheAlarmAtTheModelsDeadlineAndIsStopped() throws Exception {
+        List<String> page = DocPage.read("control.md").blockAfter("## A plant in Java").code().lines().toList();
+        String prefix = ArmProcess.PAGE_PREFIX;
+        assertTrue(page.get(0).startsWith(prefix), page.get(0));
+        assertTrue(page.get(1).startsWith("$ java -jar dtron.jar control "), page.get(1));
+        String cluster = "page-" + UUID.randomUUID().toString().substring(0, 8);
+        // the page's lines as written, on the test's bus and with the test's class path for the plant's JVM
+        Run run = control(ArmProcess.args(page.get(0).substring(prefix.length()), cluster),
+                ArmProcess.args(page.get(1).substring("$ java -jar dtron.jar ".length()), cluster));
+        assertEquals(2, run.exit(), run.shown());
+        Matcher alarm = RobotArmBusControlTest.ALARM.matcher(run.out());
+        assertTrue(alarm.find(), run.shown());
+        BigDecimal at = new BigDecimal(alarm.group(1));
+        BigDecimal deadline = new BigDecimal(alarm.group(2));
+        BigDecimal earliest = new BigDecimal(alarm.group(3));
+        assertEquals(deadline, new BigDecimal(alarm.group(4)), run.shown());
+        // the window 2 to 5 units after the move: the deadline is the model's bound, MOVE_MAX after the move
+        assertEquals(0, deadline.subtract(earliest).compareTo(new BigDecimal("3.000")), run.shown());
+        assertTrue(at.compareTo(deadline) > 0, "no alarm before the deadline has passed: " + run.shown());
+        assertTrue(run.out().contains("safe action stop() sent at t=" + alarm.group(1)), run.shown());
+        assertTrue(run.out().lines().anyMatch(l -> l.startsWith("control ALARM at t=") && l.contains(": 2"
+                + " commands sent, 0 readings, 1 alarm, safe action stop() taken")), run.shown());
+        assertTrue(run.plant().contains("stopped at t="), "the plant received stop: " + run.shown());
+        assertBusSummary(run);
+    }
+}
