@@ -196,8 +196,7 @@ final class ControlCommand implements Callable<Integer> {
             default -> throw usage("--policy must be eager, random or goal: " + policy);
         };
         Network network = ModelLoader.load(model);
-        TestInterface testInterface = interfaceFile == null ? TestInterface.fromNames(network)
-                : TestInterface.fromFile(network, interfaceFile);
+        TestInterface testInterface = CommandModel.interfaceOf(network, interfaceFile);
         if (testInterface.inputs().isEmpty()) {
             err.println("dtron control: " + model + " has no commands: name the controller's channels i_x, or give"
                     + " --interface FILE.trn");

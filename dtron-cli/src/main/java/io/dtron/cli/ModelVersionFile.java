@@ -99,8 +99,7 @@ final class ModelVersionFile implements AutoCloseable {
         List<Query> queries;
         try {
             network = ModelLoader.load(file);
-            testInterface = interfaceFile == null ? TestInterface.fromNames(network)
-                    : TestInterface.fromFile(network, interfaceFile);
+            testInterface = CommandModel.interfaceOf(network, interfaceFile);
             queries = queriesFor(network);
         } catch (ModelException e) {
             sink.unloadable(label, "it does not load: " + e.getMessage().lines().findFirst().orElse(""));

@@ -256,17 +256,11 @@ final class RunCommand implements Callable<Integer> {
         boolean tronBackend = parseBackend();
         checkModeOptions(busMode, tronBackend);
         DelayPolicy policy = parseDelayPolicy();
-        Network network;
-        TestInterface testInterface;
-        try {
-            network = ModelLoader.load(model);
-        } catch (ModelException e) {
-            CheckCommand.printErrors(model, e, err);
-            return 1;
-        } catch (OutOfMemoryError e) {
-            err.println("dtron run: " + JvmLimits.modelTooLarge("run", model));
+        Network network = CommandModel.network("run", model, err);
+        if (network == null) {
             return 1;
         }
+        TestInterface testInterface;
         goalOptions.prepare(coverage.until != null, this::usage);
         goals = goalOptions.goals();
         try {
@@ -278,8 +272,7 @@ final class RunCommand implements Callable<Integer> {
             if (tronAdapter != null) {
                 return runAgainstTronAdapter(network, policy, out, err);
             }
-            testInterface = interfaceFile == null ? TestInterface.fromNames(network)
-                    : TestInterface.fromFile(network, interfaceFile);
+            testInterface = CommandModel.interfaceOf(network, interfaceFile);
         } catch (ModelException e) {
             CheckCommand.printErrors(model, e, err);
             return 1;
@@ -296,8 +289,7 @@ final class RunCommand implements Callable<Integer> {
         if (deltaFrom != null) {
             try {
                 network = deltaExtended(network, testInterface, unit, out);
-                testInterface = interfaceFile == null ? TestInterface.fromNames(network)
-                        : TestInterface.fromFile(network, interfaceFile);
+                testInterface = CommandModel.interfaceOf(network, interfaceFile);
             } catch (ModelException e) {
                 CheckCommand.printErrors(model, e, err);
                 return 1;
