@@ -6,6 +6,7 @@ import io.dtron.engine.internal.clock.Ticks;
 import io.dtron.engine.internal.eval.ModelRuntimeException;
 import io.dtron.engine.internal.monitor.Tracker;
 import io.dtron.engine.internal.sem.Semantics;
+import io.dtron.engine.internal.sem.StateText;
 import io.dtron.engine.internal.sem.SymState;
 import io.dtron.engine.internal.verify.StateProperty;
 import io.dtron.engine.verify.Query;
@@ -15,8 +16,6 @@ import io.dtron.engine.zone.Dbm;
 import io.dtron.model.ClockVariable;
 import io.dtron.model.Network;
 import io.dtron.model.TestInterface;
-import io.dtron.model.Type;
-import io.dtron.model.Variable;
 import java.math.BigDecimal;
 import java.util.ArrayList;
 import java.util.HashMap;
@@ -398,27 +397,8 @@ public final class Monitor {
     }
 
     private Alarm.State describe(SymState s) {
-        List<String> locations = new ArrayList<>();
-        for (io.dtron.model.Process p : network.processes()) {
-            int l = s.location(p.index());
-            if (l >= 0) {
-                locations.add(p.name() + "." + p.locations().get(l).name());
-            }
-        }
-        Map<String, Integer> variables = new LinkedHashMap<>();
-        for (Variable v : network.variables()) {
-            if (v.type() instanceof Type.Array a && a.element().slots() == 1) {
-                for (int i = 0; i < a.length(); i++) {
-                    variables.put(v.name() + "[" + (a.firstIndex() + i) + "]", s.var(v.offset() + i));
-                }
-            } else if (v.type().slots() == 1) {
-                variables.put(v.name(), s.var(v.offset()));
-            } else {
-                for (int i = 0; i < v.type().slots(); i++) {
-                    variables.put(v.name() + "#" + i, s.var(v.offset() + i));
-                }
-            }
-        }
+        List<String> locations = StateText.locations(network, s);
+        Map<String, Integer> variables = StateText.variables(network, s);
         List<String> clocks = new ArrayList<>();
         Dbm z = s.zone();
         for (int x = 1; x < clockNames.length - 1; x++) {
