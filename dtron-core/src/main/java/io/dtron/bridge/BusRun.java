@@ -10,6 +10,7 @@ import io.dtron.api.IDtronChannel;
 import io.dtron.api.IDtronChannelValued;
 import io.dtron.api.ServedChannels;
 import io.dtron.api.internal.TesterSide;
+import io.dtron.bridge.internal.AdapterProbes;
 import io.dtron.bridge.internal.ChannelOwners;
 import io.dtron.bridge.internal.InputDelays;
 import io.dtron.bridge.internal.LatencyRecorder;
@@ -77,9 +78,7 @@ public final class BusRun implements AutoCloseable {
     /** How long {@link #stop()} waits for its own end-of-run message to come back from the bus. */
     static final Duration STOP_ECHO_TIMEOUT = Duration.ofSeconds(2);
     /** How long an adapter member gets to answer the tester's probe before a missed deadline (see unreachable). */
-    static final Duration PROBE_TIMEOUT = Duration.ofSeconds(1);
-    /** How long {@link #measureDelays} waits for a member's first message with a clock offset estimate. */
-    static final Duration FIRST_ESTIMATE_TIMEOUT = Duration.ofSeconds(2);
+    static final Duration PROBE_TIMEOUT = AdapterProbes.PROBE_TIMEOUT;
     /** How long the tester that started a run of several testers waits for the others' verdicts before it ends it. */
     static final Duration VERDICTS_TIMEOUT = Duration.ofSeconds(30);
     /** How far ahead a run of several testers is started, so that every tester starts its engine at time 0. */
@@ -142,6 +141,8 @@ public final class BusRun implements AutoCloseable {
     private final Map<String, ChannelDelay> runDelays = new ConcurrentHashMap<>();
     /** How long inputs take to reach the adapters, for {@link #inputDelayMicros}. */
     private final InputDelays inputDelays = new InputDelays();
+    /** The probes of the adapter members before a run, which measure how long inputs take to reach them. */
+    private final AdapterProbes probes;
     /** When each input of the run was published, on the run's clock in microseconds, by its number. */
     private final Map<Long, Long> inputSentMicros = new ConcurrentHashMap<>();
     /** Inputs of other testers of the run, observed as outputs, until their acknowledgements say when they happened. */
@@ -171,6 +172,7 @@ public final class BusRun implements AutoCloseable {
         this.tester = TesterSide.of(dtron);
         this.joining = joining;
         this.timeline = new RunTimeline(dtron::currentTimeNanos);
+        this.probes = new AdapterProbes(dtron, tester, inputDelays, this::testersOfOtherRuns, this::isPeerTester);
         Map<String, IDtronChannel> inputChannels = new LinkedHashMap<>();
         testInterface.inputs().forEach(c -> inputChannels.put(c.name(), channels.get(c.name())));
         this.inputs = Map.copyOf(inputChannels);
@@ -623,37 +625,13 @@ public final class BusRun implements AutoCloseable {
      * Measures the delays of the adapters' messages before a run: asks every adapter member {@code rounds} times,
      * {@code spacing} apart, to answer (see {@link TesterSide#probe}), and sums up every message of theirs measured so far
      * (their pings since they joined included), so that the first, slow messages of a fresh process count too. A
-     * member that joined just now is given {@link #FIRST_ESTIMATE_TIMEOUT} to send its first clock offset estimate,
+     * member that joined just now is given two seconds to send its first clock offset estimate,
      * without which its delays cannot be measured.
      *
      * @throws InterruptedException if the thread was interrupted while waiting
      */
     public Delays measureDelays(int rounds, Duration spacing) throws InterruptedException {
-        Set<String> adapters = new java.util.HashSet<>(dtron.getMembers());
-        adapters.remove(dtron.getMemberId());
-        adapters.removeAll(testersOfOtherRuns());
-        // a member that joined just now sends its first clock offset estimate after a few round trips
-        long deadline = System.nanoTime() + FIRST_ESTIMATE_TIMEOUT.toNanos();
-        while (!tester.getDelaysFromMembers().keySet().containsAll(adapters) && System.nanoTime() < deadline) {
-            Thread.sleep(10);
-        }
-        for (int i = 0; i < rounds && !adapters.isEmpty(); i++) {
-            tester.probe(adapters, PROBE_TIMEOUT);
-            Thread.sleep(spacing.toMillis());
-        }
-        long max = 0;
-        long error = 0;
-        long messages = 0;
-        int members = 0;
-        for (Map.Entry<String, io.dtron.api.MemberDelay> e : tester.getDelaysFromMembers().entrySet()) {
-            if (adapters.contains(e.getKey())) {
-                max = Math.max(max, e.getValue().maxNanos());
-                error = Math.max(error, e.getValue().maxErrorNanos());
-                messages += e.getValue().count();
-                members++;
-            }
-        }
-        return new Delays(max, error, messages, members);
+        return probes.measure(rounds, spacing);
     }
 
     /**
@@ -702,39 +680,7 @@ public final class BusRun implements AutoCloseable {
      * @throws InterruptedException if the thread was interrupted while waiting
      */
     public Probing probeUntilSteady(Duration spacing, Duration minimum, Duration limit) throws InterruptedException {
-        long start = System.nanoTime();
-        Set<String> adapters = new java.util.TreeSet<>(dtron.getMembers());
-        adapters.remove(dtron.getMemberId());
-        adapters.removeAll(testersOfOtherRuns());
-        adapters.removeAll(tester.getOtherTesters());
-        Map<String, List<Long>> byMember = new HashMap<>();
-        List<Long> rounds = new ArrayList<>();
-        boolean steady = false;
-        while (!adapters.isEmpty()) {
-            long round = 0;
-            for (String member : adapters) {
-                long sent = System.nanoTime();
-                Set<String> answered = tester.probeAsInput(Set.of(member), PROBE_TIMEOUT);
-                long micros = answered.contains(member) ? (System.nanoTime() - sent) / 1000 : PROBE_TIMEOUT.toNanos()
-                        / 1000;
-                byMember.computeIfAbsent(member, m -> new ArrayList<>()).add(micros);
-                round = Math.max(round, micros);
-            }
-            rounds.add(round);
-            long elapsed = System.nanoTime() - start;
-            steady = InputDelays.steady(rounds) && InputDelays.noLongerImproving(rounds);
-            if (steady && elapsed >= minimum.toNanos() || elapsed >= limit.toNanos()) {
-                break;
-            }
-            if (!spacing.isZero()) {
-                Thread.sleep(spacing.toMillis());
-            }
-        }
-        byMember.forEach((member, trips) -> inputDelays.probed(member, trips.subList(Math.max(0, trips.size()
-                - InputDelays.STEADY_ROUNDS), trips.size()).stream().mapToLong(Long::longValue).max().orElse(0)));
-        long last = rounds.subList(Math.max(0, rounds.size() - InputDelays.STEADY_ROUNDS), rounds.size()).stream()
-                .mapToLong(Long::longValue).max().orElse(0);
-        return new Probing(rounds.size(), steady, last, (System.nanoTime() - start) / 1_000_000);
+        return probes.untilSteady(spacing, minimum, limit);
     }
 
     /**
@@ -743,13 +689,7 @@ public final class BusRun implements AutoCloseable {
      * (published to applied), each with its clock error; 0 before anything was measured.
      */
     public long inputDelayMicros(String channel) {
-        List<String> receivers = new ArrayList<>();
-        tester.getMembersServedChannels().forEach((member, served) -> {
-            if (served.receives().contains(channel) && !isPeerTester(member)) {
-                receivers.add(member);
-            }
-        });
-        return inputDelays.roomMicros(channel, receivers);
+        return probes.inputDelayMicros(channel);
     }
 
     /**
