@@ -15,6 +15,7 @@ import io.dtron.bridge.internal.ChannelOwners;
 import io.dtron.bridge.internal.InputDelays;
 import io.dtron.bridge.internal.LatencyRecorder;
 import io.dtron.bridge.internal.ReorderWindow;
+import io.dtron.bridge.internal.RunTesters;
 import io.dtron.bridge.internal.RunTimeline;
 import io.dtron.engine.AdapterContext;
 import io.dtron.engine.Event;
@@ -147,15 +148,8 @@ public final class BusRun implements AutoCloseable {
     private final Map<Long, Long> inputSentMicros = new ConcurrentHashMap<>();
     /** Inputs of other testers of the run, observed as outputs, until their acknowledgements say when they happened. */
     private final Map<String, IDtronChannelValued> heldPeerInputs = new ConcurrentHashMap<>();
-    /** The testers of a run of several that told their verdicts, with the verdicts' exit codes. */
-    private final Map<String, Integer> peerVerdicts = new ConcurrentHashMap<>();
-    /** The testers that joined this run (it started it), as the run started. */
-    private volatile Set<String> joiners = Set.of();
-    /** For a joining tester, the tester that started the run it joined (null otherwise). */
-    private volatile String runLeader;
-    /** On a joining tester: the run start it waits for or joined. */
-    private final java.util.concurrent.BlockingQueue<IDtronChannelValued> starts =
-            new java.util.concurrent.LinkedBlockingQueue<>();
+    /** The testers of a run of several: ready to join, joined, the leader, their verdicts. */
+    private final RunTesters runTesters;
     /** Time 0 of the run and the times of its messages on the run's clock. */
     private final RunTimeline timeline;
     /** The run's reorder window (Delta), fixed or automatic. */
@@ -172,6 +166,7 @@ public final class BusRun implements AutoCloseable {
         this.tester = TesterSide.of(dtron);
         this.joining = joining;
         this.timeline = new RunTimeline(dtron::currentTimeNanos);
+        this.runTesters = new RunTesters(dtron, tester, joining);
         this.probes = new AdapterProbes(dtron, tester, inputDelays, this::testersOfOtherRuns, this::isPeerTester);
         Map<String, IDtronChannel> inputChannels = new LinkedHashMap<>();
         testInterface.inputs().forEach(c -> inputChannels.put(c.name(), channels.get(c.name())));
@@ -204,9 +199,7 @@ public final class BusRun implements AutoCloseable {
         dtron.addDtronListener(new DtronListener(Dtron.RUN_START) {
             @Override
             public void messageReceived(IDtronChannelValued message) {
-                if (joining && !message.getSender().equals(dtron.getMemberId())) {
-                    starts.add(message);
-                }
+                runTesters.started(message);
             }
         });
         dtron.addDtronListener(new DtronListener(Dtron.ACK) {
@@ -314,26 +307,12 @@ public final class BusRun implements AutoCloseable {
      * @throws InterruptedException if the thread was interrupted while waiting
      */
     public boolean readyToJoin(Duration timeout) throws InterruptedException {
-        long deadline = System.nanoTime() + timeout.toNanos();
-        while (!dtron.hasClockOffset()) {
-            if (System.nanoTime() >= deadline) {
-                return false;
-            }
-            Thread.sleep(10);
-        }
-        tester.setJoiningRun(true);
-        return true;
+        return runTesters.readyToJoin(timeout);
     }
 
     /** Returns the members that said they are testers ready to join the next run this run starts. */
     public List<String> joiningTesters() {
-        List<String> ready = new ArrayList<>();
-        tester.getMembersServedChannels().forEach((member, served) -> {
-            if (served.joinsRun() && dtron.getMembers().contains(member)) {
-                ready.add(member);
-            }
-        });
-        return ready;
+        return runTesters.ready();
     }
 
     /**
@@ -343,14 +322,7 @@ public final class BusRun implements AutoCloseable {
      * @throws InterruptedException if the thread was interrupted while waiting
      */
     public boolean awaitJoiningTesters(int count, Duration timeout) throws InterruptedException {
-        long deadline = System.nanoTime() + timeout.toNanos();
-        while (joiningTesters().size() < count) {
-            if (System.nanoTime() >= deadline) {
-                return false;
-            }
-            Thread.sleep(20);
-        }
-        return true;
+        return runTesters.awaitReady(count, timeout);
     }
 
     /**
@@ -363,8 +335,7 @@ public final class BusRun implements AutoCloseable {
      * @throws DtronException if the bus did not take the message
      */
     public long announceRun(long timeUnitMicros) {
-        joiners = Set.copyOf(joiningTesters());
-        peerVerdicts.clear();
+        runTesters.announce();
         runId = Long.toHexString(ThreadLocalRandom.current().nextLong() >>> 16);
         tester.setRunId(runId);
         long zero = dtron.currentTimeNanos() + RUN_LEAD.toNanos();
@@ -382,12 +353,11 @@ public final class BusRun implements AutoCloseable {
      * @throws InterruptedException if the thread was interrupted while waiting
      */
     public long awaitRun(Duration timeout) throws InterruptedException {
-        IDtronChannelValued start = starts.poll(timeout.toNanos(), TimeUnit.NANOSECONDS);
+        IDtronChannelValued start = runTesters.awaitStart(timeout);
         if (start == null) {
             return -1;
         }
         runId = start.getRunId();
-        peerVerdicts.clear();
         long zero = RunTimeline.zeroOf(start, dtron.getClockOffsetNanos());
         timeline.announce(zero);
         return zero;
@@ -400,27 +370,14 @@ public final class BusRun implements AutoCloseable {
      * {@link #stop()} ended.
      */
     public void finish(int verdictExitCode) {
-        if (!severalTesters()) {
+        if (!runTesters.several()) {
             return;
         }
-        try {
-            dtron.send(Dtron.RUN_VERDICT.constructValued(Map.of("verdict", verdictExitCode)));
-        } catch (DtronException | IllegalStateException e) {
-            LOG.warn("Cannot tell the other testers the verdict: {}", e.getMessage());
-        }
+        runTesters.tell(verdictExitCode);
         if (joining) {
             return;
         }
-        long deadline = System.nanoTime() + VERDICTS_TIMEOUT.toNanos();
-        while (!joiners.stream().allMatch(m -> peerVerdicts.containsKey(m) || !dtron.getMembers().contains(m))
-                && System.nanoTime() < deadline) {
-            try {
-                Thread.sleep(10);
-            } catch (InterruptedException e) {
-                Thread.currentThread().interrupt();
-                break;
-            }
-        }
+        runTesters.awaitVerdicts(VERDICTS_TIMEOUT);
         publishStop();
     }
 
@@ -464,12 +421,7 @@ public final class BusRun implements AutoCloseable {
 
     /** Returns the verdicts the other testers of the run told, as exit codes by member. */
     public Map<String, Integer> peerVerdicts() {
-        return Collections.unmodifiableMap(new TreeMap<>(peerVerdicts));
-    }
-
-    /** Whether this run has other testers: it joined one, or others joined it. */
-    private boolean severalTesters() {
-        return joining || !joiners.isEmpty();
+        return runTesters.verdicts();
     }
 
     /** Another tester of the run told its verdict: one other than PASSED ends this run too. */
@@ -477,8 +429,7 @@ public final class BusRun implements AutoCloseable {
         if (message.getSender().equals(dtron.getMemberId()) || ofOtherRun(message)) {
             return;
         }
-        int verdict = message.getVariables().get("verdict");
-        peerVerdicts.put(message.getSender(), verdict);
+        int verdict = runTesters.told(message);
         watched.remove(message.getSender()); // it may leave now
         if (running && verdict != 0) {
             context.inconclusive("tester " + message.getSender() + " of this run ended it " + (verdict == 2
@@ -784,7 +735,7 @@ public final class BusRun implements AutoCloseable {
         inputSentMicros.clear();
         heldPeerInputs.clear();
         window.newRun();
-        runLeader = joining ? dtron.getTester().orElse(null) : null;
+        runTesters.runStarts();
         owners.newRun();
         // the members and what they serve, on one view: the announcements of the members on the bus now that the
         // bus has delivered reach the listeners' thread (which keeps served, in order with the members' messages)
@@ -819,7 +770,7 @@ public final class BusRun implements AutoCloseable {
             running = true;
             return; // a run of several testers: its start was published before the engines started
         }
-        joiners = Set.of();
+        runTesters.alone();
         runId = Long.toHexString(ThreadLocalRandom.current().nextLong() >>> 16);
         tester.setRunId(runId);
         // a time unit beyond int range (35 minutes) does not occur in practice; the message carries an int
@@ -946,7 +897,7 @@ public final class BusRun implements AutoCloseable {
      */
     public void stop() {
         running = false;
-        if (!severalTesters()) {
+        if (!runTesters.several()) {
             publishStop();
         }
     }
@@ -1179,9 +1130,7 @@ public final class BusRun implements AutoCloseable {
 
     /** Whether a member is another tester of this run. */
     private boolean isPeerTester(String member) {
-        return joiners.contains(member) || joining && member.equals(dtron.getTester().orElse(null))
-                || Optional.ofNullable(tester.getMembersServedChannels().get(member)).map(ServedChannels::joinsRun)
-                        .orElse(false);
+        return runTesters.isPeer(member);
     }
 
     /** Adds a delay to a channel's interval in one direction. */
@@ -1215,7 +1164,7 @@ public final class BusRun implements AutoCloseable {
         LOG.info("Left the bus: {}; members now {}", left, members);
         // a tester of another run (refused because of this one) never served it, even if it said so only now
         List<String> gone = left.stream().filter(watched::remove)
-                .filter(m -> !tester.wasTester(m) || m.equals(runLeader)).toList();
+                .filter(m -> !tester.wasTester(m) || m.equals(runTesters.leader())).toList();
         if (running && !gone.isEmpty()) {
             gone.forEach(expected::remove); // reported here, not again by the start
             context.inconclusive("adapter member" + (gone.size() == 1 ? " " : "s ") + String.join(", ", gone)
