@@ -33,7 +33,8 @@ final class CommandModel {
      *                        make an interface
      */
     static TestInterface interfaceOf(Network network, Path interfaceFile) throws ModelException {
-        return interfaceFile == null ? TestInterface.fromNames(network) : TestInterface.fromFile(network, interfaceFile);
+        return interfaceFile == null ? TestInterface.fromNames(network)
+                : TestInterface.fromFile(network, interfaceFile);
     }
 
     /**

@@ -3,6 +3,7 @@ package io.dtron.cli;
 import io.dtron.api.DtronException;
 import io.dtron.api.DtronOptions;
 import io.dtron.bridge.BusBridge;
+import io.dtron.bridge.BusRunSequence;
 import io.dtron.engine.Adapter;
 import io.dtron.engine.Event;
 import io.dtron.engine.TestOptions;
@@ -276,7 +277,7 @@ final class ControlCommand implements Callable<Integer> {
             out.flush();
             Optional<String> refused;
             try {
-                refused = bridge.run().prepareForControl(Duration.ofSeconds(seconds));
+                refused = new BusRunSequence(bridge.run()).prepareForControl(Duration.ofSeconds(seconds));
             } catch (InterruptedException e) {
                 Thread.currentThread().interrupt();
                 err.println("dtron control: interrupted while waiting for the plant");

@@ -263,37 +263,6 @@ public final class BusRun implements AutoCloseable {
         }
     }
 
-    /**
-     * Before time 0 of a run whose engine side is a controller ({@code dtron control --bus}): the choreography a
-     * tester's run goes through, without its several-tester parts. Waits, {@code timeout} at most, until no
-     * tester of another run that joined the bus first is there (its adapters would serve both), and until the plant's
-     * adapters serve every channel of the model ({@link #unservedChannels()}); refuses outputs with two owners
-     * ({@link #ownersConflict()}); remembers the adapters ({@link #expectAdapters()}); and probes them until their
-     * round trips are steady ({@link #warmUp}), which sets how long commands take to reach them ({@link
-     * #inputDelayMicros}). Then {@link #start} starts the run.
-     *
-     * @return empty when the run can start, else why not, in one line
-     * @throws InterruptedException if the thread was interrupted while waiting
-     */
-    public Optional<String> prepareForControl(Duration timeout) throws InterruptedException {
-        List<String> first = testersThatJoinedFirst();
-        if (!first.isEmpty()) {
-            return Optional.of("tester " + String.join(", ", first) + " is on the bus with a run in progress, and its"
-                    + " adapters would serve both runs");
-        }
-        if (!awaitChannelsServed(timeout)) {
-            return Optional.of("within " + timeout.toSeconds() + " s no member on the bus served "
-                    + String.join(", ", unservedChannels()) + " (members: " + members() + ")");
-        }
-        Optional<String> conflict = ownersConflict();
-        if (conflict.isPresent()) {
-            return conflict;
-        }
-        expectAdapters();
-        warmUp(false);
-        return Optional.empty();
-    }
-
     /** Returns whether this run joins a run another tester starts. */
     public boolean isJoining() {
         return joining;

@@ -14,7 +14,8 @@ import java.util.concurrent.TimeUnit;
  * joins one), the probes before the run while the engine warms up, the delays measured and the reorder window they
  * give, and time 0 (announced to the testers that joined, or taken from the tester that starts the run). A command
  * says what happens through {@link Steps} and why a run cannot start from the {@link Refusal}; it starts the engine
- * with the {@link BusRun}'s {@link BusBridge} after it.
+ * with the {@link BusRun}'s {@link BusBridge} after it. A controller's run goes through the same steps but the
+ * several-tester ones ({@link #prepareForControl}).
  */
 public final class BusRunSequence {
     /** How long adapters that just joined get to add their listeners before the run starts. */
@@ -104,7 +105,7 @@ public final class BusRunSequence {
         OWNERS,
         /** A joining tester found no tester that starts a run within the wait. */
         NO_STARTING_TESTER,
-        /** Too few testers joined a run of several within the wait ({@link Refusal#count} of {@link Refusal#wanted}). */
+        /** Too few other testers joined the run within the wait ({@link Refusal#count} of {@link Refusal#wanted}). */
         TESTERS_MISSING,
         /** A joining tester saw no run start within the wait. */
         NO_RUN_STARTED,
@@ -232,6 +233,37 @@ public final class BusRunSequence {
             warming.join();
             steps.warmedUp();
         }
+    }
+
+    /**
+     * Before time 0 of a run whose engine side is a controller ({@code dtron control --bus}): the choreography a
+     * tester's run goes through, without its several-tester parts. Waits, {@code timeout} at most, until no tester of
+     * another run that joined the bus first is there (its adapters would serve both), and until the plant's adapters
+     * serve every channel of the model ({@link BusRun#unservedChannels()}); refuses outputs with two owners ({@link
+     * BusRun#ownersConflict()}); remembers the adapters ({@link BusRun#expectAdapters()}); and probes them until their
+     * round trips are steady ({@link BusRun#warmUp}), which sets how long commands take to reach them ({@link
+     * BusRun#inputDelayMicros}). Then {@link BusRun#start} starts the run.
+     *
+     * @return empty when the run can start, else why not, in one line
+     * @throws InterruptedException if the thread was interrupted while waiting
+     */
+    public Optional<String> prepareForControl(Duration timeout) throws InterruptedException {
+        List<String> first = run.testersThatJoinedFirst();
+        if (!first.isEmpty()) {
+            return Optional.of("tester " + String.join(", ", first) + " is on the bus with a run in progress, and its"
+                    + " adapters would serve both runs");
+        }
+        if (!run.awaitChannelsServed(timeout)) {
+            return Optional.of("within " + timeout.toSeconds() + " s no member on the bus served "
+                    + String.join(", ", run.unservedChannels()) + " (members: " + run.members() + ")");
+        }
+        Optional<String> conflict = run.ownersConflict();
+        if (conflict.isPresent()) {
+            return conflict;
+        }
+        run.expectAdapters();
+        run.warmUp(false);
+        return Optional.empty();
     }
 
     /** Waits until every channel of the model is served, saying what is missing now and then. */
