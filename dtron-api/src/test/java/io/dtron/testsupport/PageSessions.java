@@ -4,6 +4,7 @@ import static org.junit.jupiter.api.Assertions.assertFalse;
 
 import java.io.PrintWriter;
 import java.io.StringWriter;
+import java.nio.file.Path;
 import java.util.ArrayList;
 import java.util.List;
 import java.util.function.UnaryOperator;
@@ -64,6 +65,15 @@ public final class PageSessions {
             }
         }
         return sessions;
+    }
+
+    /**
+     * The words of sessions run in {@code folder}: a file name ending in one of {@code extensions} ("xml|trn", say)
+     * names the file there, and {@code models/target/classes} that folder of the checkout at {@code root}.
+     */
+    public static UnaryOperator<String> inFolder(Path folder, String extensions, Path root) {
+        return word -> word.matches("[\\w-]+\\.(" + extensions + ")") ? folder.resolve(word).toString()
+                : word.equals("models/target/classes") ? root.resolve(word).toString() : word;
     }
 
     /** Runs a session's command in this JVM; what it prints to its error stream holds no stack trace. */

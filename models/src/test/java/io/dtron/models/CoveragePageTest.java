@@ -34,9 +34,7 @@ class CoveragePageTest {
         Files.copy(ROOT.resolve("models/src/main/resources/io/dtron/models/ticker.xml"), dir.resolve("ticker.xml"));
         DocPage page = DocPage.read("coverage.md");
         List<String> exits = new ArrayList<>();
-        for (PageSessions.Session s : PageSessions.of(page, word -> word.matches("[\\w-]+\\.(xml|trn|json|jsonl)")
-                ? dir.resolve(word).toString() : word.equals("models/target/classes") ? ROOT.resolve(word).toString()
-                : word)) {
+        for (PageSessions.Session s : PageSessions.of(page, PageSessions.inFolder(dir, "xml|trn|json|jsonl", ROOT))) {
             PageSessions.Printed run = PageSessions.run(DtronCommand::run, s);
             List<String> printed = new ArrayList<>(ShellWords.lines(run.out(), dir));
             printed.addAll(ShellWords.lines(run.err(), dir));

@@ -31,9 +31,7 @@ class GoalsPageTest {
         Files.writeString(dir.resolve("lamp-traps.xta"), page.blocks("xta").get(0));
         Files.writeString(dir.resolve("lamp-traps-2.xta"), page.blocks("xta").get(1));
         List<String> exits = new ArrayList<>();
-        for (PageSessions.Session s : PageSessions.of(page, word -> word.matches("[\\w-]+\\.(xml|trn|xta)")
-                ? dir.resolve(word).toString() : word.equals("models/target/classes") ? ROOT.resolve(word).toString()
-                : word)) {
+        for (PageSessions.Session s : PageSessions.of(page, PageSessions.inFolder(dir, "xml|trn|xta", ROOT))) {
             PageSessions.Printed run = PageSessions.run(DtronCommand::run, s);
             List<String> printed = new ArrayList<>(ShellWords.lines(run.out(), dir));
             printed.addAll(ShellWords.lines(run.err(), dir));

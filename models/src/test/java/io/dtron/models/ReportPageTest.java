@@ -37,9 +37,7 @@ class ReportPageTest {
         Files.copy(ReportBrowserTest.SHARED.resolve("tron/LightContr.trn"), dir.resolve("LightContr.trn"));
         DocPage page = DocPage.read("report.md");
         List<String> ran = new ArrayList<>();
-        for (PageSessions.Session s : PageSessions.of(page, word -> word.matches("[\\w-]+\\.(xml|trn|jsonl|html)")
-                ? dir.resolve(word).toString() : word.equals("models/target/classes") ? ROOT.resolve(word).toString()
-                : word)) {
+        for (PageSessions.Session s : PageSessions.of(page, PageSessions.inFolder(dir, "xml|trn|jsonl|html", ROOT))) {
             PageSessions.Printed run = PageSessions.run(DtronCommand::run, s);
             List<String> args = s.args();
             List<String> lines = s.expected();
