@@ -15,6 +15,7 @@ import io.dtron.bridge.internal.ChannelOwners;
 import io.dtron.bridge.internal.InputDelays;
 import io.dtron.bridge.internal.LatencyRecorder;
 import io.dtron.bridge.internal.ReorderWindow;
+import io.dtron.bridge.internal.RunMembers;
 import io.dtron.bridge.internal.RunTesters;
 import io.dtron.bridge.internal.RunTimeline;
 import io.dtron.engine.AdapterContext;
@@ -98,8 +99,6 @@ public final class BusRun implements AutoCloseable {
      * serves what), so that it decides which members serve the run on one view (see {@link #startRun}).
      */
     static final Duration CATCH_UP_TIMEOUT = Duration.ofSeconds(2);
-    /** How long a tester waits for every member on the bus to tell whether it is a tester. */
-    static final Duration ROLL_CALL = Duration.ofSeconds(3);
     /** The smallest automatic reorder window, in microseconds (see {@link Delays#autoWindowMicros()}). */
     public static final long AUTO_WINDOW_FLOOR_MICROS = ReorderWindow.AUTO_FLOOR_MICROS;
     /** How many times the longest delay measured before a run the automatic reorder window allows for. */
@@ -123,10 +122,8 @@ public final class BusRun implements AutoCloseable {
     private final ChannelOwners owners;
     /** What the other members serve, in the bus's order with their messages (the listeners' thread keeps it). */
     private volatile Map<String, ServedChannels> served;
-    /** The adapters the tester waited for ({@link #expectAdapters}): each must still be there at the start. */
-    private final Set<String> expected = ConcurrentHashMap.newKeySet();
-    /** Whether every channel of the model was served by the handshake when {@link #expectAdapters} was called. */
-    private volatile boolean expectedByHandshake;
+    /** Who is on the bus for the run: what the members serve, the testers of other runs, the awaited adapters. */
+    private final RunMembers runMembers;
     private final AtomicBoolean warnedBeforeStart = new AtomicBoolean();
     private final AtomicLong outputsAfterEnd = new AtomicLong();
     private volatile CountDownLatch ownStop = new CountDownLatch(1);
@@ -173,6 +170,7 @@ public final class BusRun implements AutoCloseable {
         this.inputs = Map.copyOf(inputChannels);
         this.outputs = Set.copyOf(testInterface.outputs().stream().map(TestInterface.ObservableChannel::name).toList());
         this.owners = new ChannelOwners(inputs.keySet(), outputs);
+        this.runMembers = new RunMembers(dtron, tester, inputs.keySet(), outputs, joining);
         tester.addServedChannelsListener(this::servedChanged);
         this.served = tester.getMembersServedChannels();
         for (IDtronChannel channel : channels.values()) {
@@ -451,16 +449,7 @@ public final class BusRun implements AutoCloseable {
      * @throws InterruptedException if the thread was interrupted while waiting
      */
     public boolean awaitAdapters(int count, Duration timeout) throws InterruptedException {
-        long deadline = System.nanoTime() + timeout.toNanos();
-        // testers of other runs are no adapters of this one
-        while (dtron.getMembers().size() - 1 - tester.getOtherTesters().size() < count) {
-            long left = deadline - System.nanoTime();
-            if (left <= 0) {
-                return false;
-            }
-            dtron.awaitMembers(dtron.getMembers().size() + 1, Duration.ofNanos(Math.min(left, 100_000_000L)));
-        }
-        return true;
+        return runMembers.awaitAdapters(count, timeout);
     }
 
     /**
@@ -469,19 +458,7 @@ public final class BusRun implements AutoCloseable {
      * output no member declared or sent; empty when every channel is served. Testers of other runs do not count.
      */
     public List<String> unservedChannels() {
-        Set<String> receivers = new java.util.HashSet<>();
-        Set<String> senders = new java.util.HashSet<>();
-        Set<String> testers = testersOfOtherRuns();
-        tester.getMembersServedChannels().forEach((member, served) -> {
-            if (!testers.contains(member)) {
-                receivers.addAll(served.receives());
-                senders.addAll(served.sends());
-            }
-        });
-        List<String> missing = new ArrayList<>();
-        inputs.keySet().stream().filter(c -> !receivers.contains(c)).sorted().forEach(c -> missing.add("input " + c));
-        outputs.stream().filter(c -> !senders.contains(c)).sorted().forEach(c -> missing.add("output " + c));
-        return missing;
+        return runMembers.unservedChannels();
     }
 
     /**
@@ -491,21 +468,12 @@ public final class BusRun implements AutoCloseable {
      * @throws InterruptedException if the thread was interrupted while waiting
      */
     public boolean awaitChannelsServed(Duration timeout) throws InterruptedException {
-        long deadline = System.nanoTime() + timeout.toNanos();
-        while (!unservedChannels().isEmpty()) {
-            if (System.nanoTime() >= deadline) {
-                return false;
-            }
-            Thread.sleep(20);
-        }
-        return true;
+        return runMembers.awaitChannelsServed(timeout);
     }
 
     /** Returns what each adapter member on the bus said it serves, by member id (testers left out). */
     public Map<String, ServedChannels> servedChannels() {
-        Map<String, ServedChannels> served = new TreeMap<>(tester.getMembersServedChannels());
-        served.keySet().removeAll(testersOfOtherRuns());
-        return Collections.unmodifiableMap(served);
+        return runMembers.servedChannels();
     }
 
     /**
@@ -513,11 +481,7 @@ public final class BusRun implements AutoCloseable {
      * joining tester, the one whose run it joins.
      */
     private Set<String> testersOfOtherRuns() {
-        Set<String> testers = new java.util.HashSet<>(tester.getOtherTesters());
-        if (joining) {
-            dtron.getTester().ifPresent(testers::remove);
-        }
-        return testers;
+        return runMembers.testersOfOtherRuns();
     }
 
     /**
@@ -668,11 +632,7 @@ public final class BusRun implements AutoCloseable {
      * (a member that left without serving one, such as a tester refused because of this run, changes nothing).
      */
     public void expectAdapters() {
-        Set<String> testers = tester.getOtherTesters();
-        expected.clear();
-        dtron.getMembers().stream().filter(m -> !m.equals(dtron.getMemberId()) && !testers.contains(m))
-                .forEach(expected::add);
-        expectedByHandshake = unservedChannels().isEmpty();
+        runMembers.expectAdapters();
     }
 
     /**
@@ -685,16 +645,7 @@ public final class BusRun implements AutoCloseable {
         // what the tester checked before the start may have changed since: a member that joined in between
         ownersConflict().ifPresent(conflict -> context.inconclusive(conflict));
         // the awaited adapters that were no longer members at the start (those that leave later are watched)
-        Set<String> present = startMembers;
-        List<String> goneBeforeStart = expected.stream().filter(m -> !present.contains(m)).sorted().toList();
-        expected.clear();
-        List<String> unserved = expectedByHandshake ? unservedChannels() : List.of();
-        if (!goneBeforeStart.isEmpty() && (!expectedByHandshake || !unserved.isEmpty())) {
-            context.inconclusive("adapter member" + (goneBeforeStart.size() == 1 ? " " : "s ")
-                    + String.join(", ", goneBeforeStart) + " left the bus before the run started (members now "
-                    + dtron.getMembers() + ")" + (unserved.isEmpty() ? "" : ", and no adapter serves "
-                    + String.join(", ", unserved) + " any more") + "; the system under test may be gone");
-        }
+        runMembers.goneBeforeStart(startMembers).ifPresent(context::inconclusive);
     }
 
     private void startRun(AdapterContext runContext) {
@@ -801,34 +752,14 @@ public final class BusRun implements AutoCloseable {
      * Returns the testers of other runs (see {@link #otherTesters()}) that joined the bus before this run, once
      * every other member has told whether it is a tester: it answered this tester's greeting in the
      * channel-serving handshake (a tester says that it is one), or greeted the bus as a tester. Members that never
-     * tell (adapters built against an API without the handshake) are waited for, {@link #ROLL_CALL} at most. Of two
+     * tell (adapters built against an API without the handshake) are waited for, three seconds at most. Of two
      * testers that meet on one bus, the one that joined first starts its run and the other, finding it here, does not:
      * the members' order on the bus is the same for all of them.
      *
      * @throws InterruptedException if the thread was interrupted while waiting
      */
     public List<String> testersThatJoinedFirst() throws InterruptedException {
-        long deadline = System.nanoTime() + ROLL_CALL.toNanos();
-        while (!silentMembers().isEmpty() && System.nanoTime() < deadline) {
-            Thread.sleep(20);
-        }
-        List<String> members = dtron.getMembers();
-        Set<String> testers = testersOfOtherRuns();
-        List<String> first = members.subList(0, Math.max(0, members.indexOf(dtron.getMemberId()))).stream()
-                .filter(testers::contains).toList();
-        List<String> later = members.stream().filter(testers::contains).filter(m -> !first.contains(m)).toList();
-        if (!later.isEmpty()) {
-            LOG.info("Testers {} joined bus after this one; they leave this run to it", later);
-        }
-        return first;
-    }
-
-    /** The other members that have not told yet whether they are testers. */
-    private List<String> silentMembers() {
-        Set<String> told = new java.util.HashSet<>(tester.getMembersServedChannels().keySet());
-        told.addAll(tester.getOtherTesters());
-        told.add(dtron.getMemberId());
-        return dtron.getMembers().stream().filter(m -> !told.contains(m)).toList();
+        return runMembers.testersThatJoinedFirst();
     }
 
     /** Returns the id of the current (or last) run, which its messages carry; "" before the first. */
@@ -1135,7 +1066,7 @@ public final class BusRun implements AutoCloseable {
         List<String> gone = left.stream().filter(watched::remove)
                 .filter(m -> !tester.wasTester(m) || m.equals(runTesters.leader())).toList();
         if (running && !gone.isEmpty()) {
-            gone.forEach(expected::remove); // reported here, not again by the start
+            gone.forEach(runMembers::left); // reported here, not again by the start
             context.inconclusive("adapter member" + (gone.size() == 1 ? " " : "s ") + String.join(", ", gone)
                     + " left the bus (members now " + members + "); the system under test may be gone");
         }
