@@ -12,6 +12,7 @@ import io.dtron.api.internal.SerialExecutor;
 import io.dtron.api.internal.Stamp;
 import io.dtron.api.internal.SyncCodec;
 import io.dtron.api.internal.TesterSide;
+import io.dtron.api.internal.TestHooks;
 import io.dtron.api.internal.proto.Sync;
 import io.dtron.bus.BusMessage;
 import io.dtron.bus.MembershipView;
@@ -262,7 +263,7 @@ public final class Dtron implements AutoCloseable {
             return Map.copyOf(copy);
         });
         this.dispatcher = new SerialExecutor("dtron-listeners-" + transport.localMember());
-        this.clockShiftNanos = options.getClockShiftForTesting().toNanos();
+        this.clockShiftNanos = TestHooks.clockShift(options).toNanos();
         this.hostClock = clockShiftNanos == 0 ? HostClock.id() : "";
         this.clockSync = new ClockSync(transport.localMember(), hostClock, options.isTester(), this::currentTimeNanos,
                 sequence::incrementAndGet, this::publishControl, this::offsetChanged);
@@ -591,7 +592,7 @@ public final class Dtron implements AutoCloseable {
 
     /**
      * Returns this member's wall clock in nanoseconds since the epoch, as it stamps messages: {@link
-     * java.time.Instant#now()}, plus the shift of {@link DtronOptions.Builder#clockShiftForTesting} in tests.
+     * java.time.Instant#now()}, plus the shift of {@link TestHooks#clockShift(DtronOptions.Builder, Duration)} in tests.
      */
     public long currentTimeNanos() {
         return EpochClock.nowNanos() + clockShiftNanos;

@@ -1,5 +1,6 @@
 package io.dtron.api;
 
+import io.dtron.api.internal.TestHooks;
 import java.net.InetAddress;
 import java.net.InetSocketAddress;
 import java.nio.file.Path;
@@ -70,6 +71,10 @@ public final class DtronOptions {
     private final Optional<Path> natsNkeyFile;
     private final Optional<Path> natsTlsCaFile;
     private final int natsReplicas;
+
+    static {
+        TestHooks.grant((builder, shift) -> builder.clockShift = shift, options -> options.clockShift);
+    }
 
     private DtronOptions(Builder b) {
         clusterName = b.clusterName;
@@ -167,11 +172,6 @@ public final class DtronOptions {
     /** Returns whether this member is the tester, which announces itself and answers clock-offset pings. */
     public boolean isTester() {
         return tester;
-    }
-
-    /** Returns the shift added to this member's wall clock, for tests only; zero normally. */
-    public Duration getClockShiftForTesting() {
-        return clockShift;
     }
 
     /** Returns the NATS server URLs of the bus; empty for the embedded JGroups bus. Immutable. */
@@ -468,15 +468,6 @@ public final class DtronOptions {
          */
         public Builder tester(boolean on) {
             tester = on;
-            return this;
-        }
-
-        /**
-         * For tests only: adds {@code shift} to every time this member reads from its wall clock (publish, event,
-         * receive and ping times, the run clock), as if its host's clock were off by that much (default: zero).
-         */
-        public Builder clockShiftForTesting(Duration shift) {
-            clockShift = Objects.requireNonNull(shift, "shift");
             return this;
         }
 

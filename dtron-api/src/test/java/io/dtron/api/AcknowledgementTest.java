@@ -1,5 +1,6 @@
 package io.dtron.api;
 
+import io.dtron.api.internal.TestHooks;
 import io.dtron.api.internal.TesterSide;
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertFalse;
@@ -38,8 +39,8 @@ class AcknowledgementTest {
         // the tester declares its model's channels, as a bridge does: DTRON's own need no declaring
         tester = Dtron.connect(TestClusters.inJvm(cluster).memberName("tester").tester(true)
                 .channels(List.of(MOVE, DONE, Dtron.RUN_START, Dtron.RUN_STOP)).build());
-        adapter = Dtron.connect(TestClusters.inJvm(cluster).memberName("adapter")
-                .clockShiftForTesting(Duration.ofMillis(20)).build());
+        adapter = Dtron.connect(TestHooks.clockShift(TestClusters.inJvm(cluster).memberName("adapter"),
+                Duration.ofMillis(20)).build());
         assertTrue(tester.awaitMembers(2, Duration.ofSeconds(10)));
         acks = new Inbox(Dtron.ACK);
         tester.addDtronListener(acks);

@@ -1,5 +1,6 @@
 package io.dtron.api;
 
+import io.dtron.api.internal.TestHooks;
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertTrue;
@@ -42,10 +43,10 @@ class ClockOffsetTest {
     void membersInOneJvmEstimateTheirShiftWithinTheBound() throws Exception {
         String cluster = TestClusters.uniqueName("offset");
         try (Dtron tester = Dtron.connect(TestClusters.inJvm(cluster).memberName("tester").tester(true).build());
-                Dtron ahead = Dtron.connect(TestClusters.inJvm(cluster).memberName("ahead")
-                        .clockShiftForTesting(Duration.ofMillis(SHIFT_MILLIS)).build());
-                Dtron behind = Dtron.connect(TestClusters.inJvm(cluster).memberName("behind")
-                        .clockShiftForTesting(Duration.ofMillis(-SHIFT_MILLIS)).build())) {
+                Dtron ahead = Dtron.connect(TestHooks.clockShift(TestClusters.inJvm(cluster).memberName("ahead"),
+                        Duration.ofMillis(SHIFT_MILLIS)).build());
+                Dtron behind = Dtron.connect(TestHooks.clockShift(TestClusters.inJvm(cluster).memberName("behind"),
+                        Duration.ofMillis(-SHIFT_MILLIS)).build())) {
             awaitOffset(ahead);
             awaitOffset(behind);
             assertEquals(Optional.of("tester"), ahead.getTester());
@@ -186,8 +187,8 @@ class ClockOffsetTest {
     @Test
     void currentTimeIsTheWallClockPlusTheShift() {
         String cluster = TestClusters.uniqueName("shift");
-        try (Dtron shifted = Dtron.connect(TestClusters.inJvm(cluster)
-                .clockShiftForTesting(Duration.ofMillis(SHIFT_MILLIS)).build())) {
+        try (Dtron shifted = Dtron.connect(TestHooks.clockShift(TestClusters.inJvm(cluster),
+                Duration.ofMillis(SHIFT_MILLIS)).build())) {
             long difference = shifted.currentTimeNanos() - EpochClock.nowNanos();
             assertTrue(Math.abs(difference - SHIFT_MILLIS * 1_000_000) < 20_000_000, difference + " ns");
         }

@@ -1,5 +1,6 @@
 package io.dtron.api;
 
+import io.dtron.api.internal.TestHooks;
 import io.dtron.api.internal.TesterSide;
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertNotEquals;
@@ -82,8 +83,8 @@ class EventTimeTest {
     @Test
     void theRunIdOfTheTesterTravelsWithTheRunsMessages() throws Exception {
         try (Dtron tester = Dtron.connect(TestClusters.inJvm(cluster).memberName("tester").tester(true).build());
-                Dtron adapter = Dtron.connect(TestClusters.inJvm(cluster).memberName("adapter")
-                        .clockShiftForTesting(Duration.ofMillis(-40)).build())) {
+                Dtron adapter = Dtron.connect(TestHooks.clockShift(TestClusters.inJvm(cluster).memberName("adapter"),
+                        Duration.ofMillis(-40)).build())) {
             ClockOffsetTest.awaitOffset(adapter);
             Inbox starts = new Inbox(Dtron.RUN_START);
             Inbox stops = new Inbox(Dtron.RUN_STOP);

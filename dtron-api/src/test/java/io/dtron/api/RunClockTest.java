@@ -1,5 +1,6 @@
 package io.dtron.api;
 
+import io.dtron.api.internal.TestHooks;
 import io.dtron.api.internal.TesterSide;
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertFalse;
@@ -107,10 +108,10 @@ class RunClockTest {
     @Test
     void aTaskFiresAtTheTestersRunTimeThoughRunStartArrivedLateAtAShiftedMember() throws Exception {
         try (Dtron tester = Dtron.connect(TestClusters.inJvm(cluster).memberName("tester").tester(true).build());
-                Dtron ahead = Dtron.connect(TestClusters.inJvm(cluster).memberName("ahead")
-                        .clockShiftForTesting(Duration.ofMillis(50)).build());
-                Dtron behind = Dtron.connect(TestClusters.inJvm(cluster).memberName("behind")
-                        .clockShiftForTesting(Duration.ofMillis(-50)).build())) {
+                Dtron ahead = Dtron.connect(TestHooks.clockShift(TestClusters.inJvm(cluster).memberName("ahead"),
+                        Duration.ofMillis(50)).build());
+                Dtron behind = Dtron.connect(TestHooks.clockShift(TestClusters.inJvm(cluster).memberName("behind"),
+                        Duration.ofMillis(-50)).build())) {
             Inbox starts = new Inbox(Dtron.RUN_START);
             tester.addDtronListener(starts);
             ClockOffsetTest.awaitOffset(ahead);
@@ -144,8 +145,8 @@ class RunClockTest {
     void theClockFollowsAnEstimateThatComesAfterRunStartAndNeverGoesBack() throws Exception {
         // no tester option: the member learns the tester from RUN_START, while its clock is 50 ms ahead
         try (Dtron tester = Dtron.connect(TestClusters.inJvm(cluster).memberName("tester").build());
-                Dtron ahead = Dtron.connect(TestClusters.inJvm(cluster).memberName("ahead")
-                        .clockShiftForTesting(Duration.ofMillis(50)).build())) {
+                Dtron ahead = Dtron.connect(TestHooks.clockShift(TestClusters.inJvm(cluster).memberName("ahead"),
+                        Duration.ofMillis(50)).build())) {
             assertTrue(tester.awaitMembers(2, Duration.ofSeconds(10)));
             Inbox starts = new Inbox(Dtron.RUN_START);
             tester.addDtronListener(starts);
@@ -173,8 +174,8 @@ class RunClockTest {
     @Test
     void fixedRateTasksFireAtMultiplesOfThePeriodUntilTheRunStops() throws Exception {
         try (Dtron tester = Dtron.connect(TestClusters.inJvm(cluster).memberName("tester").tester(true).build());
-                Dtron member = Dtron.connect(TestClusters.inJvm(cluster).memberName("member")
-                        .clockShiftForTesting(Duration.ofMillis(-30)).build())) {
+                Dtron member = Dtron.connect(TestHooks.clockShift(TestClusters.inJvm(cluster).memberName("member"),
+                        Duration.ofMillis(-30)).build())) {
             Inbox starts = new Inbox(Dtron.RUN_START);
             Inbox stops = new Inbox(Dtron.RUN_STOP);
             tester.addDtronListener(starts);

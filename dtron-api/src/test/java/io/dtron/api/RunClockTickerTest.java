@@ -1,5 +1,6 @@
 package io.dtron.api;
 
+import io.dtron.api.internal.TestHooks;
 import io.dtron.api.internal.TesterSide;
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertNotNull;
@@ -123,8 +124,8 @@ class RunClockTickerTest {
     void ticksAtTheTestersRunTimesAndRestartsAtTheResetsRunTime() throws Exception {
         String cluster = TestClusters.uniqueName("runClockTicker");
         try (Dtron tester = Dtron.connect(TestClusters.inJvm(cluster).memberName("tester").tester(true).build());
-                Dtron adapter = Dtron.connect(TestClusters.inJvm(cluster).memberName("ticker")
-                        .clockShiftForTesting(Duration.ofMillis(80)).build());
+                Dtron adapter = Dtron.connect(TestHooks.clockShift(TestClusters.inJvm(cluster).memberName("ticker"),
+                        Duration.ofMillis(80)).build());
                 RunClockTicker ticker = new RunClockTicker()) {
             ticker.start(adapter);
             BlockingQueue<Mark> marks = markAfterEachDueTime(adapter);

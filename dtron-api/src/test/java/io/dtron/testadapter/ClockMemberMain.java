@@ -1,5 +1,6 @@
 package io.dtron.testadapter;
 
+import io.dtron.api.internal.TestHooks;
 import io.dtron.api.Dtron;
 import io.dtron.api.DtronListener;
 import io.dtron.api.DtronOptions;
@@ -37,8 +38,8 @@ public final class ClockMemberMain {
 
     public static void main(String[] args) throws InterruptedException {
         CountDownLatch quitting = new CountDownLatch(1);
-        DtronOptions options = FreePorts.onPort(DtronOptions.builder().clusterName(args[0]).memberName(args[1])
-                .clockShiftForTesting(Duration.ofMillis(Long.parseLong(args[2]))), args, 3).build();
+        DtronOptions options = FreePorts.onPort(TestHooks.clockShift(DtronOptions.builder().clusterName(args[0])
+                .memberName(args[1]), Duration.ofMillis(Long.parseLong(args[2]))), args, 3).build();
         try (Dtron dtron = Dtron.connect(options)) {
             addListeners(dtron, quitting);
             Waits.await("a clock offset estimate").until(dtron::hasClockOffset);

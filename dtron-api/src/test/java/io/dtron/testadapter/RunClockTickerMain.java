@@ -1,5 +1,6 @@
 package io.dtron.testadapter;
 
+import io.dtron.api.internal.TestHooks;
 import io.dtron.api.Dtron;
 import io.dtron.api.DtronOptions;
 import io.dtron.testsupport.FreePorts;
@@ -19,8 +20,8 @@ public final class RunClockTickerMain {
     }
 
     public static void main(String[] args) throws InterruptedException {
-        DtronOptions options = FreePorts.onPort(DtronOptions.builder().clusterName(args[0]).memberName(args[1])
-                .clockShiftForTesting(Duration.ofMillis(Long.parseLong(args[3]))), args, 5).build();
+        DtronOptions options = FreePorts.onPort(TestHooks.clockShift(DtronOptions.builder().clusterName(args[0])
+                .memberName(args[1]), Duration.ofMillis(Long.parseLong(args[3]))), args, 5).build();
         CountDownLatch testersGone = new CountDownLatch(Integer.parseInt(args[4]));
         boolean done;
         try (Dtron dtron = Dtron.connect(options); RunClockTicker ticker = new RunClockTicker(args[2])) {

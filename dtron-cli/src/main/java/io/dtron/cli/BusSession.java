@@ -5,10 +5,11 @@ import io.dtron.api.DtronAdapter;
 import io.dtron.api.DtronOptions;
 import io.dtron.bridge.BusBridge;
 import io.dtron.bridge.BusRun;
+import io.dtron.bridge.BusRunSequence;
 import io.dtron.model.TestInterface;
 import java.io.PrintWriter;
-import java.util.function.Supplier;
 import java.time.Duration;
+import java.util.function.Supplier;
 import java.util.ArrayList;
 import java.util.List;
 import java.util.Locale;
@@ -22,8 +23,6 @@ import org.slf4j.LoggerFactory;
  */
 final class BusSession implements AutoCloseable {
     private static final Logger LOG = LoggerFactory.getLogger(BusSession.class);
-    /** How long adapters that just joined get to add their listeners before the run starts. */
-    private static final Duration SETTLE = Duration.ofMillis(250);
 
     private final Supplier<DtronOptions.Builder> options;
     private final BusBridge bridge;
@@ -74,28 +73,13 @@ final class BusSession implements AutoCloseable {
 
     /**
      * Waits until {@code count} members other than the tester are on the bus, then a short while for the last
-     * ones to add their listeners.
+     * ones to add their listeners (see {@link BusRunSequence#awaitAdapters}).
      *
      * @return whether they came before the timeout
      * @throws InterruptedException if the thread was interrupted while waiting
      */
     boolean awaitAdapters(int count, Duration timeout) throws InterruptedException {
-        if (!bridge.run().awaitAdapters(count, timeout)) {
-            return false;
-        }
-        Thread.sleep(SETTLE.toMillis());
-        return true;
-    }
-
-    /**
-     * Returns the testers of other runs on this bus that joined it before this one, once every member has told
-     * whether it is a tester (see {@link BusRun#testersThatJoinedFirst}): a run here would share their adapters.
-     * Called before this JVM's adapters join, so that a tester that does not start leaves no adapter behind.
-     *
-     * @throws InterruptedException if the thread was interrupted while waiting
-     */
-    List<String> testersThatJoinedFirst() throws InterruptedException {
-        return bridge.run().testersThatJoinedFirst();
+        return new BusRunSequence(run()).awaitAdapters(count, timeout);
     }
 
     /**

@@ -3,6 +3,7 @@ package io.dtron.cli;
 import io.dtron.api.DtronException;
 import io.dtron.api.DtronOptions;
 import io.dtron.bridge.BusBridge;
+import io.dtron.bridge.BusRunSequence;
 import io.dtron.engine.Adapter;
 import io.dtron.engine.Event;
 import io.dtron.engine.TestOptions;
@@ -221,8 +222,7 @@ final class ControlCommand implements Callable<Integer> {
             default -> throw usage("--policy must be eager, random or goal: " + policy);
         };
         Network network = ModelLoader.load(model);
-        TestInterface testInterface = interfaceFile == null ? TestInterface.fromNames(network)
-                : TestInterface.fromFile(network, interfaceFile);
+        TestInterface testInterface = CommandModel.interfaceOf(network, interfaceFile);
         if (testInterface.inputs().isEmpty()) {
             err.println("dtron control: " + model + " has no commands: name the controller's channels i_x, or give"
                     + " --interface FILE.trn");
@@ -306,7 +306,7 @@ final class ControlCommand implements Callable<Integer> {
             out.flush();
             Optional<String> refused;
             try {
-                refused = bridge.run().prepareForControl(Duration.ofSeconds(seconds));
+                refused = new BusRunSequence(bridge.run()).prepareForControl(Duration.ofSeconds(seconds));
             } catch (InterruptedException e) {
                 Thread.currentThread().interrupt();
                 err.println("dtron control: interrupted while waiting for the plant");
@@ -323,7 +323,7 @@ final class ControlCommand implements Callable<Integer> {
                     versions.listen();
                 }
                 out.println("dtron control: every command and reading is served"
-                        + RunCommand.servedSummary(bridge.run()) + (versions == null ? "" : "; model versions are"
+                        + BusRunLines.servedSummary(bridge.run()) + (versions == null ? "" : "; model versions are"
                         + " taken from the bus"));
                 out.flush();
                 exit = run(controller, testInterface, unit, out);

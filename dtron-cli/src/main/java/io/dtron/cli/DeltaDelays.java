@@ -112,8 +112,7 @@ final class DeltaDelays {
             throw new Refusal(JvmLimits.modelTooLarge(command, model));
         }
         try {
-            testInterface = interfaceFile == null ? TestInterface.fromNames(network)
-                    : TestInterface.fromFile(network, interfaceFile);
+            testInterface = CommandModel.interfaceOf(network, interfaceFile);
         } catch (ModelException e) {
             CheckCommand.printErrors(interfaceFile == null ? model : interfaceFile, e, err);
             return null;

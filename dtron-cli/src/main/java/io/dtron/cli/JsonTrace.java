@@ -2,6 +2,7 @@ package io.dtron.cli;
 
 import io.dtron.api.BusRecord;
 import io.dtron.bridge.BusBridge;
+import io.dtron.engine.JsonString;
 import io.dtron.engine.Adapter;
 import io.dtron.engine.Event;
 import io.dtron.engine.OnlineTester;
@@ -255,26 +256,8 @@ final class JsonTrace implements TestListener {
         }
     }
 
-    /** A JSON string literal. */
+    /** A JSON string literal (see {@link JsonString}). */
     static String quote(String s) {
-        StringBuilder sb = new StringBuilder("\"");
-        for (int i = 0; i < s.length(); i++) {
-            char c = s.charAt(i);
-            switch (c) {
-                case '"' -> sb.append("\\\"");
-                case '\\' -> sb.append("\\\\");
-                case '\n' -> sb.append("\\n");
-                case '\r' -> sb.append("\\r");
-                case '\t' -> sb.append("\\t");
-                default -> {
-                    if (c < 0x20) {
-                        sb.append(String.format("\\u%04x", (int) c));
-                    } else {
-                        sb.append(c);
-                    }
-                }
-            }
-        }
-        return sb.append('"').toString();
+        return JsonString.quote(s);
     }
 }

@@ -123,8 +123,7 @@ final class ModelVersionFile implements AutoCloseable {
         List<Query> queries;
         try {
             network = loader.load();
-            testInterface = interfaceFile == null ? TestInterface.fromNames(network)
-                    : TestInterface.fromFile(network, interfaceFile);
+            testInterface = CommandModel.interfaceOf(network, interfaceFile);
             queries = ownQueries != null ? Query.parseFile(ownQueries) : queriesFor(network, started);
         } catch (ModelException e) {
             sink.unloadable(label, "it does not load: " + e.getMessage().lines().findFirst().orElse(""));

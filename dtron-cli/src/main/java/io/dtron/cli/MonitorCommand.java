@@ -6,8 +6,6 @@ import io.dtron.engine.monitor.Alarm;
 import io.dtron.engine.monitor.Monitor;
 import io.dtron.engine.monitor.MonitorOptions;
 import io.dtron.engine.verify.QueryException;
-import io.dtron.model.ModelException;
-import io.dtron.model.ModelLoader;
 import io.dtron.model.Network;
 import io.dtron.model.TestInterface;
 import java.io.IOException;
@@ -94,19 +92,12 @@ final class MonitorCommand implements Callable<Integer> {
             err.println("dtron monitor: cannot read " + replay);
             return 1;
         }
-        Network network;
-        TestInterface testInterface;
-        try {
-            network = ModelLoader.load(model);
-            testInterface = interfaceFile == null ? TestInterface.fromNames(network)
-                    : TestInterface.fromFile(network, interfaceFile);
-        } catch (ModelException e) {
-            CheckCommand.printErrors(model, e, err);
-            return 1;
-        } catch (OutOfMemoryError e) {
-            err.println("dtron monitor: " + JvmLimits.modelTooLarge("monitor", model));
+        CommandModel.Loaded loaded = CommandModel.load("monitor", model, interfaceFile, err);
+        if (loaded == null) {
             return 1;
         }
+        Network network = loaded.network();
+        TestInterface testInterface = loaded.testInterface();
         if (testInterface.inputs().isEmpty() && testInterface.outputs().isEmpty()) {
             err.println("dtron monitor: " + model + " has no observable channels: name channels i_x / o_y, or give"
                     + " --interface FILE.trn");

@@ -11,8 +11,6 @@ import io.dtron.engine.sim.Mutant;
 import io.dtron.engine.sim.MutationReport;
 import io.dtron.engine.sim.Mutants;
 import io.dtron.engine.verify.QueryException;
-import io.dtron.model.ModelException;
-import io.dtron.model.ModelLoader;
 import io.dtron.model.Network;
 import io.dtron.model.TestInterface;
 import java.io.IOException;
@@ -121,19 +119,12 @@ final class MutantsCommand implements Callable<Integer> {
         if (junit != null && JunitXml.folderProblem(junit) != null) {
             throw usage(JunitXml.folderProblem(junit));
         }
-        Network network;
-        TestInterface testInterface;
-        try {
-            network = ModelLoader.load(model);
-            testInterface = interfaceFile == null ? TestInterface.fromNames(network)
-                    : TestInterface.fromFile(network, interfaceFile);
-        } catch (ModelException e) {
-            CheckCommand.printErrors(model, e, err);
-            return 1;
-        } catch (OutOfMemoryError e) {
-            err.println("dtron mutants: " + JvmLimits.modelTooLarge("mutants", model));
+        CommandModel.Loaded loaded = CommandModel.load("mutants", model, interfaceFile, err);
+        if (loaded == null) {
             return 1;
         }
+        Network network = loaded.network();
+        TestInterface testInterface = loaded.testInterface();
         if (testInterface.inputs().isEmpty() && testInterface.outputs().isEmpty()) {
             err.println("dtron mutants: " + model + " has no inputs or outputs: name channels i_x / o_y, or give"
                     + " --interface FILE.trn");

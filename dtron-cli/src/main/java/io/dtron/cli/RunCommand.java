@@ -3,11 +3,10 @@ package io.dtron.cli;
 import io.dtron.api.DtronAdapter;
 import io.dtron.api.DtronException;
 import io.dtron.api.DtronOptions;
-import io.dtron.api.ServedChannels;
 import io.dtron.bridge.BusRun;
+import io.dtron.bridge.BusRunSequence;
 import io.dtron.engine.Adapter;
 import io.dtron.engine.DelayPolicy;
-import io.dtron.engine.ObservableWindow;
 import io.dtron.engine.OnlineTester;
 import io.dtron.engine.TestOptions;
 import io.dtron.engine.sim.ModelSystem;
@@ -39,9 +38,7 @@ import java.util.List;
 import java.util.Map;
 import java.util.Locale;
 import java.util.Optional;
-import java.util.Set;
 import java.util.concurrent.Callable;
-import java.util.concurrent.TimeUnit;
 import java.util.function.Supplier;
 import java.util.regex.Pattern;
 import picocli.CommandLine.Command;
@@ -259,17 +256,11 @@ final class RunCommand implements Callable<Integer> {
         boolean tronBackend = parseBackend();
         checkModeOptions(busMode, tronBackend);
         DelayPolicy policy = parseDelayPolicy();
-        Network network;
-        TestInterface testInterface;
-        try {
-            network = ModelLoader.load(model);
-        } catch (ModelException e) {
-            CheckCommand.printErrors(model, e, err);
-            return 1;
-        } catch (OutOfMemoryError e) {
-            err.println("dtron run: " + JvmLimits.modelTooLarge("run", model));
+        Network network = CommandModel.network("run", model, err);
+        if (network == null) {
             return 1;
         }
+        TestInterface testInterface;
         goalOptions.prepare(coverage.until != null, this::usage);
         goals = goalOptions.goals();
         try {
@@ -281,8 +272,7 @@ final class RunCommand implements Callable<Integer> {
             if (tronAdapter != null) {
                 return runAgainstTronAdapter(network, policy, out, err);
             }
-            testInterface = interfaceFile == null ? TestInterface.fromNames(network)
-                    : TestInterface.fromFile(network, interfaceFile);
+            testInterface = CommandModel.interfaceOf(network, interfaceFile);
         } catch (ModelException e) {
             CheckCommand.printErrors(model, e, err);
             return 1;
@@ -299,8 +289,7 @@ final class RunCommand implements Callable<Integer> {
         if (deltaFrom != null) {
             try {
                 network = deltaExtended(network, testInterface, unit, out);
-                testInterface = interfaceFile == null ? TestInterface.fromNames(network)
-                        : TestInterface.fromFile(network, interfaceFile);
+                testInterface = CommandModel.interfaceOf(network, interfaceFile);
             } catch (ModelException e) {
                 CheckCommand.printErrors(model, e, err);
                 return 1;
@@ -659,22 +648,18 @@ final class RunCommand implements Callable<Integer> {
         }
         try (session) {
             against = "the adapters on bus '" + clusterName + "'";
+            BusRun busRun = session.run();
             out.println("dtron run: " + model + " on bus '" + clusterName + "' at " + where
-                    + " as " + session.run().memberId() + ", seed " + options.seed() + ", " + options.timeout()
+                    + " as " + busRun.memberId() + ", seed " + options.seed() + ", " + options.timeout()
                     + " time units of " + options.timeUnitMicros() + " us in real time" + judge.by());
             out.flush();
-            try {
-                List<String> others = join ? List.of() : session.testersThatJoinedFirst();
-                if (!others.isEmpty()) {
-                    err.println("dtron run: bus '" + clusterName + "' at " + where + " has a run"
-                            + " in progress: tester " + String.join(", ", others) + " is on it, and its adapters"
-                            + " would serve both runs. Give this run a bus of its own with --cluster NAME (and"
-                            + " its adapters the same name), or wait until the other run is over");
-                    return 1;
-                }
-            } catch (InterruptedException e) {
-                Thread.currentThread().interrupt();
-                err.println("dtron run: interrupted while joining the bus");
+            Duration wait = Duration.ofSeconds(waitTimeout == null ? 30 : waitTimeout);
+            BusRunLines lines = new BusRunLines(out, err, busRun, clusterName, where, network, testInterface,
+                    options.timeUnitMicros());
+            BusRunSequence sequence = new BusRunSequence(busRun);
+            Optional<BusRunSequence.Refusal> refused = sequence.otherRunFirst();
+            if (refused.isPresent()) {
+                lines.refused(refused.get(), wait);
                 return 1;
             }
             for (int i = 0; i < adapters.size(); i++) {
@@ -690,62 +675,19 @@ final class RunCommand implements Callable<Integer> {
                 }
                 out.println("dtron run: adapter " + adapterClasses.get(i) + " joined as " + member);
             }
-            long seconds = waitTimeout == null ? 30 : waitTimeout;
-            int wanted = adaptersWanted();
-            try {
-                if ((wanted < 0 ? !awaitChannels(session, seconds, out, err) : !awaitMembers(session, wanted, seconds,
-                        out, err)) || refusedForOwners(session.run(), err)) {
-                    return 1;
-                }
-                session.run().expectAdapters();
-            } catch (InterruptedException e) {
-                Thread.currentThread().interrupt();
-                err.println("dtron run: interrupted while waiting for the adapters");
+            // in real time with the engine, the engine warms up and the tester's lateness is measured meanwhile
+            boolean warm = !parseBackend();
+            refused = sequence.prepare(new BusRunSequence.Settings(wait, adaptersWanted(), testers == null ? 1
+                    : testers, reorderWindow(), options.timeUnitMicros(), warm ? lines.engineWarmUp() : null), lines);
+            if (refused.isPresent()) {
+                lines.refused(refused.get(), wait);
                 return 1;
             }
-            long window;
-            BusRun busRun = session.run();
-            try {
-                if (join) {
-                    if (!busRun.readyToJoin(Duration.ofSeconds(seconds))) {
-                        err.println("dtron run: no tester that could start a run greeted bus '" + clusterName
-                                + "' within " + seconds + " s (this tester needs its clock's offset to that tester's);"
-                                + " start it with --testers N, or wait longer with --wait-timeout");
-                        return 1;
-                    }
-                    out.println("dtron run: ready; waiting up to " + seconds + " s for the tester that starts the run"
-                            + " on bus '" + clusterName + "'");
-                    out.flush();
-                } else if (testers != null && testers > 1 && !awaitTesters(busRun, testers - 1, seconds, out, err)) {
-                    return 1;
-                }
-                options = prepareOnBus(busRun, network, testInterface, options, out, err);
-                BusRun.Delays delays = busRun.measuredDelays();
-                window = busRun.reorderWindow(delays, reorderWindow());
-                out.println(BusTiming.delaysLine(delays, window, busRun.reorderWindowAutomatic()));
-                BusTiming.windowWarning(ObservableWindow.narrowest(network, testInterface), delays,
-                        options.timeUnitMicros()).ifPresent(out::println);
-                out.flush();
-                // a run of several testers: every engine counts from the time 0 its start names
-                if (join) {
-                    if (busRun.awaitRun(Duration.ofSeconds(seconds)) < 0) {
-                        err.println("dtron run: no tester started a run on bus '" + clusterName + "' within " + seconds
-                                + " s; start it with --testers N (N counting every tester of the run), or wait"
-                                + " longer with --wait-timeout");
-                        return 1;
-                    }
-                } else if (testers != null && testers > 1) {
-                    busRun.announceRun(options.timeUnitMicros());
-                }
-            } catch (InterruptedException e) {
-                Thread.currentThread().interrupt();
-                err.println("dtron run: interrupted while preparing the run");
-                return 1;
+            if (lines.inputMarginMicros().isPresent()) {
+                options = options.withInputMargin(lines.inputMarginMicros().getAsLong());
             }
-            if (refusedForOwners(busRun, err)) {
-                return 1;
-            }
-            TestResult result = judge.test(testInterface, session.bridge(), options.withReorderWindow(window), out);
+            TestResult result = judge.test(testInterface, session.bridge(),
+                    options.withReorderWindow(busRun.reorderWindowMicros()), out);
             busRun.finish(result.verdict().exitCode());
             if (deltaReport != null) {
                 Files.writeString(deltaReport, BusTiming.deltaReport(model, options.timeUnitMicros(), busRun.runId(),
@@ -758,110 +700,6 @@ final class RunCommand implements Callable<Integer> {
             out.flush();
             return result.verdict().exitCode();
         }
-    }
-
-    /**
-     * Waits until every channel of the model is served: prints what is missing now and then, and on a timeout what
-     * each member serves.
-     */
-    private boolean awaitChannels(BusSession session, long seconds, PrintWriter out, PrintWriter err)
-            throws InterruptedException {
-        BusRun busRun = session.run();
-        long deadline = System.nanoTime() + TimeUnit.SECONDS.toNanos(seconds);
-        List<String> missing = busRun.unservedChannels();
-        if (!missing.isEmpty()) {
-            out.println("dtron run: waiting up to " + seconds + " s until an adapter on bus '" + clusterName()
-                    + "' serves every channel of the model; missing: " + String.join(", ", missing));
-            out.flush();
-        }
-        while (!missing.isEmpty()) {
-            long left = deadline - System.nanoTime();
-            if (left <= 0) {
-                err.println("dtron run: within " + seconds + " s no adapter on bus '" + clusterName() + "' at "
-                        + busWhere() + " served " + String.join(", ", missing)
-                        + servedSummary(busRun) + ". Start the adapters with the same cluster name and address"
-                        + " (adapters declare the channels they send with Dtron.declareOutputs), wait longer with"
-                        + " --wait-timeout, or, for adapters that do not say which channels they serve, wait for a"
-                        + " number of them with --wait-for-adapters N");
-                return false;
-            }
-            busRun.awaitChannelsServed(Duration.ofNanos(Math.min(left, TimeUnit.SECONDS.toNanos(5))));
-            List<String> now = busRun.unservedChannels();
-            if (!now.isEmpty() && !now.equals(missing)) {
-                out.println("dtron run: still missing: " + String.join(", ", now));
-                out.flush();
-            }
-            missing = now;
-        }
-        out.println("dtron run: every channel is served" + servedSummary(busRun));
-        out.flush();
-        return true;
-    }
-
-    /**
-     * Refuses the run, saying why in one line, when the owners of the model's outputs are ambiguous: two members send
-     * one output, or have one id (see {@link BusRun#ownersConflict()}).
-     */
-    private boolean refusedForOwners(BusRun busRun, PrintWriter err) {
-        Optional<String> conflict = busRun.ownersConflict();
-        conflict.ifPresent(reason -> {
-            err.println("dtron run: bus '" + clusterName() + "' at " + busWhere() + ": " + reason + ". Stop all but"
-                    + " one of them, or give this run a bus of its own with --cluster NAME (and its adapters the same"
-                    + " name)");
-            err.flush();
-        });
-        return conflict.isPresent();
-    }
-
-    /** "; members: A receives [..] sends [..], ..." for what the adapters on the bus said they serve. */
-    static String servedSummary(BusRun busRun) {
-        Map<String, ServedChannels> served = busRun.servedChannels();
-        if (served.isEmpty()) {
-            return "; no adapter on the bus said which channels it serves (members: " + busRun.members() + ")";
-        }
-        List<String> parts = new ArrayList<>();
-        served.forEach((member, channels) -> parts.add(member + " receives " + channels.receives() + " and sends "
-                + channels.sends()));
-        return "; " + String.join(", ", parts);
-    }
-
-    /** Waits until the other testers of a run of several said they join it (--testers N). */
-    private boolean awaitTesters(BusRun busRun, int others, long seconds, PrintWriter out, PrintWriter err)
-            throws InterruptedException {
-        out.println("dtron run: waiting up to " + seconds + " s for " + others + " other tester" + (others == 1 ? ""
-                : "s") + " to join the run with --join");
-        out.flush();
-        if (!busRun.awaitJoiningTesters(others, Duration.ofSeconds(seconds))) {
-            err.println("dtron run: only " + busRun.joiningTesters().size() + " of " + others + " other testers joined"
-                    + " the run on bus '" + clusterName() + "' within " + seconds + " s; start them with --join and"
-                    + " the same cluster name (and --members where they are on other hosts)");
-            return false;
-        }
-        out.println("dtron run: the run's testers: " + busRun.memberId() + " (this one), " + String.join(", ",
-                busRun.joiningTesters()));
-        out.flush();
-        return true;
-    }
-
-    /** Waits until {@code wanted} adapter members are on the bus (--wait-for-adapters N). */
-    private boolean awaitMembers(BusSession session, int wanted, long seconds, PrintWriter out, PrintWriter err)
-            throws InterruptedException {
-        if (wanted == 0) {
-            return true;
-        }
-        out.println("dtron run: waiting up to " + seconds + " s for " + wanted + " adapter" + (wanted == 1 ? "" : "s")
-                + " to join bus '" + clusterName() + "'");
-        out.flush();
-        if (!session.awaitAdapters(wanted, Duration.ofSeconds(seconds))) {
-            err.println("dtron run: only " + (session.run().members().size() - 1) + " of " + wanted
-                    + " adapters joined bus '" + clusterName() + "' at " + busWhere()
-                    + " within " + seconds + " s; start them with the same cluster name and address, or wait"
-                    + " longer with --wait-timeout");
-            return false;
-        }
-        out.println("dtron run: members " + session.run().members());
-        out.flush();
-        return true;
     }
 
     /**
@@ -1110,44 +948,6 @@ final class RunCommand implements Callable<Integer> {
         } finally {
             adapter.close();
         }
-    }
-
-    /**
-     * Before time 0 of a bus run: probes the adapters until their round trips are steady (a joining tester does not:
-     * it measures what passes by) while, in real time with the engine, the engine warms up and the tester's lateness
-     * is measured; says what it found, warns about input windows narrower than the room their inputs need (the
-     * margin for the lateness plus each channel's delay to its adapter), and returns the options with that margin.
-     */
-    private TestOptions prepareOnBus(BusRun busRun, Network network, TestInterface testInterface,
-            TestOptions options, PrintWriter out, PrintWriter err) throws InterruptedException {
-        boolean warm = !options.virtualTime() && !parseBackend();
-        SchedulingDelay[] lateness = new SchedulingDelay[1];
-        Thread measuring = new Thread(() -> lateness[0] = SchedulingDelay.measureWarmingUp(network, testInterface),
-                "dtron-lateness");
-        measuring.setDaemon(true);
-        if (warm) {
-            measuring.start();
-        }
-        if (!join) {
-            out.println(BusTiming.probingLine(busRun.warmUp(warm), warm));
-            out.flush();
-        }
-        if (!warm) {
-            return options;
-        }
-        measuring.join();
-        long unit = options.timeUnitMicros();
-        out.println("dtron run: " + lateness[0].describe(unit) + ", and each input channel's delay to its adapter"
-                + " further inside");
-        out.flush();
-        lateness[0].narrowInputWindow(network, testInterface, unit, "--virtual-time", busRun::inputDelayMicros)
-                .ifPresent(warning -> {
-                    err.println("dtron run: warning: " + warning);
-                    err.flush();
-                });
-        // the warm-up's garbage is collected now, not in a pause of several milliseconds early in the run
-        System.gc();
-        return options.withInputMargin(lateness[0].marginMicros());
     }
 
     /** The input margin of a real-time run, measured and said as {@link SchedulingDelay#inputMarginForRun} does. */

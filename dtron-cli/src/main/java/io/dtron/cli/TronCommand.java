@@ -7,8 +7,6 @@ import io.dtron.engine.TestListener;
 import io.dtron.engine.TestOptions;
 import io.dtron.engine.TestResult;
 import io.dtron.engine.UnsupportedModelException;
-import io.dtron.model.ModelException;
-import io.dtron.model.ModelLoader;
 import io.dtron.model.Network;
 import io.dtron.model.TestInterface;
 import io.dtron.tron.TronClockServer;
@@ -167,14 +165,8 @@ final class TronCommand implements Callable<Integer> {
         } catch (IllegalArgumentException e) {
             throw usage(e.getMessage());
         }
-        Network network;
-        try {
-            network = ModelLoader.load(model);
-        } catch (ModelException e) {
-            CheckCommand.printErrors(model, e, err);
-            return 1;
-        } catch (OutOfMemoryError e) {
-            err.println("dtron tron: " + JvmLimits.modelTooLarge("tron", model));
+        Network network = CommandModel.network("tron", model, err);
+        if (network == null) {
             return 1;
         }
         if (!quiet) {

@@ -1,9 +1,9 @@
 package io.dtron.cli;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
-import static org.junit.jupiter.api.Assertions.assertFalse;
 
 import io.dtron.testsupport.DocPage;
+import io.dtron.testsupport.PageSessions;
 import io.dtron.testsupport.ShellWords;
 import java.nio.charset.StandardCharsets;
 import java.nio.file.Files;
@@ -19,7 +19,6 @@ import org.junit.jupiter.api.io.TempDir;
  * printed, in its order, but for the wall time of a replay ({@code in 0.05 s}).
  */
 class MonitoringPageTest {
-    private static final String COMMAND = "$ java -jar dtron.jar ";
 
     @Test
     void theSessionsPrintWhatThePageShows(@TempDir Path dir) throws Exception {
@@ -33,26 +32,14 @@ class MonitoringPageTest {
         List<String> expected = new ArrayList<>();
         List<String> printed = new ArrayList<>();
         int sessions = 0;
-        for (DocPage.Block b : page.blocksStartingWith(COMMAND)) {
-            List<String> lines = b.code().lines().toList();
-            for (String line : lines) {
-                if (!line.startsWith(COMMAND)) {
-                    expected.add(line.replaceAll("in \\d+\\.\\d\\d s$", "in (time) s"));
-                    continue;
-                }
-                sessions++;
-                List<String> args = new ArrayList<>(ShellWords.split(line.substring(COMMAND.length())));
-                for (int i = 0; i < args.size(); i++) {
-                    if (args.get(i).matches("[a-z]+\\.(xta|csv|jsonl)")) {
-                        args.set(i, dir.resolve(args.get(i)).toString());
-                    }
-                }
-                CommandRun r = CommandRun.of(args.toArray(String[]::new));
-                assertFalse(r.err().contains("\tat "), "no stack trace: " + r.err());
-                assertEquals(r.out().contains("violation 1 at") ? 2 : 0, r.exit(), line + "\n" + r.out() + r.err());
-                for (String out : ShellWords.lines(r.out(), dir)) {
-                    printed.add(out.replaceAll("in \\d+\\.\\d\\d s$", "in (time) s"));
-                }
+        for (PageSessions.Session s : PageSessions.of(page, word -> word.matches("[a-z]+\\.(xta|csv|jsonl)")
+                ? dir.resolve(word).toString() : word)) {
+            s.expected().forEach(line -> expected.add(line.replaceAll("in \\d+\\.\\d\\d s$", "in (time) s")));
+            sessions++;
+            PageSessions.Printed r = PageSessions.run(DtronCommand::run, s);
+            assertEquals(r.out().contains("violation 1 at") ? 2 : 0, r.exit(), s.command() + "\n" + r.out() + r.err());
+            for (String out : ShellWords.lines(r.out(), dir)) {
+                printed.add(out.replaceAll("in \\d+\\.\\d\\d s$", "in (time) s"));
             }
         }
         assertEquals(5, sessions, "record, replay, a log with faults, --continue, --from any");

@@ -12,8 +12,8 @@ import java.util.OptionalLong;
 /**
  * The tester's engine side of a run on a DTRON bus: the engine's {@link Adapter} for systems under test whose adapters
  * are members of the bus; a controller's plant on the bus too ({@code dtron control --bus}, after {@link
- * BusRun#prepareForControl}). Its {@link BusRun} owns the run (handshake, run id, time 0, clock offsets, event times,
- * reorder window, delays, membership, end); the bridge hands the engine's inputs to it and its questions (is an
+ * BusRunSequence#prepareForControl}). Its {@link BusRun} owns the run (handshake, run id, time 0, clock offsets,
+ * event times, reorder window, delays, membership, end); the bridge hands the engine's inputs to it and its questions (is an
  * adapter there, how long an input takes to reach it, when time 0 is) to the run.
  */
 public final class BusBridge implements Adapter, AutoCloseable {

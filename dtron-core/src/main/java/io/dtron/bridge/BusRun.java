@@ -10,10 +10,13 @@ import io.dtron.api.IDtronChannel;
 import io.dtron.api.IDtronChannelValued;
 import io.dtron.api.ServedChannels;
 import io.dtron.api.internal.TesterSide;
+import io.dtron.bridge.internal.AdapterProbes;
 import io.dtron.bridge.internal.ChannelOwners;
 import io.dtron.bridge.internal.InputDelays;
 import io.dtron.bridge.internal.LatencyRecorder;
 import io.dtron.bridge.internal.ReorderWindow;
+import io.dtron.bridge.internal.RunMembers;
+import io.dtron.bridge.internal.RunTesters;
 import io.dtron.bridge.internal.RunTimeline;
 import io.dtron.engine.AdapterContext;
 import io.dtron.engine.Event;
@@ -77,9 +80,7 @@ public final class BusRun implements AutoCloseable {
     /** How long {@link #stop()} waits for its own end-of-run message to come back from the bus. */
     static final Duration STOP_ECHO_TIMEOUT = Duration.ofSeconds(2);
     /** How long an adapter member gets to answer the tester's probe before a missed deadline (see unreachable). */
-    static final Duration PROBE_TIMEOUT = Duration.ofSeconds(1);
-    /** How long {@link #measureDelays} waits for a member's first message with a clock offset estimate. */
-    static final Duration FIRST_ESTIMATE_TIMEOUT = Duration.ofSeconds(2);
+    static final Duration PROBE_TIMEOUT = AdapterProbes.PROBE_TIMEOUT;
     /** How long the tester that started a run of several testers waits for the others' verdicts before it ends it. */
     static final Duration VERDICTS_TIMEOUT = Duration.ofSeconds(30);
     /** How far ahead a run of several testers is started, so that every tester starts its engine at time 0. */
@@ -98,8 +99,6 @@ public final class BusRun implements AutoCloseable {
      * serves what), so that it decides which members serve the run on one view (see {@link #startRun}).
      */
     static final Duration CATCH_UP_TIMEOUT = Duration.ofSeconds(2);
-    /** How long a tester waits for every member on the bus to tell whether it is a tester. */
-    static final Duration ROLL_CALL = Duration.ofSeconds(3);
     /** The smallest automatic reorder window, in microseconds (see {@link Delays#autoWindowMicros()}). */
     public static final long AUTO_WINDOW_FLOOR_MICROS = ReorderWindow.AUTO_FLOOR_MICROS;
     /** How many times the longest delay measured before a run the automatic reorder window allows for. */
@@ -123,10 +122,8 @@ public final class BusRun implements AutoCloseable {
     private final ChannelOwners owners;
     /** What the other members serve, in the bus's order with their messages (the listeners' thread keeps it). */
     private volatile Map<String, ServedChannels> served;
-    /** The adapters the tester waited for ({@link #expectAdapters}): each must still be there at the start. */
-    private final Set<String> expected = ConcurrentHashMap.newKeySet();
-    /** Whether every channel of the model was served by the handshake when {@link #expectAdapters} was called. */
-    private volatile boolean expectedByHandshake;
+    /** Who is on the bus for the run: what the members serve, the testers of other runs, the awaited adapters. */
+    private final RunMembers runMembers;
     private final AtomicBoolean warnedBeforeStart = new AtomicBoolean();
     private final AtomicLong outputsAfterEnd = new AtomicLong();
     private volatile CountDownLatch ownStop = new CountDownLatch(1);
@@ -142,19 +139,14 @@ public final class BusRun implements AutoCloseable {
     private final Map<String, ChannelDelay> runDelays = new ConcurrentHashMap<>();
     /** How long inputs take to reach the adapters, for {@link #inputDelayMicros}. */
     private final InputDelays inputDelays = new InputDelays();
+    /** The probes of the adapter members before a run, which measure how long inputs take to reach them. */
+    private final AdapterProbes probes;
     /** When each input of the run was published, on the run's clock in microseconds, by its number. */
     private final Map<Long, Long> inputSentMicros = new ConcurrentHashMap<>();
     /** Inputs of other testers of the run, observed as outputs, until their acknowledgements say when they happened. */
     private final Map<String, IDtronChannelValued> heldPeerInputs = new ConcurrentHashMap<>();
-    /** The testers of a run of several that told their verdicts, with the verdicts' exit codes. */
-    private final Map<String, Integer> peerVerdicts = new ConcurrentHashMap<>();
-    /** The testers that joined this run (it started it), as the run started. */
-    private volatile Set<String> joiners = Set.of();
-    /** For a joining tester, the tester that started the run it joined (null otherwise). */
-    private volatile String runLeader;
-    /** On a joining tester: the run start it waits for or joined. */
-    private final java.util.concurrent.BlockingQueue<IDtronChannelValued> starts =
-            new java.util.concurrent.LinkedBlockingQueue<>();
+    /** The testers of a run of several: ready to join, joined, the leader, their verdicts. */
+    private final RunTesters runTesters;
     /** Time 0 of the run and the times of its messages on the run's clock. */
     private final RunTimeline timeline;
     /** The run's reorder window (Delta), fixed or automatic. */
@@ -171,11 +163,14 @@ public final class BusRun implements AutoCloseable {
         this.tester = TesterSide.of(dtron);
         this.joining = joining;
         this.timeline = new RunTimeline(dtron::currentTimeNanos);
+        this.runTesters = new RunTesters(dtron, tester, joining);
+        this.probes = new AdapterProbes(dtron, tester, inputDelays, this::testersOfOtherRuns, this::isPeerTester);
         Map<String, IDtronChannel> inputChannels = new LinkedHashMap<>();
         testInterface.inputs().forEach(c -> inputChannels.put(c.name(), channels.get(c.name())));
         this.inputs = Map.copyOf(inputChannels);
         this.outputs = Set.copyOf(testInterface.outputs().stream().map(TestInterface.ObservableChannel::name).toList());
         this.owners = new ChannelOwners(inputs.keySet(), outputs);
+        this.runMembers = new RunMembers(dtron, tester, inputs.keySet(), outputs, joining);
         tester.addServedChannelsListener(this::servedChanged);
         this.served = tester.getMembersServedChannels();
         for (IDtronChannel channel : channels.values()) {
@@ -202,9 +197,7 @@ public final class BusRun implements AutoCloseable {
         dtron.addDtronListener(new DtronListener(Dtron.RUN_START) {
             @Override
             public void messageReceived(IDtronChannelValued message) {
-                if (joining && !message.getSender().equals(dtron.getMemberId())) {
-                    starts.add(message);
-                }
+                runTesters.started(message);
             }
         });
         dtron.addDtronListener(new DtronListener(Dtron.ACK) {
@@ -268,37 +261,6 @@ public final class BusRun implements AutoCloseable {
         }
     }
 
-    /**
-     * Before time 0 of a run whose engine side is a controller ({@code dtron control --bus}): the choreography a
-     * tester's run goes through, without its several-tester parts. Waits, {@code timeout} at most, until no
-     * tester of another run that joined the bus first is there (its adapters would serve both), and until the plant's
-     * adapters serve every channel of the model ({@link #unservedChannels()}); refuses outputs with two owners
-     * ({@link #ownersConflict()}); remembers the adapters ({@link #expectAdapters()}); and probes them until their
-     * round trips are steady ({@link #warmUp}), which sets how long commands take to reach them ({@link
-     * #inputDelayMicros}). Then {@link #start} starts the run.
-     *
-     * @return empty when the run can start, else why not, in one line
-     * @throws InterruptedException if the thread was interrupted while waiting
-     */
-    public Optional<String> prepareForControl(Duration timeout) throws InterruptedException {
-        List<String> first = testersThatJoinedFirst();
-        if (!first.isEmpty()) {
-            return Optional.of("tester " + String.join(", ", first) + " is on the bus with a run in progress, and its"
-                    + " adapters would serve both runs");
-        }
-        if (!awaitChannelsServed(timeout)) {
-            return Optional.of("within " + timeout.toSeconds() + " s no member on the bus served "
-                    + String.join(", ", unservedChannels()) + " (members: " + members() + ")");
-        }
-        Optional<String> conflict = ownersConflict();
-        if (conflict.isPresent()) {
-            return conflict;
-        }
-        expectAdapters();
-        warmUp(false);
-        return Optional.empty();
-    }
-
     /** Returns whether this run joins a run another tester starts. */
     public boolean isJoining() {
         return joining;
@@ -312,26 +274,12 @@ public final class BusRun implements AutoCloseable {
      * @throws InterruptedException if the thread was interrupted while waiting
      */
     public boolean readyToJoin(Duration timeout) throws InterruptedException {
-        long deadline = System.nanoTime() + timeout.toNanos();
-        while (!dtron.hasClockOffset()) {
-            if (System.nanoTime() >= deadline) {
-                return false;
-            }
-            Thread.sleep(10);
-        }
-        tester.setJoiningRun(true);
-        return true;
+        return runTesters.readyToJoin(timeout);
     }
 
     /** Returns the members that said they are testers ready to join the next run this run starts. */
     public List<String> joiningTesters() {
-        List<String> ready = new ArrayList<>();
-        tester.getMembersServedChannels().forEach((member, served) -> {
-            if (served.joinsRun() && dtron.getMembers().contains(member)) {
-                ready.add(member);
-            }
-        });
-        return ready;
+        return runTesters.ready();
     }
 
     /**
@@ -341,14 +289,7 @@ public final class BusRun implements AutoCloseable {
      * @throws InterruptedException if the thread was interrupted while waiting
      */
     public boolean awaitJoiningTesters(int count, Duration timeout) throws InterruptedException {
-        long deadline = System.nanoTime() + timeout.toNanos();
-        while (joiningTesters().size() < count) {
-            if (System.nanoTime() >= deadline) {
-                return false;
-            }
-            Thread.sleep(20);
-        }
-        return true;
+        return runTesters.awaitReady(count, timeout);
     }
 
     /**
@@ -361,8 +302,7 @@ public final class BusRun implements AutoCloseable {
      * @throws DtronException if the bus did not take the message
      */
     public long announceRun(long timeUnitMicros) {
-        joiners = Set.copyOf(joiningTesters());
-        peerVerdicts.clear();
+        runTesters.announce();
         runId = Long.toHexString(ThreadLocalRandom.current().nextLong() >>> 16);
         tester.setRunId(runId);
         long zero = dtron.currentTimeNanos() + RUN_LEAD.toNanos();
@@ -380,12 +320,11 @@ public final class BusRun implements AutoCloseable {
      * @throws InterruptedException if the thread was interrupted while waiting
      */
     public long awaitRun(Duration timeout) throws InterruptedException {
-        IDtronChannelValued start = starts.poll(timeout.toNanos(), TimeUnit.NANOSECONDS);
+        IDtronChannelValued start = runTesters.awaitStart(timeout);
         if (start == null) {
             return -1;
         }
         runId = start.getRunId();
-        peerVerdicts.clear();
         long zero = RunTimeline.zeroOf(start, dtron.getClockOffsetNanos());
         timeline.announce(zero);
         return zero;
@@ -398,27 +337,14 @@ public final class BusRun implements AutoCloseable {
      * {@link #stop()} ended.
      */
     public void finish(int verdictExitCode) {
-        if (!severalTesters()) {
+        if (!runTesters.several()) {
             return;
         }
-        try {
-            dtron.send(Dtron.RUN_VERDICT.constructValued(Map.of("verdict", verdictExitCode)));
-        } catch (DtronException | IllegalStateException e) {
-            LOG.warn("Cannot tell the other testers the verdict: {}", e.getMessage());
-        }
+        runTesters.tell(verdictExitCode);
         if (joining) {
             return;
         }
-        long deadline = System.nanoTime() + VERDICTS_TIMEOUT.toNanos();
-        while (!joiners.stream().allMatch(m -> peerVerdicts.containsKey(m) || !dtron.getMembers().contains(m))
-                && System.nanoTime() < deadline) {
-            try {
-                Thread.sleep(10);
-            } catch (InterruptedException e) {
-                Thread.currentThread().interrupt();
-                break;
-            }
-        }
+        runTesters.awaitVerdicts(VERDICTS_TIMEOUT);
         publishStop();
     }
 
@@ -462,12 +388,7 @@ public final class BusRun implements AutoCloseable {
 
     /** Returns the verdicts the other testers of the run told, as exit codes by member. */
     public Map<String, Integer> peerVerdicts() {
-        return Collections.unmodifiableMap(new TreeMap<>(peerVerdicts));
-    }
-
-    /** Whether this run has other testers: it joined one, or others joined it. */
-    private boolean severalTesters() {
-        return joining || !joiners.isEmpty();
+        return runTesters.verdicts();
     }
 
     /** Another tester of the run told its verdict: one other than PASSED ends this run too. */
@@ -475,8 +396,7 @@ public final class BusRun implements AutoCloseable {
         if (message.getSender().equals(dtron.getMemberId()) || ofOtherRun(message)) {
             return;
         }
-        int verdict = message.getVariables().get("verdict");
-        peerVerdicts.put(message.getSender(), verdict);
+        int verdict = runTesters.told(message);
         watched.remove(message.getSender()); // it may leave now
         if (running && verdict != 0) {
             context.inconclusive("tester " + message.getSender() + " of this run ended it " + (verdict == 2
@@ -537,16 +457,7 @@ public final class BusRun implements AutoCloseable {
      * @throws InterruptedException if the thread was interrupted while waiting
      */
     public boolean awaitAdapters(int count, Duration timeout) throws InterruptedException {
-        long deadline = System.nanoTime() + timeout.toNanos();
-        // testers of other runs are no adapters of this one
-        while (dtron.getMembers().size() - 1 - tester.getOtherTesters().size() < count) {
-            long left = deadline - System.nanoTime();
-            if (left <= 0) {
-                return false;
-            }
-            dtron.awaitMembers(dtron.getMembers().size() + 1, Duration.ofNanos(Math.min(left, 100_000_000L)));
-        }
-        return true;
+        return runMembers.awaitAdapters(count, timeout);
     }
 
     /**
@@ -555,19 +466,7 @@ public final class BusRun implements AutoCloseable {
      * output no member declared or sent; empty when every channel is served. Testers of other runs do not count.
      */
     public List<String> unservedChannels() {
-        Set<String> receivers = new java.util.HashSet<>();
-        Set<String> senders = new java.util.HashSet<>();
-        Set<String> testers = testersOfOtherRuns();
-        tester.getMembersServedChannels().forEach((member, served) -> {
-            if (!testers.contains(member)) {
-                receivers.addAll(served.receives());
-                senders.addAll(served.sends());
-            }
-        });
-        List<String> missing = new ArrayList<>();
-        inputs.keySet().stream().filter(c -> !receivers.contains(c)).sorted().forEach(c -> missing.add("input " + c));
-        outputs.stream().filter(c -> !senders.contains(c)).sorted().forEach(c -> missing.add("output " + c));
-        return missing;
+        return runMembers.unservedChannels();
     }
 
     /**
@@ -577,21 +476,12 @@ public final class BusRun implements AutoCloseable {
      * @throws InterruptedException if the thread was interrupted while waiting
      */
     public boolean awaitChannelsServed(Duration timeout) throws InterruptedException {
-        long deadline = System.nanoTime() + timeout.toNanos();
-        while (!unservedChannels().isEmpty()) {
-            if (System.nanoTime() >= deadline) {
-                return false;
-            }
-            Thread.sleep(20);
-        }
-        return true;
+        return runMembers.awaitChannelsServed(timeout);
     }
 
     /** Returns what each adapter member on the bus said it serves, by member id (testers left out). */
     public Map<String, ServedChannels> servedChannels() {
-        Map<String, ServedChannels> served = new TreeMap<>(tester.getMembersServedChannels());
-        served.keySet().removeAll(testersOfOtherRuns());
-        return Collections.unmodifiableMap(served);
+        return runMembers.servedChannels();
     }
 
     /**
@@ -599,11 +489,7 @@ public final class BusRun implements AutoCloseable {
      * joining tester, the one whose run it joins.
      */
     private Set<String> testersOfOtherRuns() {
-        Set<String> testers = new java.util.HashSet<>(tester.getOtherTesters());
-        if (joining) {
-            dtron.getTester().ifPresent(testers::remove);
-        }
-        return testers;
+        return runMembers.testersOfOtherRuns();
     }
 
     /**
@@ -631,37 +517,13 @@ public final class BusRun implements AutoCloseable {
      * Measures the delays of the adapters' messages before a run: asks every adapter member {@code rounds} times,
      * {@code spacing} apart, to answer (see {@link TesterSide#probe}), and sums up every message of theirs measured so far
      * (their pings since they joined included), so that the first, slow messages of a fresh process count too. A
-     * member that joined just now is given {@link #FIRST_ESTIMATE_TIMEOUT} to send its first clock offset estimate,
+     * member that joined just now is given two seconds to send its first clock offset estimate,
      * without which its delays cannot be measured.
      *
      * @throws InterruptedException if the thread was interrupted while waiting
      */
     public Delays measureDelays(int rounds, Duration spacing) throws InterruptedException {
-        Set<String> adapters = new java.util.HashSet<>(dtron.getMembers());
-        adapters.remove(dtron.getMemberId());
-        adapters.removeAll(testersOfOtherRuns());
-        // a member that joined just now sends its first clock offset estimate after a few round trips
-        long deadline = System.nanoTime() + FIRST_ESTIMATE_TIMEOUT.toNanos();
-        while (!tester.getDelaysFromMembers().keySet().containsAll(adapters) && System.nanoTime() < deadline) {
-            Thread.sleep(10);
-        }
-        for (int i = 0; i < rounds && !adapters.isEmpty(); i++) {
-            tester.probe(adapters, PROBE_TIMEOUT);
-            Thread.sleep(spacing.toMillis());
-        }
-        long max = 0;
-        long error = 0;
-        long messages = 0;
-        int members = 0;
-        for (Map.Entry<String, io.dtron.api.MemberDelay> e : tester.getDelaysFromMembers().entrySet()) {
-            if (adapters.contains(e.getKey())) {
-                max = Math.max(max, e.getValue().maxNanos());
-                error = Math.max(error, e.getValue().maxErrorNanos());
-                messages += e.getValue().count();
-                members++;
-            }
-        }
-        return new Delays(max, error, messages, members);
+        return probes.measure(rounds, spacing);
     }
 
     /**
@@ -710,39 +572,7 @@ public final class BusRun implements AutoCloseable {
      * @throws InterruptedException if the thread was interrupted while waiting
      */
     public Probing probeUntilSteady(Duration spacing, Duration minimum, Duration limit) throws InterruptedException {
-        long start = System.nanoTime();
-        Set<String> adapters = new java.util.TreeSet<>(dtron.getMembers());
-        adapters.remove(dtron.getMemberId());
-        adapters.removeAll(testersOfOtherRuns());
-        adapters.removeAll(tester.getOtherTesters());
-        Map<String, List<Long>> byMember = new HashMap<>();
-        List<Long> rounds = new ArrayList<>();
-        boolean steady = false;
-        while (!adapters.isEmpty()) {
-            long round = 0;
-            for (String member : adapters) {
-                long sent = System.nanoTime();
-                Set<String> answered = tester.probeAsInput(Set.of(member), PROBE_TIMEOUT);
-                long micros = answered.contains(member) ? (System.nanoTime() - sent) / 1000 : PROBE_TIMEOUT.toNanos()
-                        / 1000;
-                byMember.computeIfAbsent(member, m -> new ArrayList<>()).add(micros);
-                round = Math.max(round, micros);
-            }
-            rounds.add(round);
-            long elapsed = System.nanoTime() - start;
-            steady = InputDelays.steady(rounds) && InputDelays.noLongerImproving(rounds);
-            if (steady && elapsed >= minimum.toNanos() || elapsed >= limit.toNanos()) {
-                break;
-            }
-            if (!spacing.isZero()) {
-                Thread.sleep(spacing.toMillis());
-            }
-        }
-        byMember.forEach((member, trips) -> inputDelays.probed(member, trips.subList(Math.max(0, trips.size()
-                - InputDelays.STEADY_ROUNDS), trips.size()).stream().mapToLong(Long::longValue).max().orElse(0)));
-        long last = rounds.subList(Math.max(0, rounds.size() - InputDelays.STEADY_ROUNDS), rounds.size()).stream()
-                .mapToLong(Long::longValue).max().orElse(0);
-        return new Probing(rounds.size(), steady, last, (System.nanoTime() - start) / 1_000_000);
+        return probes.untilSteady(spacing, minimum, limit);
     }
 
     /**
@@ -751,13 +581,7 @@ public final class BusRun implements AutoCloseable {
      * (published to applied), each with its clock error; 0 before anything was measured.
      */
     public long inputDelayMicros(String channel) {
-        List<String> receivers = new ArrayList<>();
-        tester.getMembersServedChannels().forEach((member, served) -> {
-            if (served.receives().contains(channel) && !isPeerTester(member)) {
-                receivers.add(member);
-            }
-        });
-        return inputDelays.roomMicros(channel, receivers);
+        return probes.inputDelayMicros(channel);
     }
 
     /**
@@ -816,11 +640,7 @@ public final class BusRun implements AutoCloseable {
      * (a member that left without serving one, such as a tester refused because of this run, changes nothing).
      */
     public void expectAdapters() {
-        Set<String> testers = tester.getOtherTesters();
-        expected.clear();
-        dtron.getMembers().stream().filter(m -> !m.equals(dtron.getMemberId()) && !testers.contains(m))
-                .forEach(expected::add);
-        expectedByHandshake = unservedChannels().isEmpty();
+        runMembers.expectAdapters();
     }
 
     /**
@@ -833,16 +653,7 @@ public final class BusRun implements AutoCloseable {
         // what the tester checked before the start may have changed since: a member that joined in between
         ownersConflict().ifPresent(conflict -> context.inconclusive(conflict));
         // the awaited adapters that were no longer members at the start (those that leave later are watched)
-        Set<String> present = startMembers;
-        List<String> goneBeforeStart = expected.stream().filter(m -> !present.contains(m)).sorted().toList();
-        expected.clear();
-        List<String> unserved = expectedByHandshake ? unservedChannels() : List.of();
-        if (!goneBeforeStart.isEmpty() && (!expectedByHandshake || !unserved.isEmpty())) {
-            context.inconclusive("adapter member" + (goneBeforeStart.size() == 1 ? " " : "s ")
-                    + String.join(", ", goneBeforeStart) + " left the bus before the run started (members now "
-                    + dtron.getMembers() + ")" + (unserved.isEmpty() ? "" : ", and no adapter serves "
-                    + String.join(", ", unserved) + " any more") + "; the system under test may be gone");
-        }
+        runMembers.goneBeforeStart(startMembers).ifPresent(context::inconclusive);
     }
 
     private void startRun(AdapterContext runContext) {
@@ -852,7 +663,7 @@ public final class BusRun implements AutoCloseable {
         inputSentMicros.clear();
         heldPeerInputs.clear();
         window.newRun();
-        runLeader = joining ? dtron.getTester().orElse(null) : null;
+        runTesters.runStarts();
         owners.newRun();
         // the members and what they serve, on one view: the announcements of the members on the bus now that the
         // bus has delivered reach the listeners' thread (which keeps served, in order with the members' messages)
@@ -887,7 +698,7 @@ public final class BusRun implements AutoCloseable {
             running = true;
             return; // a run of several testers: its start was published before the engines started
         }
-        joiners = Set.of();
+        runTesters.alone();
         runId = Long.toHexString(ThreadLocalRandom.current().nextLong() >>> 16);
         tester.setRunId(runId);
         // a time unit beyond int range (35 minutes) does not occur in practice; the message carries an int
@@ -949,34 +760,14 @@ public final class BusRun implements AutoCloseable {
      * Returns the testers of other runs (see {@link #otherTesters()}) that joined the bus before this run, once
      * every other member has told whether it is a tester: it answered this tester's greeting in the
      * channel-serving handshake (a tester says that it is one), or greeted the bus as a tester. Members that never
-     * tell (adapters built against an API without the handshake) are waited for, {@link #ROLL_CALL} at most. Of two
+     * tell (adapters built against an API without the handshake) are waited for, three seconds at most. Of two
      * testers that meet on one bus, the one that joined first starts its run and the other, finding it here, does not:
      * the members' order on the bus is the same for all of them.
      *
      * @throws InterruptedException if the thread was interrupted while waiting
      */
     public List<String> testersThatJoinedFirst() throws InterruptedException {
-        long deadline = System.nanoTime() + ROLL_CALL.toNanos();
-        while (!silentMembers().isEmpty() && System.nanoTime() < deadline) {
-            Thread.sleep(20);
-        }
-        List<String> members = dtron.getMembers();
-        Set<String> testers = testersOfOtherRuns();
-        List<String> first = members.subList(0, Math.max(0, members.indexOf(dtron.getMemberId()))).stream()
-                .filter(testers::contains).toList();
-        List<String> later = members.stream().filter(testers::contains).filter(m -> !first.contains(m)).toList();
-        if (!later.isEmpty()) {
-            LOG.info("Testers {} joined bus after this one; they leave this run to it", later);
-        }
-        return first;
-    }
-
-    /** The other members that have not told yet whether they are testers. */
-    private List<String> silentMembers() {
-        Set<String> told = new java.util.HashSet<>(tester.getMembersServedChannels().keySet());
-        told.addAll(tester.getOtherTesters());
-        told.add(dtron.getMemberId());
-        return dtron.getMembers().stream().filter(m -> !told.contains(m)).toList();
+        return runMembers.testersThatJoinedFirst();
     }
 
     /** Returns the id of the current (or last) run, which its messages carry; "" before the first. */
@@ -1014,7 +805,7 @@ public final class BusRun implements AutoCloseable {
      */
     public void stop() {
         running = false;
-        if (!severalTesters()) {
+        if (!runTesters.several()) {
             publishStop();
         }
     }
@@ -1247,9 +1038,7 @@ public final class BusRun implements AutoCloseable {
 
     /** Whether a member is another tester of this run. */
     private boolean isPeerTester(String member) {
-        return joiners.contains(member) || joining && member.equals(dtron.getTester().orElse(null))
-                || Optional.ofNullable(tester.getMembersServedChannels().get(member)).map(ServedChannels::joinsRun)
-                        .orElse(false);
+        return runTesters.isPeer(member);
     }
 
     /** Adds a delay to a channel's interval in one direction. */
@@ -1283,9 +1072,9 @@ public final class BusRun implements AutoCloseable {
         LOG.info("Left the bus: {}; members now {}", left, members);
         // a tester of another run (refused because of this one) never served it, even if it said so only now
         List<String> gone = left.stream().filter(watched::remove)
-                .filter(m -> !tester.wasTester(m) || m.equals(runLeader)).toList();
+                .filter(m -> !tester.wasTester(m) || m.equals(runTesters.leader())).toList();
         if (running && !gone.isEmpty()) {
-            gone.forEach(expected::remove); // reported here, not again by the start
+            gone.forEach(runMembers::left); // reported here, not again by the start
             context.inconclusive("adapter member" + (gone.size() == 1 ? " " : "s ") + String.join(", ", gone)
                     + " left the bus (members now " + members + "); the system under test may be gone");
         }

@@ -3,6 +3,7 @@ package io.dtron.engine;
 import io.dtron.engine.coverage.Goals;
 import io.dtron.engine.coverage.RunCoverage;
 import io.dtron.engine.coverage.StopCondition;
+import io.dtron.engine.internal.clock.Ticks;
 import io.dtron.engine.internal.clock.RealClock;
 import io.dtron.engine.internal.clock.RunClock;
 import io.dtron.engine.internal.clock.VirtualClock;
@@ -37,7 +38,6 @@ import java.util.concurrent.atomic.AtomicLong;
  * the same seed and a deterministic system give the same run.
  */
 public final class OnlineTester {
-    private static final int MAX_TICKS_PER_UNIT = 1000;
     /**
      * How many reorder windows past its time a held verdict, or the commitment to an input, waits for the
      * acknowledgement of an input, when the adapters acknowledge inputs: its place decides the order of events.
@@ -211,7 +211,7 @@ public final class OnlineTester {
     }
 
     private int ticksPerUnit() {
-        return (int) Math.min(options.timeUnitMicros(), MAX_TICKS_PER_UNIT);
+        return Ticks.of(options.timeUnitMicros()).perUnit();
     }
 
     /**
@@ -389,6 +389,7 @@ public final class OnlineTester {
         private final Random random;
         private final long unit;
         private final int ticksPerUnit;
+        private final Ticks ticks;
         /** The end of the run: the timeout, or when the stop condition was met. */
         private long timeoutMicros;
         private final Recorder coverage;
@@ -436,9 +437,10 @@ public final class OnlineTester {
             this.random = random;
             this.unit = options.timeUnitMicros();
             this.ticksPerUnit = ticksPerUnit;
+            this.ticks = new Ticks(unit, ticksPerUnit);
             this.timeoutMicros = Math.multiplyExact(options.timeout(), unit);
             this.windowMicros = windowMicros;
-            this.inputMargin = options.virtualTime() ? 0 : ticksCeil(options.inputMarginMicros());
+            this.inputMargin = options.virtualTime() ? 0 : ticks.ceil(options.inputMarginMicros());
             this.set = StateSet.initial(semantics, partition);
             this.committed = set;
             this.coverage = coverage;
@@ -455,7 +457,7 @@ public final class OnlineTester {
         }
 
         private Plan plan() {
-            long horizon = ticksCeil(timeoutMicros - lastMicros);
+            long horizon = ticks.ceil(timeoutMicros - lastMicros);
             if (lastPlan == null || lastPlanSet != set || lastPlanMicros != lastMicros || lastPlanHorizon != horizon) {
                 lastPlan = Plan.of(set, semantics, partition, testInterface, unit, horizon);
                 lastPlanSet = set;
@@ -476,12 +478,12 @@ public final class OnlineTester {
                 // is not the current one
                 return;
             }
-            long[] w = plan().windowAt(channel.channel(), ticksFloor(at - lastMicros));
+            long[] w = plan().windowAt(channel.channel(), ticks.floor(at - lastMicros));
             if (w == null) {
                 return;
             }
-            long earliest = lastMicros + micros(w[0]);
-            long latest = w[1] == Long.MAX_VALUE ? -1 : lastMicros + micros(w[1]);
+            long earliest = lastMicros + ticks.micros(w[0]);
+            long latest = w[1] == Long.MAX_VALUE ? -1 : lastMicros + ticks.micros(w[1]);
             for (TestListener l : listeners) {
                 l.outputWindow(event, at, earliest, latest);
             }
@@ -492,7 +494,7 @@ public final class OnlineTester {
          * begins before the run's end.
          */
         private boolean deadlineBeforeTheEnd(Plan plan) {
-            return plan.hasDeadline() && lastMicros + micros(plan.deadline() + 1) < timeoutMicros;
+            return plan.hasDeadline() && lastMicros + ticks.micros(plan.deadline() + 1) < timeoutMicros;
         }
 
         TestResult loop() {
@@ -561,14 +563,14 @@ public final class OnlineTester {
                     return steered;
                 }
                 Plan plan = plan();
-                long elapsed = ticksFloor(now - lastMicros);
+                long elapsed = ticks.floor(now - lastMicros);
                 // room before a window's end: for the tester's own lateness, and for the input's way to the system
-                long lateness = Math.max(inputMargin, ticksCeil(2 * clock.worstLatenessMicros()));
+                long lateness = Math.max(inputMargin, ticks.ceil(2 * clock.worstLatenessMicros()));
                 Plan.Choice choice = plan.choose(elapsed, random, options.delayPolicy(),
                         options.delayBound() * ticksPerUnit, options.shortDelayBound() * ticksPerUnit,
-                        input -> lateness + ticksCeil(Math.max(0, adapter.inputDelayMicros(input.name()))),
+                        input -> lateness + ticks.ceil(Math.max(0, adapter.inputDelayMicros(input.name()))),
                         earliestInput(), steerer == null ? null : steerer.scorer());
-                long at = lastMicros + micros(choice.ticks());
+                long at = lastMicros + ticks.micros(choice.ticks());
                 // a deadline within the test is declared missed only when the outputs stamped before it had the
                 // reorder window to arrive
                 boolean deadline = !choice.isInput() && choice.ticks() > plan.deadline() && deadlineBeforeTheEnd(plan);
@@ -599,7 +601,7 @@ public final class OnlineTester {
                     if (clock.nowMicros() < at + window()) {
                         continue; // the window was widened while the tester waited
                     }
-                    String deadlineAt = time(lastMicros + micros(plan.deadline()));
+                    String deadlineAt = time(lastMicros + ticks.micros(plan.deadline()));
                     java.util.Optional<String> unreachable = adapter.unreachable();
                     RunClock.TimedEvent meanwhile = clock.drain();
                     if (meanwhile != null) {
@@ -712,7 +714,7 @@ public final class OnlineTester {
             if (inputsAtInstant < MAX_INPUTS_AT_ONE_INSTANT) {
                 return 0;
             }
-            return Math.max(1, ticksCeil(instantMicros + unit - lastMicros));
+            return Math.max(1, ticks.ceil(instantMicros + unit - lastMicros));
         }
 
         /** Why the tester let time pass while the environment allowed an input, for explanations. */
@@ -742,7 +744,7 @@ public final class OnlineTester {
             }
             TestListener.Until until = choice.isInput() ? TestListener.Until.INPUT
                     : plan.hasDeadline() ? TestListener.Until.OUTPUT_DEADLINE : TestListener.Until.END;
-            long untilMicros = until == TestListener.Until.OUTPUT_DEADLINE ? lastMicros + micros(plan.deadline())
+            long untilMicros = until == TestListener.Until.OUTPUT_DEADLINE ? lastMicros + ticks.micros(plan.deadline())
                     : target;
             for (TestListener l : listeners) {
                 l.waiting(now, untilMicros, until);
@@ -991,7 +993,7 @@ public final class OnlineTester {
             Plan plan = plan();
             return result(Verdict.FAILED, afterLastTaken() + "output " + event + " observed at " + time(at)
                     + " is not allowed then"
-                    + plan.timing(channel.channel(), ticksFloor(at - lastMicros)) + ". "
+                    + plan.timing(channel.channel(), ticks.floor(at - lastMicros)) + ". "
                     + plan.explainOutputs(this::time, lastMicros));
         }
 
@@ -1003,7 +1005,7 @@ public final class OnlineTester {
          */
         private TestResult missedInput(Event event, long at, long uncertainty) {
             Plan plan = plan();
-            long deadline = lastMicros + micros(plan.deadline());
+            long deadline = lastMicros + ticks.micros(plan.deadline());
             if (!plan.hasDeadline() || at + uncertainty <= deadline || !plan.inputPossibleAt(plan.deadline())) {
                 return null;
             }
@@ -1043,8 +1045,8 @@ public final class OnlineTester {
          */
         private StateSet afterDelay(long at, long uncertainty) {
             coverage.begin();
-            return set.afterWindow(ticksFloor(Math.max(0, at - uncertainty - lastMicros)),
-                    ticksCeil(at + uncertainty - lastMicros), coverage.internalMoves());
+            return set.afterWindow(ticks.floor(Math.max(0, at - uncertainty - lastMicros)),
+                    ticks.ceil(at + uncertainty - lastMicros), coverage.internalMoves());
         }
 
         /** The distinct edges of {@code moves} whose values match {@code event}, for explanations. */
@@ -1112,10 +1114,10 @@ public final class OnlineTester {
             if (now < 0) {
                 return null; // an output came in after the drain: the loop observes it, then plans again
             }
-            long delta = ticksFloor(now - lastMicros);
+            long delta = ticks.floor(now - lastMicros);
             TestInterface.ObservableChannel channel = choice.input();
             coverage.begin();
-            StateSet atTime = set.afterWindow(delta, ticksCeil(now - lastMicros), coverage.internalMoves());
+            StateSet atTime = set.afterWindow(delta, ticks.ceil(now - lastMicros), coverage.internalMoves());
             List<StateSet.Successor> moves = atTime.successors(channel.channel());
             if (moves.isEmpty()) {
                 return result(Verdict.INCONCLUSIVE, "input " + channel.name() + " could not be applied at "
@@ -1195,20 +1197,8 @@ public final class OnlineTester {
             return new TestResult(verdict, explanation, options.seed(), inputs, outputs, clock.nowMicros());
         }
 
-        private long ticksFloor(long micros) {
-            return Math.floorDiv(micros * ticksPerUnit, unit);
-        }
-
-        private long ticksCeil(long micros) {
-            return -Math.floorDiv(-micros * ticksPerUnit, unit);
-        }
-
-        private long micros(long ticks) {
-            return -Math.floorDiv(-ticks * unit, ticksPerUnit);
-        }
-
         private String time(long micros) {
-            return "t=" + Plan.units(micros, unit);
+            return ticks.time(micros);
         }
     }
 }

@@ -1,15 +1,13 @@
 package io.dtron.models;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
-import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import io.dtron.cli.DtronCommand;
 import io.dtron.testsupport.DocPage;
+import io.dtron.testsupport.PageSessions;
 import io.dtron.testsupport.ShellWords;
 import java.io.File;
-import java.io.PrintWriter;
-import java.io.StringWriter;
 import java.nio.file.Files;
 import java.nio.file.Path;
 import java.util.ArrayList;
@@ -28,7 +26,6 @@ import org.junit.jupiter.api.io.TempDir;
 class CoveragePageTest {
     private static final Path ROOT = Path.of("..").toAbsolutePath().normalize();
     private static final Path SHARED = Path.of(System.getProperty("dtron.shared", "../../shared"), "models");
-    private static final String PROMPT = "$ java -jar dtron.jar ";
 
     @Test
     void everySessionPrintsWhatThePageShowsAndTheFilesHoldWhatItSays(@TempDir Path dir) throws Exception {
@@ -37,33 +34,13 @@ class CoveragePageTest {
         Files.copy(ROOT.resolve("models/src/main/resources/io/dtron/models/ticker.xml"), dir.resolve("ticker.xml"));
         DocPage page = DocPage.read("coverage.md");
         List<String> exits = new ArrayList<>();
-        for (DocPage.Block b : page.blocksStartingWith(PROMPT)) {
-            List<String> lines = b.code().lines().toList();
-            for (int i = 0; i < lines.size(); ) {
-                int line = b.line() + 1 + i;
-                String command = lines.get(i++).substring(PROMPT.length());
-                List<String> expected = new ArrayList<>();
-                while (i < lines.size() && !lines.get(i).startsWith("$ ")) {
-                    expected.add(lines.get(i++));
-                }
-                List<String> args = ShellWords.split(command);
-                for (int a = 0; a < args.size(); a++) {
-                    if (args.get(a).matches("[\\w-]+\\.(xml|trn|json|jsonl)")) {
-                        args.set(a, dir.resolve(args.get(a)).toString());
-                    } else if (args.get(a).equals("models/target/classes")) {
-                        args.set(a, ROOT.resolve(args.get(a)).toString());
-                    }
-                }
-                StringWriter out = new StringWriter();
-                StringWriter err = new StringWriter();
-                int exit = DtronCommand.run(args.toArray(String[]::new), new PrintWriter(out, true),
-                        new PrintWriter(err, true));
-                assertFalse(err.toString().contains("\tat "), "no stack trace: " + err);
-                List<String> printed = new ArrayList<>(ShellWords.lines(out.toString(), dir));
-                printed.addAll(ShellWords.lines(err.toString(), dir));
-                assertEquals(expected, printed, "coverage.md, the session on line " + line);
-                exits.add(String.join(" ", args.subList(0, 2)).replace(dir + File.separator, "") + ": " + exit);
-            }
+        for (PageSessions.Session s : PageSessions.of(page, PageSessions.inFolder(dir, "xml|trn|json|jsonl", ROOT))) {
+            PageSessions.Printed run = PageSessions.run(DtronCommand::run, s);
+            List<String> printed = new ArrayList<>(ShellWords.lines(run.out(), dir));
+            printed.addAll(ShellWords.lines(run.err(), dir));
+            assertEquals(s.expected(), printed, "coverage.md, the session " + s.command() + " in the block on line "
+                    + s.line());
+            exits.add(String.join(" ", s.args().subList(0, 2)).replace(dir + File.separator, "") + ": " + run.exit());
         }
         assertEquals(List.of("run LightContr.xml: 0", "run LightContr.xml: 0", "coverage merge: 0", "run ticker.xml: 0",
                 "coverage merge: 1", "run LightContr.xml: 0", "run LightContr.xml: 1"), exits);

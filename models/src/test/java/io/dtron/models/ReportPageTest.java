@@ -2,14 +2,12 @@ package io.dtron.models;
 
 import static org.junit.jupiter.api.Assertions.assertArrayEquals;
 import static org.junit.jupiter.api.Assertions.assertEquals;
-import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import io.dtron.cli.DtronCommand;
 import io.dtron.testsupport.DocPage;
+import io.dtron.testsupport.PageSessions;
 import io.dtron.testsupport.ShellWords;
-import java.io.PrintWriter;
-import java.io.StringWriter;
 import java.nio.file.Files;
 import java.nio.file.Path;
 import java.util.ArrayList;
@@ -30,7 +28,6 @@ import org.junit.jupiter.api.io.TempDir;
 @Timeout(value = 120, unit = TimeUnit.SECONDS)
 class ReportPageTest {
     private static final Path ROOT = Path.of("..").toAbsolutePath().normalize();
-    private static final String PROMPT = "$ java -jar dtron.jar ";
     private static final Pattern HELD_UP = Pattern.compile(
             "(?m)^INCONCLUSIVE: .*(input executed too late|more than the reorder window)");
 
@@ -40,28 +37,12 @@ class ReportPageTest {
         Files.copy(ReportBrowserTest.SHARED.resolve("tron/LightContr.trn"), dir.resolve("LightContr.trn"));
         DocPage page = DocPage.read("report.md");
         List<String> ran = new ArrayList<>();
-        for (DocPage.Block b : page.blocksStartingWith(PROMPT)) {
-            List<String> lines = new ArrayList<>(b.code().lines().toList());
-            StringBuilder command = new StringBuilder();
-            while (lines.get(0).endsWith("\\")) {
-                String l = lines.remove(0);
-                command.append(l, 0, l.length() - 1).append(' ');
-            }
-            command.append(lines.remove(0));
-            List<String> args = new ArrayList<>(ShellWords.split(command.substring(PROMPT.length())));
-            for (int a = 0; a < args.size(); a++) {
-                if (args.get(a).matches("[\\w-]+\\.(xml|trn|jsonl|html)")) {
-                    args.set(a, dir.resolve(args.get(a)).toString());
-                } else if (args.get(a).equals("models/target/classes")) {
-                    args.set(a, ROOT.resolve(args.get(a)).toString());
-                }
-            }
-            StringWriter out = new StringWriter();
-            StringWriter err = new StringWriter();
-            int exit = DtronCommand.run(args.toArray(String[]::new), new PrintWriter(out, true),
-                    new PrintWriter(err, true));
-            assertFalse(err.toString().contains("\tat "), "no stack trace: " + err);
-            String printed = String.join("\n", ShellWords.lines(out.toString(), dir)) + "\n";
+        for (PageSessions.Session s : PageSessions.of(page, PageSessions.inFolder(dir, "xml|trn|jsonl|html", ROOT))) {
+            PageSessions.Printed run = PageSessions.run(DtronCommand::run, s);
+            List<String> args = s.args();
+            List<String> lines = s.expected();
+            int exit = run.exit();
+            String printed = String.join("\n", ShellWords.lines(run.out(), dir)) + "\n";
             boolean realTime = args.get(0).equals("run") && !args.contains("--virtual-time");
             if (realTime && exit == 3 && HELD_UP.matcher(printed).find()) {
                 // a busy machine held the run up: the lines up to the verdict are still the page's
@@ -70,9 +51,9 @@ class ReportPageTest {
                 printed = printed.substring(0, printed.indexOf("INCONCLUSIVE: "));
                 exit = 0;
             }
-            assertTrue(pattern(lines).matcher(printed).matches(), "report.md, the session on line " + b.line()
+            assertTrue(pattern(lines).matcher(printed).matches(), "report.md, the session on line " + s.line()
                     + " prints\n" + printed + "\nnot what the page shows:\n" + String.join("\n", lines));
-            assertEquals("", err.toString(), "report.md line " + b.line());
+            assertEquals("", run.err(), "report.md line " + s.line());
             ran.add(args.get(0) + " " + exit);
         }
         assertEquals(List.of("run 2", "report 0", "run 0"), ran);

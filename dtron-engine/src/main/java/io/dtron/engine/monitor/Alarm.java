@@ -1,5 +1,6 @@
 package io.dtron.engine.monitor;
 
+import io.dtron.engine.JsonString;
 import io.dtron.engine.Event;
 import java.util.Collections;
 import java.util.LinkedHashMap;
@@ -134,18 +135,6 @@ public record Alarm(int number, Reason reason, long micros, Event event, String 
     }
 
     private static String quote(String s) {
-        StringBuilder sb = new StringBuilder("\"");
-        for (int i = 0; i < s.length(); i++) {
-            char c = s.charAt(i);
-            switch (c) {
-                case '"' -> sb.append("\\\"");
-                case '\\' -> sb.append("\\\\");
-                case '\n' -> sb.append("\\n");
-                case '\r' -> sb.append("\\r");
-                case '\t' -> sb.append("\\t");
-                default -> sb.append(c < 0x20 ? String.format("\\u%04x", (int) c) : String.valueOf(c));
-            }
-        }
-        return sb.append('"').toString();
+        return JsonString.quote(s);
     }
 }

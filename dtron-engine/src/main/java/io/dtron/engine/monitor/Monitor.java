@@ -2,11 +2,12 @@ package io.dtron.engine.monitor;
 
 import io.dtron.engine.Event;
 import io.dtron.engine.UnsupportedModelException;
+import io.dtron.engine.internal.clock.Ticks;
 import io.dtron.engine.internal.eval.ModelRuntimeException;
 import io.dtron.engine.internal.monitor.Tracker;
 import io.dtron.engine.internal.sem.Semantics;
+import io.dtron.engine.internal.sem.StateText;
 import io.dtron.engine.internal.sem.SymState;
-import io.dtron.engine.internal.tester.Plan;
 import io.dtron.engine.internal.verify.StateProperty;
 import io.dtron.engine.verify.Query;
 import io.dtron.engine.verify.QueryException;
@@ -15,8 +16,6 @@ import io.dtron.engine.zone.Dbm;
 import io.dtron.model.ClockVariable;
 import io.dtron.model.Network;
 import io.dtron.model.TestInterface;
-import io.dtron.model.Type;
-import io.dtron.model.Variable;
 import java.math.BigDecimal;
 import java.util.ArrayList;
 import java.util.HashMap;
@@ -36,8 +35,6 @@ import java.util.Map;
  * thread-safe: one thread feeds it.
  */
 public final class Monitor {
-    /** At most this many ticks per model time unit, as the tester. */
-    private static final int MAX_TICKS_PER_UNIT = 1000;
     /** How far past a violation the alarm looks for what the model allowed: 100 time units. */
     private static final int WINDOW_HORIZON_UNITS = 100;
     /** The most allowed events an explanation names; the alarm lists them all. */
@@ -47,6 +44,7 @@ public final class Monitor {
     private final MonitorOptions options;
     private final long unit;
     private final int ticksPerUnit;
+    private final Ticks ticks;
     private final Tracker tracker;
     private final Map<String, Channel> channels = new HashMap<>();
     private final List<Channel> byNumber = new ArrayList<>();
@@ -71,7 +69,8 @@ public final class Monitor {
         this.network = network;
         this.options = options;
         this.unit = options.timeUnitMicros();
-        this.ticksPerUnit = (int) Math.min(unit, MAX_TICKS_PER_UNIT);
+        this.ticks = Ticks.of(unit);
+        this.ticksPerUnit = ticks.perUnit();
         Semantics semantics = new Semantics(network, ticksPerUnit);
         boolean[] observed = new boolean[network.channelCount()];
         List<TestInterface.ObservableChannel> all = new ArrayList<>(testInterface.inputs());
@@ -188,8 +187,8 @@ public final class Monitor {
             throw new IllegalArgumentException("event " + event + " at " + time(micros) + " comes before the last one,"
                     + " at " + time(lastMicros));
         }
-        long fromTicks = ticksFloor(Math.max(0, micros - uncertaintyMicros - lastMicros));
-        long toTicks = ticksCeil(micros + uncertaintyMicros - lastMicros);
+        long fromTicks = ticks.floor(Math.max(0, micros - uncertaintyMicros - lastMicros));
+        long toTicks = ticks.ceil(micros + uncertaintyMicros - lastMicros);
         events++;
         Tracker.Node next;
         try {
@@ -227,19 +226,19 @@ public final class Monitor {
         if (micros <= lastMicros) {
             return null;
         }
-        long ticks = ticksFloor(micros - lastMicros);
+        long elapsed = ticks.floor(micros - lastMicros);
         try {
-            if (tracker.allows(current, ticks)) {
+            if (tracker.allows(current, elapsed)) {
                 return null;
             }
         } catch (ModelRuntimeException e) {
             throw new UnsupportedModelException("model error while letting time pass: " + e.format());
         }
-        List<SymState> reach = tracker.reach(current, ticks);
-        long deadline = lastMicros + microsCeil(Bound.value(tracker.latest(reach)));
+        List<SymState> reach = tracker.reach(current, elapsed);
+        long deadline = lastMicros + ticks.micros(Bound.value(tracker.latest(reach)));
         String explanation = "no event by " + time(deadline) + ", the deadline after " + since() + ": the model "
-                + "required one of " + describe(allowed(ticks)) + " by then";
-        Alarm alarm = raise(Alarm.Reason.DEADLINE_MISSED, deadline, null, explanation, ticks);
+                + "required one of " + describe(allowed(elapsed)) + " by then";
+        Alarm alarm = raise(Alarm.Reason.DEADLINE_MISSED, deadline, null, explanation, elapsed);
         if (options.keepGoing()) {
             current = reachable();
             lastMicros = deadline;
@@ -272,7 +271,7 @@ public final class Monitor {
     private Alarm violation(Event event, Channel ch, long micros, long fromTicks, long toTicks) {
         Tracker.Node atTime = tracker.afterWindow(current, fromTicks, toTicks);
         if (atTime.isEmpty()) {
-            long deadline = lastMicros + microsCeil(Bound.value(tracker.latest(tracker.reach(current, toTicks))));
+            long deadline = lastMicros + ticks.micros(Bound.value(tracker.latest(tracker.reach(current, toTicks))));
             String explanation = "no event by " + time(deadline) + ", the deadline after " + since() + ": the model "
                     + "required one of " + describe(allowed(toTicks)) + " by then; the next event, " + event
                     + ", came at " + time(micros);
@@ -321,16 +320,16 @@ public final class Monitor {
     }
 
     /**
-     * The events the model allowed after the last one, up to {@code ticks} after it and some way beyond, with their
-     * windows: per channel and values, the earliest and latest time.
+     * The events the model allowed after the last one, up to {@code upTo} ticks after it and some way beyond, with
+     * their windows: per channel and values, the earliest and latest time.
      */
-    private List<Alarm.Window> allowed(long ticks) {
+    private List<Alarm.Window> allowed(long upTo) {
         List<SymState> reach;
-        long horizon = 2 * ticks + (long) WINDOW_HORIZON_UNITS * ticksPerUnit;
+        long horizon = 2 * upTo + (long) WINDOW_HORIZON_UNITS * ticksPerUnit;
         try {
             reach = tracker.reach(current, horizon);
         } catch (UnsupportedModelException e) {
-            horizon = ticks;
+            horizon = upTo;
             reach = tracker.reach(current, horizon);
         }
         long end = Math.min(horizon, Bound.MAX_VALUE);
@@ -362,8 +361,8 @@ public final class Monitor {
         for (Map.Entry<String, long[]> e : windows.entrySet()) {
             long[] w = e.getValue();
             Alarm.Window k = keys.get(e.getKey());
-            out.add(new Alarm.Window(k.channel(), k.values(), lastMicros + microsFloor(w[0]),
-                    w[1] < 0 ? -1 : lastMicros + microsCeil(w[1])));
+            out.add(new Alarm.Window(k.channel(), k.values(), lastMicros + ticks.microsFloor(w[0]),
+                    w[1] < 0 ? -1 : lastMicros + ticks.micros(w[1])));
         }
         return out;
     }
@@ -398,27 +397,8 @@ public final class Monitor {
     }
 
     private Alarm.State describe(SymState s) {
-        List<String> locations = new ArrayList<>();
-        for (io.dtron.model.Process p : network.processes()) {
-            int l = s.location(p.index());
-            if (l >= 0) {
-                locations.add(p.name() + "." + p.locations().get(l).name());
-            }
-        }
-        Map<String, Integer> variables = new LinkedHashMap<>();
-        for (Variable v : network.variables()) {
-            if (v.type() instanceof Type.Array a && a.element().slots() == 1) {
-                for (int i = 0; i < a.length(); i++) {
-                    variables.put(v.name() + "[" + (a.firstIndex() + i) + "]", s.var(v.offset() + i));
-                }
-            } else if (v.type().slots() == 1) {
-                variables.put(v.name(), s.var(v.offset()));
-            } else {
-                for (int i = 0; i < v.type().slots(); i++) {
-                    variables.put(v.name() + "#" + i, s.var(v.offset() + i));
-                }
-            }
-        }
+        List<String> locations = StateText.locations(network, s);
+        Map<String, Integer> variables = StateText.variables(network, s);
         List<String> clocks = new ArrayList<>();
         Dbm z = s.zone();
         for (int x = 1; x < clockNames.length - 1; x++) {
@@ -459,23 +439,7 @@ public final class Monitor {
         return options;
     }
 
-    private long ticksFloor(long micros) {
-        return Math.floorDiv(micros * ticksPerUnit, unit);
-    }
-
-    private long ticksCeil(long micros) {
-        return -Math.floorDiv(-micros * ticksPerUnit, unit);
-    }
-
-    private long microsFloor(long ticks) {
-        return Math.floorDiv(ticks * unit, ticksPerUnit);
-    }
-
-    private long microsCeil(long ticks) {
-        return -Math.floorDiv(-ticks * unit, ticksPerUnit);
-    }
-
     private String time(long micros) {
-        return "t=" + Plan.units(micros, unit);
+        return ticks.time(micros);
     }
 }

@@ -1,5 +1,6 @@
 package io.dtron.report.internal;
 
+import io.dtron.engine.JsonString;
 import java.util.List;
 import java.util.Map;
 
@@ -21,32 +22,9 @@ public final class JsonText {
         return sb.toString();
     }
 
-    /** Appends {@code s} as a JSON string literal. */
+    /** Appends {@code s} as a JSON string literal safe inside an HTML script element (see {@link JsonString}). */
     public static void quote(String s, StringBuilder sb) {
-        sb.append('"');
-        for (int i = 0; i < s.length(); i++) {
-            char c = s.charAt(i);
-            switch (c) {
-                case '"' -> sb.append("\\\"");
-                case '\\' -> sb.append("\\\\");
-                case '\n' -> sb.append("\\n");
-                case '\r' -> sb.append("\\r");
-                case '\t' -> sb.append("\\t");
-                case '<' -> sb.append("\\u003c");
-                case '>' -> sb.append("\\u003e");
-                case '&' -> sb.append("\\u0026");
-                case '\u2028' -> sb.append("\\u2028");
-                case '\u2029' -> sb.append("\\u2029");
-                default -> {
-                    if (c < 0x20) {
-                        sb.append(String.format("\\u%04x", (int) c));
-                    } else {
-                        sb.append(c);
-                    }
-                }
-            }
-        }
-        sb.append('"');
+        JsonString.quote(s, sb, true);
     }
 
     /** Appends a list of strings. */

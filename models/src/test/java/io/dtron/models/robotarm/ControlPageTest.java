@@ -1,14 +1,12 @@
 package io.dtron.models.robotarm;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
-import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import io.dtron.cli.DtronCommand;
 import io.dtron.testsupport.DocPage;
+import io.dtron.testsupport.PageSessions;
 import io.dtron.testsupport.ShellWords;
-import java.io.PrintWriter;
-import java.io.StringWriter;
 import java.nio.charset.StandardCharsets;
 import java.nio.file.Files;
 import java.nio.file.Path;
@@ -24,7 +22,6 @@ import org.junit.jupiter.api.Test;
 class ControlPageTest {
     private static final Path ROOT = Path.of("..").toAbsolutePath().normalize();
     private static final Path SAMPLE = ROOT.resolve("models/src/main/resources/io/dtron/models/robotarm");
-    private static final String PROMPT = "$ java -jar dtron.jar ";
 
     @Test
     void theModelAndQueriesAreTheSamples() throws Exception {
@@ -39,23 +36,13 @@ class ControlPageTest {
     void everySessionPrintsWhatThePageShows() throws Exception {
         DocPage page = DocPage.read("control.md");
         List<String> exits = new ArrayList<>();
-        for (DocPage.Block b : page.blocksStartingWith(PROMPT)) {
-            List<String> lines = b.code().lines().toList();
-            List<String> args = new ArrayList<>(ShellWords.split(lines.get(0).substring(PROMPT.length())));
-            for (int a = 0; a < args.size(); a++) {
-                if (args.get(a).startsWith("models/")) {
-                    args.set(a, ROOT.resolve(args.get(a)).toString());
-                }
-            }
-            StringWriter out = new StringWriter();
-            StringWriter err = new StringWriter();
-            int exit = DtronCommand.run(args.toArray(String[]::new), new PrintWriter(out, true),
-                    new PrintWriter(err, true));
-            assertFalse(err.toString().contains("\tat "), "no stack trace: " + err);
-            List<String> printed = new ArrayList<>(ShellWords.lines(out.toString(), ROOT));
-            printed.addAll(ShellWords.lines(err.toString(), ROOT));
-            assertEquals(lines.subList(1, lines.size()), printed, "control.md, the session on line " + b.line());
-            exits.add(args.get(0) + ": " + exit);
+        for (PageSessions.Session s : PageSessions.of(page, word -> word.startsWith("models/")
+                ? ROOT.resolve(word).toString() : word)) {
+            PageSessions.Printed run = PageSessions.run(DtronCommand::run, s);
+            List<String> printed = new ArrayList<>(ShellWords.lines(run.out(), ROOT));
+            printed.addAll(ShellWords.lines(run.err(), ROOT));
+            assertEquals(s.expected(), printed, "control.md, the session on line " + s.line());
+            exits.add(s.args().get(0) + ": " + run.exit());
         }
         assertEquals(List.of("control: 0", "control: 2", "control: 2", "control: 0", "control: 0"), exits);
         String text = page.text();

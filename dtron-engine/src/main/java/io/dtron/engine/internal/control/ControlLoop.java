@@ -14,6 +14,7 @@ import io.dtron.engine.control.ControlPolicy;
 import io.dtron.engine.control.ControlResult;
 import io.dtron.engine.control.ModelVersion;
 import io.dtron.engine.control.SafeAction;
+import io.dtron.engine.internal.clock.Ticks;
 import io.dtron.engine.internal.clock.RealClock;
 import io.dtron.engine.internal.clock.RunClock;
 import io.dtron.engine.internal.clock.VirtualClock;
@@ -42,7 +43,6 @@ import java.util.concurrent.atomic.AtomicReference;
  * alarm, followed by the safe action. Runs on the caller's thread.
  */
 public final class ControlLoop {
-    private static final int MAX_TICKS_PER_UNIT = 1000;
 
     private final Adapter plant;
     private final TestOptions options;
@@ -55,6 +55,7 @@ public final class ControlLoop {
     private final TestInterface plantInterface;
     private final long unit;
     private final int ticksPerUnit;
+    private final Ticks ticks;
     private final long endMicros;
     private final Random random;
     private final List<String> versions = new ArrayList<>();
@@ -93,7 +94,8 @@ public final class ControlLoop {
         this.offered = offered;
         this.refused = refused;
         this.unit = options.timeUnitMicros();
-        this.ticksPerUnit = (int) Math.min(unit, MAX_TICKS_PER_UNIT);
+        this.ticks = Ticks.of(unit);
+        this.ticksPerUnit = ticks.perUnit();
         this.endMicros = Math.multiplyExact(options.timeout(), unit);
         this.random = new Random(options.seed());
     }
@@ -102,7 +104,7 @@ public final class ControlLoop {
     public ControlResult run() {
         use(network, testInterface);
         clock = options.virtualTime() ? new VirtualClock() : new RealClock();
-        inputMargin = options.virtualTime() ? 0 : ticksCeil(options.inputMarginMicros());
+        inputMargin = options.virtualTime() ? 0 : ticks.ceil(options.inputMarginMicros());
         plan(); // once before time starts, so that a cold start does not eat real time
         clock.begin(plant.timeZero());
         plant.start(new Context());
@@ -156,13 +158,14 @@ public final class ControlLoop {
                 steerer.check(set, lastMicros, "");
             }
             Plan plan = plan();
-            long elapsed = ticksFloor(now - lastMicros);
-            long lateness = Math.max(inputMargin, ticksCeil(2 * clock.worstLatenessMicros()));
+            long elapsed = ticks.floor(now - lastMicros);
+            long lateness = Math.max(inputMargin, ticks.ceil(2 * clock.worstLatenessMicros()));
             Plan.Choice choice = plan.choose(elapsed, random, policy == ControlPolicy.RANDOM
                             ? io.dtron.engine.DelayPolicy.RANDOM : io.dtron.engine.DelayPolicy.EAGER, 0, 0,
-                    input -> lateness + ticksCeil(Math.max(0, plant.inputDelayMicros(input.name()))), earliestCommand(),
+                    input -> lateness + ticks.ceil(Math.max(0, plant.inputDelayMicros(input.name()))),
+                    earliestCommand(),
                     steerer == null ? null : steerer.scorer());
-            long at = lastMicros + micros(choice.ticks());
+            long at = lastMicros + ticks.micros(choice.ticks());
             boolean deadline = !choice.isInput() && plan.hasDeadline() && choice.ticks() > plan.deadline();
             long target = choice.isInput() || deadline ? at : Math.min(endMicros, at);
             RunClock.TimedEvent event = clock.awaitUntil(target);
@@ -217,12 +220,12 @@ public final class ControlLoop {
     }
 
     private Plan plan() {
-        return Plan.of(set, semantics, partition, testInterface, unit, ticksCeil(endMicros - lastMicros));
+        return Plan.of(set, semantics, partition, testInterface, unit, ticks.ceil(endMicros - lastMicros));
     }
 
     /** No reading came by the plan's deadline: an alarm, unless the controller itself failed to act. */
     private ControlResult missed(Plan.Choice choice, Plan plan) {
-        long deadlineMicros = lastMicros + micros(plan.deadline());
+        long deadlineMicros = lastMicros + ticks.micros(plan.deadline());
         String deadlineAt = time(deadlineMicros);
         if (choice.letsTimePass() && !plan.environmentLetsTimePass()
                 || plan.inputPossibleAt(plan.deadline()) && !choice.letsTimePass()) {
@@ -276,7 +279,7 @@ public final class ControlLoop {
                     + channel.name() + "'");
         }
         Plan before = plan();
-        StateSet atTime = set.afterWindow(ticksFloor(at - lastMicros), ticksCeil(at - lastMicros));
+        StateSet atTime = set.afterWindow(ticks.floor(at - lastMicros), ticks.ceil(at - lastMicros));
         if (atTime.isEmpty()) {
             return alarm("reading " + event + " at " + time(at) + " is too late: " + readings(before));
         }
@@ -308,7 +311,7 @@ public final class ControlLoop {
             return alarm("the controller's model cannot take reading " + event + " at " + time(at) + ": " + refusal);
         }
         return alarm("reading " + event + " at " + time(at) + " is not allowed then"
-                + before.timing(channel.channel(), ticksFloor(at - lastMicros)) + ". "
+                + before.timing(channel.channel(), ticks.floor(at - lastMicros)) + ". "
                 + readings(before));
     }
 
@@ -319,7 +322,7 @@ public final class ControlLoop {
             return null; // a reading came in after the drain: the loop takes it, then plans again
         }
         TestInterface.ObservableChannel channel = choice.input();
-        StateSet atTime = set.afterWindow(ticksFloor(now - lastMicros), ticksCeil(now - lastMicros));
+        StateSet atTime = set.afterWindow(ticks.floor(now - lastMicros), ticks.ceil(now - lastMicros));
         List<StateSet.Successor> moves = atTime.successors(channel.channel());
         if (moves.isEmpty()) {
             return end(ControlResult.Outcome.STOPPED, "command " + channel.name() + " could not be sent at "
@@ -384,7 +387,7 @@ public final class ControlLoop {
         if (commandsAtInstant < OnlineTester.MAX_INPUTS_AT_ONE_INSTANT) {
             return 0;
         }
-        return Math.max(1, ticksCeil(instantMicros + unit - lastMicros));
+        return Math.max(1, ticks.ceil(instantMicros + unit - lastMicros));
     }
 
     private void countInstant(long micros) {
@@ -405,20 +408,8 @@ public final class ControlLoop {
         return values;
     }
 
-    private long ticksFloor(long micros) {
-        return Math.floorDiv(micros * ticksPerUnit, unit);
-    }
-
-    private long ticksCeil(long micros) {
-        return -Math.floorDiv(-micros * ticksPerUnit, unit);
-    }
-
-    private long micros(long ticks) {
-        return -Math.floorDiv(-ticks * unit, ticksPerUnit);
-    }
-
     private String time(long micros) {
-        return "t=" + Plan.units(micros, unit);
+        return ticks.time(micros);
     }
 
     /** The plant's view of the run. */

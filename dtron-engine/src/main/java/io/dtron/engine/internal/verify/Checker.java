@@ -4,6 +4,7 @@ import io.dtron.engine.UnsupportedModelException;
 import io.dtron.engine.internal.eval.ModelRuntimeException;
 import io.dtron.engine.internal.sem.ClockLimits;
 import io.dtron.engine.internal.sem.Semantics;
+import io.dtron.engine.internal.sem.StateText;
 import io.dtron.engine.internal.sem.SymState;
 import io.dtron.engine.verify.Query;
 import io.dtron.engine.verify.SearchOrder;
@@ -15,9 +16,6 @@ import io.dtron.engine.verify.VerifierOptions;
 import io.dtron.engine.zone.Bound;
 import io.dtron.engine.zone.Dbm;
 import io.dtron.model.Network;
-import io.dtron.model.Process;
-import io.dtron.model.Type;
-import io.dtron.model.Variable;
 import java.math.BigDecimal;
 import java.util.ArrayDeque;
 import java.util.ArrayList;
@@ -626,27 +624,8 @@ public final class Checker {
     }
 
     private Trace.State describe(SymState s) {
-        List<String> locations = new ArrayList<>();
-        for (Process p : network.processes()) {
-            int l = s.location(p.index());
-            if (l >= 0) {
-                locations.add(p.name() + "." + p.locations().get(l).name());
-            }
-        }
-        Map<String, Integer> variables = new LinkedHashMap<>();
-        for (Variable v : network.variables()) {
-            if (v.type() instanceof Type.Array a && a.element().slots() == 1) {
-                for (int i = 0; i < a.length(); i++) {
-                    variables.put(v.name() + "[" + (a.firstIndex() + i) + "]", s.var(v.offset() + i));
-                }
-            } else if (v.type().slots() == 1) {
-                variables.put(v.name(), s.var(v.offset()));
-            } else {
-                for (int i = 0; i < v.type().slots(); i++) {
-                    variables.put(v.name() + "#" + i, s.var(v.offset() + i));
-                }
-            }
-        }
+        List<String> locations = StateText.locations(network, s);
+        Map<String, Integer> variables = StateText.variables(network, s);
         return new Trace.State(locations, variables, s.zone().toString(clockNames));
     }
 
