@@ -68,10 +68,11 @@ class RacingTest {
     @Test
     void aSystemThatAnswersAfterItsDeadlineFailsEveryRunItsInputLandedIn() throws Exception {
         for (CommandRun r : runs("late")) {
-            // an input that a loaded machine delivered after its window closed makes the run INCONCLUSIVE first
-            // (saying so); every other run is FAILED, never PASSED
+            // an input that a loaded machine delivered after its window closed, or that the tester's held-up thread
+            // came to after it, makes the run INCONCLUSIVE first (saying so); every other run is FAILED, never PASSED
             if (r.exit() == 3) {
-                assertTrue(r.out().contains("(input executed too late)"), r.out());
+                assertTrue(r.out().contains("(input executed too late)")
+                        || r.out().contains("(too late for the window the environment allowed)"), r.out());
             } else {
                 assertEquals(2, r.exit(), r.out() + r.err());
                 assertTrue(r.out().contains("FAILED: "), r.out());

@@ -95,7 +95,7 @@ class TickerBusAdapterTest {
     }
 
     @Test
-    void theReadmeCommandPassesUnlessTheTickerWasHeldUpAndTheSlowVariantFails() {
+    void theReadmeCommandPassesUnlessTheMachineHeldItUpAndTheSlowVariantFails() {
         String[] readme = {"src/main/resources/io/dtron/models/ticker.xml", "--adapter",
                 TickerBusAdapter.class.getName(), "--timeunit", "10000", "--timeout", "300", "--delay-policy", "eager",
                 "--cluster", cluster};
@@ -103,17 +103,12 @@ class TickerBusAdapterTest {
         StringWriter err = new StringWriter();
         try (LogCapture ticker = new LogCapture(TickerBusAdapter.class)) {
             int exit = DtronCommand.run(readme, new PrintWriter(out), new PrintWriter(err));
-            if (exit == 2) {
-                // at 10 ms per unit a busy machine can hold the ticker's JVM up beyond the model's 2 units: then the
-                // verdict is right, and the ticker, timing its ticks on its own run clock, says it was late. A FAILED
-                // verdict for a tick the ticker sent on time would be a false one, and fails this test.
-                assertTrue(out.toString().contains("is too late"), out + "" + err);
-                assertTrue(ticker.messages().stream().anyMatch(m -> m.contains("(this JVM was held up)")),
-                        "FAILED, yet the ticker kept its period: " + out + err + ticker.messages());
-            } else {
-                assertEquals(0, exit, out + "" + err);
-                TickerRunBounds.assertPassed(out.toString(), 300);
-            }
+            // at 10 ms per unit a busy machine can hold the ticker's JVM up beyond the model's 2 units: then FAILED is
+            // right, and the ticker, timing its ticks on its own run clock, says it was late; or hold the tester up:
+            // then INCONCLUSIVE, in the tester's own words. A FAILED verdict for a tick sent on time would be a false
+            // one, and fails this test, as does an INCONCLUSIVE for another reason.
+            TickerRunBounds.assertPassedUnlessHeldUp(exit, out + "" + err, 300,
+                    () -> String.join("\n", ticker.messages()));
         }
 
         readme[2] = TickerBusAdapter.class.getName() + ":slow";
