@@ -12,10 +12,8 @@ import java.util.Arrays;
 import java.util.Collections;
 import java.util.Deque;
 import java.util.HashMap;
-import java.util.IdentityHashMap;
 import java.util.List;
 import java.util.Map;
-import java.util.Set;
 import java.util.function.Predicate;
 
 /**
@@ -35,6 +33,12 @@ public final class Tracker {
     static final int TRANSITION_LIMIT = 4_096;
     /** How many transitions all nodes remember before the tracker forgets all nodes and transitions. */
     static final int REMEMBERED_LIMIT = 200_000;
+    /**
+     * How many discrete parts each cache of moves holds before it forgets them all: more than the long runs of
+     * LightContr and the street lights in {@code MonitorBench} meet, since a cache that forgets every few hundred
+     * events enumerates the moves anew (2,000 made the replay of LightContr about a third slower).
+     */
+    static final int CACHED = 50_000;
 
     private final Semantics semantics;
     private final int elapsed;
@@ -52,9 +56,9 @@ public final class Tracker {
     public Tracker(Semantics semantics, boolean[] observed) {
         this.semantics = semantics;
         this.elapsed = semantics.elapsedClock();
-        this.internal = new DiscreteCache(semantics, c -> c < 0 || !observed[c], 2_000);
-        this.observable = new DiscreteCache(semantics, c -> c >= 0 && observed[c], 2_000);
-        this.all = new DiscreteCache(semantics, c -> true, 2_000);
+        this.internal = new DiscreteCache(semantics, c -> c < 0 || !observed[c], CACHED);
+        this.observable = new DiscreteCache(semantics, c -> c >= 0 && observed[c], CACHED);
+        this.all = new DiscreteCache(semantics, c -> true, CACHED);
     }
 
     /** The semantics. */
@@ -200,7 +204,7 @@ public final class Tracker {
                 continue;
             }
             z.reset(elapsed, 0);
-            semantics.extrapolate(t);
+            internal.extrapolate(t);
             out.add(t);
         }
         return out.states();
@@ -286,7 +290,7 @@ public final class Tracker {
                 continue;
             }
             s.zone().reset(elapsed, 0);
-            semantics.extrapolate(s);
+            all.extrapolate(s);
             if (!passed.add(s)) {
                 continue;
             }
@@ -376,39 +380,79 @@ public final class Tracker {
         }
     }
 
-    /** States grouped by their discrete part, a new state compared by zone inclusion with its group only. */
+    /**
+     * States compared by zone inclusion with those of the same discrete part: one list scanned while it is short
+     * (the sets of one event hold a few states), grouped by discrete part once it grows.
+     */
     private static final class Passed {
-        private final Map<Integer, List<SymState>> groups = new HashMap<>();
+        /** How many states are scanned in one list before they are grouped. */
+        private static final int SCANNED = 16;
+        /** The states in the order they were added; null where a later one covered the state. */
         private final List<SymState> order = new ArrayList<>();
-        /** The states of {@link #order} a later one covered: left out of {@link #states()}. */
-        private final Set<SymState> dropped = Collections.newSetFromMap(new IdentityHashMap<>());
+        /** Per discrete hash, the indices in {@link #order} of its states not covered; null while few. */
+        private Map<Integer, List<Integer>> groups;
+        private int dropped;
 
-        /** Adds {@code s} unless a state of its group covers it; drops the states it covers. */
+        /** Adds {@code s} unless a state of its discrete part covers it; drops the states it covers. */
         boolean add(SymState s) {
-            List<SymState> group = groups.computeIfAbsent(s.discreteHash(), k -> new ArrayList<>(2));
-            for (SymState o : group) {
+            if (groups == null && order.size() >= SCANNED) {
+                groups = new HashMap<>();
+                for (int i = 0; i < order.size(); i++) {
+                    SymState o = order.get(i);
+                    if (o != null) {
+                        groups.computeIfAbsent(o.discreteHash(), k -> new ArrayList<>(2)).add(i);
+                    }
+                }
+            }
+            if (groups == null) {
+                for (SymState o : order) {
+                    if (o != null && o.sameDiscrete(s) && s.zone().isSubsetOf(o.zone())) {
+                        return false;
+                    }
+                }
+                for (int i = 0; i < order.size(); i++) {
+                    SymState o = order.get(i);
+                    if (o != null && o.sameDiscrete(s) && o.zone().isSubsetOf(s.zone())) {
+                        order.set(i, null);
+                        dropped++;
+                    }
+                }
+                order.add(s);
+                return true;
+            }
+            List<Integer> group = groups.computeIfAbsent(s.discreteHash(), k -> new ArrayList<>(2));
+            for (int i : group) {
+                SymState o = order.get(i);
                 if (o.sameDiscrete(s) && s.zone().isSubsetOf(o.zone())) {
                     return false;
                 }
             }
-            group.removeIf(o -> o.sameDiscrete(s) && o.zone().isSubsetOf(s.zone()) && dropped.add(o));
-            group.add(s);
+            group.removeIf(i -> {
+                SymState o = order.get(i);
+                if (o.sameDiscrete(s) && o.zone().isSubsetOf(s.zone())) {
+                    order.set(i, null);
+                    dropped++;
+                    return true;
+                }
+                return false;
+            });
+            group.add(order.size());
             order.add(s);
             return true;
         }
 
         int size() {
-            return order.size() - dropped.size();
+            return order.size() - dropped;
         }
 
         /** The states added and not covered by a later one, in the order they were added. */
         List<SymState> states() {
-            if (dropped.isEmpty()) {
+            if (dropped == 0) {
                 return order;
             }
-            List<SymState> kept = new ArrayList<>(order.size() - dropped.size());
+            List<SymState> kept = new ArrayList<>(order.size() - dropped);
             for (SymState s : order) {
-                if (!dropped.contains(s)) {
+                if (s != null) {
                     kept.add(s);
                 }
             }
