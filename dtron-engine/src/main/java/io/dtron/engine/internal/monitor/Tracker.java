@@ -28,17 +28,18 @@ public final class Tracker {
     /** How long the exploration of the reachable states may take: 10 s. */
     static final long REACHABLE_NANOS = 10_000_000_000L;
     /** How many nodes are interned before the table and the transitions remembered start again. */
-    static final int NODE_LIMIT = 20_000;
+    static final int NODE_LIMIT = 4_096;
     /** How many transitions one node remembers before it forgets them all. */
     static final int TRANSITION_LIMIT = 4_096;
     /** How many transitions all nodes remember before the tracker forgets all nodes and transitions. */
-    static final int REMEMBERED_LIMIT = 200_000;
+    static final int REMEMBERED_LIMIT = 32_768;
     /**
-     * How many discrete parts each cache of moves holds before it forgets them all: more than the long runs of
-     * LightContr and the street lights in {@code MonitorBench} meet, since a cache that forgets every few hundred
-     * events enumerates the moves anew (2,000 made the replay of LightContr about a third slower).
+     * How many discrete parts each cache of moves holds before it forgets them all: a cache that forgets every few
+     * hundred events enumerates the moves anew (2,000 made the replay of LightContr in {@code MonitorBench} about a
+     * third slower), and one that keeps too many makes each garbage collection copy them (50,000 cost the street
+     * lights' replay 5 us an event in collections).
      */
-    static final int CACHED = 50_000;
+    static final int CACHED = 10_000;
 
     private final Semantics semantics;
     private final int elapsed;
@@ -47,18 +48,36 @@ public final class Tracker {
     private final DiscreteCache all;
     private final Map<NodeKey, Node> nodes = new HashMap<>();
     private final TransitionKey probe = new TransitionKey();
+    /** Whether transitions are remembered (off only to compare with: the sets are the same either way). */
+    private final boolean remember;
     /** Transitions remembered since the tracker last forgot. */
     private int remembered;
+    /** How many steps were answered from a remembered transition. */
+    private long recalled;
     /** The empty set: where an event that no state allows leads. */
     public final Node empty = new Node(List.of());
 
     /** A tracker of {@code semantics} (made with the tester's clock) in which the channels of {@code observed} are seen. */
     public Tracker(Semantics semantics, boolean[] observed) {
+        this(semantics, observed, true);
+    }
+
+    /**
+     * A tracker that remembers no transition when {@code remember} is false: every step is computed, as a check
+     * that remembering changes nothing.
+     */
+    public Tracker(Semantics semantics, boolean[] observed, boolean remember) {
+        this.remember = remember;
         this.semantics = semantics;
         this.elapsed = semantics.elapsedClock();
         this.internal = new DiscreteCache(semantics, c -> c < 0 || !observed[c], CACHED);
         this.observable = new DiscreteCache(semantics, c -> c >= 0 && observed[c], CACHED);
         this.all = new DiscreteCache(semantics, c -> true, CACHED);
+    }
+
+    /** How many steps were answered from a remembered transition so far. */
+    public long recalled() {
+        return recalled;
     }
 
     /** The semantics. */
@@ -125,8 +144,9 @@ public final class Tracker {
      */
     public Node step(Node from, int channel, int[] slots, int[] values, long fromTicks, long toTicks) {
         TransitionKey k = probe.set(channel, values, fromTicks, toTicks);
-        Node cached = from.next.get(k);
+        Node cached = remember ? from.next.get(k) : null;
         if (cached != null) {
+            recalled++;
             return cached;
         }
         List<SymState> out = new ArrayList<>();
@@ -138,6 +158,9 @@ public final class Tracker {
             });
         }
         Node result = node(out);
+        if (!remember) {
+            return result;
+        }
         if (from.next.size() >= TRANSITION_LIMIT) {
             from.next.clear();
         }
