@@ -31,7 +31,7 @@ import java.util.List;
  * this measures the engine, not the reading of a file. It also prints the best rate per second of this thread's CPU
  * time, which other processes on a busy machine disturb less than the wall clock. Run it with the test classpath;
  * see benchmarks.md. With {@code -Dtrace=DIR} it also writes each run to {@code DIR} as JSON lines, for timing {@code
- * dtron monitor --replay} on it.
+ * dtron monitor --replay} on it; {@code -Dmodel=LightContr} or {@code streetlight} runs one model only.
  */
 public final class MonitorBench {
     /** The tester's delay policy in the recorded runs ({@code -Dpolicy=eager}; default random). */
@@ -45,11 +45,16 @@ public final class MonitorBench {
         Path shared = Path.of(System.getProperty("dtron.shared", "../../shared"), "models");
         int wanted = Integer.getInteger("events", 200_000);
         int runs = Integer.getInteger("runs", 5);
-        Network lamp = ModelLoader.load(shared.resolve("tron/LightContr.xml"));
-        bench("LightContr", lamp, TestInterface.fromFile(lamp, shared.resolve("tron/LightContr.trn")), wanted, runs);
-        Network street = ModelLoader.load(Path.of("../models/src/main/resources/io/dtron/models/streetlight/"
-                + "streetlight.xml"));
-        bench("streetlight", street, TestInterface.fromNames(street), wanted, runs);
+        String only = System.getProperty("model", "");
+        if (!only.equals("streetlight")) {
+            Network lamp = ModelLoader.load(shared.resolve("tron/LightContr.xml"));
+            bench("LightContr", lamp, TestInterface.fromFile(lamp, shared.resolve("tron/LightContr.trn")), wanted, runs);
+        }
+        if (!only.equals("LightContr")) {
+            Network street = ModelLoader.load(Path.of("../models/src/main/resources/io/dtron/models/streetlight/"
+                    + "streetlight.xml"));
+            bench("streetlight", street, TestInterface.fromNames(street), wanted, runs);
+        }
     }
 
     /** The run as a trace of JSON lines, as {@code dtron run --trace} writes its events, for {@code --replay}. */

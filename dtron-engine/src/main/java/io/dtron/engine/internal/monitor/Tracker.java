@@ -14,6 +14,7 @@ import java.util.Deque;
 import java.util.HashMap;
 import java.util.List;
 import java.util.Map;
+import java.util.function.IntPredicate;
 import java.util.function.Predicate;
 
 /**
@@ -34,7 +35,7 @@ public final class Tracker {
     /** How many transitions all nodes remember before the tracker forgets all nodes and transitions. */
     static final int REMEMBERED_LIMIT = 32_768;
     /**
-     * How many discrete parts each cache of moves holds before it forgets them all: a cache that forgets every few
+     * How many discrete parts the cache of moves holds before it forgets them all: a cache that forgets every few
      * hundred events enumerates the moves anew (2,000 made the replay of LightContr in {@code MonitorBench} about a
      * third slower), and one that keeps too many makes each garbage collection copy them (50,000 cost the street
      * lights' replay 5 us an event in collections).
@@ -43,9 +44,10 @@ public final class Tracker {
 
     private final Semantics semantics;
     private final int elapsed;
-    private final DiscreteCache internal;
-    private final DiscreteCache observable;
+    /** The moves of every channel, internal and observable: one enumeration per discrete part for both. */
     private final DiscreteCache all;
+    /** Whether a channel (-1 none) is internal. */
+    private final IntPredicate internal;
     private final Map<NodeKey, Node> nodes = new HashMap<>();
     private final TransitionKey probe = new TransitionKey();
     /** Whether transitions are remembered (off only to compare with: the sets are the same either way). */
@@ -70,9 +72,8 @@ public final class Tracker {
         this.remember = remember;
         this.semantics = semantics;
         this.elapsed = semantics.elapsedClock();
-        this.internal = new DiscreteCache(semantics, c -> c < 0 || !observed[c], CACHED);
-        this.observable = new DiscreteCache(semantics, c -> c >= 0 && observed[c], CACHED);
         this.all = new DiscreteCache(semantics, c -> true, CACHED);
+        this.internal = c -> c < 0 || !observed[c];
     }
 
     /** How many steps were answered from a remembered transition so far. */
@@ -151,7 +152,7 @@ public final class Tracker {
         }
         List<SymState> out = new ArrayList<>();
         for (SymState s : delayed(from, fromTicks, toTicks)) {
-            observable.moves(s, channel, (move, next) -> {
+            all.moves(s, channel, (move, next) -> {
                 if (matches(next, slots, values)) {
                     out.add(next);
                 }
@@ -197,7 +198,7 @@ public final class Tracker {
     public List<Semantics.Move> moves(Node at, int channel, List<SymState> targets) {
         List<Semantics.Move> moves = new ArrayList<>();
         for (SymState s : at.states) {
-            observable.moves(s, channel, (move, next) -> {
+            all.moves(s, channel, (move, next) -> {
                 moves.add(move);
                 targets.add(next);
             });
@@ -207,7 +208,7 @@ public final class Tracker {
 
     /** The successors of {@code s} by the moves on observable channel {@code channel}. */
     public void observableMoves(SymState s, int channel, Semantics.MoveSink sink) {
-        observable.moves(s, channel, sink);
+        all.moves(s, channel, sink);
     }
 
     /**
@@ -227,7 +228,7 @@ public final class Tracker {
                 continue;
             }
             z.reset(elapsed, 0);
-            internal.extrapolate(t);
+            all.extrapolate(t);
             out.add(t);
         }
         return out.states();
@@ -248,14 +249,14 @@ public final class Tracker {
         Semantics.MoveSink sink = (move, next) -> waiting.add(next);
         while (!waiting.isEmpty()) {
             SymState s = waiting.poll();
-            if (!internal.delay(s, elapsed, Bound.le(horizon)) || !passed.add(s)) {
+            if (!all.delay(s, elapsed, Bound.le(horizon)) || !passed.add(s)) {
                 continue;
             }
             if (++visited > MAX_STATES) {
                 throw new UnsupportedModelException("more than " + MAX_STATES + " symbolic states between two"
                         + " events: the model is too nondeterministic to follow");
             }
-            internal.moves(s, sink);
+            all.moves(s, internal, sink);
         }
         return passed.states();
     }

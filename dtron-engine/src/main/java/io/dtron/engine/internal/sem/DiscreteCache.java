@@ -176,6 +176,19 @@ public final class DiscreteCache {
         }
     }
 
+    /**
+     * {@link #moves(SymState, Semantics.MoveSink)}, only those on the channels {@code channels} accepts (-1 for an
+     * edge without synchronisation): the same as a cache for those channels gives, so that one cache serves
+     * several sets of channels.
+     */
+    public void moves(SymState s, IntPredicate channels, Semantics.MoveSink sink) {
+        for (Template t : templates(s)) {
+            if (channels.test(t.channel)) {
+                fire(s, t, sink);
+            }
+        }
+    }
+
     private List<Template> templates(SymState s) {
         Entry e = entry(s.locations, s.vars, s.discreteHash());
         if (e.templates == null) {

@@ -99,6 +99,21 @@ class DiscreteCacheTest {
                 cache.moves(s, only, (move, next) -> actualOn.add(describe(semantics, move, next)));
                 assertEquals(expectedOn, actualOn, "successors on channel " + only + " of " + s);
             }
+            // a subset of the channels by a predicate, as the monitor asks for its internal moves
+            IntPredicate odd = c -> channels.test(c) && (c < 0 || c % 2 == 1);
+            List<String> expectedOdd = new ArrayList<>();
+            semantics.moves(s, odd, (move, next) -> expectedOdd.add(describe(semantics, move, next)));
+            List<String> actualOdd = new ArrayList<>();
+            cache.moves(s, odd, (move, next) -> actualOdd.add(describe(semantics, move, next)));
+            assertEquals(expectedOdd, actualOdd, "successors on odd channels of " + s);
+
+            SymState e1 = s.copy();
+            SymState e2 = s.copy();
+            e1.zone().up();
+            e2.zone().up();
+            semantics.extrapolate(e1);
+            cache.extrapolate(e2);
+            assertEquals(e1.toString(), e2.toString(), "extrapolation of " + s);
 
             int clock = semantics.elapsedClock();
             List<String> expectedBounds = new ArrayList<>();
