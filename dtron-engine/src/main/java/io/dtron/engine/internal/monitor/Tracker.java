@@ -56,6 +56,8 @@ public final class Tracker {
     private int remembered;
     /** How many steps were answered from a remembered transition. */
     private long recalled;
+    /** No channel, for {@link #delayed}. */
+    private static final int NO_CHANNEL = Integer.MIN_VALUE;
     /** The empty set: where an event that no state allows leads. */
     public final Node empty = new Node(List.of());
 
@@ -151,7 +153,7 @@ public final class Tracker {
             return cached;
         }
         List<SymState> out = new ArrayList<>();
-        for (SymState s : delayed(from, fromTicks, toTicks)) {
+        for (SymState s : delayed(from, fromTicks, toTicks, channel)) {
             all.moves(s, channel, (move, next) -> {
                 if (matches(next, slots, values)) {
                     out.add(next);
@@ -216,13 +218,21 @@ public final class Tracker {
      * back to 0; {@link #empty} if time cannot pass that far.
      */
     public Node afterWindow(Node from, long fromTicks, long toTicks) {
-        return intern(delayed(from, fromTicks, toTicks));
+        return intern(delayed(from, fromTicks, toTicks, NO_CHANNEL));
     }
 
-    /** {@link #afterWindow}'s states, not interned (the step of an event needs no node of them). */
-    private List<SymState> delayed(Node from, long fromTicks, long toTicks) {
+    /**
+     * {@link #afterWindow}'s states, not interned (the step of an event needs no node of them); with a channel
+     * ({@link #NO_CHANNEL} for none), only those whose discrete part has a move on it whose data guard holds: the
+     * others have no successor on the channel, and a state is compared only with those of its discrete part, so the
+     * states kept are those the step would keep from all, in the same order.
+     */
+    private List<SymState> delayed(Node from, long fromTicks, long toTicks, int channel) {
         Passed out = new Passed();
         for (SymState t : reach(from, toTicks)) {
+            if (channel != NO_CHANNEL && !all.mayMove(t, channel)) {
+                continue;
+            }
             Dbm z = t.zone();
             if (!z.constrain(0, elapsed, Bound.le((int) -Math.min(fromTicks, Bound.MAX_VALUE)))) {
                 continue;

@@ -189,6 +189,25 @@ public final class DiscreteCache {
         }
     }
 
+    /**
+     * Whether the discrete part of {@code s} has a move on channel {@code channel} whose data guard holds: false
+     * when {@link #moves(SymState, int, Semantics.MoveSink)} gives no successor whatever the zone.
+     */
+    public boolean mayMove(SymState s, int channel) {
+        for (Template t : templates(s)) {
+            if (t.channel != channel) {
+                continue;
+            }
+            if (t.guardState == UNKNOWN) {
+                listGuards(s, t);
+            }
+            if (t.guardState == SLOW || t.guard != null) {
+                return true;
+            }
+        }
+        return false;
+    }
+
     private List<Template> templates(SymState s) {
         Entry e = entry(s.locations, s.vars, s.discreteHash());
         if (e.templates == null) {
