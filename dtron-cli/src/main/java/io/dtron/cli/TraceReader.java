@@ -111,8 +111,12 @@ final class TraceReader {
      * times its time unit), for the {@code verdict} line after it.
      */
     private static void json(String line, int number, Sink sink, long[] timeout) {
-        if (!(Json.parse(line) instanceof Map<?, ?> m)) {
-            throw new IllegalArgumentException("not a JSON object");
+        Map<?, ?> m = Flat.parse(line);
+        if (m == null) {
+            if (!(Json.parse(line) instanceof Map<?, ?> parsed)) {
+                throw new IllegalArgumentException("not a JSON object");
+            }
+            m = parsed;
         }
         Object kind = m.get("kind");
         if ("start".equals(kind) && m.get("timeout") instanceof Long units && m.get("timeunit_us") instanceof Long unit
@@ -210,5 +214,98 @@ final class TraceReader {
             }
         }
         sink.event(new Event(channel, values), micros, number);
+    }
+
+    /**
+     * The lines DTRON writes, read without the general parser: an object of strings without escapes, integers
+     * that fit a long and one level of such objects, without spaces. {@link #parse} gives what {@link Json#parse}
+     * gives for such a line, and null for any other line, which the general parser then reads (and explains).
+     */
+    static final class Flat {
+        private final String text;
+        private int at;
+
+        private Flat(String text) {
+            this.text = text;
+        }
+
+        /** The object of {@code line}, or null when it is not of the simple shape. */
+        static Map<String, Object> parse(String line) {
+            Flat f = new Flat(line);
+            Map<String, Object> m = f.object(true);
+            return m != null && f.at == line.length() ? m : null;
+        }
+
+        private Map<String, Object> object(boolean outer) {
+            if (!next('{')) {
+                return null;
+            }
+            Map<String, Object> map = new LinkedHashMap<>();
+            if (next('}')) {
+                return map;
+            }
+            do {
+                String key = string();
+                if (key == null || !next(':') || map.containsKey(key)) {
+                    return null;
+                }
+                Object value;
+                char c = at < text.length() ? text.charAt(at) : 0;
+                if (c == '"') {
+                    value = string();
+                } else if (c == '{' && outer) {
+                    value = object(false);
+                } else {
+                    value = integer();
+                }
+                if (value == null) {
+                    return null;
+                }
+                map.put(key, value);
+            } while (next(','));
+            return next('}') ? map : null;
+        }
+
+        private boolean next(char c) {
+            if (at < text.length() && text.charAt(at) == c) {
+                at++;
+                return true;
+            }
+            return false;
+        }
+
+        private String string() {
+            if (!next('"')) {
+                return null;
+            }
+            int start = at;
+            for (; at < text.length(); at++) {
+                char c = text.charAt(at);
+                if (c == '"') {
+                    return text.substring(start, at++);
+                }
+                if (c < 0x20 || c == '\\') {
+                    return null;
+                }
+            }
+            return null;
+        }
+
+        /** An integer of at most 18 digits, without a leading zero (but 0 itself), fraction or exponent. */
+        private Long integer() {
+            int start = at;
+            next('-');
+            int digits = at;
+            long value = 0;
+            while (at < text.length() && text.charAt(at) >= '0' && text.charAt(at) <= '9') {
+                value = 10 * value + (text.charAt(at++) - '0');
+            }
+            int n = at - digits;
+            if (n == 0 || n > 18 || n > 1 && text.charAt(digits) == '0' || at < text.length()
+                    && (text.charAt(at) == '.' || text.charAt(at) == 'e' || text.charAt(at) == 'E')) {
+                return null;
+            }
+            return text.charAt(start) == '-' ? -value : value;
+        }
     }
 }

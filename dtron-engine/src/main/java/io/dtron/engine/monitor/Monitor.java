@@ -65,7 +65,7 @@ public final class Monitor {
     private record Channel(String name, int channel, int[] slots, String[] variables, int[] values) {
     }
 
-    private Monitor(Network network, TestInterface testInterface, MonitorOptions options) {
+    private Monitor(Network network, TestInterface testInterface, MonitorOptions options, boolean remember) {
         this.network = network;
         this.options = options;
         this.unit = options.timeUnitMicros();
@@ -92,7 +92,7 @@ public final class Monitor {
             channels.put(c.name(), ch);
             byNumber.add(ch);
         }
-        this.tracker = new Tracker(semantics, observed);
+        this.tracker = new Tracker(semantics, observed, remember);
         this.clockNames = new String[semantics.dimension()];
         for (ClockVariable c : network.clocks()) {
             for (int i = c.index(); i < c.index() + c.type().clocks(); i++) {
@@ -110,7 +110,12 @@ public final class Monitor {
      * @throws QueryException            when the start property does not compile or no reachable state satisfies it
      */
     public static Monitor of(Network network, TestInterface testInterface, MonitorOptions options) {
-        Monitor m = new Monitor(network, testInterface, options);
+        return of(network, testInterface, options, true);
+    }
+
+    /** {@link #of}, remembering no transition when {@code remember} is false (for tests comparing both). */
+    static Monitor of(Network network, TestInterface testInterface, MonitorOptions options, boolean remember) {
+        Monitor m = new Monitor(network, testInterface, options, remember);
         try {
             switch (options.start()) {
                 case INITIAL -> {
@@ -422,6 +427,11 @@ public final class Monitor {
     /** The number of events observed so far. */
     public long events() {
         return events;
+    }
+
+    /** How many events were answered from a remembered transition (for tests). */
+    long recalled() {
+        return tracker.recalled();
     }
 
     /** The first alarm, or null while there is none. */

@@ -315,4 +315,71 @@ class MonitorTest {
         }
         return found;
     }
+
+    @Test
+    void rememberedTransitionsGiveTheSameAlarmsAsComputedOnes() throws Exception {
+        Network lamp = ModelLoader.load(SHARED.resolve("tron/LightContr.xml"));
+        sameAlarmsRememberedOrNot(lamp, TestInterface.fromFile(lamp, SHARED.resolve("tron/LightContr.trn")));
+        sameAlarmsRememberedOrNot(server(), TestInterface.fromNames(server()));
+        // a periodic log with a fault every few periods (a late response, a wrong value, a response without a
+        // request): its sets and delays repeat, so most steps come from memory
+        List<Timed> periodic = new ArrayList<>();
+        for (int i = 0; i < 60; i++) {
+            long t = 10L * i;
+            periodic.add(at(t + 1, "req", "n", i % 3));
+            periodic.add(at(t + (i % 7 == 3 ? 5 : 3), "resp", "n", i % 3 + (i % 11 == 5 ? 2 : 1)));
+            if (i % 13 == 8) {
+                periodic.add(at(t + 4, "resp", "n", 0));
+            }
+        }
+        Network n = server();
+        Monitor remembering = Monitor.of(n, TestInterface.fromNames(n), MonitorOptions.initial(UNIT).keepGoing(true),
+                true);
+        Monitor computing = Monitor.of(n, TestInterface.fromNames(n), MonitorOptions.initial(UNIT).keepGoing(true),
+                false);
+        List<Alarm> alarms = feed(remembering, periodic);
+        assertEquals(feed(computing, periodic), alarms);
+        assertTrue(alarms.size() >= 15, "alarms: " + alarms.size());
+        assertTrue(remembering.recalled() > periodic.size() / 2, "recalled: " + remembering.recalled());
+    }
+
+    /**
+     * Replays the runs of the tester against each mutant (seeded faults) and against the model itself (longer), as
+     * recorded and with their times rounded to whole units (a log in whole units repeats its delays, so the monitor
+     * meets transitions it remembers; the rounding may also make violations), through a monitor that goes on after
+     * violations, once remembering transitions and once computing every step: the same alarms, in the same order,
+     * with the same states.
+     */
+    static void sameAlarmsRememberedOrNot(Network model, TestInterface ti) {
+        int failed = 0;
+        List<Network> systems = new ArrayList<>();
+        for (Mutant mutant : Mutants.derive(model, ti, Duration.ofSeconds(5))) {
+            if (mutant.invalid() == null && mutant.equivalent() == null) {
+                systems.add(mutant.network());
+            }
+        }
+        systems.add(model);
+        for (Network system : systems) {
+            for (long seed = 1; seed <= 2; seed++) {
+                Run r = run(model, system, ti, seed, system == model ? 3000 : 300);
+                failed += r.result().verdict() == Verdict.FAILED ? 1 : 0;
+                List<Timed> rounded = new ArrayList<>();
+                for (Timed t : r.events()) {
+                    rounded.add(new Timed(t.event(), Math.round((double) t.micros() / UNIT) * UNIT));
+                }
+                for (List<Timed> events : List.of(r.events(), rounded)) {
+                    String what = "system " + systems.indexOf(system) + " seed " + seed + " " + r.result().verdict();
+                    Monitor remembering = Monitor.of(model, ti, MonitorOptions.initial(UNIT).keepGoing(true), true);
+                    Monitor computing = Monitor.of(model, ti, MonitorOptions.initial(UNIT).keepGoing(true), false);
+                    List<Alarm> expected = feed(computing, events);
+                    expected.add(computing.advanceTo(r.result().durationMicros() + 1000 * UNIT));
+                    List<Alarm> alarms = feed(remembering, events);
+                    alarms.add(remembering.advanceTo(r.result().durationMicros() + 1000 * UNIT));
+                    assertEquals(expected, alarms, what);
+                    assertEquals(0, computing.recalled(), what);
+                }
+            }
+        }
+        assertTrue(failed > 0, "some runs found a fault");
+    }
 }

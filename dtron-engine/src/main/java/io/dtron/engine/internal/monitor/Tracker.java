@@ -12,10 +12,9 @@ import java.util.Arrays;
 import java.util.Collections;
 import java.util.Deque;
 import java.util.HashMap;
-import java.util.IdentityHashMap;
 import java.util.List;
 import java.util.Map;
-import java.util.Set;
+import java.util.function.IntPredicate;
 import java.util.function.Predicate;
 
 /**
@@ -30,31 +29,58 @@ public final class Tracker {
     /** How long the exploration of the reachable states may take: 10 s. */
     static final long REACHABLE_NANOS = 10_000_000_000L;
     /** How many nodes are interned before the table and the transitions remembered start again. */
-    static final int NODE_LIMIT = 20_000;
+    static final int NODE_LIMIT = 4_096;
     /** How many transitions one node remembers before it forgets them all. */
     static final int TRANSITION_LIMIT = 4_096;
     /** How many transitions all nodes remember before the tracker forgets all nodes and transitions. */
-    static final int REMEMBERED_LIMIT = 200_000;
+    static final int REMEMBERED_LIMIT = 32_768;
+    /**
+     * How many discrete parts the cache of moves holds before it forgets them all: a cache that forgets every few
+     * hundred events enumerates the moves anew (2,000 made the replay of LightContr in {@code MonitorBench} about a
+     * third slower), and one that keeps too many makes each garbage collection copy them (50,000 cost the street
+     * lights' replay 5 us an event in collections).
+     */
+    static final int CACHED = 10_000;
 
     private final Semantics semantics;
     private final int elapsed;
-    private final DiscreteCache internal;
-    private final DiscreteCache observable;
+    /** The moves of every channel, internal and observable: one enumeration per discrete part for both. */
     private final DiscreteCache all;
+    /** Whether a channel (-1 none) is internal. */
+    private final IntPredicate internal;
     private final Map<NodeKey, Node> nodes = new HashMap<>();
     private final TransitionKey probe = new TransitionKey();
+    /** Whether transitions are remembered (off only to compare with: the sets are the same either way). */
+    private final boolean remember;
     /** Transitions remembered since the tracker last forgot. */
     private int remembered;
+    /** How many steps were answered from a remembered transition. */
+    private long recalled;
+    /** No channel, for {@link #delayed}. */
+    private static final int NO_CHANNEL = Integer.MIN_VALUE;
     /** The empty set: where an event that no state allows leads. */
     public final Node empty = new Node(List.of());
 
     /** A tracker of {@code semantics} (made with the tester's clock) in which the channels of {@code observed} are seen. */
     public Tracker(Semantics semantics, boolean[] observed) {
+        this(semantics, observed, true);
+    }
+
+    /**
+     * A tracker that remembers no transition when {@code remember} is false: every step is computed, as a check
+     * that remembering changes nothing.
+     */
+    public Tracker(Semantics semantics, boolean[] observed, boolean remember) {
+        this.remember = remember;
         this.semantics = semantics;
         this.elapsed = semantics.elapsedClock();
-        this.internal = new DiscreteCache(semantics, c -> c < 0 || !observed[c], 2_000);
-        this.observable = new DiscreteCache(semantics, c -> c >= 0 && observed[c], 2_000);
-        this.all = new DiscreteCache(semantics, c -> true, 2_000);
+        this.all = new DiscreteCache(semantics, c -> true, CACHED);
+        this.internal = c -> c < 0 || !observed[c];
+    }
+
+    /** How many steps were answered from a remembered transition so far. */
+    public long recalled() {
+        return recalled;
     }
 
     /** The semantics. */
@@ -121,19 +147,23 @@ public final class Tracker {
      */
     public Node step(Node from, int channel, int[] slots, int[] values, long fromTicks, long toTicks) {
         TransitionKey k = probe.set(channel, values, fromTicks, toTicks);
-        Node cached = from.next.get(k);
+        Node cached = remember ? from.next.get(k) : null;
         if (cached != null) {
+            recalled++;
             return cached;
         }
         List<SymState> out = new ArrayList<>();
-        for (SymState s : delayed(from, fromTicks, toTicks)) {
-            observable.moves(s, channel, (move, next) -> {
+        for (SymState s : delayed(from, fromTicks, toTicks, channel)) {
+            all.moves(s, channel, (move, next) -> {
                 if (matches(next, slots, values)) {
                     out.add(next);
                 }
             });
         }
         Node result = node(out);
+        if (!remember) {
+            return result;
+        }
         if (from.next.size() >= TRANSITION_LIMIT) {
             from.next.clear();
         }
@@ -170,7 +200,7 @@ public final class Tracker {
     public List<Semantics.Move> moves(Node at, int channel, List<SymState> targets) {
         List<Semantics.Move> moves = new ArrayList<>();
         for (SymState s : at.states) {
-            observable.moves(s, channel, (move, next) -> {
+            all.moves(s, channel, (move, next) -> {
                 moves.add(move);
                 targets.add(next);
             });
@@ -180,7 +210,7 @@ public final class Tracker {
 
     /** The successors of {@code s} by the moves on observable channel {@code channel}. */
     public void observableMoves(SymState s, int channel, Semantics.MoveSink sink) {
-        observable.moves(s, channel, sink);
+        all.moves(s, channel, sink);
     }
 
     /**
@@ -188,19 +218,27 @@ public final class Tracker {
      * back to 0; {@link #empty} if time cannot pass that far.
      */
     public Node afterWindow(Node from, long fromTicks, long toTicks) {
-        return intern(delayed(from, fromTicks, toTicks));
+        return intern(delayed(from, fromTicks, toTicks, NO_CHANNEL));
     }
 
-    /** {@link #afterWindow}'s states, not interned (the step of an event needs no node of them). */
-    private List<SymState> delayed(Node from, long fromTicks, long toTicks) {
+    /**
+     * {@link #afterWindow}'s states, not interned (the step of an event needs no node of them); with a channel
+     * ({@link #NO_CHANNEL} for none), only those whose discrete part has a move on it whose data guard holds: the
+     * others have no successor on the channel, and a state is compared only with those of its discrete part, so the
+     * states kept are those the step would keep from all, in the same order.
+     */
+    private List<SymState> delayed(Node from, long fromTicks, long toTicks, int channel) {
         Passed out = new Passed();
         for (SymState t : reach(from, toTicks)) {
+            if (channel != NO_CHANNEL && !all.mayMove(t, channel)) {
+                continue;
+            }
             Dbm z = t.zone();
             if (!z.constrain(0, elapsed, Bound.le((int) -Math.min(fromTicks, Bound.MAX_VALUE)))) {
                 continue;
             }
             z.reset(elapsed, 0);
-            semantics.extrapolate(t);
+            all.extrapolate(t);
             out.add(t);
         }
         return out.states();
@@ -221,14 +259,14 @@ public final class Tracker {
         Semantics.MoveSink sink = (move, next) -> waiting.add(next);
         while (!waiting.isEmpty()) {
             SymState s = waiting.poll();
-            if (!internal.delay(s, elapsed, Bound.le(horizon)) || !passed.add(s)) {
+            if (!all.delay(s, elapsed, Bound.le(horizon)) || !passed.add(s)) {
                 continue;
             }
             if (++visited > MAX_STATES) {
                 throw new UnsupportedModelException("more than " + MAX_STATES + " symbolic states between two"
                         + " events: the model is too nondeterministic to follow");
             }
-            internal.moves(s, sink);
+            all.moves(s, internal, sink);
         }
         return passed.states();
     }
@@ -286,7 +324,7 @@ public final class Tracker {
                 continue;
             }
             s.zone().reset(elapsed, 0);
-            semantics.extrapolate(s);
+            all.extrapolate(s);
             if (!passed.add(s)) {
                 continue;
             }
@@ -376,39 +414,79 @@ public final class Tracker {
         }
     }
 
-    /** States grouped by their discrete part, a new state compared by zone inclusion with its group only. */
+    /**
+     * States compared by zone inclusion with those of the same discrete part: one list scanned while it is short
+     * (the sets of one event hold a few states), grouped by discrete part once it grows.
+     */
     private static final class Passed {
-        private final Map<Integer, List<SymState>> groups = new HashMap<>();
+        /** How many states are scanned in one list before they are grouped. */
+        private static final int SCANNED = 16;
+        /** The states in the order they were added; null where a later one covered the state. */
         private final List<SymState> order = new ArrayList<>();
-        /** The states of {@link #order} a later one covered: left out of {@link #states()}. */
-        private final Set<SymState> dropped = Collections.newSetFromMap(new IdentityHashMap<>());
+        /** Per discrete hash, the indices in {@link #order} of its states not covered; null while few. */
+        private Map<Integer, List<Integer>> groups;
+        private int dropped;
 
-        /** Adds {@code s} unless a state of its group covers it; drops the states it covers. */
+        /** Adds {@code s} unless a state of its discrete part covers it; drops the states it covers. */
         boolean add(SymState s) {
-            List<SymState> group = groups.computeIfAbsent(s.discreteHash(), k -> new ArrayList<>(2));
-            for (SymState o : group) {
+            if (groups == null && order.size() >= SCANNED) {
+                groups = new HashMap<>();
+                for (int i = 0; i < order.size(); i++) {
+                    SymState o = order.get(i);
+                    if (o != null) {
+                        groups.computeIfAbsent(o.discreteHash(), k -> new ArrayList<>(2)).add(i);
+                    }
+                }
+            }
+            if (groups == null) {
+                for (SymState o : order) {
+                    if (o != null && o.sameDiscrete(s) && s.zone().isSubsetOf(o.zone())) {
+                        return false;
+                    }
+                }
+                for (int i = 0; i < order.size(); i++) {
+                    SymState o = order.get(i);
+                    if (o != null && o.sameDiscrete(s) && o.zone().isSubsetOf(s.zone())) {
+                        order.set(i, null);
+                        dropped++;
+                    }
+                }
+                order.add(s);
+                return true;
+            }
+            List<Integer> group = groups.computeIfAbsent(s.discreteHash(), k -> new ArrayList<>(2));
+            for (int i : group) {
+                SymState o = order.get(i);
                 if (o.sameDiscrete(s) && s.zone().isSubsetOf(o.zone())) {
                     return false;
                 }
             }
-            group.removeIf(o -> o.sameDiscrete(s) && o.zone().isSubsetOf(s.zone()) && dropped.add(o));
-            group.add(s);
+            group.removeIf(i -> {
+                SymState o = order.get(i);
+                if (o.sameDiscrete(s) && o.zone().isSubsetOf(s.zone())) {
+                    order.set(i, null);
+                    dropped++;
+                    return true;
+                }
+                return false;
+            });
+            group.add(order.size());
             order.add(s);
             return true;
         }
 
         int size() {
-            return order.size() - dropped.size();
+            return order.size() - dropped;
         }
 
         /** The states added and not covered by a later one, in the order they were added. */
         List<SymState> states() {
-            if (dropped.isEmpty()) {
+            if (dropped == 0) {
                 return order;
             }
-            List<SymState> kept = new ArrayList<>(order.size() - dropped.size());
+            List<SymState> kept = new ArrayList<>(order.size() - dropped);
             for (SymState s : order) {
-                if (!dropped.contains(s)) {
+                if (s != null) {
                     kept.add(s);
                 }
             }

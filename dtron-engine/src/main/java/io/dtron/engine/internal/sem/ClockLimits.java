@@ -105,10 +105,15 @@ public final class ClockLimits {
 
     /** Fills the limits of the state {@code s} (its locations) into {@code lo} and {@code up}. */
     public void fill(SymState s, int[] lo, int[] up) {
+        fill(s.locations(), lo, up);
+    }
+
+    /** Fills the limits of a state in {@code locations} into {@code lo} and {@code up}. */
+    public void fill(int[] locations, int[] lo, int[] up) {
         System.arraycopy(globalLower, 0, lo, 0, lo.length);
         System.arraycopy(globalUpper, 0, up, 0, up.length);
         for (int p = 0; p < lower.length; p++) {
-            int l = s.location(p);
+            int l = locations[p];
             if (l < 0) {
                 continue;
             }

@@ -39,7 +39,8 @@ public final class DiscreteCache {
     private final Map<Key, Entry> entries = new HashMap<>();
     private final ClockBounds bounds = new ClockBounds();
     private final ClockResets resets = new ClockResets();
-    private Entry last;
+    /** The entries met last, by their hash: a lookup without allocating a key. */
+    private final Entry[] recent = new Entry[256];
 
     /**
      * A cache for the moves on the channels {@code channels} accepts (-1 for an edge without synchronisation),
@@ -57,6 +58,7 @@ public final class DiscreteCache {
     private static final class Entry {
         final int[] locations;
         final int[] vars;
+        final int hash;
         /** 0 unknown, 1 time may pass, 2 it may not. */
         byte mayDelay;
         byte invariantState = UNKNOWN;
@@ -64,10 +66,14 @@ public final class DiscreteCache {
         /** {@link #invariant} and room for one more bound, for {@link #delay}. */
         int[] invariantAndBound;
         List<Template> templates;
+        /** {@link Semantics#extrapolationBounds} of the locations, once asked for. */
+        int[] extrapolation;
+        boolean extrapolationKnown;
 
-        Entry(int[] locations, int[] vars) {
+        Entry(int[] locations, int[] vars, int hash) {
             this.locations = locations;
             this.vars = vars;
+            this.hash = hash;
         }
     }
 
@@ -141,6 +147,16 @@ public final class DiscreteCache {
         return s.zone.constrainAll(triples) && !s.zone.isEmpty();
     }
 
+    /** {@link Semantics#extrapolate(SymState)}, with the bounds of the state's locations remembered. */
+    public void extrapolate(SymState s) {
+        Entry e = entry(s.locations, s.vars, s.discreteHash());
+        if (!e.extrapolationKnown) {
+            e.extrapolation = semantics.extrapolationBounds(e.locations);
+            e.extrapolationKnown = true;
+        }
+        semantics.extrapolate(s, e.extrapolation);
+    }
+
     /** {@link Semantics#moves(SymState, IntPredicate, Semantics.MoveSink)} with this cache's channels. */
     public void moves(SymState s, Semantics.MoveSink sink) {
         for (Template t : templates(s)) {
@@ -158,6 +174,38 @@ public final class DiscreteCache {
                 fire(s, t, sink);
             }
         }
+    }
+
+    /**
+     * {@link #moves(SymState, Semantics.MoveSink)}, only those on the channels {@code channels} accepts (-1 for an
+     * edge without synchronisation): the same as a cache for those channels gives, so that one cache serves
+     * several sets of channels.
+     */
+    public void moves(SymState s, IntPredicate channels, Semantics.MoveSink sink) {
+        for (Template t : templates(s)) {
+            if (channels.test(t.channel)) {
+                fire(s, t, sink);
+            }
+        }
+    }
+
+    /**
+     * Whether the discrete part of {@code s} has a move on channel {@code channel} whose data guard holds: false
+     * when {@link #moves(SymState, int, Semantics.MoveSink)} gives no successor whatever the zone.
+     */
+    public boolean mayMove(SymState s, int channel) {
+        for (Template t : templates(s)) {
+            if (t.channel != channel) {
+                continue;
+            }
+            if (t.guardState == UNKNOWN) {
+                listGuards(s, t);
+            }
+            if (t.guardState == SLOW || t.guard != null) {
+                return true;
+            }
+        }
+        return false;
     }
 
     private List<Template> templates(SymState s) {
@@ -448,15 +496,19 @@ public final class DiscreteCache {
     }
 
     private Entry entry(int[] locations, int[] vars, int hash) {
-        Entry e = last;
-        if (e != null && e.locations == locations && e.vars == vars) {
+        int slot = (hash ^ hash >>> 16) & (recent.length - 1);
+        Entry e = recent[slot];
+        // the successors of one move share its arrays: most lookups end at the identity test
+        if (e != null && (e.locations == locations && e.vars == vars
+                || e.hash == hash && Arrays.equals(e.locations, locations) && Arrays.equals(e.vars, vars))) {
             return e;
         }
         if (entries.size() >= limit) {
             entries.clear();
+            Arrays.fill(recent, null);
         }
-        e = entries.computeIfAbsent(new Key(locations, vars, hash), k -> new Entry(k.locations, k.vars));
-        last = e;
+        e = entries.computeIfAbsent(new Key(locations, vars, hash), k -> new Entry(k.locations, k.vars, k.hash));
+        recent[slot] = e;
         return e;
     }
 }

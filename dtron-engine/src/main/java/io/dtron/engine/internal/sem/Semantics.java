@@ -305,23 +305,37 @@ public final class Semantics {
      * regions of those bounds, whose valuations have the same future.
      */
     public void extrapolate(SymState s) {
-        Dbm zone = s.zone();
+        extrapolate(s, extrapolationBounds(s.locations));
+    }
+
+    /**
+     * The bounds {@link #extrapolate(SymState)} uses for a state in {@code locations} (they depend on the
+     * locations alone), for {@link #extrapolate(SymState, int[])}; null when only the model's largest constants
+     * apply.
+     */
+    int[] extrapolationBounds(int[] locations) {
         if (localBounds == null) {
-            if (maxBounds != null) {
-                zone.extrapolateMaxBounds(maxBounds);
-            }
-            return;
+            return null;
         }
         int[] lower = new int[dimension];
         int[] bounds = new int[dimension];
-        localBounds.fill(s, lower, bounds);
+        localBounds.fill(locations, lower, bounds);
         for (int x = 1; x < dimension - 1; x++) {
             int m = Math.max(lower[x], bounds[x]);
             // at most the model's largest constant, which maxBounds has checked fits in ticks
             bounds[x] = m < 0 ? -1 : (int) Math.min((long) m * ticksPerUnit, maxBounds[x]);
         }
         bounds[dimension - 1] = maxBounds[dimension - 1];
-        zone.extrapolateLU(bounds, bounds);
+        return bounds;
+    }
+
+    /** {@link #extrapolate(SymState)} with the bounds {@link #extrapolationBounds} gave for its locations. */
+    void extrapolate(SymState s, int[] bounds) {
+        if (bounds != null) {
+            s.zone.extrapolateLU(bounds, bounds);
+        } else if (maxBounds != null) {
+            s.zone.extrapolateMaxBounds(maxBounds);
+        }
     }
 
     // ================================================================ discrete moves

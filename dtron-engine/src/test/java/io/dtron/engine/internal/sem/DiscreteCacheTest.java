@@ -80,6 +80,7 @@ class DiscreteCacheTest {
         assertTrue(states.size() > 10, "explored " + states.size());
         DiscreteCache cache = new DiscreteCache(semantics, channels, limit);
         int successors = 0;
+        int mayNot = 0;
         for (SymState s : states) {
             List<String> expected = new ArrayList<>();
             semantics.moves(s, channels, (move, next) -> expected.add(describe(semantics, move, next)));
@@ -98,7 +99,26 @@ class DiscreteCacheTest {
                 List<String> actualOn = new ArrayList<>();
                 cache.moves(s, only, (move, next) -> actualOn.add(describe(semantics, move, next)));
                 assertEquals(expectedOn, actualOn, "successors on channel " + only + " of " + s);
+                if (!cache.mayMove(s, only)) {
+                    assertEquals(List.of(), expectedOn, "no move on channel " + only + " of " + s);
+                    mayNot++;
+                }
             }
+            // a subset of the channels by a predicate, as the monitor asks for its internal moves
+            IntPredicate odd = c -> channels.test(c) && (c < 0 || c % 2 == 1);
+            List<String> expectedOdd = new ArrayList<>();
+            semantics.moves(s, odd, (move, next) -> expectedOdd.add(describe(semantics, move, next)));
+            List<String> actualOdd = new ArrayList<>();
+            cache.moves(s, odd, (move, next) -> actualOdd.add(describe(semantics, move, next)));
+            assertEquals(expectedOdd, actualOdd, "successors on odd channels of " + s);
+
+            SymState e1 = s.copy();
+            SymState e2 = s.copy();
+            e1.zone().up();
+            e2.zone().up();
+            semantics.extrapolate(e1);
+            cache.extrapolate(e2);
+            assertEquals(e1.toString(), e2.toString(), "extrapolation of " + s);
 
             int clock = semantics.elapsedClock();
             List<String> expectedBounds = new ArrayList<>();
@@ -117,6 +137,7 @@ class DiscreteCacheTest {
             assertEquals(a.toString(), b.toString(), "delay of " + s);
         }
         assertTrue(successors > 10, "successors " + successors);
+        assertTrue(mayNot > 0, "states without a move on some channel");
     }
 
     /** The first {@code max} states of the zone graph, breadth first, delayed and extrapolated. */
