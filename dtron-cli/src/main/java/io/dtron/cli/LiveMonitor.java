@@ -66,7 +66,8 @@ final class LiveMonitor {
 
     @Option(names = "--shield", paramLabel = "CHANNEL[=SHIELDED]",
             description = "On a bus: shield CHANNEL: republish each of its messages the model allows on SHIELDED (default"
-                    + " CHANNEL_shielded), where its consumers listen, and withhold the others (said in the alarm).")
+                    + " CHANNEL_shielded), where its consumers listen, and withhold the others (said in the alarm);"
+                    + " goes on after violations (--continue).")
     private String shield;
 
     /** What the monitor starts from, and the options the replay shares. */
@@ -115,11 +116,13 @@ final class LiveMonitor {
     int watch(Network network, TestInterface testInterface, Start start, PrintWriter out, PrintWriter err,
             Function<String, ParameterException> usage) {
         long unit = RunDefaults.timeUnit(start.timeUnit(), testInterface.timeUnitMicros());
+        // a shield goes on after violations: it withholds what the model forbids for as long as it runs
+        boolean keepGoing = start.keepGoing() || shield != null;
         String joinFrom = start.from() == null ? "any" : start.from();
         String runFrom = start.from() == null ? "initial" : start.from();
         Monitor first;
         try {
-            first = Monitor.of(network, testInterface, MonitorCommand.options(unit, joinFrom, start.keepGoing()));
+            first = Monitor.of(network, testInterface, MonitorCommand.options(unit, joinFrom, keepGoing));
         } catch (QueryException e) {
             throw usage.apply("--from: " + e.getMessage());
         } catch (UnsupportedModelException e) {
@@ -143,7 +146,7 @@ final class LiveMonitor {
         Printer printer = new Printer(out, alarms, unit, shielded[1]);
         BusMonitor.Monitors monitors = runUnit -> runUnit == 0 ? first : Monitor.of(network, testInterface,
                 MonitorCommand.options(start.timeUnit() != null ? start.timeUnit() : runUnit, runFrom,
-                        start.keepGoing()));
+                        keepGoing));
         BusMonitor monitor;
         try {
             monitor = BusMonitor.connect(testInterface, monitors, settings, busOptions(usage).get(), printer);
@@ -160,7 +163,7 @@ final class LiveMonitor {
                 ? " (it joins a running system), from " + MonitorCommand.start(runFrom) + " at each run start" : "")
                 + ", time units of " + unit + " us (a run's own at its start), reorder window " + (settings
                 .automaticWindow() ? "auto from " : "") + window + " us" + (start.toleranceMicros() > 0
-                ? ", event times give or take " + start.toleranceMicros() + " us" : "") + (start.keepGoing()
+                ? ", event times give or take " + start.toleranceMicros() + " us" : "") + (keepGoing
                 ? ", going on after violations" : "") + (shield == null ? "" : ", shielding " + shielded[0] + " on "
                 + shielded[1]));
         Thread hook = new Thread(() -> {
@@ -201,7 +204,7 @@ final class LiveMonitor {
         int v = result.violations();
         printer.line("dtron monitor: " + (v == 0 ? "no violation" : v + " violation" + (v == 1 ? "" : "s")) + ", "
                 + result.events() + " event" + (result.events() == 1 ? "" : "s") + " checked" + (v > 0
-                && !start.keepGoing() ? " (stopped at the first violation)" : result.runStopped() ? " (the run ended)"
+                && !keepGoing ? " (stopped at the first violation)" : result.runStopped() ? " (the run ended)"
                 : "") + ", " + result.late() + " too late to judge" + (shield == null ? "" : ", " + result.withheld()
                 + " withheld") + "; verdict published on dtron_alarm");
         return v > 0 ? 2 : result.late() > 0 ? 3 : 0;

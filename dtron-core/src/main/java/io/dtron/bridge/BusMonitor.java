@@ -191,12 +191,12 @@ public final class BusMonitor implements AutoCloseable {
 
                 @Override
                 protected boolean autoAcknowledge() {
-                    return shielding; // the shield is the consumer that applies its channel's messages
+                    return false; // the monitor observes; a shield's consumers apply what it republishes
                 }
 
                 @Override
                 protected boolean serves() {
-                    return shielding;
+                    return shielding; // the shield is its channel's consumer on the bus
                 }
             });
         }
@@ -524,7 +524,9 @@ public final class BusMonitor implements AutoCloseable {
         judgedTo = Math.max(judgedTo, micros);
         if (a == null) {
             try {
-                dtron.send(shieldedChannel.constructValued(m.getVariables()), m.getEventTimeNanos());
+                // the event time on this member's clock: the producer's, through the run's clock
+                dtron.send(shieldedChannel.constructValued(m.getVariables()), Math.max(1, m.getEventTimeNanos()
+                        + m.getClockOffsetNanos() - dtron.getClockOffsetNanos()));
             } catch (DtronException | IllegalStateException e) {
                 LOG.warn("Cannot republish {}: {}", m, e.getMessage());
             }
