@@ -8,6 +8,7 @@ import io.dtron.api.DtronListener;
 import io.dtron.api.DtronOptions;
 import io.dtron.api.IDtronChannelValued;
 import io.dtron.cli.DtronCommand;
+import io.dtron.models.lamp.LampBusAdapter;
 import io.dtron.testsupport.NatsServer;
 import io.dtron.testsupport.Waits;
 import java.io.PrintWriter;
@@ -168,6 +169,46 @@ class LiveMonitorTest {
             IDtronChannelValued verdict = safety.received.get(1);
             assertEquals(1, verdict.getVariables().get("verdict"), verdict.toString());
             assertEquals(1, verdict.getVariables().get("number"), verdict.toString());
+        }
+    }
+
+    @Test
+    void theMonitorBesideTheSmartLampOnTheBusAgreesWithTheTester() throws Exception {
+        Path shared = Path.of(System.getProperty("dtron.shared", "../../shared"), "models", "tron");
+        String model = shared.resolve("LightContr.xml").toString();
+        List<String> lamp = List.of("--interface", shared.resolve("LightContr.trn").toString());
+        String name = cluster("lamp");
+        List<String> bus = List.of("--cluster", name);
+        for (String variant : List.of("correct", "late")) {
+            List<String> monitorArgs = new ArrayList<>(List.of("monitor", model));
+            monitorArgs.addAll(lamp);
+            monitorArgs.addAll(bus);
+            Command monitor = new Command(monitorArgs);
+            Waits.await("the monitor on the bus").until(() -> monitor.out.toString().contains(" as ")
+                    || monitor.result.isDone());
+            List<String> runArgs = new ArrayList<>(List.of(model, "--adapter", LampBusAdapter.class.getName() + ":"
+                    + variant, "--timeunit", "10000", "--timeout", "300", "--delay-policy", "eager"));
+            runArgs.addAll(lamp);
+            runArgs.addAll(bus);
+            Result tester = new Command(runArgs).get();
+            Result watched = monitor.get();
+            String both = watched.shown() + tester.shown();
+            if (tester.exit() == 0) {
+                assertEquals(0, watched.exit(), "the run PASSED, yet:\n" + both);
+            } else if (tester.exit() == 2) {
+                assertEquals(2, watched.exit(), "the run FAILED, yet:\n" + both);
+                Matcher m = VIOLATION.matcher(watched.out());
+                assertTrue(m.find(), both);
+                // the tester found the late level when the deadline had passed, as the monitor did
+                Matcher failed = Pattern.compile("(?m)^FAILED: .* at t=(\\d+)\\.(\\d{3})").matcher(tester.out());
+                if (failed.find()) {
+                    assertTrue(Long.parseLong(m.group(1)) * 1000 + Long.parseLong(m.group(2))
+                            <= Long.parseLong(failed.group(1)) * 1000 + Long.parseLong(failed.group(2)), both);
+                }
+            }
+            if (variant.equals("late")) {
+                assertEquals(2, tester.exit(), both);
+            }
         }
     }
 
