@@ -122,14 +122,22 @@ final class LiveMonitor {
         String runFrom = start.from() == null ? "initial" : start.from();
         Monitor first;
         try {
-            first = Monitor.of(network, testInterface, MonitorCommand.options(unit, joinFrom, keepGoing));
+            // the model's errors and a bad --from come out here, whatever the start
+            first = Monitor.of(network, testInterface, MonitorCommand.options(unit, runFrom, keepGoing));
+            if (!joinFrom.equals(runFrom)) {
+                first = Monitor.of(network, testInterface, MonitorCommand.options(unit, joinFrom, keepGoing));
+            }
         } catch (QueryException e) {
             throw usage.apply("--from: " + e.getMessage());
         } catch (UnsupportedModelException e) {
-            err.println("dtron monitor: " + start.model() + ": " + e.getMessage() + (start.from() == null ? " (a"
-                    + " monitor that joins a running system starts from every reachable state; give --from initial"
-                    + " to start at the next run start instead)" : ""));
-            return 1;
+            if (start.from() != null) {
+                err.println("dtron monitor: " + start.model() + ": " + e.getMessage());
+                return 1;
+            }
+            // too many states to start from all of them: the monitor watches from the next run start
+            err.println("dtron monitor: " + start.model() + ": " + e.getMessage() + "; this monitor starts at the"
+                    + " next run start, and cannot join a run already going (give --from PROPERTY for that)");
+            first = null;
         }
         String[] shielded = shield == null ? new String[] {null, null} : shieldChannels();
         long window = windowMicros(usage);
@@ -144,7 +152,8 @@ final class LiveMonitor {
             return 1;
         }
         Printer printer = new Printer(out, alarms, unit, shielded[1]);
-        BusMonitor.Monitors monitors = runUnit -> runUnit == 0 ? first : Monitor.of(network, testInterface,
+        Monitor joining = first;
+        BusMonitor.Monitors monitors = runUnit -> runUnit == 0 ? joining : Monitor.of(network, testInterface,
                 MonitorCommand.options(start.timeUnit() != null ? start.timeUnit() : runUnit, runFrom,
                         keepGoing));
         BusMonitor monitor;
@@ -159,8 +168,9 @@ final class LiveMonitor {
             return 1;
         }
         printer.line("dtron monitor: " + start.model() + " on bus '" + clusterName() + "' at " + where(usage) + " as "
-                + monitor.memberId() + ", from " + MonitorCommand.start(joinFrom) + (start.from() == null
-                ? " (it joins a running system), from " + MonitorCommand.start(runFrom) + " at each run start" : "")
+                + monitor.memberId() + ", from " + (joining == null ? MonitorCommand.start(runFrom) + " at each run start"
+                : MonitorCommand.start(joinFrom) + (start.from() == null ? " (it joins a running system), from "
+                + MonitorCommand.start(runFrom) + " at each run start" : ""))
                 + ", time units of " + unit + " us (a run's own at its start), reorder window " + (settings
                 .automaticWindow() ? "auto from " : "") + window + " us" + (start.toleranceMicros() > 0
                 ? ", event times give or take " + start.toleranceMicros() + " us" : "") + (keepGoing

@@ -79,8 +79,8 @@ public final class BusMonitor implements AutoCloseable {
     @FunctionalInterface
     public interface Monitors {
         /**
-         * The monitor when the watch starts ({@code runTimeUnitMicros} 0), or at a run start, whose time unit the
-         * tester's start message says.
+         * The monitor when the watch starts ({@code runTimeUnitMicros} 0; null: none, the watch begins at the next
+         * run start), or at a run start, whose time unit the tester's start message says.
          */
         Monitor make(long runTimeUnitMicros);
     }
@@ -335,7 +335,7 @@ public final class BusMonitor implements AutoCloseable {
                     break;
                 }
                 judge(now - window.micros());
-                if (monitor.stopped()) {
+                if (monitor != null && monitor.stopped()) {
                     break;
                 }
             }
@@ -425,7 +425,7 @@ public final class BusMonitor implements AutoCloseable {
     }
 
     private void event(IDtronChannelValued m) {
-        if (!ofThisRun(m) || stopAt != Long.MAX_VALUE) {
+        if (monitor == null || !ofThisRun(m) || stopAt != Long.MAX_VALUE) {
             return;
         }
         long micros = timeline.eventMicros(m);
@@ -457,6 +457,9 @@ public final class BusMonitor implements AutoCloseable {
 
     /** The monitor's thread judges, in time order, every held event up to {@code to}, and lets time pass to it. */
     private void judge(long to) {
+        if (monitor == null) {
+            return;
+        }
         release(to);
         if (clockRunning && to >= clockStart && to > judgedTo) {
             if (!monitor.allowsTimeTo(to)) {
@@ -511,6 +514,10 @@ public final class BusMonitor implements AutoCloseable {
      * allowed message is republished on the shielded channel, a forbidden one withheld.
      */
     private void shield(IDtronChannelValued m) {
+        if (monitor == null) {
+            withheld++; // before the first run start the shield knows nothing: it passes nothing
+            return;
+        }
         if (!ofThisRun(m) || stopAt != Long.MAX_VALUE) {
             return;
         }

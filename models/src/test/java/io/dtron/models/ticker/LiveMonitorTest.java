@@ -36,26 +36,29 @@ import org.junit.jupiter.api.io.TempDir;
  * a run already going.
  */
 @Timeout(value = 5, unit = TimeUnit.MINUTES)
-class LiveMonitorTest {
+public class LiveMonitorTest {
     private static final String MODEL = "src/main/resources/io/dtron/models/ticker.xml";
     private static final Pattern VIOLATION = Pattern.compile("(?m)^violation 1 at t=(\\d+)\\.(\\d{3}): (.*)$");
 
     @TempDir
     Path dir;
 
-    record Result(int exit, String out, String err) {
-        String shown() {
+    /** How a command ended. */
+    public record Result(int exit, String out, String err) {
+        /** The exit code and the output, for a failed assertion. */
+        public String shown() {
             return "exit " + exit + "\n" + out + err;
         }
     }
 
     /** A command of dtron's in this JVM, on a thread of its own; its output as it comes. */
-    static final class Command {
+    public static final class Command {
         final StringWriter out = new StringWriter();
         final StringWriter err = new StringWriter();
         final CompletableFuture<Result> result;
 
-        Command(List<String> args) {
+        /** Starts {@code dtron ARGS}. */
+        public Command(List<String> args) {
             result = CompletableFuture.supplyAsync(() -> {
                 int exit = DtronCommand.run(args.toArray(String[]::new), new PrintWriter(out, true),
                         new PrintWriter(err, true));
@@ -63,7 +66,8 @@ class LiveMonitorTest {
             });
         }
 
-        Result get() throws Exception {
+        /** Waits for the end. */
+        public Result get() throws Exception {
             return result.get(4, TimeUnit.MINUTES);
         }
     }
@@ -85,9 +89,14 @@ class LiveMonitorTest {
         return args;
     }
 
-    /** Starts the monitor on the bus and waits until it is a member. */
+    /** Starts the monitor of the ticker on the bus and waits until it is a member. */
     static Command monitor(List<String> bus, String... more) {
-        List<String> args = new ArrayList<>(List.of("monitor", MODEL));
+        return monitor(MODEL, bus, more);
+    }
+
+    /** Starts the monitor of {@code model} on the bus and waits until it is a member. */
+    public static Command monitor(String model, List<String> bus, String... more) {
+        List<String> args = new ArrayList<>(List.of("monitor", model));
         args.addAll(bus);
         args.addAll(List.of(more));
         Command monitor = new Command(args);
