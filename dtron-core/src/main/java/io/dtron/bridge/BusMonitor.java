@@ -494,6 +494,10 @@ public final class BusMonitor implements AutoCloseable {
     }
 
     private void observe(Held h) {
+        if (h.micros < monitor.lastMicros()) {
+            late(h); // the monitor moved past it (a re-synchronisation at a deadline)
+            return;
+        }
         Event e = new Event(h.message.getChannelName(), h.message.getVariables());
         events++;
         judgedTo = Math.max(judgedTo, h.micros);
@@ -521,11 +525,12 @@ public final class BusMonitor implements AutoCloseable {
         if (!ofThisRun(m) || stopAt != Long.MAX_VALUE) {
             return;
         }
-        long micros = Math.max(timeline.eventMicros(m), judgedTo);
+        long micros = Math.max(timeline.eventMicros(m), Math.max(judgedTo, monitor.lastMicros()));
         clockRunning = true;
         clockStart = Math.min(clockStart, micros);
         judge(micros);
         events++;
+        micros = Math.max(micros, monitor.lastMicros()); // a deadline passed on the way re-synchronised it
         Alarm a = monitor.withhold(new Event(m.getChannelName(), m.getVariables()), micros,
                 RunTimeline.errorMicros(m) + settings.toleranceMicros());
         judgedTo = Math.max(judgedTo, micros);
