@@ -428,7 +428,9 @@ public final class BusMonitor implements AutoCloseable {
         if (monitor == null || !ofThisRun(m) || stopAt != Long.MAX_VALUE) {
             return;
         }
-        long micros = timeline.eventMicros(m);
+        // stamped before time 0 of a run whose start this monitor saw (ordered before it): from the start, as the
+        // tester takes it
+        long micros = clockStart == 0 ? Math.max(0, timeline.eventMicros(m)) : timeline.eventMicros(m);
         clockRunning = true;
         clockStart = Math.min(clockStart, micros);
         widen(m, micros);
