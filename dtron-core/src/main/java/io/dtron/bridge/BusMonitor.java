@@ -52,6 +52,11 @@ public final class BusMonitor implements AutoCloseable {
     static final Duration OFFSET_TIMEOUT = Duration.ofSeconds(2);
     /** How long the monitor waits for its listeners to catch up before it lets a deadline pass. */
     static final Duration CATCH_UP_TIMEOUT = Duration.ofSeconds(1);
+    /**
+     * How long a tester's input waits at most for the acknowledgement that places it where its adapter applied it;
+     * then it is taken as happened when the tester published it.
+     */
+    static final Duration ACK_TIMEOUT = Duration.ofSeconds(2);
     /** The longest the monitor's thread sleeps between two looks at the clock. */
     private static final long TICK_MAX_MICROS = 10_000;
 
@@ -113,6 +118,8 @@ public final class BusMonitor implements AutoCloseable {
     private final Sink sink;
     /** The channels of the model by name, with their 1-based position for the alarm message. */
     private final Map<String, Integer> positions = new LinkedHashMap<>();
+    /** The inputs of the model, by name. */
+    private final java.util.Set<String> inputNames = new java.util.HashSet<>();
     private final BlockingQueue<Object> arrivals = new LinkedBlockingQueue<>();
     private final RunTimeline timeline;
     private final ReorderWindow window = new ReorderWindow();
@@ -127,6 +134,9 @@ public final class BusMonitor implements AutoCloseable {
         long micros;
         long errorMicros;
         final long order;
+        /** A tester's input, which waits (until {@link #ackDeadline}) for the acknowledgement that places it. */
+        boolean awaitingAck;
+        long ackDeadline;
 
         Held(IDtronChannelValued message, long micros, long errorMicros, long order) {
             this.message = message;
@@ -154,6 +164,7 @@ public final class BusMonitor implements AutoCloseable {
         this.sink = sink;
         this.timeline = new RunTimeline(dtron::currentTimeNanos);
         window.set(settings.windowMicros(), settings.automaticWindow());
+        testInterface.inputs().forEach(c -> inputNames.add(c.name()));
         List<TestInterface.ObservableChannel> all = new ArrayList<>(testInterface.inputs());
         all.addAll(testInterface.outputs());
         Map<String, IDtronChannel> channels = new LinkedHashMap<>();
@@ -439,6 +450,11 @@ public final class BusMonitor implements AutoCloseable {
             late(h); // before an event the monitor judged: it cannot be placed
             return;
         }
+        if (inputNames.contains(m.getChannelName()) && (m.getSender().equals(dtron.getTester().orElse(null))
+                || tester.getOtherTesters().contains(m.getSender()))) {
+            h.awaitingAck = true;
+            h.ackDeadline = System.nanoTime() + ACK_TIMEOUT.toNanos();
+        }
         held.add(h);
         inputs.put(m.getSender() + "/" + m.getSequence(), h);
     }
@@ -449,38 +465,45 @@ public final class BusMonitor implements AutoCloseable {
         if (h == null || !held.remove(h)) {
             return;
         }
-        long applied = timeline.eventMicros(ack);
-        if (applied >= judgedTo) {
-            h.micros = Math.max(h.micros, applied);
-            h.errorMicros = RunTimeline.errorMicros(ack);
-        }
+        // the first acknowledgement counts, as for the tester: one member applies an input
+        h.micros = Math.max(h.micros, timeline.eventMicros(ack));
+        h.errorMicros = RunTimeline.errorMicros(ack);
+        h.awaitingAck = false;
         held.add(h);
     }
 
     /** The monitor's thread judges, in time order, every held event up to {@code to}, and lets time pass to it. */
-    private void judge(long to) {
+    private void judge(long until) {
         if (monitor == null) {
             return;
         }
-        release(to);
+        long to = release(until);
         if (clockRunning && to >= clockStart && to > judgedTo) {
             if (!monitor.allowsTimeTo(to)) {
                 // a deadline passed: first what this member received and has not handed over yet
                 catchUp();
-                release(to);
+                to = Math.min(to, release(to));
             }
             report(monitor.advanceTo(to), null, false);
             judgedTo = Math.max(judgedTo, to);
         }
     }
 
-    /** Judges the held events up to {@code to}, in time order. */
-    private void release(long to) {
+    /**
+     * Judges the held events up to {@code to}, in time order, but for a tester's input still waiting for its
+     * acknowledgement (which may place it later): returns how far time may pass, {@code to} or that input's time.
+     */
+    private long release(long to) {
         while (!held.isEmpty() && held.peek().micros <= to && !monitor.stopped()) {
-            Held h = held.poll();
+            Held h = held.peek();
+            if (h.awaitingAck && System.nanoTime() < h.ackDeadline) {
+                return h.micros;
+            }
+            held.poll();
             inputs.remove(h.message.getSender() + "/" + h.message.getSequence());
             observe(h);
         }
+        return to;
     }
 
     /** Waits until this member's listeners have taken what the bus delivered (a second at most), and takes it. */
