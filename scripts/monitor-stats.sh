@@ -66,7 +66,7 @@ one() {
     monitor_pid=$!
     # the monitor is on the bus once it printed its first line (its member id)
     for _ in $(seq 1 600); do
-        grep -q " as dtron-" "$log_m" && break
+        grep -qs " as dtron-" "$log_m" && break
         kill -0 "$monitor_pid" 2>/dev/null || break
         sleep 0.1
     done
