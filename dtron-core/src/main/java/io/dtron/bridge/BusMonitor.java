@@ -304,9 +304,7 @@ public final class BusMonitor implements AutoCloseable {
     private long order;
     /** The run's id once a run start was seen or a message carried one; "" before. */
     private String runId = "";
-    /** Whether the monitor's clock runs: a run started, or an event came. */
-    private boolean clockRunning;
-    /** Time passes for the monitor from here: the run's start, or the first event's time. */
+    /** Time passes for the monitor from here: the run's start, or the first event's time (none before). */
     private long clockStart = Long.MAX_VALUE;
     /** The time up to which the monitor judged, on the run's clock. */
     private long judgedTo = Long.MIN_VALUE;
@@ -412,11 +410,10 @@ public final class BusMonitor implements AutoCloseable {
                 clockStart = 0;
                 judgedTo = Long.MIN_VALUE;
                 stopAt = Long.MAX_VALUE;
-                clockRunning = true;
                 sink.runStarted(runId, m.getVariables().get("timeunit"));
             }
             case "dtron_stop" -> {
-                if (ofThisRun(m) && clockRunning) {
+                if (ofThisRun(m)) {
                     stopAt = timeline.eventMicros(m);
                 }
             }
@@ -442,7 +439,6 @@ public final class BusMonitor implements AutoCloseable {
         // stamped before time 0 of a run whose start this monitor saw (ordered before it): from the start, as the
         // tester takes it
         long micros = clockStart == 0 ? Math.max(0, timeline.eventMicros(m)) : timeline.eventMicros(m);
-        clockRunning = true;
         clockStart = Math.min(clockStart, micros);
         widen(m, micros);
         Held h = new Held(m, micros, RunTimeline.errorMicros(m), order++);
@@ -478,7 +474,7 @@ public final class BusMonitor implements AutoCloseable {
             return;
         }
         long to = release(until);
-        if (clockRunning && to >= clockStart && to > judgedTo) {
+        if (to >= clockStart && to > judgedTo) {
             if (!monitor.allowsTimeTo(to)) {
                 // a deadline passed: first what this member received and has not handed over yet
                 catchUp();
@@ -551,7 +547,6 @@ public final class BusMonitor implements AutoCloseable {
             return;
         }
         long micros = Math.max(timeline.eventMicros(m), Math.max(judgedTo, monitor.lastMicros()));
-        clockRunning = true;
         clockStart = Math.min(clockStart, micros);
         judge(micros);
         events++;
