@@ -252,11 +252,6 @@ public final class BusMonitor implements AutoCloseable {
         return dtron.getMemberId();
     }
 
-    /** Returns the reorder window now: as set, or as widened. */
-    public long reorderWindowMicros() {
-        return window.micros();
-    }
-
     /**
      * Waits until the watch ended: the watched run's {@link Dtron#RUN_STOP} came and every event before it was
      * judged, or the monitor stopped at its first violation (unless it goes on after violations); {@code timeout}
