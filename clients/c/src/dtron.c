@@ -151,7 +151,8 @@ static int is_run_channel(const char *name) {
 
 static int is_reserved(const char *name) {
     return is_control(name) || is_run_channel(name) || strcmp(name, "dtron_verdict") == 0
-           || strcmp(name, "dtron_model") == 0 || strcmp(name, "dtron_model_outcome") == 0;
+           || strcmp(name, "dtron_model") == 0 || strcmp(name, "dtron_model_outcome") == 0
+           || strcmp(name, "dtron_alarm") == 0;
 }
 
 /* ---- channels (lock held) ---- */

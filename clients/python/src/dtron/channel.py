@@ -9,7 +9,7 @@ from typing import Mapping
 #: DTRON's own channels: no model channel may have these names.
 RESERVED = frozenset(
     {"dtron_start", "dtron_stop", "dtron_ack", "dtron_hello", "dtron_ping", "dtron_pong", "dtron_serve",
-     "dtron_verdict", "dtron_model", "dtron_model_outcome"}
+     "dtron_verdict", "dtron_model", "dtron_model_outcome", "dtron_alarm"}
 )
 
 _NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")

@@ -93,6 +93,18 @@ public final class Dtron implements AutoCloseable {
     public static final IDtronChannel RUN_VERDICT = IDtronChannel.of("dtron_verdict", "verdict");
 
     /**
+     * The channel on which a monitor ({@code dtron monitor --cluster/--bus}) publishes its alarms and its final
+     * verdict, for a safety controller to act on: {@code number} (the violation's number in the run; on the verdict
+     * the number of violations), {@code reason} (0 none, 1 an unexpected event, 2 wrong values, 3 a missed deadline),
+     * {@code channel} (the violating event's channel, as its 1-based position among the model's inputs and then
+     * outputs; 0 for none), {@code sequence} (its message's sequence number from its sender; 0 for none), {@code
+     * withheld} (1 when a shield withheld the message) and {@code verdict} (0 an alarm, 1 the final verdict). The
+     * message's event time is the alarm's time. A model channel may not have this name.
+     */
+    public static final IDtronChannel ALARM = IDtronChannel.of("dtron_alarm", "number", "reason", "channel",
+            "sequence", "withheld", "verdict");
+
+    /**
      * The channel on which a model version is handed to a controller that runs on the bus and takes versions from
      * it ({@code dtron control --reload-from-bus}): variable {@code version}, the sender's number for it, which the
      * {@link #MODEL_OUTCOME} answering it carries; the version itself in the message's {@linkplain
@@ -119,6 +131,7 @@ public final class Dtron implements AutoCloseable {
             Map.entry(RUN_VERDICT.getChannelName(), DtronChannel.copyOf(RUN_VERDICT)),
             Map.entry(MODEL_VERSION.getChannelName(), DtronChannel.copyOf(MODEL_VERSION)),
             Map.entry(MODEL_OUTCOME.getChannelName(), DtronChannel.copyOf(MODEL_OUTCOME)),
+            Map.entry(ALARM.getChannelName(), DtronChannel.copyOf(ALARM)),
             Map.entry(ClockSync.HELLO, new DtronChannel(ClockSync.HELLO, List.of())),
             Map.entry(ClockSync.PING, new DtronChannel(ClockSync.PING, List.of())),
             Map.entry(ClockSync.PONG, new DtronChannel(ClockSync.PONG, List.of())),
@@ -284,7 +297,7 @@ public final class Dtron implements AutoCloseable {
 
     /**
      * Returns whether DTRON reserves a channel name for itself: {@link #RUN_START}, {@link #RUN_STOP},
-     * {@link #ACK}, the channels of the clock-offset protocol ({@code dtron_hello}, {@code dtron_ping},
+     * {@link #ACK}, {@link #RUN_VERDICT}, {@link #ALARM}, the channels of the clock-offset protocol ({@code dtron_hello}, {@code dtron_ping},
      * {@code dtron_pong}) and of the channel-serving handshake ({@code dtron_serve}). No model channel may have such
      * a name.
      */
@@ -391,7 +404,8 @@ public final class Dtron implements AutoCloseable {
                 registration.listeners().add(listener);
             }
         }
-        if (!RESERVED.containsKey(name)) {
+        // a listener that only observes (a monitor's) does not make this member serve the channel
+        if (!RESERVED.containsKey(name) && listener.serves()) {
             handshake.receiving(name, true);
         }
     }

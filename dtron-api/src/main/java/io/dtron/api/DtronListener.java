@@ -60,6 +60,16 @@ public abstract class DtronListener {
         return true;
     }
 
+    /**
+     * Returns whether this listener makes its member serve the channel (a receiver of its messages, in what the
+     * member tells testers in the channel-serving handshake); true unless overridden. A listener that only observes
+     * the channel, as a monitor's does, returns false: a tester then does not take its member for a part of the
+     * system under test. Asked once, when the listener is added.
+     */
+    protected boolean serves() {
+        return true;
+    }
+
     /** Attaches this listener to a {@code Dtron}; false if it already is attached to another one. */
     final synchronized boolean attach(Dtron owner) {
         if (dtron != null && dtron != owner) {

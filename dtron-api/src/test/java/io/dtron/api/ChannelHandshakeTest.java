@@ -128,6 +128,30 @@ class ChannelHandshakeTest {
     }
 
     @Test
+    void aListenerThatOnlyObservesServesNothingAndTheAlarmChannelIsReserved() throws Exception {
+        String cluster = TestClusters.uniqueName("serve");
+        try (Dtron tester = Dtron.connect(TestClusters.inJvm(cluster).memberName("tester").tester(true).build());
+                Dtron monitor = Dtron.connect(TestClusters.inJvm(cluster).memberName("monitor").build())) {
+            monitor.addDtronListener(new DtronListener(TICK) {
+                @Override
+                public void messageReceived(IDtronChannelValued message) {
+                }
+
+                @Override
+                protected boolean serves() {
+                    return false;
+                }
+            });
+            monitor.declareOutputs(RESET); // what it says next reaches the tester after the listener was added
+            assertEquals(new ServedChannels("monitor", Set.of(), Set.of("reset")), awaitServed(tester,
+                    m -> m.containsKey("monitor") && !m.get("monitor").sends().isEmpty()).get("monitor"));
+            assertTrue(Dtron.isReservedChannel("dtron_alarm"));
+            assertThrows(IllegalArgumentException.class, () -> monitor.declareOutputs(Dtron.ALARM));
+            assertThrows(IllegalArgumentException.class, () -> DtronOptions.builder().channels(List.of(Dtron.ALARM)));
+        }
+    }
+
+    @Test
     void dtronsOwnChannelsAreNotServed() {
         String cluster = TestClusters.uniqueName("serve");
         try (Dtron adapter = Dtron.connect(TestClusters.inJvm(cluster).memberName("adapter").build())) {

@@ -17,6 +17,7 @@ import java.nio.file.Path;
 import java.util.Locale;
 import java.util.concurrent.Callable;
 import picocli.CommandLine.Command;
+import picocli.CommandLine.Mixin;
 import picocli.CommandLine.Model.CommandSpec;
 import picocli.CommandLine.Option;
 import picocli.CommandLine.ParameterException;
@@ -26,17 +27,23 @@ import picocli.CommandLine.Spec;
 /**
  * {@code dtron monitor MODEL --replay TRACE}: runtime verification of a recorded run. Every event of the trace, on
  * any observable channel of the closed model, is checked against the model with its time, and a missed deadline
- * is found at its time; prints the first violation (or each, with {@code --continue}) and the counts.
+ * is found at its time; prints the first violation (or each, with {@code --continue}) and the counts. With {@code
+ * --cluster NAME} or {@code --bus nats://...} instead, the same live on a bus ({@link LiveMonitor}).
  */
 @Command(name = "monitor", mixinStandardHelpOptions = true, exitCodeOnInvalidInput = 1, exitCodeOnExecutionException = 1,
-        description = {"Runtime verification: check a recorded run against a closed model.",
+        description = {"Runtime verification: check a recorded run (--replay), or a running system on a bus"
+                + " (--cluster NAME, --bus nats://HOST:PORT), against a closed model.",
                 "Every event of TRACE (inputs and outputs alike) is checked with its time against the states the model"
                         + " can be in; a deadline the model sets is found when time passes it. TRACE is JSON lines"
                         + " (dtron run --trace, or lines {\"t_us\":..,\"channel\":..,\"values\":{..}}) or, for a name"
                         + " ending in .csv, lines t_us,channel,name=value;name=value. A line that cannot be read is"
                         + " reported and counted, and the monitor starts again from every reachable state after it.",
-                "Exit code 0 no violation, 2 a violation, 3 no violation but lines were rejected, 1 usage or model"
-                        + " error."})
+                "On a bus the monitor observes every channel of the model as a passive member, orders the events by"
+                        + " their times within the reorder window, finds missed deadlines as the run's clock passes"
+                        + " them, and publishes its alarms and verdict on the reserved channel dtron_alarm; --shield"
+                        + " CHANNEL republishes the messages of CHANNEL the model allows and withholds the others.",
+                "Exit code 0 no violation, 2 a violation, 3 no violation but lines were rejected (on a bus: messages"
+                        + " came too late to be judged), 1 usage or model error."})
 final class MonitorCommand implements Callable<Integer> {
     /** With --continue, the violations printed in full; the others are counted. */
     private static final int PRINTED = 10;
@@ -51,19 +58,24 @@ final class MonitorCommand implements Callable<Integer> {
             description = "Take the observable channels from a TRON interface file instead of the i_/o_ names.")
     private Path interfaceFile;
 
-    @Option(names = "--replay", paramLabel = "TRACE", required = true,
-            description = "The recorded run to check (live monitoring on the bus is not built yet).")
+    @Option(names = "--replay", paramLabel = "TRACE",
+            description = "The recorded run to check (or watch a bus: --cluster, --bus).")
     private Path replay;
 
+    @Mixin
+    private LiveMonitor live;
+
     @Option(names = "--timeunit", paramLabel = "US",
-            description = "Microseconds per model time unit (default: the trace's, else the interface file's"
-                    + " precision, else 1000).")
+            description = "Microseconds per model time unit (default: the trace's, or on a bus the run's, else the"
+                    + " interface file's precision, else 1000).")
     private Long timeUnit;
 
-    @Option(names = "--from", paramLabel = "STATE", defaultValue = "initial",
-            description = "Where the model starts: initial (its initial state at time 0, the default), any (every"
-                    + " state it can reach, at the first event: the history is unknown), or a state property such as"
-                    + " 'Lamp.off' or 'Server.Busy && n == 3' (the reachable states where it holds).")
+    @Option(names = "--from", paramLabel = "STATE",
+            description = "Where the model starts: initial (its initial state at time 0, the default of --replay),"
+                    + " any (every state it can reach, at the first event: the history is unknown), or a state"
+                    + " property such as 'Lamp.off' or 'Server.Busy && n == 3' (the reachable states where it holds)."
+                    + " On a bus the default is any when the monitor joins a running system, and initial at each run"
+                    + " start it sees.")
     private String from;
 
     @Option(names = "--tolerance", paramLabel = "US", defaultValue = "0",
@@ -88,7 +100,19 @@ final class MonitorCommand implements Callable<Integer> {
         if (toleranceMicros < 0) {
             throw usage("--tolerance must not be negative: " + toleranceMicros);
         }
-        if (!Files.isReadable(replay) || Files.isDirectory(replay)) {
+        if (replay == null && !live.onBus()) {
+            throw usage("give the run to check: --replay TRACE, or the bus to watch: --cluster NAME or --bus"
+                    + " nats://HOST:PORT");
+        }
+        if (replay != null && live.onBus()) {
+            throw usage("--replay checks a recorded run; leave out --cluster and --bus, or --replay");
+        }
+        if (replay == null) {
+            live.check(this::usage);
+        } else {
+            live.checkReplay(this::usage);
+        }
+        if (replay != null && (!Files.isReadable(replay) || Files.isDirectory(replay))) {
             err.println("dtron monitor: cannot read " + replay);
             return 1;
         }
@@ -102,6 +126,10 @@ final class MonitorCommand implements Callable<Integer> {
             err.println("dtron monitor: " + model + " has no observable channels: name channels i_x / o_y, or give"
                     + " --interface FILE.trn");
             return 1;
+        }
+        if (replay == null) {
+            return live.watch(network, testInterface, new LiveMonitor.Start(model, timeUnit, from, toleranceMicros,
+                    keepGoing, alarmsFile), out, err, this::usage);
         }
         TraceReader.Format format = TraceReader.formatOf(replay);
         Monitor monitor;
@@ -148,6 +176,11 @@ final class MonitorCommand implements Callable<Integer> {
     }
 
     private MonitorOptions options(long unit) {
+        return options(unit, from == null ? "initial" : from, keepGoing);
+    }
+
+    /** The monitor's options for a start named as {@code --from} names it. */
+    static MonitorOptions options(long unit, String from, boolean keepGoing) {
         MonitorOptions o = switch (from) {
             case "initial" -> MonitorOptions.initial(unit);
             case "any" -> MonitorOptions.anyState(unit);
@@ -157,6 +190,11 @@ final class MonitorCommand implements Callable<Integer> {
     }
 
     private String start() {
+        return start(from == null ? "initial" : from);
+    }
+
+    /** The start {@code --from} names, in words. */
+    static String start(String from) {
         return switch (from) {
             case "initial" -> "the initial state";
             case "any" -> "every reachable state";
@@ -222,29 +260,38 @@ final class MonitorCommand implements Callable<Integer> {
             } catch (IOException e) {
                 throw new java.io.UncheckedIOException(e);
             }
-            if (a.number() > PRINTED) {
-                return;
-            }
-            out.println("violation " + a.number() + " at t=" + units(a.micros()) + ": " + a.explanation());
-            if (a.number() == 1) {
-                for (Alarm.State s : a.states()) {
-                    out.println("  the model could be in " + String.join(", ", s.locations()) + (s.variables().isEmpty()
-                            ? "" : " with " + s.variables()) + (s.clocks().isEmpty() ? "" : ", " + s.clocks()));
-                }
-                if (a.moreStates() > 0) {
-                    out.println("  and " + a.moreStates() + " more states");
-                }
-            }
-            if (a.number() == PRINTED) {
-                out.println("(further violations are counted, not printed)");
-            }
+            print(out, a, unit, "");
         }
+    }
 
-        private String units(long micros) {
-            long whole = Math.floorDiv(micros, unit);
-            long rest = Math.floorMod(micros, unit) * 1000 / unit;
-            return whole + "." + String.format(Locale.ROOT, "%03d", rest);
+    /**
+     * Prints an alarm: the first ten in full, {@code also} after the explanation ("", or what a shield did); the
+     * first with the states the model could be in.
+     */
+    static void print(PrintWriter out, Alarm a, long unit, String also) {
+        if (a.number() > PRINTED) {
+            return;
         }
+        out.println("violation " + a.number() + " at t=" + units(a.micros(), unit) + ": " + a.explanation() + also);
+        if (a.number() == 1) {
+            for (Alarm.State s : a.states()) {
+                out.println("  the model could be in " + String.join(", ", s.locations()) + (s.variables().isEmpty()
+                        ? "" : " with " + s.variables()) + (s.clocks().isEmpty() ? "" : ", " + s.clocks()));
+            }
+            if (a.moreStates() > 0) {
+                out.println("  and " + a.moreStates() + " more states");
+            }
+        }
+        if (a.number() == PRINTED) {
+            out.println("(further violations are counted, not printed)");
+        }
+    }
+
+    /** A time on the run's clock in time units, with three decimals. */
+    static String units(long micros, long unit) {
+        long whole = Math.floorDiv(micros, unit);
+        long rest = Math.floorMod(micros, unit) * 1000 / unit;
+        return whole + "." + String.format(Locale.ROOT, "%03d", rest);
     }
 
     private ParameterException usage(String message) {

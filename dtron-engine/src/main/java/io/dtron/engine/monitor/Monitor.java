@@ -166,6 +166,21 @@ public final class Monitor {
      * @throws IllegalArgumentException as {@link #observe(Event, long)} does, and for a negative uncertainty
      */
     public Alarm observe(Event event, long micros, long uncertaintyMicros) {
+        return observe(event, micros, uncertaintyMicros, false);
+    }
+
+    /**
+     * A shield's check of an event it may still withhold: as {@link #observe(Event, long, long)} when the model
+     * allows the event (it is observed, null), else the alarm (counted), with the monitor's states unchanged, since
+     * the withheld event did not happen; the monitor goes on either way.
+     *
+     * @throws IllegalArgumentException as {@link #observe(Event, long, long)} does
+     */
+    public Alarm withhold(Event event, long micros, long uncertaintyMicros) {
+        return observe(event, micros, uncertaintyMicros, true);
+    }
+
+    private Alarm observe(Event event, long micros, long uncertaintyMicros, boolean withholding) {
         if (uncertaintyMicros < 0) {
             throw new IllegalArgumentException("negative uncertainty " + uncertaintyMicros);
         }
@@ -208,6 +223,10 @@ public final class Monitor {
             return null;
         }
         Alarm alarm = violation(event, ch, micros, fromTicks, toTicks);
+        if (withholding) {
+            stopped = false; // the event did not happen: the states and times stay as they were
+            return alarm;
+        }
         if (options.keepGoing()) {
             Tracker.Node consistent = tracker.step(reachable(), ch.channel, ch.slots, ch.values, 0, 0);
             current = consistent.isEmpty() ? reachable() : consistent;
@@ -250,6 +269,29 @@ public final class Monitor {
             since = "the re-synchronisation";
         }
         return alarm;
+    }
+
+    /**
+     * Whether the model lets time pass to {@code micros} without an event (no deadline passes by then, or the
+     * monitor has not started or has stopped); the monitor is unchanged, so that a live monitor can make sure no
+     * event before {@code micros} is still on its way before it lets time pass ({@link #advanceTo}).
+     *
+     * @throws UnsupportedModelException on a model error
+     */
+    public boolean allowsTimeTo(long micros) {
+        if (stopped || !started || micros <= lastMicros) {
+            return true;
+        }
+        try {
+            return tracker.allows(current, ticksFloor(micros - lastMicros));
+        } catch (ModelRuntimeException e) {
+            throw new UnsupportedModelException("model error while letting time pass: " + e.format());
+        }
+    }
+
+    /** Returns the time of the last event the monitor accepted (or of its start, or re-synchronisation). */
+    public long lastMicros() {
+        return lastMicros;
     }
 
     /**

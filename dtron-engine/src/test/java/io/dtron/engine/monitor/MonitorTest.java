@@ -180,6 +180,23 @@ class MonitorTest {
     }
 
     @Test
+    void aShieldWithholdsAForbiddenEventAndGoesOnAsIfItHadNotHappened() throws Exception {
+        Network n = server();
+        Monitor m = Monitor.of(n, TestInterface.fromNames(n), MonitorOptions.initial(UNIT));
+        assertNull(m.withhold(Event.of("req", "n", 1), 1_000, 0), "an allowed event is observed");
+        assertTrue(m.allowsTimeTo(4_000));
+        assertTrue(!m.allowsTimeTo(4_001) && !m.stopped(), "asking changes nothing");
+        Alarm early = m.withhold(Event.of("resp", "n", 2), 1_500, 0);
+        assertEquals(Alarm.Reason.UNEXPECTED_EVENT, early.reason());
+        assertTrue(!m.stopped(), "a withheld event did not happen: the monitor goes on");
+        assertEquals(1_000, m.lastMicros());
+        // the response the model allows still comes in its window
+        assertNull(m.withhold(Event.of("resp", "n", 2), 2_500, 0));
+        assertEquals(1, m.violations());
+        assertEquals(early, m.firstAlarm());
+    }
+
+    @Test
     void wrongValuesAndEarlyEventsAreNamed() throws Exception {
         Network n = server();
         Monitor m = Monitor.of(n, TestInterface.fromNames(n), MonitorOptions.initial(UNIT));

@@ -1,0 +1,326 @@
+package io.dtron.cli;
+
+import io.dtron.api.DtronException;
+import io.dtron.api.DtronOptions;
+import io.dtron.bridge.BusMonitor;
+import io.dtron.bridge.BusRun;
+import io.dtron.engine.UnsupportedModelException;
+import io.dtron.engine.monitor.Alarm;
+import io.dtron.engine.monitor.Monitor;
+import io.dtron.engine.verify.QueryException;
+import io.dtron.model.Network;
+import io.dtron.model.TestInterface;
+import java.io.IOException;
+import java.io.PrintWriter;
+import java.io.UncheckedIOException;
+import java.io.Writer;
+import java.net.InetAddress;
+import java.net.UnknownHostException;
+import java.nio.charset.StandardCharsets;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.time.Duration;
+import java.util.function.Function;
+import java.util.function.Supplier;
+import picocli.CommandLine.Mixin;
+import picocli.CommandLine.Option;
+import picocli.CommandLine.ParameterException;
+
+/**
+ * The bus options of {@code dtron monitor} ({@code --cluster}, {@code --bus} and the transport's and security options
+ * of {@code dtron run}, {@code --delta}, {@code --duration}, {@code --shield}) and the live watch: a {@link
+ * BusMonitor} on the bus, its alarms printed as they come and the counts at the end.
+ */
+final class LiveMonitor {
+    @Option(names = "--cluster", paramLabel = "NAME",
+            description = "Watch the bus of this name (default '" + DtronOptions.DEFAULT_CLUSTER + "' with --bus): the"
+                    + " embedded JGroups bus, or the NATS bus of --bus.")
+    private String cluster;
+
+    @Option(names = "--bind", paramLabel = "ADDR",
+            description = "On a JGroups bus: the network interface to bind to and to find members at (default:"
+                    + " loopback).")
+    private String bind;
+
+    @Option(names = "--key-file", paramLabel = "FILE",
+            description = "On a bus: the file holding the bus's secret, as for dtron run (default: $DTRON_HOME/bus.key,"
+                    + " else ~/.dtron/bus.key).")
+    private Path keyFile;
+
+    @Option(names = "--insecure", description = "On a bus: use no secret, as the bus's other members (dtron run"
+            + " --insecure).")
+    private boolean insecure;
+
+    @Mixin
+    private NatsBusOptions nats;
+
+    @Option(names = "--delta", paramLabel = "US|auto",
+            description = "On a bus: the reorder window, how long the monitor holds its judgement for messages still in"
+                    + " transit (auto, the default: " + BusRun.AUTO_WINDOW_FLOOR_MICROS + " us, widened when a message"
+                    + " takes more than half of it).")
+    private String delta;
+
+    @Option(names = "--duration", paramLabel = "SECONDS",
+            description = "On a bus: watch at most this long (default: until the run the monitor watches ends).")
+    private Long duration;
+
+    @Option(names = "--shield", paramLabel = "CHANNEL[=SHIELDED]",
+            description = "On a bus: shield CHANNEL: republish each of its messages the model allows on SHIELDED (default"
+                    + " CHANNEL_shielded), where its consumers listen, and withhold the others (said in the alarm);"
+                    + " goes on after violations (--continue).")
+    private String shield;
+
+    /** What the monitor starts from, and the options the replay shares. */
+    record Start(Path model, Long timeUnit, String from, long toleranceMicros, boolean keepGoing, Path alarmsFile) {
+    }
+
+    /** Whether a bus was given: the monitor watches it. */
+    boolean onBus() {
+        return cluster != null || nats.given();
+    }
+
+    /** Checks the options of a watch on the bus. */
+    void check(Function<String, ParameterException> usage) {
+        if (cluster != null && cluster.isBlank()) {
+            throw usage.apply("--cluster: the bus name is blank");
+        }
+        if (keyFile != null && insecure) {
+            throw usage.apply("--insecure uses no secret: leave out --key-file");
+        }
+        if (duration != null && (duration <= 0 || duration > RunDefaults.MAX_WAIT_SECONDS)) {
+            throw usage.apply("--duration must be a positive number of seconds: " + duration);
+        }
+        windowMicros(usage);
+        if (shield != null && shieldChannels()[0].isBlank()) {
+            throw usage.apply("--shield names a channel of the model: '" + shield + "'");
+        }
+        if (bind != null && nats.given()) {
+            throw usage.apply("--bind is for a JGroups bus; a NATS bus is where --bus says");
+        }
+        nats.check(clusterName(), usage);
+    }
+
+    /** Checks that no option of a watch on the bus came with {@code --replay}. */
+    void checkReplay(Function<String, ParameterException> usage) {
+        if (bind != null || keyFile != null || insecure || delta != null || duration != null || shield != null) {
+            throw usage.apply("--bind, --key-file, --insecure, --delta, --duration and --shield are for watching a bus"
+                    + " (--cluster, --bus), not for --replay");
+        }
+        nats.check(clusterName(), usage);
+    }
+
+    /**
+     * Watches the bus until the watched run ends (or {@code --duration} passes, or the process is interrupted),
+     * printing the alarms as they come; returns the exit code.
+     */
+    int watch(Network network, TestInterface testInterface, Start start, PrintWriter out, PrintWriter err,
+            Function<String, ParameterException> usage) {
+        long unit = RunDefaults.timeUnit(start.timeUnit(), testInterface.timeUnitMicros());
+        // a shield goes on after violations: it withholds what the model forbids for as long as it runs
+        boolean keepGoing = start.keepGoing() || shield != null;
+        String joinFrom = start.from() == null ? "any" : start.from();
+        String runFrom = start.from() == null ? "initial" : start.from();
+        Monitor first;
+        try {
+            // the model's errors and a bad --from come out here, whatever the start
+            first = Monitor.of(network, testInterface, MonitorCommand.options(unit, runFrom, keepGoing));
+            if (!joinFrom.equals(runFrom)) {
+                first = Monitor.of(network, testInterface, MonitorCommand.options(unit, joinFrom, keepGoing));
+            }
+        } catch (QueryException e) {
+            throw usage.apply("--from: " + e.getMessage());
+        } catch (UnsupportedModelException e) {
+            if (start.from() != null) {
+                err.println("dtron monitor: " + start.model() + ": " + e.getMessage());
+                return 1;
+            }
+            // too many states to start from all of them: the monitor watches from the next run start
+            err.println("dtron monitor: " + start.model() + ": " + e.getMessage() + "; this monitor starts at the"
+                    + " next run start, and cannot join a run already going (give --from PROPERTY for that)");
+            first = null;
+        }
+        String[] shielded = shield == null ? new String[] {null, null} : shieldChannels();
+        long window = windowMicros(usage);
+        BusMonitor.Settings settings = new BusMonitor.Settings(window, delta == null || delta.equals("auto"),
+                start.toleranceMicros(), shielded[0], shielded[1]);
+        Writer alarms;
+        try {
+            alarms = start.alarmsFile() == null ? Writer.nullWriter()
+                    : Files.newBufferedWriter(start.alarmsFile(), StandardCharsets.UTF_8);
+        } catch (IOException e) {
+            err.println("dtron monitor: cannot write " + start.alarmsFile() + ": " + e.getMessage());
+            return 1;
+        }
+        Printer printer = new Printer(out, alarms, unit, shielded[1]);
+        Monitor joining = first;
+        BusMonitor.Monitors monitors = runUnit -> runUnit == 0 ? joining : Monitor.of(network, testInterface,
+                MonitorCommand.options(start.timeUnit() != null ? start.timeUnit() : runUnit, runFrom,
+                        keepGoing));
+        BusMonitor monitor;
+        try {
+            monitor = BusMonitor.connect(testInterface, monitors, settings, busOptions(usage).get(), printer);
+        } catch (IllegalArgumentException e) {
+            err.println("dtron monitor: " + start.model() + ": " + e.getMessage());
+            return 1;
+        } catch (DtronException e) {
+            err.println("dtron monitor: " + e.getMessage() + (e.getCause() == null ? "" : ": "
+                    + e.getCause().getMessage()));
+            return 1;
+        }
+        printer.line("dtron monitor: " + start.model() + " on bus '" + clusterName() + "' at " + where(usage) + " as "
+                + monitor.memberId() + ", from " + (joining == null ? MonitorCommand.start(runFrom) + " at each run start"
+                : MonitorCommand.start(joinFrom) + (start.from() == null ? " (it joins a running system), from "
+                + MonitorCommand.start(runFrom) + " at each run start" : ""))
+                + ", time units of " + unit + " us (a run's own at its start), reorder window " + (settings
+                .automaticWindow() ? "auto from " : "") + window + " us" + (start.toleranceMicros() > 0
+                ? ", event times give or take " + start.toleranceMicros() + " us" : "") + (keepGoing
+                ? ", going on after violations" : "") + (shield == null ? "" : ", shielding " + shielded[0] + " on "
+                + shielded[1]));
+        Thread hook = new Thread(() -> {
+            try {
+                monitor.finish();
+            } catch (InterruptedException e) {
+                Thread.currentThread().interrupt();
+            }
+        }, "dtron-monitor-end");
+        Runtime.getRuntime().addShutdownHook(hook);
+        BusMonitor.Result result;
+        try (monitor) {
+            result = duration == null ? monitor.await(Duration.ofSeconds(RunDefaults.MAX_WAIT_SECONDS))
+                    : monitor.await(Duration.ofSeconds(duration));
+            if (result == null) {
+                result = monitor.finish();
+            }
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+            err.println("dtron monitor: interrupted");
+            return 1;
+        } finally {
+            try {
+                Runtime.getRuntime().removeShutdownHook(hook);
+            } catch (IllegalStateException e) {
+                // the JVM is going down: the hook ends the watch
+            }
+            try {
+                alarms.close();
+            } catch (IOException e) {
+                err.println("dtron monitor: cannot write " + start.alarmsFile() + ": " + e.getMessage());
+            }
+        }
+        if (result.error() != null) {
+            err.println("dtron monitor: " + start.model() + ": " + result.error());
+            return 1;
+        }
+        int v = result.violations();
+        printer.line("dtron monitor: " + (v == 0 ? "no violation" : v + " violation" + (v == 1 ? "" : "s")) + ", "
+                + result.events() + " event" + (result.events() == 1 ? "" : "s") + " checked" + (v > 0
+                && !keepGoing ? " (stopped at the first violation)" : result.runStopped() ? " (the run ended)"
+                : "") + ", " + result.late() + " too late to judge" + (shield == null ? "" : ", " + result.withheld()
+                + " withheld") + "; verdict published on dtron_alarm");
+        return v > 0 ? 2 : result.late() > 0 ? 3 : 0;
+    }
+
+    /** The reorder window: {@code --delta US}, or the automatic one's start. */
+    private long windowMicros(Function<String, ParameterException> usage) {
+        if (delta == null || delta.equals("auto")) {
+            return BusRun.AUTO_WINDOW_FLOOR_MICROS;
+        }
+        try {
+            long micros = Long.parseLong(delta);
+            if (micros >= 0) {
+                return micros;
+            }
+        } catch (NumberFormatException e) {
+            // said below
+        }
+        throw usage.apply("--delta must be auto or a number of microseconds, at least 0: " + delta);
+    }
+
+    /** {@code --shield CHANNEL[=SHIELDED]}: the channel and where its allowed messages go. */
+    private String[] shieldChannels() {
+        int eq = shield.indexOf('=');
+        String channel = (eq < 0 ? shield : shield.substring(0, eq)).trim();
+        String shielded = eq < 0 ? channel + "_shielded" : shield.substring(eq + 1).trim();
+        return new String[] {channel, shielded};
+    }
+
+    private String clusterName() {
+        return cluster != null ? cluster : DtronOptions.DEFAULT_CLUSTER;
+    }
+
+    private String where(Function<String, ParameterException> usage) {
+        return nats.given() ? String.join(",", nats.servers(usage)) : bindAddress(usage).getHostAddress();
+    }
+
+    private InetAddress bindAddress(Function<String, ParameterException> usage) {
+        if (bind == null) {
+            return InetAddress.getLoopbackAddress();
+        }
+        try {
+            return InetAddress.getByName(bind);
+        } catch (UnknownHostException e) {
+            throw usage.apply("--bind: unknown address '" + bind + "'");
+        }
+    }
+
+    /** The member's options: the transport's, with the bus's secret of {@code --key-file} or none. */
+    private Supplier<DtronOptions.Builder> busOptions(Function<String, ParameterException> usage) {
+        Supplier<DtronOptions.Builder> transport = nats.given() ? nats.memberOptions(clusterName(), usage)
+                : () -> DtronOptions.builder().clusterName(clusterName()).bindAddress(bindAddress(usage));
+        return () -> {
+            DtronOptions.Builder options = transport.get();
+            if (keyFile != null) {
+                options.keyFile(keyFile);
+            }
+            return options.insecure(insecure);
+        };
+    }
+
+    /** Prints what the monitor finds, from its thread, and writes the alarms' JSON lines. */
+    private static final class Printer implements BusMonitor.Sink {
+        private final PrintWriter out;
+        private final Writer alarms;
+        private final String shielded;
+        private volatile long unit;
+
+        Printer(PrintWriter out, Writer alarms, long unit, String shielded) {
+            this.out = out;
+            this.alarms = alarms;
+            this.unit = unit;
+            this.shielded = shielded;
+        }
+
+        @Override
+        public void runStarted(String runId, long timeUnitMicros) {
+            unit = timeUnitMicros;
+            line("run " + runId + " started (time units of " + timeUnitMicros + " us): the monitor starts again");
+        }
+
+        @Override
+        public void alarm(Alarm alarm, boolean withheld) {
+            try {
+                alarms.write(alarm.toJson());
+                alarms.write('\n');
+                alarms.flush();
+            } catch (IOException e) {
+                throw new UncheckedIOException(e);
+            }
+            synchronized (out) {
+                MonitorCommand.print(out, alarm, unit, withheld ? "; withheld: not republished on " + shielded : "");
+                out.flush();
+            }
+        }
+
+        @Override
+        public void note(String line) {
+            line("dtron monitor: " + line);
+        }
+
+        void line(String line) {
+            synchronized (out) {
+                out.println(line);
+                out.flush();
+            }
+        }
+    }
+}

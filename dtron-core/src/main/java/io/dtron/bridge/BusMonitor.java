@@ -1,0 +1,609 @@
+package io.dtron.bridge;
+
+import io.dtron.api.Dtron;
+import io.dtron.api.DtronException;
+import io.dtron.api.DtronListener;
+import io.dtron.api.DtronOptions;
+import io.dtron.api.IDtronChannel;
+import io.dtron.api.IDtronChannelValued;
+import io.dtron.api.internal.TesterSide;
+import io.dtron.bridge.internal.ReorderWindow;
+import io.dtron.bridge.internal.RunTimeline;
+import io.dtron.engine.Event;
+import io.dtron.engine.monitor.Alarm;
+import io.dtron.engine.monitor.Monitor;
+import io.dtron.engine.monitor.MonitorOptions;
+import io.dtron.model.Network;
+import io.dtron.model.TestInterface;
+import java.time.Duration;
+import java.util.ArrayList;
+import java.util.HashMap;
+import java.util.LinkedHashMap;
+import java.util.List;
+import java.util.Map;
+import java.util.Objects;
+import java.util.PriorityQueue;
+import java.util.concurrent.BlockingQueue;
+import java.util.concurrent.CountDownLatch;
+import java.util.concurrent.LinkedBlockingQueue;
+import java.util.concurrent.TimeUnit;
+import org.slf4j.Logger;
+import org.slf4j.LoggerFactory;
+
+/**
+ * The monitor's role in a run on a DTRON bus ({@code dtron monitor --cluster/--bus}): a passive member that observes
+ * every channel of the model (inputs and outputs alike, whoever publishes them) without serving any, puts the events
+ * in order by their event times on the run's clock (the times the tester judges by: a sender's stamp corrected by its
+ * clock offset, an input where its adapter's acknowledgement places it; {@link RunTimeline}) within the reorder window
+ * ({@link ReorderWindow}, fixed or automatic), and feeds them to a {@link Monitor} on a thread of its own. That thread
+ * also lets time pass on the run's clock, so a missed deadline is found when the deadline is a reorder window old,
+ * not at the next message. The run's id and time 0 come from the tester's {@link Dtron#RUN_START}: at each, the
+ * monitor starts again (from the options' start); a monitor that joins during a run starts at once. Time passes for
+ * the monitor from the run's start or from the first event it sees, so a system that has not started yet raises no
+ * alarm. The run ends at the tester's {@link Dtron#RUN_STOP}, or at {@link #finish}.
+ *
+ * <p>Each alarm and the final verdict are published on {@link Dtron#ALARM}. A shield ({@link Settings#shield})
+ * judges the messages of one channel as they arrive and republishes those the model allows on another channel, for
+ * the consumers; those it forbids are withheld, which the alarm says.
+ */
+public final class BusMonitor implements AutoCloseable {
+    private static final Logger LOG = LoggerFactory.getLogger(BusMonitor.class);
+    /** How long the monitor waits, when it joins, for its clock's offset to a tester on the bus. */
+    static final Duration OFFSET_TIMEOUT = Duration.ofSeconds(2);
+    /** How long the monitor waits for its listeners to catch up before it lets a deadline pass. */
+    static final Duration CATCH_UP_TIMEOUT = Duration.ofSeconds(1);
+    /**
+     * How long a tester's input waits at most for the acknowledgement that places it where its adapter applied it;
+     * then it is taken as happened when the tester published it.
+     */
+    static final Duration ACK_TIMEOUT = Duration.ofSeconds(2);
+    /** The longest the monitor's thread sleeps between two looks at the clock. */
+    private static final long TICK_MAX_MICROS = 10_000;
+
+    /** What the monitor does and how it orders events. */
+    public record Settings(long windowMicros, boolean automaticWindow, long toleranceMicros, String shield,
+            String shielded) {
+        /**
+         * @param windowMicros    the reorder window the monitor starts with (at least 0)
+         * @param automaticWindow whether it widens when a message takes more than half of it
+         * @param toleranceMicros each event's time give or take this, beyond its sender's clock error
+         * @param shield          the channel the monitor shields, or null
+         * @param shielded        the channel it republishes the allowed messages of {@code shield} on, or null
+         */
+        public Settings {
+            if (windowMicros < 0 || toleranceMicros < 0) {
+                throw new IllegalArgumentException("negative window or tolerance");
+            }
+            if ((shield == null) != (shielded == null)) {
+                throw new IllegalArgumentException("a shield needs both channels");
+            }
+        }
+    }
+
+    /** Makes the monitor of a watch. */
+    @FunctionalInterface
+    public interface Monitors {
+        /**
+         * The monitor when the watch starts ({@code runTimeUnitMicros} 0; null: none, the watch begins at the next
+         * run start), or at a run start, whose time unit the tester's start message says.
+         */
+        Monitor make(long runTimeUnitMicros);
+    }
+
+    /** Told, on the monitor's thread, what the monitor finds. */
+    public interface Sink {
+        /** A run started on the bus (a tester's run start, with the run's time unit); the monitor starts again. */
+        void runStarted(String runId, long timeUnitMicros);
+
+        /**
+         * An alarm.
+         *
+         * @param withheld whether the shield withheld the violating message
+         */
+        void alarm(Alarm alarm, boolean withheld);
+
+        /** Something worth a line: a message that came too late for the window, a widened window. */
+        void note(String line);
+    }
+
+    /** How the watch ended, with the counts. */
+    public record Result(int violations, long events, long late, long withheld, boolean runStopped, String error) {
+    }
+
+    private final Dtron dtron;
+    /** The bus member's machinery this role shares with the tester's (catching up with the listeners). */
+    private final TesterSide tester;
+    private final Monitors monitors;
+    private final Settings settings;
+    private final Sink sink;
+    /** The channels of the model by name, with their 1-based position for the alarm message. */
+    private final Map<String, Integer> positions = new LinkedHashMap<>();
+    /** The inputs of the model, by name. */
+    private final java.util.Set<String> inputNames = new java.util.HashSet<>();
+    private final BlockingQueue<Object> arrivals = new LinkedBlockingQueue<>();
+    private final RunTimeline timeline;
+    private final ReorderWindow window = new ReorderWindow();
+    private final CountDownLatch ended = new CountDownLatch(1);
+    private final IDtronChannel shieldedChannel;
+    private volatile Result result;
+    private Thread worker;
+
+    /** An event on a model channel, held until it is a reorder window old. */
+    private static final class Held implements Comparable<Held> {
+        final IDtronChannelValued message;
+        long micros;
+        long errorMicros;
+        final long order;
+        /** A tester's input, which waits (until {@link #ackDeadline}) for the acknowledgement that places it. */
+        boolean awaitingAck;
+        long ackDeadline;
+
+        Held(IDtronChannelValued message, long micros, long errorMicros, long order) {
+            this.message = message;
+            this.micros = micros;
+            this.errorMicros = errorMicros;
+            this.order = order;
+        }
+
+        @Override
+        public int compareTo(Held o) {
+            return micros != o.micros ? Long.compare(micros, o.micros) : Long.compare(order, o.order);
+        }
+    }
+
+    /** What the listeners' thread hands the monitor's thread, in the bus's order. */
+    private record Arrival(String kind, IDtronChannelValued message) {
+    }
+
+    private BusMonitor(Dtron dtron, TestInterface testInterface, Monitors monitors, Settings settings,
+            Sink sink) {
+        this.dtron = dtron;
+        this.tester = TesterSide.of(dtron);
+        this.monitors = monitors;
+        this.settings = settings;
+        this.sink = sink;
+        this.timeline = new RunTimeline(dtron::currentTimeNanos);
+        window.set(settings.windowMicros(), settings.automaticWindow());
+        testInterface.inputs().forEach(c -> inputNames.add(c.name()));
+        List<TestInterface.ObservableChannel> all = new ArrayList<>(testInterface.inputs());
+        all.addAll(testInterface.outputs());
+        Map<String, IDtronChannel> channels = new LinkedHashMap<>();
+        for (TestInterface.ObservableChannel c : all) {
+            if (Dtron.isReservedChannel(c.name())) {
+                throw new IllegalArgumentException("channel '" + c.name() + "' of the model's interface has a name"
+                        + " DTRON reserves; rename it");
+            }
+            positions.putIfAbsent(c.name(), positions.size() + 1);
+            channels.putIfAbsent(c.name(), IDtronChannel.of(c.name(), c.variables().stream()
+                    .map(TestInterface.AttachedVariable::name).toList()));
+        }
+        if (settings.shield() != null) {
+            IDtronChannel shield = channels.get(settings.shield());
+            if (shield == null) {
+                throw new IllegalArgumentException("--shield " + settings.shield() + ": not a channel of the model's"
+                        + " interface (" + String.join(", ", channels.keySet()) + ")");
+            }
+            if (channels.containsKey(settings.shielded()) || Dtron.isReservedChannel(settings.shielded())) {
+                throw new IllegalArgumentException("--shield: the shielded channel '" + settings.shielded()
+                        + "' is a channel of the model or DTRON's own");
+            }
+            this.shieldedChannel = IDtronChannel.of(settings.shielded(), shield.getVariableNames());
+            dtron.declareOutputs(shieldedChannel);
+        } else {
+            this.shieldedChannel = null;
+        }
+        for (IDtronChannel channel : channels.values()) {
+            boolean shielding = channel.getChannelName().equals(settings.shield());
+            dtron.addDtronListener(new DtronListener(channel) {
+                @Override
+                public void messageReceived(IDtronChannelValued message) {
+                    arrivals.add(new Arrival(shielding ? "shield" : "event", message));
+                }
+
+                @Override
+                protected boolean autoAcknowledge() {
+                    return false; // the monitor observes; a shield's consumers apply what it republishes
+                }
+
+                @Override
+                protected boolean serves() {
+                    return shielding; // the shield is its channel's consumer on the bus
+                }
+            });
+        }
+        for (IDtronChannel reserved : List.of(Dtron.RUN_START, Dtron.RUN_STOP, Dtron.ACK)) {
+            dtron.addDtronListener(new DtronListener(reserved) {
+                @Override
+                public void messageReceived(IDtronChannelValued message) {
+                    arrivals.add(new Arrival(reserved.getChannelName(), message));
+                }
+            });
+        }
+    }
+
+    /**
+     * Joins the bus as a monitor of the closed model whose observable channels are {@code testInterface}'s, and
+     * starts watching: the first run start on the bus, or the first event, starts the monitor's clock.
+     *
+     * @param monitors makes the {@link Monitor} when the watch starts and at every run start
+     * @throws IllegalArgumentException if a channel of the interface cannot be a bus channel, or the shield's are
+     *                                  not as {@link Settings} says
+     * @throws DtronException           if the bus cannot be joined
+     */
+    public static BusMonitor connect(TestInterface testInterface, Monitors monitors, Settings settings,
+            DtronOptions.Builder options, Sink sink) {
+        Objects.requireNonNull(sink, "sink");
+        Dtron dtron = Dtron.connect(options.build());
+        BusMonitor m;
+        try {
+            m = new BusMonitor(dtron, testInterface, monitors, settings, sink);
+        } catch (RuntimeException e) {
+            dtron.close();
+            throw e;
+        }
+        m.worker = new Thread(m::watch, "dtron-monitor");
+        m.worker.setDaemon(true);
+        m.worker.start();
+        return m;
+    }
+
+    /** Returns this member's id on the bus. */
+    public String memberId() {
+        return dtron.getMemberId();
+    }
+
+    /**
+     * Waits until the watch ended: the watched run's {@link Dtron#RUN_STOP} came and every event before it was
+     * judged, or the monitor stopped at its first violation (unless it goes on after violations); {@code timeout}
+     * at most.
+     *
+     * @return the result, or null if the run did not end within the timeout
+     * @throws InterruptedException if the thread was interrupted while waiting
+     */
+    public Result await(Duration timeout) throws InterruptedException {
+        return ended.await(timeout.toNanos(), TimeUnit.NANOSECONDS) ? result : null;
+    }
+
+    /**
+     * Ends the watch now (the monitor's time), judges what it holds and publishes the verdict; returns the result.
+     * Returns the result at once if the watch had ended.
+     *
+     * @throws InterruptedException if the thread was interrupted while waiting
+     */
+    public Result finish() throws InterruptedException {
+        arrivals.add(new Arrival("finish", null));
+        ended.await();
+        return result;
+    }
+
+    /** Leaves the bus (ending the watch first, if it goes on); closing twice does nothing. */
+    @Override
+    public void close() {
+        if (ended.getCount() > 0) {
+            arrivals.add(new Arrival("finish", null));
+            try {
+                ended.await(5, TimeUnit.SECONDS);
+            } catch (InterruptedException e) {
+                Thread.currentThread().interrupt();
+            }
+        }
+        dtron.close();
+    }
+
+    // ---- the monitor's thread ----
+
+    private Monitor monitor;
+    private final PriorityQueue<Held> held = new PriorityQueue<>();
+    /** The inputs held, by sender/sequence, until an acknowledgement places them. */
+    private final Map<String, Held> inputs = new HashMap<>();
+    private long order;
+    /** The run's id once a run start was seen or a message carried one; "" before. */
+    private String runId = "";
+    /** Time passes for the monitor from here: the run's start, or the first event's time (none before). */
+    private long clockStart = Long.MAX_VALUE;
+    /** The time up to which the monitor judged, on the run's clock. */
+    private long judgedTo = Long.MIN_VALUE;
+    /** The end of the run, on the run's clock, once its stop came; else none. */
+    private long stopAt = Long.MAX_VALUE;
+    private int violations;
+    private long events;
+    private long late;
+    private long withheld;
+    private String error;
+    /** Whether the watch was told to end ({@link #finish}). */
+    private boolean finishing;
+
+    private void watch() {
+        boolean runStopped = false;
+        try {
+            if (dtron.getTester().isPresent()) {
+                awaitOffset();
+            }
+            // time 0 until a run start says otherwise: now, on the tester's clock
+            timeline.startedAt(nowTesterNanos(), 0);
+            monitor = monitors.make(0);
+            while (true) {
+                Object next = arrivals.poll(waitMicros(), TimeUnit.MICROSECONDS);
+                if (next != null) {
+                    take((Arrival) next);
+                    drain();
+                }
+                long now = nowMicros();
+                if (finishing) {
+                    judge(Math.min(now - window.micros(), stopAt));
+                    break;
+                }
+                if (stopAt != Long.MAX_VALUE && now - window.micros() >= stopAt) {
+                    judge(stopAt);
+                    runStopped = true;
+                    break;
+                }
+                judge(now - window.micros());
+                if (monitor != null && monitor.stopped()) {
+                    break;
+                }
+            }
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+            error = "interrupted";
+        } catch (RuntimeException e) {
+            LOG.warn("The monitor stopped", e);
+            error = e.getMessage() == null ? e.toString() : e.getMessage();
+        }
+        result = new Result(violations, events, late, withheld, runStopped, error);
+        publishVerdict();
+        ended.countDown();
+    }
+
+    private void awaitOffset() throws InterruptedException {
+        long deadline = System.nanoTime() + OFFSET_TIMEOUT.toNanos();
+        while (!dtron.hasClockOffset() && System.nanoTime() < deadline) {
+            Thread.sleep(5);
+        }
+    }
+
+    /** This member's now on the tester's wall clock, in nanoseconds since the epoch. */
+    private long nowTesterNanos() {
+        return dtron.currentTimeNanos() + dtron.getClockOffsetNanos();
+    }
+
+    /** This member's now on the run's clock, in microseconds. */
+    private long nowMicros() {
+        return Math.floorDiv(nowTesterNanos() - timeline.zeroEpochNanos(), 1000);
+    }
+
+    /** How long to wait for the next arrival: until the first held event is due, at most a tick. */
+    private long waitMicros() {
+        long tick = Math.max(100, Math.min(TICK_MAX_MICROS, window.micros() / 10));
+        Held first = held.peek();
+        if (first == null) {
+            return tick;
+        }
+        return Math.max(0, Math.min(tick, first.micros + window.micros() - nowMicros()));
+    }
+
+    /** Takes what arrived so far. */
+    private void drain() {
+        for (Object next = arrivals.poll(); next != null; next = arrivals.poll()) {
+            take((Arrival) next);
+        }
+    }
+
+    private void take(Arrival a) {
+        IDtronChannelValued m = a.message();
+        switch (a.kind()) {
+            case "finish" -> finishing = true;
+            case "dtron_start" -> {
+                if (m.getSender().equals(dtron.getMemberId())) {
+                    return;
+                }
+                runId = m.getRunId();
+                timeline.startedAt(m.getEventTimeNanos() + m.getClockOffsetNanos(), 0);
+                held.clear();
+                inputs.clear();
+                monitor = monitors.make(m.getVariables().get("timeunit"));
+                clockStart = 0;
+                judgedTo = Long.MIN_VALUE;
+                stopAt = Long.MAX_VALUE;
+                sink.runStarted(runId, m.getVariables().get("timeunit"));
+            }
+            case "dtron_stop" -> {
+                if (ofThisRun(m)) {
+                    stopAt = timeline.eventMicros(m);
+                }
+            }
+            case "dtron_ack" -> acknowledged(m);
+            case "event" -> event(m);
+            case "shield" -> shield(m);
+            default -> throw new IllegalStateException(a.kind());
+        }
+    }
+
+    /** Whether a message belongs to the watched run: it carries its id, or none, or no run is known. */
+    private boolean ofThisRun(IDtronChannelValued m) {
+        if (runId.isEmpty() && !m.getRunId().isEmpty()) {
+            runId = m.getRunId(); // joined during a run: the first message that names one names it
+        }
+        return m.getRunId().isEmpty() || m.getRunId().equals(runId);
+    }
+
+    private void event(IDtronChannelValued m) {
+        if (monitor == null || !ofThisRun(m) || stopAt != Long.MAX_VALUE) {
+            return;
+        }
+        // stamped before time 0 of a run whose start this monitor saw (ordered before it): from the start, as the
+        // tester takes it
+        long micros = clockStart == 0 ? Math.max(0, timeline.eventMicros(m)) : timeline.eventMicros(m);
+        clockStart = Math.min(clockStart, micros);
+        widen(m, micros);
+        Held h = new Held(m, micros, RunTimeline.errorMicros(m), order++);
+        if (micros < monitor.lastMicros() && judgedTo != Long.MIN_VALUE) {
+            late(h); // before an event the monitor judged: it cannot be placed
+            return;
+        }
+        if (inputNames.contains(m.getChannelName()) && (m.getSender().equals(dtron.getTester().orElse(null))
+                || tester.getOtherTesters().contains(m.getSender()))) {
+            h.awaitingAck = true;
+            h.ackDeadline = System.nanoTime() + ACK_TIMEOUT.toNanos();
+        }
+        held.add(h);
+        inputs.put(m.getSender() + "/" + m.getSequence(), h);
+    }
+
+    /** An acknowledgement places the input it names where its adapter applied it. */
+    private void acknowledged(IDtronChannelValued ack) {
+        Held h = inputs.remove(ack.getAckedSender() + "/" + ack.getAckedSequence());
+        if (h == null || !held.remove(h)) {
+            return;
+        }
+        // the first acknowledgement counts, as for the tester: one member applies an input
+        h.micros = Math.max(h.micros, timeline.eventMicros(ack));
+        h.errorMicros = RunTimeline.errorMicros(ack);
+        h.awaitingAck = false;
+        held.add(h);
+    }
+
+    /** The monitor's thread judges, in time order, every held event up to {@code to}, and lets time pass to it. */
+    private void judge(long until) {
+        if (monitor == null) {
+            return;
+        }
+        long to = release(until);
+        if (to >= clockStart && to > judgedTo) {
+            if (!monitor.allowsTimeTo(to)) {
+                // a deadline passed: first what this member received and has not handed over yet
+                catchUp();
+                to = Math.min(to, release(to));
+            }
+            report(monitor.advanceTo(to), null, false);
+            judgedTo = Math.max(judgedTo, to);
+        }
+    }
+
+    /**
+     * Judges the held events up to {@code to}, in time order, but for a tester's input still waiting for its
+     * acknowledgement (which may place it later): returns how far time may pass, {@code to} or that input's time.
+     */
+    private long release(long to) {
+        while (!held.isEmpty() && held.peek().micros <= to && !monitor.stopped()) {
+            Held h = held.peek();
+            if (h.awaitingAck && System.nanoTime() < h.ackDeadline) {
+                return h.micros;
+            }
+            held.poll();
+            inputs.remove(h.message.getSender() + "/" + h.message.getSequence());
+            observe(h);
+        }
+        return to;
+    }
+
+    /** Waits until this member's listeners have taken what the bus delivered (a second at most), and takes it. */
+    private void catchUp() {
+        try {
+            if (!tester.awaitListeners(CATCH_UP_TIMEOUT)) {
+                LOG.warn("The bus's listeners did not catch up within {} ms", CATCH_UP_TIMEOUT.toMillis());
+            }
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+        }
+        drain();
+    }
+
+    private void observe(Held h) {
+        if (h.micros < monitor.lastMicros()) {
+            late(h); // the monitor moved past it (a re-synchronisation at a deadline)
+            return;
+        }
+        Event e = new Event(h.message.getChannelName(), h.message.getVariables());
+        events++;
+        judgedTo = Math.max(judgedTo, h.micros);
+        report(monitor.observe(e, h.micros, h.errorMicros + settings.toleranceMicros()), h.message, false);
+    }
+
+    /** An event older than what the monitor judged: it cannot be placed, so the monitor forgets what it knew. */
+    private void late(Held h) {
+        late++;
+        monitor.forgetHistory();
+        sink.note(h.message.getChannelName() + " from " + h.message.getSender() + " came " + (judgedTo - h.micros)
+                + " us after the monitor had judged its time (reorder window " + window.micros() + " us): not judged;"
+                + " the monitor starts again from every reachable state");
+    }
+
+    /**
+     * The shield judges a message of its channel as it arrives: the held events before it first, then it; an
+     * allowed message is republished on the shielded channel, a forbidden one withheld.
+     */
+    private void shield(IDtronChannelValued m) {
+        if (monitor == null) {
+            withheld++; // before the first run start the shield knows nothing: it passes nothing
+            return;
+        }
+        if (!ofThisRun(m) || stopAt != Long.MAX_VALUE) {
+            return;
+        }
+        long micros = Math.max(timeline.eventMicros(m), Math.max(judgedTo, monitor.lastMicros()));
+        clockStart = Math.min(clockStart, micros);
+        judge(micros);
+        events++;
+        micros = Math.max(micros, monitor.lastMicros()); // a deadline passed on the way re-synchronised it
+        Alarm a = monitor.withhold(new Event(m.getChannelName(), m.getVariables()), micros,
+                RunTimeline.errorMicros(m) + settings.toleranceMicros());
+        judgedTo = Math.max(judgedTo, micros);
+        if (a == null) {
+            try {
+                // the event time on this member's clock: the producer's, through the run's clock
+                dtron.send(shieldedChannel.constructValued(m.getVariables()), Math.max(1, m.getEventTimeNanos()
+                        + m.getClockOffsetNanos() - dtron.getClockOffsetNanos()));
+            } catch (DtronException | IllegalStateException e) {
+                LOG.warn("Cannot republish {}: {}", m, e.getMessage());
+            }
+            return;
+        }
+        withheld++;
+        report(a, m, true);
+    }
+
+    private void widen(IDtronChannelValued m, long eventMicros) {
+        long received = Math.floorDiv(m.getReceiveTimeNanos() + dtron.getClockOffsetNanos()
+                - timeline.zeroEpochNanos(), 1000);
+        window.arrived(Math.max(0, received - eventMicros), received, m.getChannelName() + " from " + m.getSender())
+                .ifPresent(w -> sink.note("reorder window widened to " + w + " us: " + m.getChannelName() + " from "
+                        + m.getSender() + " took " + (received - eventMicros) + " us"));
+    }
+
+    private void report(Alarm a, IDtronChannelValued message, boolean withholding) {
+        if (a == null) {
+            return;
+        }
+        violations = monitor.violations();
+        sink.alarm(a, withholding);
+        publish(a.busValues().get("number"), a.reason().code(), a.event() == null ? 0
+                : positions.getOrDefault(a.event().channel(), 0), message == null ? 0 : message.getSequence(),
+                withholding, false, a.micros());
+    }
+
+    private void publishVerdict() {
+        long at = judgedTo == Long.MIN_VALUE ? 0 : judgedTo;
+        publish(violations, monitor == null || monitor.firstAlarm() == null ? 0
+                : monitor.firstAlarm().reason().code(), 0, 0, false, true, at);
+    }
+
+    private void publish(int number, int reason, int channel, long sequence, boolean withholding, boolean verdict,
+            long micros) {
+        Map<String, Integer> values = new LinkedHashMap<>();
+        values.put("number", number);
+        values.put("reason", reason);
+        values.put("channel", channel);
+        values.put("sequence", (int) Math.min(Integer.MAX_VALUE, sequence));
+        values.put("withheld", withholding ? 1 : 0);
+        values.put("verdict", verdict ? 1 : 0);
+        // the alarm's time on this member's wall clock, which the message's clock offset brings to the run's
+        long epochNanos = timeline.zeroEpochNanos() + micros * 1000 - dtron.getClockOffsetNanos();
+        try {
+            dtron.send(Dtron.ALARM.constructValued(values), Math.max(1, epochNanos));
+        } catch (DtronException | IllegalStateException e) {
+            LOG.warn("Cannot publish the {} on {}: {}", verdict ? "verdict" : "alarm", Dtron.ALARM.getChannelName(),
+                    e.getMessage());
+        }
+    }
+}
