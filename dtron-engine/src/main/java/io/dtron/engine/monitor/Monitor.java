@@ -283,7 +283,7 @@ public final class Monitor {
             return true;
         }
         try {
-            return tracker.allows(current, ticksFloor(micros - lastMicros));
+            return tracker.allows(current, ticks.floor(micros - lastMicros));
         } catch (ModelRuntimeException e) {
             throw new UnsupportedModelException("model error while letting time pass: " + e.format());
         }
