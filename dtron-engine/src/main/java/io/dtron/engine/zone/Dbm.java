@@ -580,23 +580,36 @@ public final class Dbm {
             return;
         }
         Weakened changed = new Weakened();
+        int[] d = m;
+        int n = dim;
+        // The columns j whose lower bound is above U_j (or that have no U_j): bit j, read off row 0 before it is
+        // rewritten; recomputed per entry only beyond 64 clocks.
+        boolean wide = n > Long.SIZE;
+        long freeColumns = 0;
+        for (int j = 1; j < n && !wide; j++) {
+            if (upper[j] < 0 || d[j] < Bound.le(-upper[j])) {
+                freeColumns |= 1L << j;
+            }
+        }
         // Rows 1.. first: their conditions read row 0 before it is rewritten.
-        for (int i = 1; i < dim; i++) {
-            int rowI = i * dim;
-            boolean aboveLower = lower[i] < 0 || m[i] < Bound.le(-lower[i]);
-            int above = lower[i] < 0 ? Integer.MIN_VALUE : Bound.le(lower[i]);
-            for (int j = 0; j < dim; j++) {
-                int b = m[rowI + j];
+        for (int i = 1; i < n; i++) {
+            int rowI = i * n;
+            boolean aboveLower = lower[i] < 0 || d[i] < Bound.le(-lower[i]);
+            int above = aboveLower ? Integer.MIN_VALUE : Bound.le(lower[i]);
+            for (int j = 0; j < n; j++) {
+                int b = d[rowI + j];
                 if (j == i || b == INFINITY) {
                     continue;
                 }
-                if (aboveLower || b > above || j != 0 && (upper[j] < 0 || m[j] < Bound.le(-upper[j]))) {
+                boolean freeColumn = wide ? j != 0 && (upper[j] < 0 || d[j] < Bound.le(-upper[j]))
+                        : (freeColumns >>> j & 1) != 0;
+                if (b > above || freeColumn) {
                     changed.set(rowI, j, INFINITY);
                 }
             }
         }
-        for (int j = 1; j < dim; j++) {
-            int b = clampLower(m[j], upper[j]);
+        for (int j = 1; j < n; j++) {
+            int b = clampLower(d[j], upper[j]);
             changed.set(0, j, b);
         }
         changed.close();
@@ -643,6 +656,9 @@ public final class Dbm {
             long[] cols = columns;
             for (int k = 0; k < n; k++) {
                 int rowK = k * n;
+                if (unbounded(rowK, k)) {
+                    continue;
+                }
                 for (int i = 0; i < n; i++) {
                     long bits = cols[i];
                     if (bits == 0) {
@@ -771,6 +787,9 @@ public final class Dbm {
         int n = dim;
         for (int k = 0; k < n; k++) {
             int rowK = k * n;
+            if (unbounded(rowK, k)) {
+                continue;
+            }
             for (int i = 0; i < n; i++) {
                 int rowI = i * n;
                 int ik = d[rowI + k];
@@ -788,6 +807,20 @@ public final class Dbm {
                     makeEmpty();
                     return false;
                 }
+            }
+        }
+        return true;
+    }
+
+    /**
+      * Whether every entry of row {@code k} (at offset {@code rowK}) but the diagonal is infinite: no path through
+      * clock {@code k} is then shorter than the direct one (an extrapolation frees the rows of the clocks above their
+      * constants), so a closure may skip it as the intermediate clock.
+      */
+    private boolean unbounded(int rowK, int k) {
+        for (int j = 0; j < dim; j++) {
+            if (j != k && m[rowK + j] != INFINITY) {
+                return false;
             }
         }
         return true;

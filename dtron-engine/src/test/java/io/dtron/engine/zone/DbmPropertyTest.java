@@ -634,6 +634,74 @@ class DbmPropertyTest {
         return !box.isEmpty();
     }
 
+    /**
+      * The extrapolations give exactly the closure of the matrix their definitions weaken entry by entry (closed
+      * here by adding every finite entry to the unconstrained zone), on zones of up to 9 clocks where many clocks lie
+      * above their constants: the closure after an extrapolation skips the clocks whose rows it freed.
+      */
+    @Test
+    void extrapolationsCloseExactlyTheWeakenedMatrix() {
+        Random r = new Random(17);
+        int freedRows = 0;
+        for (int c = 0; c < 3000; c++) {
+            int dim = 2 + c % 9;
+            Dbm z = Zones.randomZone(r, dim, MAX_CONST + 2);
+            for (int s = r.nextInt(3); s > 0; s--) {
+                z.up();
+                z.reset(1 + r.nextInt(dim - 1), 0);
+            }
+            int[] lower = randomMax(r, dim);
+            int[] upper = randomMax(r, dim);
+            int[] max = randomMax(r, dim);
+            int[][] lu = new int[dim][dim];
+            int[][] m = new int[dim][dim];
+            for (int i = 0; i < dim; i++) {
+                for (int j = 0; j < dim; j++) {
+                    int b = z.upperBound(i, j);
+                    boolean free = i > 0 && (lower[i] < 0 || z.upperBound(0, i) < Bound.le(-lower[i])
+                            || b > Bound.le(lower[i])
+                            || j > 0 && (upper[j] < 0 || z.upperBound(0, j) < Bound.le(-upper[j])));
+                    lu[i][j] = i == j ? b : i == 0 ? clamp(b, upper[j], Bound.LE_ZERO) : free ? Bound.INFINITY : b;
+                    int maxRow = max[i] < 0 ? Integer.MIN_VALUE : Bound.le(max[i]);
+                    m[i][j] = i == j ? b : i == 0 ? clamp(b, max[j], Bound.LE_ZERO)
+                            : b > maxRow ? Bound.INFINITY : j == 0 ? b : clamp(b, max[j], Bound.INFINITY);
+                }
+            }
+            Dbm e = z.copy();
+            e.extrapolateLU(lower, upper);
+            assertEquals(closure(lu), e, () -> "Extra+_LU of " + z);
+            Dbm f = z.copy();
+            f.extrapolateMaxBounds(max);
+            assertEquals(closure(m), f, () -> "Extra_M of " + z);
+            for (int i = 1; i < dim; i++) {
+                boolean freed = true;
+                for (int j = 0; j < dim; j++) {
+                    freed &= i == j || e.upperBound(i, j) == Bound.INFINITY;
+                }
+                freedRows += freed ? 1 : 0;
+            }
+        }
+        assertTrue(freedRows > 1000, "rows freed: " + freedRows);
+    }
+
+    /** A lower-bound or difference entry below {@code -max} weakened to {@code < -max}; {@code none} if no max. */
+    private static int clamp(int b, int max, int none) {
+        return max < 0 ? none : b < Bound.le(-max) ? Bound.lt(-max) : b;
+    }
+
+    /** The closure of a matrix of raw bounds whose diagonal is 0. */
+    private static Dbm closure(int[][] matrix) {
+        Dbm z = Dbm.unconstrained(matrix.length);
+        for (int i = 0; i < matrix.length; i++) {
+            for (int j = 0; j < matrix.length; j++) {
+                if (i != j && matrix[i][j] != Bound.INFINITY) {
+                    z.constrain(i, j, matrix[i][j]);
+                }
+            }
+        }
+        return z;
+    }
+
     @Test
     void operationsKeepEmptyZonesEmpty() {
         Random r = new Random(16);

@@ -6,6 +6,7 @@ import io.dtron.engine.internal.sem.Semantics;
 import io.dtron.engine.internal.sem.SymState;
 import io.dtron.engine.zone.Bound;
 import io.dtron.engine.zone.Dbm;
+import io.dtron.engine.zone.Relation;
 import java.util.ArrayDeque;
 import java.util.ArrayList;
 import java.util.Arrays;
@@ -94,7 +95,8 @@ public final class Tracker {
      */
     public static final class Node {
         private final List<SymState> states;
-        private final Map<TransitionKey, Node> next = new HashMap<>();
+        /** The transitions taken from it; null until the first. */
+        private Map<TransitionKey, Node> next;
         /** The most elapsed ticks known to be allowed (-1: none known). */
         long allowedUntil = -1;
         /** The raw bound on elapsed ticks beyond which no state is left, once found; {@link Bound#INFINITY} if none. */
@@ -147,7 +149,7 @@ public final class Tracker {
      */
     public Node step(Node from, int channel, int[] slots, int[] values, long fromTicks, long toTicks) {
         TransitionKey k = probe.set(channel, values, fromTicks, toTicks);
-        Node cached = remember ? from.next.get(k) : null;
+        Node cached = remember && from.next != null ? from.next.get(k) : null;
         if (cached != null) {
             recalled++;
             return cached;
@@ -164,11 +166,13 @@ public final class Tracker {
         if (!remember) {
             return result;
         }
-        if (from.next.size() >= TRANSITION_LIMIT) {
-            from.next.clear();
-        }
         if (++remembered > REMEMBERED_LIMIT) {
             forget();
+        }
+        if (from.next == null) {
+            from.next = new HashMap<>();
+        } else if (from.next.size() >= TRANSITION_LIMIT) {
+            from.next.clear();
         }
         from.next.put(k.copy(), result);
         return result;
@@ -181,7 +185,7 @@ public final class Tracker {
      */
     private void forget() {
         for (Node n : nodes.values()) {
-            n.next.clear();
+            n.next = null;
         }
         nodes.clear();
         remembered = 0;
@@ -439,14 +443,17 @@ public final class Tracker {
                 }
             }
             if (groups == null) {
-                for (SymState o : order) {
-                    if (o != null && o.sameDiscrete(s) && s.zone().isSubsetOf(o.zone())) {
-                        return false;
-                    }
-                }
+                // one pass: the states kept cover none of each other, so once one is within s, none covers s
                 for (int i = 0; i < order.size(); i++) {
                     SymState o = order.get(i);
-                    if (o != null && o.sameDiscrete(s) && o.zone().isSubsetOf(s.zone())) {
+                    if (o == null || !o.sameDiscrete(s)) {
+                        continue;
+                    }
+                    Relation r = s.zone().relation(o.zone());
+                    if (r == Relation.SUBSET || r == Relation.EQUAL) {
+                        return false;
+                    }
+                    if (r == Relation.SUPERSET) {
                         order.set(i, null);
                         dropped++;
                     }

@@ -40,7 +40,7 @@ public final class DiscreteCache {
     private final ClockBounds bounds = new ClockBounds();
     private final ClockResets resets = new ClockResets();
     /** The entries met last, by their hash: a lookup without allocating a key. */
-    private final Entry[] recent = new Entry[256];
+    private final Entry[] recent = new Entry[4096];
 
     /**
      * A cache for the moves on the channels {@code channels} accepts (-1 for an edge without synchronisation),
