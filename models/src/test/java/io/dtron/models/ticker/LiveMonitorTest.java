@@ -105,9 +105,10 @@ public class LiveMonitorTest {
         return monitor;
     }
 
-    /** A member that only listens to the alarms, as a safety controller would. */
+    /** A member that only listens to the alarms (and the runs' starts), as a safety controller would. */
     static final class AlarmListener implements AutoCloseable {
         final List<IDtronChannelValued> received = new CopyOnWriteArrayList<>();
+        final List<IDtronChannelValued> starts = new CopyOnWriteArrayList<>();
         final Dtron dtron;
 
         AlarmListener(DtronOptions.Builder options) {
@@ -116,6 +117,12 @@ public class LiveMonitorTest {
                 @Override
                 public void messageReceived(IDtronChannelValued message) {
                     received.add(message);
+                }
+            });
+            dtron.addDtronListener(new DtronListener(Dtron.RUN_START) {
+                @Override
+                public void messageReceived(IDtronChannelValued message) {
+                    starts.add(message);
                 }
             });
         }
@@ -173,6 +180,73 @@ public class LiveMonitorTest {
             IDtronChannelValued verdict = safety.received.get(1);
             assertEquals(1, verdict.getVariables().get("verdict"), verdict.toString());
             assertEquals(1, verdict.getVariables().get("number"), verdict.toString());
+        }
+    }
+
+    @Test
+    void oneMonitorFollowsThreeRunsAndAttributesEachAlarmAndVerdictToItsRun() throws Exception {
+        String name = cluster("runs");
+        List<String> bus = List.of("--cluster", name);
+        try (AlarmListener safety = new AlarmListener(DtronOptions.builder().clusterName(name)
+                .bindAddress(InetAddress.getLoopbackAddress()))) {
+            Command monitor = monitor(bus, "--runs", "3");
+            Result first = new Command(run("correct", bus, 100, dir.resolve("first.jsonl"))).get();
+            Result slow = new Command(run("slow", bus, 300, dir.resolve("slow.jsonl"))).get();
+            Result last = new Command(run("correct", bus, 100, dir.resolve("last.jsonl"))).get();
+            Result watched = monitor.get();
+            String all = watched.shown() + first.shown() + slow.shown() + last.shown();
+            assertEquals(2, slow.exit(), all);
+            // the slow run's violation makes the watch's exit code 2, whatever the others'
+            assertEquals(2, watched.exit(), all);
+            Waits.await("the three runs' starts").until(() -> safety.starts.size() >= 3);
+            List<String> ids = safety.starts.stream().map(IDtronChannelValued::getRunId).toList();
+            assertEquals(3, ids.stream().distinct().count(), ids.toString());
+            String out = watched.out();
+            for (String id : ids) {
+                assertTrue(out.contains("run " + id + " started (time units of 10000 us)"), all);
+            }
+            // a run ends at its stop, or at its first violation; the slow one at the deadline its late tick missed
+            List<Result> testers = List.of(first, slow, last);
+            List<String> perRun = new ArrayList<>();
+            for (int i = 0; i < 3; i++) {
+                Matcher ended = Pattern.compile("(?m)^run " + ids.get(i) + " ended: (no violation|(\\d+) violations?),"
+                        + " \\d+ events? checked \\((the run ended|stopped at the first violation)\\)").matcher(out);
+                assertTrue(ended.find(), "run " + (i + 1) + ":\n" + all);
+                int violations = ended.group(2) == null ? 0 : Integer.parseInt(ended.group(2));
+                perRun.add("run " + ids.get(i) + ": " + violations);
+                if (testers.get(i).exit() == 0) {
+                    assertEquals(0, violations, "run " + (i + 1) + " PASSED, yet:\n" + all);
+                } else if (testers.get(i).exit() == 2) {
+                    assertEquals(1, violations, "run " + (i + 1) + " FAILED, yet:\n" + all);
+                    assertEquals("stopped at the first violation", ended.group(3), all);
+                }
+            }
+            assertTrue(out.contains("dtron monitor: 3 runs, ") && out.contains("(" + String.join(", ", perRun)
+                    + ")"), all);
+            // on dtron_alarm: the verdict of each run, in order, each with its run's id; the slow run's missed
+            // deadline (3) with the slow run's id, before its verdict
+            Waits.await("three verdicts on dtron_alarm").until(() -> safety.received.stream()
+                    .filter(m -> m.getVariables().get("verdict") == 1).count() >= 3);
+            List<IDtronChannelValued> verdicts = safety.received.stream()
+                    .filter(m -> m.getVariables().get("verdict") == 1).toList();
+            for (int i = 0; i < 3; i++) {
+                assertEquals(ids.get(i), verdicts.get(i).getRunId(), verdicts.toString());
+            }
+            assertEquals(1, verdicts.get(1).getVariables().get("number"), verdicts.toString());
+            for (IDtronChannelValued alarm : safety.received) {
+                assertTrue(ids.contains(alarm.getRunId()), alarm.toString());
+            }
+            List<IDtronChannelValued> slowAlarms = safety.received.stream()
+                    .filter(m -> m.getRunId().equals(ids.get(1))).toList();
+            assertEquals(2, slowAlarms.size(), slowAlarms.toString());
+            assertEquals(3, slowAlarms.get(0).getVariables().get("reason"), slowAlarms.toString());
+            assertEquals(0, slowAlarms.get(0).getVariables().get("verdict"), slowAlarms.toString());
+            if (first.exit() == 0 && last.exit() == 0) {
+                // correct runs raise no alarm: their verdicts say no violation
+                assertEquals(0, verdicts.get(0).getVariables().get("number"), verdicts.toString());
+                assertEquals(0, verdicts.get(2).getVariables().get("number"), verdicts.toString());
+                assertEquals(4, safety.received.size(), safety.received.toString());
+            }
         }
     }
 
