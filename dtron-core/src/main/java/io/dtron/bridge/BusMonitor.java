@@ -558,12 +558,15 @@ public final class BusMonitor implements AutoCloseable {
     }
 
     private void event(IDtronChannelValued m) {
-        if (monitor == null || !ofThisRun(m) || stopAt != Long.MAX_VALUE) {
+        if (monitor == null || !ofThisRun(m)) {
             return;
         }
         // stamped before time 0 of a run whose start this monitor saw (ordered before it): from the start, as the
         // tester takes it
         long micros = clockStart == 0 ? Math.max(0, timeline.eventMicros(m)) : timeline.eventMicros(m);
+        if (micros > stopAt) {
+            return; // after the run's end; one before it that the bus ordered after the stop is the run's
+        }
         clockStart = Math.min(clockStart, micros);
         widen(m, micros);
         Held h = new Held(m, micros, RunTimeline.errorMicros(m), order++);
