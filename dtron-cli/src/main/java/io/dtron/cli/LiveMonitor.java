@@ -35,6 +35,9 @@ import picocli.CommandLine.ParameterException;
  * end.
  */
 final class LiveMonitor {
+    /** The summary lists each run's violations up to this many runs; beyond, the runs with violations. */
+    private static final int LISTED_RUNS = 10;
+
     @Option(names = "--cluster", paramLabel = "NAME",
             description = "Watch the bus of this name (default '" + DtronOptions.DEFAULT_CLUSTER + "' with --bus): the"
                     + " embedded JGroups bus, or the NATS bus of --bus.")
@@ -225,14 +228,27 @@ final class LiveMonitor {
             err.println("dtron monitor: " + start.model() + ": " + result.error());
             return 1;
         }
+        printer.line(summary(result, shield != null));
         int v = result.violations();
-        List<String> perRun = new ArrayList<>();
-        result.runs().forEach(r -> perRun.add(Printer.name(r) + ": " + r.violations()));
-        int n = result.runs().size();
-        printer.line("dtron monitor: " + n + " run" + (n == 1 ? "" : "s") + ", " + violations(v) + " ("
-                + String.join(", ", perRun) + "), " + events(result.events()) + ", " + result.late()
-                + " too late to judge" + (shield == null ? "" : ", " + result.withheld() + " withheld"));
         return v > 0 ? 2 : result.late() > 0 ? 3 : 0;
+    }
+
+    /**
+     * The line at the end: the runs, the violations of all and of each (of more than ten runs, those with violations,
+     * the others counted), the events, the messages too late to judge and, of a shield, those withheld.
+     */
+    static String summary(BusMonitor.Result result, boolean shield) {
+        int n = result.runs().size();
+        List<String> perRun = new ArrayList<>();
+        long clean = result.runs().stream().filter(r -> r.violations() == 0).count();
+        if (n > LISTED_RUNS && clean > 0) {
+            perRun.add(clean + " run" + (clean == 1 ? "" : "s") + " without violations");
+        }
+        result.runs().stream().filter(r -> n <= LISTED_RUNS || r.violations() > 0)
+                .forEach(r -> perRun.add(Printer.name(r) + ": " + r.violations()));
+        return "dtron monitor: " + n + " run" + (n == 1 ? "" : "s") + ", " + violations(result.violations()) + " ("
+                + String.join(", ", perRun) + "), " + events(result.events()) + ", " + result.late()
+                + " too late to judge" + (shield ? ", " + result.withheld() + " withheld" : "");
     }
 
     private static String violations(int v) {
