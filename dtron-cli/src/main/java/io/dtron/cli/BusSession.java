@@ -3,6 +3,7 @@ package io.dtron.cli;
 import io.dtron.api.Dtron;
 import io.dtron.api.DtronAdapter;
 import io.dtron.api.DtronOptions;
+import io.dtron.bridge.BusAdapters;
 import io.dtron.bridge.BusBridge;
 import io.dtron.bridge.BusRun;
 import io.dtron.bridge.BusRunSequence;
@@ -10,11 +11,7 @@ import io.dtron.model.TestInterface;
 import java.io.PrintWriter;
 import java.time.Duration;
 import java.util.function.Supplier;
-import java.util.ArrayList;
-import java.util.List;
 import java.util.Locale;
-import org.slf4j.Logger;
-import org.slf4j.LoggerFactory;
 
 /**
  * The bus side of {@code dtron run} without {@code --sut}: the tester's {@link BusBridge}, and the bus adapters
@@ -22,16 +19,12 @@ import org.slf4j.LoggerFactory;
  * adapters and leaves the bus.
  */
 final class BusSession implements AutoCloseable {
-    private static final Logger LOG = LoggerFactory.getLogger(BusSession.class);
-
-    private final Supplier<DtronOptions.Builder> options;
     private final BusBridge bridge;
-    private final List<DtronAdapter> adapters = new ArrayList<>();
-    private final List<Dtron> adapterMembers = new ArrayList<>();
+    private final BusAdapters adapters;
 
     private BusSession(Supplier<DtronOptions.Builder> options, BusBridge bridge) {
-        this.options = options;
         this.bridge = bridge;
+        this.adapters = new BusAdapters(options);
     }
 
     /**
@@ -64,11 +57,7 @@ final class BusSession implements AutoCloseable {
      * @throws io.dtron.api.DtronException if it cannot join the bus
      */
     String startAdapter(DtronAdapter adapter) {
-        Dtron member = Dtron.connect(options.get().build());
-        adapterMembers.add(member);
-        adapters.add(adapter);
-        adapter.start(member);
-        return member.getMemberId();
+        return adapters.start(adapter);
     }
 
     /**
@@ -109,14 +98,7 @@ final class BusSession implements AutoCloseable {
 
     @Override
     public void close() {
-        for (DtronAdapter adapter : adapters) {
-            try {
-                adapter.close();
-            } catch (RuntimeException e) {
-                LOG.warn("Adapter {} failed to close: {}", adapter.getClass().getName(), e.toString());
-            }
-        }
-        adapterMembers.forEach(Dtron::close);
+        adapters.close();
         bridge.close();
     }
 }

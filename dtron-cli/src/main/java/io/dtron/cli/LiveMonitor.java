@@ -20,6 +20,8 @@ import java.nio.charset.StandardCharsets;
 import java.nio.file.Files;
 import java.nio.file.Path;
 import java.time.Duration;
+import java.util.ArrayList;
+import java.util.List;
 import java.util.function.Function;
 import java.util.function.Supplier;
 import picocli.CommandLine.Mixin;
@@ -28,10 +30,14 @@ import picocli.CommandLine.ParameterException;
 
 /**
  * The bus options of {@code dtron monitor} ({@code --cluster}, {@code --bus} and the transport's and security options
- * of {@code dtron run}, {@code --delta}, {@code --duration}, {@code --shield}) and the live watch: a {@link
- * BusMonitor} on the bus, its alarms printed as they come and the counts at the end.
+ * of {@code dtron run}, {@code --delta}, {@code --duration}, {@code --runs}, {@code --shield}) and the live watch: a
+ * {@link BusMonitor} on the bus, its alarms printed as they come, each run's counts at its end and the runs' at the
+ * end.
  */
 final class LiveMonitor {
+    /** The summary lists each run's violations up to this many runs; beyond, the runs with violations. */
+    private static final int LISTED_RUNS = 10;
+
     @Option(names = "--cluster", paramLabel = "NAME",
             description = "Watch the bus of this name (default '" + DtronOptions.DEFAULT_CLUSTER + "' with --bus): the"
                     + " embedded JGroups bus, or the NATS bus of --bus.")
@@ -61,8 +67,13 @@ final class LiveMonitor {
     private String delta;
 
     @Option(names = "--duration", paramLabel = "SECONDS",
-            description = "On a bus: watch at most this long (default: until the run the monitor watches ends).")
+            description = "On a bus: watch at most this long (default: until the last run of --runs ends).")
     private Long duration;
+
+    @Option(names = "--runs", paramLabel = "N",
+            description = "On a bus: follow N runs, one after another, and end after the last (default: 1); 0: every"
+                    + " run, until --duration or an interrupt.")
+    private Integer runs;
 
     @Option(names = "--shield", paramLabel = "CHANNEL[=SHIELDED]",
             description = "On a bus: shield CHANNEL: republish each of its messages the model allows on SHIELDED (default"
@@ -90,6 +101,9 @@ final class LiveMonitor {
         if (duration != null && (duration <= 0 || duration > RunDefaults.MAX_WAIT_SECONDS)) {
             throw usage.apply("--duration must be a positive number of seconds: " + duration);
         }
+        if (runs != null && runs < 0) {
+            throw usage.apply("--runs must be a number of runs, at least 0 (0: every run): " + runs);
+        }
         windowMicros(usage);
         if (shield != null && shieldChannels()[0].isBlank()) {
             throw usage.apply("--shield names a channel of the model: '" + shield + "'");
@@ -102,16 +116,17 @@ final class LiveMonitor {
 
     /** Checks that no option of a watch on the bus came with {@code --replay}. */
     void checkReplay(Function<String, ParameterException> usage) {
-        if (bind != null || keyFile != null || insecure || delta != null || duration != null || shield != null) {
-            throw usage.apply("--bind, --key-file, --insecure, --delta, --duration and --shield are for watching a bus"
-                    + " (--cluster, --bus), not for --replay");
+        if (bind != null || keyFile != null || insecure || delta != null || duration != null || runs != null
+                || shield != null) {
+            throw usage.apply("--bind, --key-file, --insecure, --delta, --duration, --runs and --shield are for"
+                    + " watching a bus (--cluster, --bus), not for --replay");
         }
         nats.check(clusterName(), usage);
     }
 
     /**
-     * Watches the bus until the watched run ends (or {@code --duration} passes, or the process is interrupted),
-     * printing the alarms as they come; returns the exit code.
+     * Watches the bus until the last run of {@code --runs} ends (or {@code --duration} passes, or the process is
+     * interrupted), printing the alarms as they come and each run's counts at its end; returns the exit code.
      */
     int watch(Network network, TestInterface testInterface, Start start, PrintWriter out, PrintWriter err,
             Function<String, ParameterException> usage) {
@@ -141,8 +156,9 @@ final class LiveMonitor {
         }
         String[] shielded = shield == null ? new String[] {null, null} : shieldChannels();
         long window = windowMicros(usage);
+        int watched = runs == null ? 1 : runs;
         BusMonitor.Settings settings = new BusMonitor.Settings(window, delta == null || delta.equals("auto"),
-                start.toleranceMicros(), shielded[0], shielded[1]);
+                start.toleranceMicros(), shielded[0], shielded[1], watched);
         Writer alarms;
         try {
             alarms = start.alarmsFile() == null ? Writer.nullWriter()
@@ -151,7 +167,7 @@ final class LiveMonitor {
             err.println("dtron monitor: cannot write " + start.alarmsFile() + ": " + e.getMessage());
             return 1;
         }
-        Printer printer = new Printer(out, alarms, unit, shielded[1]);
+        Printer printer = new Printer(out, alarms, unit, shielded[1], shield != null);
         Monitor joining = first;
         BusMonitor.Monitors monitors = runUnit -> runUnit == 0 ? joining : Monitor.of(network, testInterface,
                 MonitorCommand.options(start.timeUnit() != null ? start.timeUnit() : runUnit, runFrom,
@@ -175,7 +191,8 @@ final class LiveMonitor {
                 .automaticWindow() ? "auto from " : "") + window + " us" + (start.toleranceMicros() > 0
                 ? ", event times give or take " + start.toleranceMicros() + " us" : "") + (keepGoing
                 ? ", going on after violations" : "") + (shield == null ? "" : ", shielding " + shielded[0] + " on "
-                + shielded[1]));
+                + shielded[1]) + (watched == 1 ? "" : watched == 0 ? ", following every run"
+                : ", following " + watched + " runs"));
         Thread hook = new Thread(() -> {
             try {
                 monitor.finish();
@@ -211,13 +228,35 @@ final class LiveMonitor {
             err.println("dtron monitor: " + start.model() + ": " + result.error());
             return 1;
         }
+        printer.line(summary(result, shield != null));
         int v = result.violations();
-        printer.line("dtron monitor: " + (v == 0 ? "no violation" : v + " violation" + (v == 1 ? "" : "s")) + ", "
-                + result.events() + " event" + (result.events() == 1 ? "" : "s") + " checked" + (v > 0
-                && !keepGoing ? " (stopped at the first violation)" : result.runStopped() ? " (the run ended)"
-                : "") + ", " + result.late() + " too late to judge" + (shield == null ? "" : ", " + result.withheld()
-                + " withheld") + "; verdict published on dtron_alarm");
         return v > 0 ? 2 : result.late() > 0 ? 3 : 0;
+    }
+
+    /**
+     * The line at the end: the runs, the violations of all and of each (of more than ten runs, those with violations,
+     * the others counted), the events, the messages too late to judge and, of a shield, those withheld.
+     */
+    static String summary(BusMonitor.Result result, boolean shield) {
+        int n = result.runs().size();
+        List<String> perRun = new ArrayList<>();
+        long clean = result.runs().stream().filter(r -> r.violations() == 0).count();
+        if (n > LISTED_RUNS && clean > 0) {
+            perRun.add(clean + " run" + (clean == 1 ? "" : "s") + " without violations");
+        }
+        result.runs().stream().filter(r -> n <= LISTED_RUNS || r.violations() > 0)
+                .forEach(r -> perRun.add(Printer.name(r) + ": " + r.violations()));
+        return "dtron monitor: " + n + " run" + (n == 1 ? "" : "s") + ", " + violations(result.violations()) + " ("
+                + String.join(", ", perRun) + "), " + events(result.events()) + ", " + result.late()
+                + " too late to judge" + (shield ? ", " + result.withheld() + " withheld" : "");
+    }
+
+    private static String violations(int v) {
+        return v == 0 ? "no violation" : v + " violation" + (v == 1 ? "" : "s");
+    }
+
+    private static String events(long e) {
+        return e + " event" + (e == 1 ? "" : "s") + " checked";
     }
 
     /** The reorder window: {@code --delta US}, or the automatic one's start. */
@@ -281,13 +320,32 @@ final class LiveMonitor {
         private final PrintWriter out;
         private final Writer alarms;
         private final String shielded;
+        private final boolean shielding;
         private volatile long unit;
 
-        Printer(PrintWriter out, Writer alarms, long unit, String shielded) {
+        Printer(PrintWriter out, Writer alarms, long unit, String shielded, boolean shielding) {
             this.out = out;
             this.alarms = alarms;
             this.unit = unit;
             this.shielded = shielded;
+            this.shielding = shielding;
+        }
+
+        /** What to call a run: its id, or the watch of a system that named none. */
+        static String name(BusMonitor.RunResult run) {
+            return run.runId().isEmpty() ? "the watch" : "run " + run.runId();
+        }
+
+        @Override
+        public void runEnded(BusMonitor.RunResult run) {
+            line(name(run) + " ended: " + violations(run.violations()) + ", " + events(run.events()) + switch (run
+                    .end()) {
+                case STOPPED -> " (the run ended)";
+                case FIRST_VIOLATION -> " (stopped at the first violation)";
+                case NEXT_RUN -> " (the next run started before its end)";
+                case WATCH_ENDED -> "";
+            } + ", " + run.late() + " too late to judge" + (shielding ? ", " + run.withheld() + " withheld" : "")
+                    + "; verdict published on dtron_alarm");
         }
 
         @Override

@@ -238,5 +238,13 @@ class MonitorCommandTest {
         CommandRun missing = CommandRun.of("monitor", SERVER.toString(), "--replay", dir.resolve("none.jsonl").toString());
         assertEquals(1, missing.exit());
         assertEquals("dtron monitor: cannot read " + dir.resolve("none.jsonl"), missing.err().strip());
+        CommandRun runs = CommandRun.of("monitor", SERVER.toString(), "--cluster", "never-joined", "--runs", "-1");
+        assertEquals(1, runs.exit());
+        assertTrue(runs.err().startsWith("dtron monitor: --runs must be a number of runs, at least 0 (0: every run):"
+                + " -1"), runs.err());
+        CommandRun replayRuns = CommandRun.of("monitor", SERVER.toString(), "--replay", dir.resolve("none.jsonl")
+                .toString(), "--runs", "2");
+        assertEquals(1, replayRuns.exit());
+        assertTrue(replayRuns.err().contains("--runs and --shield are for watching a bus"), replayRuns.err());
     }
 }

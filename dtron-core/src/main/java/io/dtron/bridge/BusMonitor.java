@@ -40,9 +40,15 @@ import org.slf4j.LoggerFactory;
  * not at the next message. The run's id and time 0 come from the tester's {@link Dtron#RUN_START}: at each, the
  * monitor starts again (from the options' start); a monitor that joins during a run starts at once. Time passes for
  * the monitor from the run's start or from the first event it sees, so a system that has not started yet raises no
- * alarm. The run ends at the tester's {@link Dtron#RUN_STOP}, or at {@link #finish}.
+ * alarm.
  *
- * <p>Each alarm and the final verdict are published on {@link Dtron#ALARM}. A shield ({@link Settings#shield})
+ * <p>The watch follows successive runs: a run's watch ends at the tester's {@link Dtron#RUN_STOP} (once every event
+ * before it was judged), at the monitor's first violation unless it goes on after violations, or at the next run's
+ * start; the monitor then reports that run ({@link Sink#runEnded}) and waits for the next run's start. The watch ends
+ * after {@link Settings#runs} runs, or at {@link #finish}.
+ *
+ * <p>Each alarm and each run's verdict are published on {@link Dtron#ALARM}, stamped with the run's id. A shield
+ * ({@link Settings#shield})
  * judges the messages of one channel as they arrive and republishes those the model allows on another channel, for
  * the consumers; those it forbids are withheld, which the alarm says.
  */
@@ -62,17 +68,19 @@ public final class BusMonitor implements AutoCloseable {
 
     /** What the monitor does and how it orders events. */
     public record Settings(long windowMicros, boolean automaticWindow, long toleranceMicros, String shield,
-            String shielded) {
+            String shielded, int runs) {
         /**
          * @param windowMicros    the reorder window the monitor starts with (at least 0)
          * @param automaticWindow whether it widens when a message takes more than half of it
          * @param toleranceMicros each event's time give or take this, beyond its sender's clock error
          * @param shield          the channel the monitor shields, or null
          * @param shielded        the channel it republishes the allowed messages of {@code shield} on, or null
+         * @param runs            how many runs the watch follows before it ends; 0: every run, until {@link
+         *                        BusMonitor#finish}
          */
         public Settings {
-            if (windowMicros < 0 || toleranceMicros < 0) {
-                throw new IllegalArgumentException("negative window or tolerance");
+            if (windowMicros < 0 || toleranceMicros < 0 || runs < 0) {
+                throw new IllegalArgumentException("negative window, tolerance or runs");
             }
             if ((shield == null) != (shielded == null)) {
                 throw new IllegalArgumentException("a shield needs both channels");
@@ -102,12 +110,60 @@ public final class BusMonitor implements AutoCloseable {
          */
         void alarm(Alarm alarm, boolean withheld);
 
+        /** A run's watch ended (its verdict was published on {@link Dtron#ALARM}); the monitor waits for the next. */
+        void runEnded(RunResult run);
+
         /** Something worth a line: a message that came too late for the window, a widened window. */
         void note(String line);
     }
 
-    /** How the watch ended, with the counts. */
-    public record Result(int violations, long events, long late, long withheld, boolean runStopped, String error) {
+    /** Why a run's watch ended. */
+    public enum End {
+        /** The run's stop came, and every event before it was judged. */
+        STOPPED,
+        /** The monitor stopped at the run's first violation (it does not go on after violations). */
+        FIRST_VIOLATION,
+        /** Another run started before this one's stop came. */
+        NEXT_RUN,
+        /** The watch ended ({@link BusMonitor#finish}, or an error) before the run's stop. */
+        WATCH_ENDED
+    }
+
+    /**
+     * One run's watch, with its counts.
+     *
+     * @param runId    the run's id ("" when no message named one: a system watched without a tester)
+     * @param withheld the messages the shield withheld, with those of the time before the run since the last one
+     */
+    public record RunResult(String runId, int violations, long events, long late, long withheld, End end) {
+    }
+
+    /** How the watch ended: the runs it watched, in order, and the error that stopped it, or null. */
+    public record Result(List<RunResult> runs, String error) {
+        /** Copies the runs. */
+        public Result {
+            runs = List.copyOf(runs);
+        }
+
+        /** The violations of all runs. */
+        public int violations() {
+            return runs.stream().mapToInt(RunResult::violations).sum();
+        }
+
+        /** The events of all runs. */
+        public long events() {
+            return runs.stream().mapToLong(RunResult::events).sum();
+        }
+
+        /** The messages of all runs that came too late to be judged. */
+        public long late() {
+            return runs.stream().mapToLong(RunResult::late).sum();
+        }
+
+        /** The messages the shield withheld in all runs. */
+        public long withheld() {
+            return runs.stream().mapToLong(RunResult::withheld).sum();
+        }
     }
 
     private final Dtron dtron;
@@ -253,9 +309,9 @@ public final class BusMonitor implements AutoCloseable {
     }
 
     /**
-     * Waits until the watch ended: the watched run's {@link Dtron#RUN_STOP} came and every event before it was
-     * judged, or the monitor stopped at its first violation (unless it goes on after violations); {@code timeout}
-     * at most.
+     * Waits until the watch ended: the last of {@link Settings#runs} runs ended (its {@link Dtron#RUN_STOP} came and
+     * every event before it was judged, or the monitor stopped at its first violation unless it goes on after
+     * violations); {@code timeout} at most.
      *
      * @return the result, or null if the run did not end within the timeout
      * @throws InterruptedException if the thread was interrupted while waiting
@@ -265,8 +321,8 @@ public final class BusMonitor implements AutoCloseable {
     }
 
     /**
-     * Ends the watch now (the monitor's time), judges what it holds and publishes the verdict; returns the result.
-     * Returns the result at once if the watch had ended.
+     * Ends the watch now (the monitor's time), judges what it holds and publishes the verdict of the run it watched;
+     * returns the result. Returns the result at once if the watch had ended.
      *
      * @throws InterruptedException if the thread was interrupted while waiting
      */
@@ -305,16 +361,21 @@ public final class BusMonitor implements AutoCloseable {
     private long judgedTo = Long.MIN_VALUE;
     /** The end of the run, on the run's clock, once its stop came; else none. */
     private long stopAt = Long.MAX_VALUE;
+    /** The counts of the run watched (or, between runs, of the time since the last one). */
     private int violations;
     private long events;
     private long late;
     private long withheld;
+    /** Whether the run watched began with a run start. */
+    private boolean startSeen;
+    private final List<RunResult> runs = new ArrayList<>();
     private String error;
     /** Whether the watch was told to end ({@link #finish}). */
     private boolean finishing;
+    /** Whether the watch is over: told to end, or its last run ended. */
+    private boolean done;
 
     private void watch() {
-        boolean runStopped = false;
         try {
             if (dtron.getTester().isPresent()) {
                 awaitOffset();
@@ -322,25 +383,31 @@ public final class BusMonitor implements AutoCloseable {
             // time 0 until a run start says otherwise: now, on the tester's clock
             timeline.startedAt(nowTesterNanos(), 0);
             monitor = monitors.make(0);
-            while (true) {
+            while (!done) {
                 Object next = arrivals.poll(waitMicros(), TimeUnit.MICROSECONDS);
                 if (next != null) {
                     take((Arrival) next);
                     drain();
+                }
+                if (done) {
+                    break;
                 }
                 long now = nowMicros();
                 if (finishing) {
                     judge(Math.min(now - window.micros(), stopAt));
                     break;
                 }
+                if (monitor == null) {
+                    continue; // between runs
+                }
                 if (stopAt != Long.MAX_VALUE && now - window.micros() >= stopAt) {
                     judge(stopAt);
-                    runStopped = true;
-                    break;
+                    endRun(End.STOPPED);
+                    continue;
                 }
                 judge(now - window.micros());
-                if (monitor != null && monitor.stopped()) {
-                    break;
+                if (monitor.stopped()) {
+                    endRun(End.FIRST_VIOLATION);
                 }
             }
         } catch (InterruptedException e) {
@@ -350,9 +417,48 @@ public final class BusMonitor implements AutoCloseable {
             LOG.warn("The monitor stopped", e);
             error = e.getMessage() == null ? e.toString() : e.getMessage();
         }
-        result = new Result(violations, events, late, withheld, runStopped, error);
-        publishVerdict();
+        if (!done && (watchedSomething() || runs.isEmpty())) {
+            endRun(End.WATCH_ENDED);
+        }
+        result = new Result(runs, error);
         ended.countDown();
+    }
+
+    /** Whether the run watched (or the time since the last one) has anything to report. */
+    private boolean watchedSomething() {
+        return startSeen || !runId.isEmpty() || events > 0 || violations > 0 || late > 0 || withheld > 0;
+    }
+
+    /**
+     * Ends the watch of a run: publishes its verdict, tells the sink, and waits for the next run's start (or ends the
+     * watch after the last run).
+     */
+    private void endRun(End end) {
+        End why = monitor != null && monitor.stopped() ? End.FIRST_VIOLATION : end;
+        publishVerdict();
+        RunResult run = new RunResult(runId, violations, events, late, withheld, why);
+        runs.add(run);
+        tester.setRunId("");
+        monitor = null;
+        held.clear();
+        inputs.clear();
+        runId = "";
+        startSeen = false;
+        clockStart = Long.MAX_VALUE;
+        judgedTo = Long.MIN_VALUE;
+        stopAt = Long.MAX_VALUE;
+        violations = 0;
+        events = 0;
+        late = 0;
+        withheld = 0;
+        done = settings.runs() > 0 && runs.size() >= settings.runs();
+        sink.runEnded(run);
+    }
+
+    /** The run watched is {@code id} from now on; the monitor's alarms and verdict carry it. */
+    private void runIs(String id) {
+        runId = id;
+        tester.setRunId(id);
     }
 
     private void awaitOffset() throws InterruptedException {
@@ -382,9 +488,9 @@ public final class BusMonitor implements AutoCloseable {
         return Math.max(0, Math.min(tick, first.micros + window.micros() - nowMicros()));
     }
 
-    /** Takes what arrived so far. */
+    /** Takes what arrived so far (until the watch is over). */
     private void drain() {
-        for (Object next = arrivals.poll(); next != null; next = arrivals.poll()) {
+        for (Object next = done ? null : arrivals.poll(); next != null; next = done ? null : arrivals.poll()) {
             take((Arrival) next);
         }
     }
@@ -397,7 +503,14 @@ public final class BusMonitor implements AutoCloseable {
                 if (m.getSender().equals(dtron.getMemberId())) {
                     return;
                 }
-                runId = m.getRunId();
+                if (monitor != null && watchedSomething()) {
+                    endWithHeld(stopAt != Long.MAX_VALUE ? End.STOPPED : End.NEXT_RUN);
+                    if (done) {
+                        return;
+                    }
+                }
+                runIs(m.getRunId());
+                startSeen = true;
                 timeline.startedAt(m.getEventTimeNanos() + m.getClockOffsetNanos(), 0);
                 held.clear();
                 inputs.clear();
@@ -408,7 +521,7 @@ public final class BusMonitor implements AutoCloseable {
                 sink.runStarted(runId, m.getVariables().get("timeunit"));
             }
             case "dtron_stop" -> {
-                if (ofThisRun(m)) {
+                if (monitor != null && ofThisRun(m)) {
                     stopAt = timeline.eventMicros(m);
                 }
             }
@@ -419,21 +532,41 @@ public final class BusMonitor implements AutoCloseable {
         }
     }
 
+    /**
+     * A run starts before the last one's end was judged: the events held of the last one are judged (in time order,
+     * without waiting for acknowledgements, up to its stop or its last event), and its watch ends.
+     */
+    private void endWithHeld(End end) {
+        long to = stopAt;
+        if (to == Long.MAX_VALUE) {
+            to = judgedTo;
+            for (Held h : held) {
+                to = Math.max(to, h.micros);
+            }
+        }
+        held.forEach(h -> h.awaitingAck = false);
+        judge(to);
+        endRun(end);
+    }
+
     /** Whether a message belongs to the watched run: it carries its id, or none, or no run is known. */
     private boolean ofThisRun(IDtronChannelValued m) {
         if (runId.isEmpty() && !m.getRunId().isEmpty()) {
-            runId = m.getRunId(); // joined during a run: the first message that names one names it
+            runIs(m.getRunId()); // joined during a run: the first message that names one names it
         }
         return m.getRunId().isEmpty() || m.getRunId().equals(runId);
     }
 
     private void event(IDtronChannelValued m) {
-        if (monitor == null || !ofThisRun(m) || stopAt != Long.MAX_VALUE) {
+        if (monitor == null || !ofThisRun(m)) {
             return;
         }
         // stamped before time 0 of a run whose start this monitor saw (ordered before it): from the start, as the
         // tester takes it
         long micros = clockStart == 0 ? Math.max(0, timeline.eventMicros(m)) : timeline.eventMicros(m);
+        if (micros > stopAt) {
+            return; // after the run's end; one before it that the bus ordered after the stop is the run's
+        }
         clockStart = Math.min(clockStart, micros);
         widen(m, micros);
         Held h = new Held(m, micros, RunTimeline.errorMicros(m), order++);

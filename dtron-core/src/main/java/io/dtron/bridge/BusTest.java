@@ -1,6 +1,5 @@
 package io.dtron.bridge;
 
-import io.dtron.api.Dtron;
 import io.dtron.api.DtronAdapter;
 import io.dtron.api.DtronException;
 import io.dtron.api.DtronOptions;
@@ -29,12 +28,12 @@ public final class BusTest implements AutoCloseable {
 
     private final BusBridge bridge;
     private final String where;
-    private final List<DtronAdapter> adapters = new ArrayList<>();
-    private final List<Dtron> members = new ArrayList<>();
+    private final BusAdapters adapters;
 
-    private BusTest(BusBridge bridge, String where) {
+    private BusTest(BusBridge bridge, String where, BusAdapters adapters) {
         this.bridge = bridge;
         this.where = where;
+        this.adapters = adapters;
     }
 
     /**
@@ -49,7 +48,8 @@ public final class BusTest implements AutoCloseable {
      */
     public static BusTest open(TestInterface testInterface, Supplier<DtronOptions.Builder> options,
             List<? extends DtronAdapter> adapters, String where) throws InterruptedException {
-        BusTest test = new BusTest(BusBridge.connect(testInterface, options.get()), where);
+        BusTest test = new BusTest(BusBridge.connect(testInterface, options.get()), where,
+                new BusAdapters(options));
         try {
             // before this JVM's adapters join, so that a run that does not start leaves none behind
             List<String> others = test.bridge.run().testersThatJoinedFirst();
@@ -57,12 +57,7 @@ public final class BusTest implements AutoCloseable {
                 throw new IllegalStateException(where + " has a run in progress: tester " + String.join(", ", others)
                         + " is on it, and its adapters would serve both runs; give this run a bus of its own");
             }
-            for (DtronAdapter adapter : adapters) {
-                Dtron member = Dtron.connect(options.get().build());
-                test.members.add(member);
-                test.adapters.add(adapter);
-                adapter.start(member);
-            }
+            adapters.forEach(test.adapters::start);
             return test;
         } catch (RuntimeException | InterruptedException e) {
             test.close();
@@ -123,16 +118,7 @@ public final class BusTest implements AutoCloseable {
     /** Stops the adapters this test started and leaves the bus; closing twice does nothing more. */
     @Override
     public void close() {
-        for (DtronAdapter adapter : adapters) {
-            try {
-                adapter.close();
-            } catch (RuntimeException e) {
-                LOG.warn("Adapter {} failed to close: {}", adapter.getClass().getName(), e.toString());
-            }
-        }
-        adapters.clear();
-        members.forEach(Dtron::close);
-        members.clear();
+        adapters.close();
         bridge.close();
     }
 }

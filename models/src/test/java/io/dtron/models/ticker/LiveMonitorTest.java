@@ -105,9 +105,10 @@ public class LiveMonitorTest {
         return monitor;
     }
 
-    /** A member that only listens to the alarms, as a safety controller would. */
+    /** A member that only listens to the alarms (and the runs' starts), as a safety controller would. */
     static final class AlarmListener implements AutoCloseable {
         final List<IDtronChannelValued> received = new CopyOnWriteArrayList<>();
+        final List<IDtronChannelValued> starts = new CopyOnWriteArrayList<>();
         final Dtron dtron;
 
         AlarmListener(DtronOptions.Builder options) {
@@ -116,6 +117,12 @@ public class LiveMonitorTest {
                 @Override
                 public void messageReceived(IDtronChannelValued message) {
                     received.add(message);
+                }
+            });
+            dtron.addDtronListener(new DtronListener(Dtron.RUN_START) {
+                @Override
+                public void messageReceived(IDtronChannelValued message) {
+                    starts.add(message);
                 }
             });
         }
@@ -136,8 +143,11 @@ public class LiveMonitorTest {
             Result tester = new Command(run("correct", bus, 100, dir.resolve("correct.jsonl"))).get();
             Result watched = correctMonitor.get();
             if (tester.exit() == 0) {
-                assertEquals(0, watched.exit(), "the run PASSED, yet:\n" + watched.shown() + tester.shown());
-                assertTrue(watched.out().contains("no violation"), watched.shown());
+                assertTrue(violationsAfter(watched.out(), 100, 10_000), "the run PASSED, yet:\n" + watched.shown()
+                        + tester.shown());
+                if (!watched.out().contains("violation 1 at")) {
+                    assertEquals(0, watched.exit(), watched.shown() + tester.shown());
+                }
             } else if (tester.exit() == 2) {
                 assertEquals(2, watched.exit(), "the run FAILED, yet:\n" + watched.shown() + tester.shown());
             }
@@ -177,6 +187,92 @@ public class LiveMonitorTest {
     }
 
     @Test
+    void oneMonitorFollowsThreeRunsAndAttributesEachAlarmAndVerdictToItsRun() throws Exception {
+        String name = cluster("runs");
+        List<String> bus = List.of("--cluster", name);
+        try (AlarmListener safety = new AlarmListener(DtronOptions.builder().clusterName(name)
+                .bindAddress(InetAddress.getLoopbackAddress()))) {
+            Command monitor = monitor(bus, "--runs", "3");
+            Result first = new Command(run("correct", bus, 100, dir.resolve("first.jsonl"))).get();
+            Result slow = new Command(run("slow", bus, 300, dir.resolve("slow.jsonl"))).get();
+            Result last = new Command(run("correct", bus, 100, dir.resolve("last.jsonl"))).get();
+            Result watched = monitor.get();
+            String all = watched.shown() + first.shown() + slow.shown() + last.shown();
+            assertEquals(2, slow.exit(), all);
+            // the slow run's violation makes the watch's exit code 2, whatever the others'
+            assertEquals(2, watched.exit(), all);
+            Waits.await("the three runs' starts").until(() -> safety.starts.size() >= 3);
+            List<String> ids = safety.starts.stream().map(IDtronChannelValued::getRunId).toList();
+            assertEquals(3, ids.stream().distinct().count(), ids.toString());
+            String out = watched.out();
+            for (String id : ids) {
+                assertTrue(out.contains("run " + id + " started (time units of 10000 us)"), all);
+            }
+            // a run ends at its stop, or at its first violation; the slow one at the deadline its late tick missed
+            List<Result> testers = List.of(first, slow, last);
+            List<String> perRun = new ArrayList<>();
+            List<Integer> counts = new ArrayList<>();
+            for (int i = 0; i < 3; i++) {
+                int from = out.indexOf("run " + ids.get(i) + " started");
+                Matcher ended = Pattern.compile("(?m)^run " + ids.get(i) + " ended: (no violation|(\\d+) violations?),"
+                        + " \\d+ events? checked \\((the run ended|stopped at the first violation)\\)").matcher(out);
+                assertTrue(ended.find(from), "run " + (i + 1) + ":\n" + all);
+                int violations = ended.group(2) == null ? 0 : Integer.parseInt(ended.group(2));
+                counts.add(violations);
+                perRun.add("run " + ids.get(i) + ": " + violations);
+                if (testers.get(i).exit() == 0) {
+                    assertTrue(violationsAfter(out.substring(from, ended.start()), 100, 10_000),
+                            "run " + (i + 1) + " PASSED, yet:\n" + all);
+                } else if (testers.get(i).exit() == 2) {
+                    assertEquals(1, violations, "run " + (i + 1) + " FAILED, yet:\n" + all);
+                    assertEquals("stopped at the first violation", ended.group(3), all);
+                }
+            }
+            assertTrue(out.contains("dtron monitor: 3 runs, ") && out.contains("(" + String.join(", ", perRun)
+                    + ")"), all);
+            // on dtron_alarm: the verdict of each run, in order, each with its run's id; the slow run's missed
+            // deadline (3) with the slow run's id, before its verdict
+            Waits.await("three verdicts on dtron_alarm").until(() -> safety.received.stream()
+                    .filter(m -> m.getVariables().get("verdict") == 1).count() >= 3);
+            List<IDtronChannelValued> verdicts = safety.received.stream()
+                    .filter(m -> m.getVariables().get("verdict") == 1).toList();
+            for (int i = 0; i < 3; i++) {
+                assertEquals(ids.get(i), verdicts.get(i).getRunId(), verdicts.toString());
+            }
+            for (int i = 0; i < 3; i++) {
+                // each run's verdict counts that run's violations, and each alarm carries its run's id
+                String id = ids.get(i);
+                assertEquals(counts.get(i), verdicts.get(i).getVariables().get("number"), verdicts.toString());
+                assertEquals(counts.get(i).longValue(), safety.received.stream().filter(m -> m.getVariables().get("verdict") == 0
+                        && m.getRunId().equals(id)).count(), safety.received.toString());
+            }
+            assertEquals(3 + counts.stream().mapToInt(Integer::intValue).sum(), safety.received.size(),
+                    safety.received.toString());
+            List<IDtronChannelValued> slowAlarms = safety.received.stream()
+                    .filter(m -> m.getRunId().equals(ids.get(1))).toList();
+            assertEquals(2, slowAlarms.size(), slowAlarms.toString());
+            assertEquals(3, slowAlarms.get(0).getVariables().get("reason"), slowAlarms.toString());
+            assertEquals(0, slowAlarms.get(0).getVariables().get("verdict"), slowAlarms.toString());
+        }
+    }
+
+    /**
+     * Whether every violation the monitor printed in {@code output} came after {@code timeoutUnits}: a run that
+     * PASSED was observed by its tester until its timeout, and the monitor watches it until its stop, later; a
+     * system held up in between (the ticker says so in the log) misses a deadline only the monitor saw.
+     */
+    static boolean violationsAfter(String output, int timeoutUnits, long unitMicros) {
+        Matcher v = Pattern.compile("(?m)^violation \\d+ at t=(\\d+)\\.(\\d{3}):").matcher(output);
+        while (v.find()) {
+            long micros = Long.parseLong(v.group(1)) * unitMicros + Long.parseLong(v.group(2)) * unitMicros / 1000;
+            if (micros <= timeoutUnits * unitMicros) {
+                return false;
+            }
+        }
+        return true;
+    }
+
+    @Test
     void theMonitorBesideTheSmartLampOnTheBusAgreesWithTheTester() throws Exception {
         Path shared = Path.of(System.getProperty("dtron.shared", "../../shared"), "models", "tron");
         String model = shared.resolve("LightContr.xml").toString();
@@ -198,7 +294,7 @@ public class LiveMonitorTest {
             Result watched = monitor.get();
             String both = watched.shown() + tester.shown();
             if (tester.exit() == 0) {
-                assertEquals(0, watched.exit(), "the run PASSED, yet:\n" + both);
+                assertTrue(violationsAfter(watched.out(), 300, 10_000), "the run PASSED, yet:\n" + both);
             } else if (tester.exit() == 2) {
                 assertEquals(2, watched.exit(), "the run FAILED, yet:\n" + both);
                 Matcher m = VIOLATION.matcher(watched.out());
@@ -248,7 +344,8 @@ public class LiveMonitorTest {
                 Result tester = new Command(run("correct", bus, 100, dir.resolve("correct.jsonl"))).get();
                 Result watched = correct.get();
                 if (tester.exit() == 0) {
-                    assertEquals(0, watched.exit(), "the run PASSED, yet:\n" + watched.shown() + tester.shown());
+                    assertTrue(violationsAfter(watched.out(), 100, 10_000), "the run PASSED, yet:\n" + watched.shown()
+                            + tester.shown());
                 }
                 Command slowMonitor = monitor(bus);
                 Result slow = new Command(run("slow", bus, 300, dir.resolve("slow.jsonl"))).get();
