@@ -155,7 +155,7 @@ public final class Tracker {
             return cached;
         }
         List<SymState> out = new ArrayList<>();
-        for (SymState s : delayed(from, fromTicks, toTicks, channel)) {
+        for (SymState s : delayed(from, fromTicks, toTicks, channel, slots, values)) {
             all.moves(s, channel, (move, next) -> {
                 if (matches(next, slots, values)) {
                     out.add(next);
@@ -222,19 +222,20 @@ public final class Tracker {
      * back to 0; {@link #empty} if time cannot pass that far.
      */
     public Node afterWindow(Node from, long fromTicks, long toTicks) {
-        return intern(delayed(from, fromTicks, toTicks, NO_CHANNEL));
+        return intern(delayed(from, fromTicks, toTicks, NO_CHANNEL, null, null));
     }
 
     /**
      * {@link #afterWindow}'s states, not interned (the step of an event needs no node of them); with a channel
-     * ({@link #NO_CHANNEL} for none), only those whose discrete part has a move on it whose data guard holds: the
-     * others have no successor on the channel, and a state is compared only with those of its discrete part, so the
-     * states kept are those the step would keep from all, in the same order.
+     * ({@link #NO_CHANNEL} for none), only those whose discrete part has a move on it whose data guard holds and
+     * whose successor's variables at {@code slots} hold {@code values}: the others have no successor the step
+     * keeps, and a state is compared only with those of its discrete part, so the states kept are those the step
+     * would keep from all, in the same order.
      */
-    private List<SymState> delayed(Node from, long fromTicks, long toTicks, int channel) {
+    private List<SymState> delayed(Node from, long fromTicks, long toTicks, int channel, int[] slots, int[] values) {
         Passed out = new Passed();
         for (SymState t : reach(from, toTicks)) {
-            if (channel != NO_CHANNEL && !all.mayMove(t, channel)) {
+            if (channel != NO_CHANNEL && !all.mayMove(t, channel, slots, values)) {
                 continue;
             }
             Dbm z = t.zone();

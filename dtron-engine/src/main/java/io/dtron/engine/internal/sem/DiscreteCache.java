@@ -190,10 +190,12 @@ public final class DiscreteCache {
     }
 
     /**
-     * Whether the discrete part of {@code s} has a move on channel {@code channel} whose data guard holds: false
-     * when {@link #moves(SymState, int, Semantics.MoveSink)} gives no successor whatever the zone.
+     * Whether the discrete part of {@code s} has a move on channel {@code channel} whose data guard holds and whose
+     * successor's variables hold {@code values} at {@code slots}: false when {@link #moves(SymState, int,
+     * Semantics.MoveSink)} gives no successor with those values whatever the zone (a move's updates, and so its
+     * successor's variables, depend on the discrete part only).
      */
-    public boolean mayMove(SymState s, int channel) {
+    public boolean mayMove(SymState s, int channel, int[] slots, int[] values) {
         for (Template t : templates(s)) {
             if (t.channel != channel) {
                 continue;
@@ -201,11 +203,33 @@ public final class DiscreteCache {
             if (t.guardState == UNKNOWN) {
                 listGuards(s, t);
             }
-            if (t.guardState == SLOW || t.guard != null) {
+            if (t.guardState == SLOW) {
+                return true;
+            }
+            if (t.guard == null) {
+                continue;
+            }
+            if (t.move == null) {
+                try {
+                    prepare(s, t);
+                } catch (ModelRuntimeException e) {
+                    return true; // fire reports it where the zone allows the move, as before
+                }
+            }
+            if (holds(t.vars, slots, values)) {
                 return true;
             }
         }
         return false;
+    }
+
+    private static boolean holds(int[] vars, int[] slots, int[] values) {
+        for (int i = 0; i < slots.length; i++) {
+            if (vars[slots[i]] != values[i]) {
+                return false;
+            }
+        }
+        return true;
     }
 
     private List<Template> templates(SymState s) {

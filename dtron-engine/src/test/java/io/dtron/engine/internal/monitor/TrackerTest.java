@@ -9,13 +9,19 @@ import io.dtron.engine.zone.Bound;
 import io.dtron.engine.zone.Dbm;
 import io.dtron.model.ModelLoader;
 import io.dtron.model.Network;
+import io.dtron.model.TestInterface;
 import java.nio.file.Path;
 import java.util.ArrayList;
+import java.util.Arrays;
 import java.util.List;
 import java.util.Random;
 import org.junit.jupiter.api.Test;
 
-/** The tracker's sets of states are those the plain comparison of every pair of states gives. */
+/**
+ * The tracker's sets of states are those the plain comparison of every pair of states gives, and its step keeps the
+ * states the plain step (every state at the event's time, each move on the channel, the successors with the values)
+ * keeps, in the same order.
+ */
 class TrackerTest {
     private static final Path SHARED = Path.of(System.getProperty("dtron.shared", "../../shared"), "models");
 
@@ -57,6 +63,110 @@ class TrackerTest {
             dropped += states.size() - kept.size();
         }
         assertTrue(dropped > 1000, "states covered: " + dropped);
+    }
+
+    /** The step on random walks of LightContr (with its interface file). */
+    @Test
+    void aStepKeepsTheStatesThePlainStepKeepsOnLightContr() throws Exception {
+        Network lamp = ModelLoader.load(SHARED.resolve("tron/LightContr.xml"));
+        walk(lamp, TestInterface.fromFile(lamp, SHARED.resolve("tron/LightContr.trn")), 26);
+    }
+
+    /** The step on random walks of the street lights, whose outputs carry values most states do not give. */
+    @Test
+    void aStepKeepsTheStatesThePlainStepKeepsOnTheStreetLights() throws Exception {
+        Network street = ModelLoader.load(Path.of("../models/src/main/resources/io/dtron/models/streetlight/"
+                + "streetlight.xml"));
+        walk(street, TestInterface.fromNames(street), 27);
+    }
+
+    /**
+     * Random walks of events the model allows at random times (and some with a value changed, or in a window of
+     * times; where no event is allowed, time passes): each step equals the plain one, computed from {@link
+     * Tracker#afterWindow}'s states, which no channel filters.
+     */
+    private static void walk(Network n, TestInterface ti, long seed) {
+        Semantics semantics = new Semantics(n, 1000);
+        List<TestInterface.ObservableChannel> channels = new ArrayList<>(ti.inputs());
+        channels.addAll(ti.outputs());
+        boolean[] observed = new boolean[n.channelCount()];
+        int[][] slots = new int[channels.size()][];
+        for (int c = 0; c < channels.size(); c++) {
+            observed[channels.get(c).channel()] = true;
+            slots[c] = channels.get(c).variables().stream().mapToInt(v -> v.variable().offset()).toArray();
+        }
+        Tracker tracker = new Tracker(semantics, observed, false);
+        Tracker.Node initial = tracker.node(List.of(semantics.initial()));
+        Tracker.Node at = initial;
+        Random r = new Random(seed);
+        int allowed = 0;
+        int refused = 0;
+        int restarts = 0;
+        for (int step = 0; step < 3000; step++) {
+            // a time up to the set's deadline (or 300 units), often short
+            int latest = tracker.latest(tracker.reach(at, 300_000));
+            int horizon = latest == Bound.INFINITY ? 300_000 : Math.min(300_000, Bound.value(latest)) + 1;
+            long from = r.nextInt(4) == 0 ? 0 : r.nextInt(r.nextBoolean() ? Math.min(horizon, 20_000) : horizon);
+            long to = r.nextInt(5) == 0 ? from + r.nextInt(3_000) : from;
+            List<SymState> atTime = tracker.afterWindow(at, from, to).states();
+            List<int[]> events = new ArrayList<>(); // channel index, then values
+            for (SymState s : atTime) {
+                for (int c = 0; c < channels.size(); c++) {
+                    int ci = c;
+                    tracker.observableMoves(s, channels.get(c).channel(), (move, next) -> {
+                        int[] e = new int[1 + slots[ci].length];
+                        e[0] = ci;
+                        for (int k = 0; k < slots[ci].length; k++) {
+                            e[1 + k] = next.var(slots[ci][k]);
+                        }
+                        events.add(e);
+                    });
+                }
+            }
+            if (atTime.isEmpty()) {
+                restarts++; // a deadline within the window
+                at = initial;
+                continue;
+            }
+            if (events.isEmpty()) {
+                at = tracker.afterWindow(at, from, to); // time passes without an event
+                continue;
+            }
+            int[] e = events.get(r.nextInt(events.size())).clone();
+            if (e.length > 1 && r.nextInt(4) == 0) {
+                e[1 + r.nextInt(e.length - 1)] += 1 + r.nextInt(2);
+            }
+            int c = e[0];
+            int[] values = Arrays.copyOfRange(e, 1, e.length);
+            int channel = channels.get(c).channel();
+            List<SymState> successors = new ArrayList<>();
+            for (SymState s : atTime) {
+                tracker.observableMoves(s, channel, (move, next) -> {
+                    boolean match = true;
+                    for (int k = 0; k < values.length; k++) {
+                        match &= next.var(slots[c][k]) == values[k];
+                    }
+                    if (match) {
+                        successors.add(next);
+                    }
+                });
+            }
+            List<SymState> expected = tracker.node(successors).states();
+            List<SymState> actual = tracker.step(at, channel, slots[c], values, from, to).states();
+            assertEquals(expected.size(), actual.size(), "step " + step);
+            for (int i = 0; i < actual.size(); i++) {
+                assertTrue(expected.get(i).sameDiscrete(actual.get(i)), "step " + step);
+                assertEquals(expected.get(i).zone(), actual.get(i).zone(), "step " + step);
+            }
+            if (actual.isEmpty()) {
+                refused++;
+            } else {
+                allowed++;
+                at = tracker.step(at, channel, slots[c], values, from, to);
+            }
+        }
+        assertTrue(allowed > 500 && refused > 20 && restarts < 100, "allowed " + allowed + ", refused " + refused
+                + ", restarts " + restarts);
     }
 
     /** A zone of one to three bounds with constants 0 to 2 on the first three clocks. */

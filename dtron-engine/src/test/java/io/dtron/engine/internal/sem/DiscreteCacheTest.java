@@ -81,6 +81,7 @@ class DiscreteCacheTest {
         DiscreteCache cache = new DiscreteCache(semantics, channels, limit);
         int successors = 0;
         int mayNot = 0;
+        int valuesRuledOut = 0;
         for (SymState s : states) {
             List<String> expected = new ArrayList<>();
             semantics.moves(s, channels, (move, next) -> expected.add(describe(semantics, move, next)));
@@ -99,9 +100,23 @@ class DiscreteCacheTest {
                 List<String> actualOn = new ArrayList<>();
                 cache.moves(s, only, (move, next) -> actualOn.add(describe(semantics, move, next)));
                 assertEquals(expectedOn, actualOn, "successors on channel " + only + " of " + s);
-                if (!cache.mayMove(s, only)) {
+                if (!cache.mayMove(s, only, new int[0], new int[0])) {
                     assertEquals(List.of(), expectedOn, "no move on channel " + only + " of " + s);
                     mayNot++;
+                }
+                // with values: false only when no successor has them, true whenever one has
+                List<int[]> successorVars = new ArrayList<>();
+                semantics.moves(s, c -> c == only, (move, next) -> successorVars.add(next.vars()));
+                for (int slot = 0; slot < s.vars().length; slot++) {
+                    int[] slots = {slot};
+                    for (int value : new int[] {s.var(slot), s.var(slot) + 1, -7}) {
+                        int[] values = {value};
+                        boolean some = successorVars.stream().anyMatch(v -> v[slots[0]] == values[0]);
+                        boolean may = cache.mayMove(s, only, slots, values);
+                        assertTrue(may || !some, "a successor on " + only + " of " + s + " has " + value + " at "
+                                + slot);
+                        valuesRuledOut += may ? 0 : 1;
+                    }
                 }
             }
             // a subset of the channels by a predicate, as the monitor asks for its internal moves
@@ -138,6 +153,8 @@ class DiscreteCacheTest {
         }
         assertTrue(successors > 10, "successors " + successors);
         assertTrue(mayNot > 0, "states without a move on some channel");
+        assertTrue(valuesRuledOut > 0 || states.stream().allMatch(s -> s.vars().length == 0),
+                "values no successor has");
     }
 
     /** The first {@code max} states of the zone graph, breadth first, delayed and extrapolated. */
