@@ -555,7 +555,7 @@ public final class Dbm {
                     continue;
                 }
                 int weaker = b > above ? INFINITY : j == 0 ? b : clampDifference(b, max[j]);
-                changed.set(rowI, j, weaker);
+                changed.set(i, j, weaker);
             }
         }
         changed.close();
@@ -604,7 +604,7 @@ public final class Dbm {
                 boolean freeColumn = wide ? j != 0 && (upper[j] < 0 || d[j] < Bound.le(-upper[j]))
                         : (freeColumns >>> j & 1) != 0;
                 if (b > above || freeColumn) {
-                    changed.set(rowI, j, INFINITY);
+                    changed.set(i, j, INFINITY);
                 }
             }
         }
@@ -625,12 +625,13 @@ public final class Dbm {
         private long[] columns;
         private int count;
 
-        /** Sets entry (row offset {@code rowI}, column {@code j}) to {@code b}, no tighter than it was. */
-        void set(int rowI, int j, int b) {
-            if (b == m[rowI + j]) {
+        /** Sets entry ({@code i}, {@code j}) to {@code b}, no tighter than it was. */
+        void set(int i, int j, int b) {
+            int ij = i * dim + j;
+            if (b == m[ij]) {
                 return;
             }
-            m[rowI + j] = b;
+            m[ij] = b;
             if (dim > Long.SIZE) {
                 count = m.length;
                 return;
@@ -638,7 +639,7 @@ public final class Dbm {
             if (columns == null) {
                 columns = new long[dim];
             }
-            columns[rowI / dim] |= 1L << j;
+            columns[i] |= 1L << j;
             count++;
         }
 
