@@ -21,12 +21,14 @@ shared=${DTRON_SHARED:-$root/../shared}/models
 classes=$root/models/target/classes
 cpfile=$root/models/target/monitor-stats.classpath
 
-runs=10 busy_count=0 samples=ticker,lamp,streetlight
+# shellcheck source=lib/busy.sh
+source "$root/scripts/lib/busy.sh"
+
+runs=10 samples=ticker,lamp,streetlight
 while getopts "n:lb:s:" opt; do
     case "$opt" in
         n) runs=$OPTARG ;;
-        l) busy_count=2 ;;
-        b) busy_count=$OPTARG ;;
+        l | b) busy_option "$opt" ;;
         s) samples=$OPTARG ;;
         *) echo "usage: $0 [-n RUNS] [-l | -b BUSY] [-s ticker,lamp,streetlight]" >&2; exit 1 ;;
     esac
@@ -42,18 +44,13 @@ dtron() {
     java -cp "$cp" io.dtron.cli.DtronCommand "$@"
 }
 
-busy=()
 monitor_pid=""
 stop_all() {
-    for pid in "${busy[@]}" $monitor_pid; do kill "$pid" 2>/dev/null || true; done
+    busy_stop
+    if [ -n "$monitor_pid" ]; then kill "$monitor_pid" 2>/dev/null || true; fi
 }
 trap stop_all EXIT
-if [ "$busy_count" -gt 0 ]; then
-    for _ in $(seq 1 "$busy_count"); do
-        sh -c 'while :; do :; done' &
-        busy+=($!)
-    done
-fi
+busy_start
 out=$(mktemp -d /tmp/monitor-stats.XXXXXX)
 
 # one run: MODEL, MONITOR_OPTIONS (a string), and the tester's arguments after the model

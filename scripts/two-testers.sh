@@ -11,22 +11,22 @@
 #   -l          keep both cores busy meanwhile
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-tries=10 gap=0.5 busy=0
+# shellcheck source=lib/busy.sh
+source "$root/scripts/lib/busy.sh"
+tries=10 gap=0.5
 while getopts "n:g:l" opt; do
     case "$opt" in
         n) tries=$OPTARG ;;
         g) gap=$OPTARG ;;
-        l) busy=2 ;;
+        l) busy_option "$opt" ;;
         *) echo "usage: $0 [-n TRIES] [-g SECONDS] [-l]" >&2; exit 1 ;;
     esac
 done
 jar=$root/dtron-cli/target/dtron.jar
 [ -e "$jar" ] || { echo "$0: $jar is missing: run mvn -B -q -DskipTests package" >&2; exit 1; }
 out=$(mktemp -d /tmp/two-testers.XXXXXX)
-pids=()
-stop() { for p in "${pids[@]}"; do kill "$p" 2>/dev/null || true; done; }
-trap stop EXIT
-for _ in $(seq 1 "$busy"); do sh -c 'while :; do :; done' & pids+=($!); done
+trap busy_stop EXIT
+busy_start
 run() {
     java -jar "$jar" "$root/models/src/main/resources/io/dtron/models/ticker.xml" --classpath "$root/models/target/classes" \
         --adapter io.dtron.models.ticker.TickerBusAdapter --timeunit 10000 --timeout 300 --delay-policy eager \

@@ -16,14 +16,14 @@
 #       models/src/main/resources/io/dtron/models/ticker.xml --classpath models/target/classes \
 #       --adapter io.dtron.models.ticker.TickerBusAdapter --timeunit 1000 --timeout 300 --delay-policy eager
 set -euo pipefail
+# shellcheck source=lib/busy.sh
+source "$(dirname "$0")/lib/busy.sh"
 runs=20
-busy_count=0
 out=""
 while getopts "n:lb:o:" opt; do
     case "$opt" in
         n) runs=$OPTARG ;;
-        l) busy_count=2 ;;
-        b) busy_count=$OPTARG ;;
+        l | b) busy_option "$opt" ;;
         o) out=$OPTARG ;;
         *) echo "usage: $0 [-n RUNS] [-l | -b BUSY] [-o DIR] -- COMMAND..." >&2; exit 1 ;;
     esac
@@ -37,17 +37,8 @@ fi
 out=${out:-$(mktemp -d /tmp/verdict-stats.XXXXXX)}
 mkdir -p "$out"
 
-busy=()
-stop_load() {
-    for pid in "${busy[@]}"; do kill "$pid" 2>/dev/null || true; done
-}
-trap stop_load EXIT
-if [ "$busy_count" -gt 0 ]; then
-    for _ in $(seq 1 "$busy_count"); do
-        sh -c 'while :; do :; done' &
-        busy+=($!)
-    done
-fi
+trap busy_stop EXIT
+busy_start
 
 passed=0 failed=0 inconclusive=0 other=0
 start=$(date +%s)

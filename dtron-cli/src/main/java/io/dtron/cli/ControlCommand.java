@@ -129,16 +129,8 @@ final class ControlCommand implements Callable<Integer> {
     @Mixin
     private NatsBusOptions nats;
 
-    @Option(names = "--key-file", paramLabel = "FILE",
-            description = "On the bus: the file holding the bus's secret, which every member of the bus holds (default:"
-                    + " $DTRON_HOME/bus.key, else ~/.dtron/bus.key, made when missing); it must be readable by its"
-                    + " owner only (chmod 600).")
-    private Path keyFile;
-
-    @Option(names = "--insecure",
-            description = "On the bus: use no secret, for plants that have none; the controller then hears insecure"
-                    + " members only, and anyone who can reach the bus may speak on it.")
-    private boolean insecure;
+    @Mixin
+    private BusSecretOptions.OrInsecure secret;
 
     @Option(names = "--wait-timeout", paramLabel = "SECONDS",
             description = "On the bus: how long to wait for the plant to serve every command and reading (default 30).")
@@ -182,10 +174,8 @@ final class ControlCommand implements Callable<Integer> {
             if (cluster != null && cluster.isBlank()) {
                 throw usage("--cluster: the bus name is blank");
             }
-            if (keyFile != null && insecure) {
-                throw usage("--insecure uses no secret: leave out --key-file");
-            }
-            if (reloadFromBus && insecure) {
+            secret.check(this::usage);
+            if (reloadFromBus && secret.insecure()) {
                 throw usage("--reload-from-bus takes model versions only from a bus with a secret: leave out"
                         + " --insecure");
             }
@@ -201,7 +191,7 @@ final class ControlCommand implements Callable<Integer> {
                         + " simulated on the controller's clock; real time is for a plant on the bus, --cluster or"
                         + " --bus)");
             }
-            if (waitTimeout != null || keyFile != null || insecure || reloadFromBus) {
+            if (waitTimeout != null || secret.given() || reloadFromBus) {
                 throw usage("--wait-timeout, --key-file, --insecure and --reload-from-bus are for a plant on the bus"
                         + " (--cluster, --bus)");
             }
@@ -271,10 +261,7 @@ final class ControlCommand implements Callable<Integer> {
         Supplier<DtronOptions.Builder> transport = nats.given() ? nats.memberOptions(clusterName(), this::usage)
                 : () -> DtronOptions.builder().clusterName(clusterName())
                         .bindAddress(java.net.InetAddress.getLoopbackAddress());
-        DtronOptions.Builder busOptions = transport.get().insecure(insecure);
-        if (keyFile != null) {
-            busOptions.keyFile(keyFile);
-        }
+        DtronOptions.Builder busOptions = secret.apply(transport.get());
         BusBridge bridge;
         try {
             bridge = BusBridge.connect(testInterface, busOptions);

@@ -48,14 +48,8 @@ final class LiveMonitor {
                     + " loopback).")
     private String bind;
 
-    @Option(names = "--key-file", paramLabel = "FILE",
-            description = "On a bus: the file holding the bus's secret, as for dtron run (default: $DTRON_HOME/bus.key,"
-                    + " else ~/.dtron/bus.key).")
-    private Path keyFile;
-
-    @Option(names = "--insecure", description = "On a bus: use no secret, as the bus's other members (dtron run"
-            + " --insecure).")
-    private boolean insecure;
+    @Mixin
+    private BusSecretOptions.OrInsecure secret;
 
     @Mixin
     private NatsBusOptions nats;
@@ -95,9 +89,7 @@ final class LiveMonitor {
         if (cluster != null && cluster.isBlank()) {
             throw usage.apply("--cluster: the bus name is blank");
         }
-        if (keyFile != null && insecure) {
-            throw usage.apply("--insecure uses no secret: leave out --key-file");
-        }
+        secret.check(usage);
         if (duration != null && (duration <= 0 || duration > RunDefaults.MAX_WAIT_SECONDS)) {
             throw usage.apply("--duration must be a positive number of seconds: " + duration);
         }
@@ -116,7 +108,7 @@ final class LiveMonitor {
 
     /** Checks that no option of a watch on the bus came with {@code --replay}. */
     void checkReplay(Function<String, ParameterException> usage) {
-        if (bind != null || keyFile != null || insecure || delta != null || duration != null || runs != null
+        if (bind != null || secret.given() || delta != null || duration != null || runs != null
                 || shield != null) {
             throw usage.apply("--bind, --key-file, --insecure, --delta, --duration, --runs and --shield are for"
                     + " watching a bus (--cluster, --bus), not for --replay");
@@ -306,13 +298,7 @@ final class LiveMonitor {
     private Supplier<DtronOptions.Builder> busOptions(Function<String, ParameterException> usage) {
         Supplier<DtronOptions.Builder> transport = nats.given() ? nats.memberOptions(clusterName(), usage)
                 : () -> DtronOptions.builder().clusterName(clusterName()).bindAddress(bindAddress(usage));
-        return () -> {
-            DtronOptions.Builder options = transport.get();
-            if (keyFile != null) {
-                options.keyFile(keyFile);
-            }
-            return options.insecure(insecure);
-        };
+        return () -> secret.apply(transport.get());
     }
 
     /** Prints what the monitor finds, from its thread, and writes the alarms' JSON lines. */

@@ -55,9 +55,8 @@ final class ReloadCommand implements Callable<Integer> {
     @Mixin
     private NatsBusOptions nats;
 
-    @Option(names = "--key-file", paramLabel = "FILE",
-            description = "The file holding the bus's secret (default: $DTRON_HOME/bus.key, else ~/.dtron/bus.key).")
-    private Path keyFile;
+    @Mixin
+    private BusSecretOptions secret;
 
     @Option(names = "--wait-timeout", paramLabel = "SECONDS",
             description = "How long to wait for the controller to take or refuse the version (default 60).")
@@ -103,11 +102,8 @@ final class ReloadCommand implements Callable<Integer> {
                     + ModelVersionBus.MAX_TEXT_BYTES + " bytes a controller takes from the bus");
             return 1;
         }
-        DtronOptions.Builder options = nats.given() ? nats.memberOptions(bus, this::usage).get()
-                : DtronOptions.builder().clusterName(bus).bindAddress(InetAddress.getLoopbackAddress());
-        if (keyFile != null) {
-            options.keyFile(keyFile);
-        }
+        DtronOptions.Builder options = secret.apply(nats.given() ? nats.memberOptions(bus, this::usage).get()
+                : DtronOptions.builder().clusterName(bus).bindAddress(InetAddress.getLoopbackAddress()));
         int number = ThreadLocalRandom.current().nextInt(1, Integer.MAX_VALUE);
         BlockingQueue<IDtronChannelValued> outcomes = new LinkedBlockingQueue<>();
         try (Dtron member = Dtron.connect(options.build())) {

@@ -125,16 +125,8 @@ final class RunCommand implements Callable<Integer> {
                     + " this model's channels on that tester's clock.")
     private boolean join;
 
-    @Option(names = "--key-file", paramLabel = "FILE",
-            description = "Bus mode: the file holding the bus's secret, which every member of the bus holds (default:"
-                    + " $DTRON_HOME/bus.key, else ~/.dtron/bus.key, made when missing); it must be readable by its"
-                    + " owner only (chmod 600).")
-    private Path keyFile;
-
-    @Option(names = "--insecure",
-            description = "Bus mode: use no secret, for adapters that have none; this run then hears insecure members"
-                    + " only, and anyone who can reach the bus may speak on it.")
-    private boolean insecure;
+    @Mixin
+    private BusSecretOptions.OrInsecure secret;
 
     @Mixin
     private NatsBusOptions nats;
@@ -504,14 +496,12 @@ final class RunCommand implements Callable<Integer> {
         }
         if (!busMode && (cluster != null || waitForAdapters != null || waitTimeout != null
                 || !adapterClasses.isEmpty() || !members.isEmpty() || port != null || portRange != null
-                || testers != null || join || deltaReport != null || keyFile != null || insecure)) {
+                || testers != null || join || deltaReport != null || secret.given())) {
             throw usage("--cluster, --members, --port, --port-range, --testers, --join, --wait-for-adapters,"
                     + " --wait-timeout, --delta-report, --key-file, --insecure and --adapter are for testing the"
                     + " adapters on a bus, without --sut or --tron-adapter");
         }
-        if (keyFile != null && insecure) {
-            throw usage("--insecure uses no secret: leave out --key-file");
-        }
+        secret.check(this::usage);
         if (join && testers != null) {
             throw usage("--testers is for the tester that starts a run; a tester that joins it (--join) leaves it out");
         }
@@ -990,13 +980,7 @@ final class RunCommand implements Callable<Integer> {
         String cluster = clusterName();
         Supplier<DtronOptions.Builder> transport = nats.given() ? nats.memberOptions(cluster, this::usage)
                 : this::jgroupsOptions;
-        return () -> {
-            DtronOptions.Builder options = transport.get();
-            if (keyFile != null) {
-                options.keyFile(keyFile);
-            }
-            return options.insecure(insecure);
-        };
+        return () -> secret.apply(transport.get());
     }
 
     /** {@code --bind}, else loopback: the bus's interface, or where {@code --tron-adapter PORT} listens. */

@@ -246,5 +246,14 @@ class MonitorCommandTest {
                 .toString(), "--runs", "2");
         assertEquals(1, replayRuns.exit());
         assertTrue(replayRuns.err().contains("--runs and --shield are for watching a bus"), replayRuns.err());
+        CommandRun both = CommandRun.of("monitor", SERVER.toString(), "--cluster", "never-joined", "--key-file",
+                dir.resolve("bus.key").toString(), "--insecure");
+        assertEquals(1, both.exit());
+        assertTrue(both.err().startsWith("dtron monitor: --insecure uses no secret: leave out --key-file"), both.err());
+        CommandRun replayInsecure = CommandRun.of("monitor", SERVER.toString(), "--replay", dir.resolve("none.jsonl")
+                .toString(), "--insecure");
+        assertEquals(1, replayInsecure.exit());
+        assertTrue(replayInsecure.err().startsWith("dtron monitor: --bind, --key-file, --insecure, --delta,"),
+                replayInsecure.err());
     }
 }

@@ -1,14 +1,8 @@
 package io.dtron.models.robotarm;
 
-import static org.junit.jupiter.api.Assertions.assertEquals;
-import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
-import io.dtron.cli.DtronCommand;
 import io.dtron.testsupport.DocPage;
-import java.io.PrintWriter;
-import java.io.StringWriter;
-import java.math.BigDecimal;
 import java.nio.file.Files;
 import java.nio.file.Path;
 import java.nio.file.attribute.PosixFilePermissions;
@@ -17,7 +11,6 @@ import java.util.List;
 import java.util.UUID;
 import java.util.concurrent.ThreadLocalRandom;
 import java.util.concurrent.TimeUnit;
-import java.util.regex.Matcher;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.Timeout;
 import org.junit.jupiter.api.io.TempDir;
@@ -39,12 +32,6 @@ class RobotArmJGroupsControlTest {
     @TempDir
     Path dir;
 
-    record Run(int exit, String out, String err, String plant) {
-        String shown() {
-            return "exit " + exit + "\n" + out + err + "\nplant:\n" + plant;
-        }
-    }
-
     /** The bus's secret, in a key file of the test's that only its owner reads. */
     private Path keyFile() throws Exception {
         byte[] secret = new byte[32];
@@ -59,25 +46,13 @@ class RobotArmJGroupsControlTest {
      * Starts the plant's JVM with {@code plantArgs} (after its class name) and runs {@code dtron control} with {@code
      * controlArgs}, both on the bus {@code cluster} of the test's.
      */
-    private Run control(List<String> plantArgs, List<String> controlArgs) throws Exception {
+    private ArmControl.Run control(List<String> plantArgs, List<String> controlArgs) throws Exception {
         Path log = dir.resolve("plant.log");
-        Process plant = ArmProcess.start(plantArgs, log);
-        try {
-            StringWriter out = new StringWriter();
-            StringWriter err = new StringWriter();
-            int exit = DtronCommand.run(controlArgs.toArray(String[]::new), new PrintWriter(out, true),
-                    new PrintWriter(err, true));
-            boolean exited = plant.waitFor(30, TimeUnit.SECONDS);
-            Run run = new Run(exit, out.toString(), err.toString(), Files.readString(log));
-            assertTrue(exited, "the plant exits after its run: " + run.shown());
-            return run;
-        } finally {
-            plant.destroyForcibly();
-        }
+        return ArmControl.control(ArmProcess.start(plantArgs, log), log, controlArgs);
     }
 
     /** The summary of the bus that ends a run on it: who served what, the latencies and the counters. */
-    private static void assertBusSummary(Run run) {
+    private static void assertBusSummary(ArmControl.Run run) {
         assertTrue(run.out().lines().anyMatch(l -> l.startsWith("dtron control: every command and reading is served; ")
                 && l.endsWith(" receives [grip, move, release, stop] and sends [arrived, gripped]")), run.shown());
         assertTrue(run.out().contains("\nlatency t2 - t1 of outputs: "), run.shown());
@@ -88,17 +63,11 @@ class RobotArmJGroupsControlTest {
     void theCorrectArmIsControlledForTheWholeRunWithoutAlarm() throws Exception {
         String cluster = "arm-" + UUID.randomUUID().toString().substring(0, 8);
         String key = keyFile().toString();
-        Run run = control(List.of("--cluster", cluster, "--key-file", key, "--runs", "1"), List.of("control", ARM,
-                "--cluster", cluster, "--key-file", key, "--duration", "40", "--timeunit", "250000", "--seed", "1",
+        ArmControl.Run run = control(List.of("--cluster", cluster, "--key-file", key, "--runs", "1"), List.of("control",
+                ARM, "--cluster", cluster, "--key-file", key, "--duration", "40", "--timeunit", "250000", "--seed", "1",
                 "--safe-action", "i_stop", "--wait-timeout", "60"));
-        assertEquals(0, run.exit(), run.shown());
-        assertTrue(run.out().contains("against the plant on bus '" + cluster + "' at 127.0.0.1")
-                && run.out().contains("in real time"), run.shown());
-        assertTrue(run.out().lines().anyMatch(l -> l.startsWith("control COMPLETED at t=40.000: ")
-                && l.contains(" 0 alarms")), run.shown());
-        assertFalse(run.out().contains("ALARM"), run.shown());
-        assertFalse(run.plant().contains("stopped at"), "no safe action was sent: " + run.shown());
-        assertFalse(run.plant().contains("ignored: "), "every command came in a state that takes it: " + run.shown());
+        ArmControl.assertControlledWithoutAlarm(run);
+        assertTrue(run.out().contains("against the plant on bus '" + cluster + "' at 127.0.0.1"), run.shown());
         assertBusSummary(run);
     }
 
@@ -110,22 +79,9 @@ class RobotArmJGroupsControlTest {
         assertTrue(page.get(1).startsWith("$ java -jar dtron.jar control "), page.get(1));
         String cluster = "page-" + UUID.randomUUID().toString().substring(0, 8);
         // the page's lines as written, on the test's bus and with the test's class path for the plant's JVM
-        Run run = control(ArmProcess.args(page.get(0).substring(prefix.length()), cluster),
+        ArmControl.Run run = control(ArmProcess.args(page.get(0).substring(prefix.length()), cluster),
                 ArmProcess.args(page.get(1).substring("$ java -jar dtron.jar ".length()), cluster));
-        assertEquals(2, run.exit(), run.shown());
-        Matcher alarm = RobotArmBusControlTest.ALARM.matcher(run.out());
-        assertTrue(alarm.find(), run.shown());
-        BigDecimal at = new BigDecimal(alarm.group(1));
-        BigDecimal deadline = new BigDecimal(alarm.group(2));
-        BigDecimal earliest = new BigDecimal(alarm.group(3));
-        assertEquals(deadline, new BigDecimal(alarm.group(4)), run.shown());
-        // the window 2 to 5 units after the move: the deadline is the model's bound, MOVE_MAX after the move
-        assertEquals(0, deadline.subtract(earliest).compareTo(new BigDecimal("3.000")), run.shown());
-        assertTrue(at.compareTo(deadline) > 0, "no alarm before the deadline has passed: " + run.shown());
-        assertTrue(run.out().contains("safe action stop() sent at t=" + alarm.group(1)), run.shown());
-        assertTrue(run.out().lines().anyMatch(l -> l.startsWith("control ALARM at t=") && l.contains(": 2"
-                + " commands sent, 0 readings, 1 alarm, safe action stop() taken")), run.shown());
-        assertTrue(run.plant().contains("stopped at t="), "the plant received stop: " + run.shown());
+        ArmControl.assertStoppedAfterTheDeadline(run);
         assertBusSummary(run);
     }
 }
