@@ -188,6 +188,15 @@ public final class Dtron implements AutoCloseable {
         }
 
         @Override
+        public IDtronChannelValued sendRunStart(IDtronChannelValued start, long zeroEpochNanos, long endEpochNanos) {
+            if (!start.getChannelName().equals(RUN_START.getChannelName()) || zeroEpochNanos <= 0
+                    || endEpochNanos < 0) {
+                throw new IllegalArgumentException("not a run start with positive times: " + start);
+            }
+            return publish(start, zeroEpochNanos, "", endEpochNanos);
+        }
+
+        @Override
         public Set<String> probe(Collection<String> members, Duration timeout) throws InterruptedException {
             return Dtron.this.probe(members, timeout, false);
         }
@@ -553,7 +562,7 @@ public final class Dtron implements AutoCloseable {
         if (!TEXT.contains(Objects.requireNonNull(message, "message").getChannelName())) {
             throw new IllegalArgumentException("channel '" + message.getChannelName() + "' carries no text");
         }
-        return publish(message, 0, text);
+        return publish(message, 0, text, 0);
     }
 
     /**
@@ -759,11 +768,15 @@ public final class Dtron implements AutoCloseable {
 
     /** Publishes a message of a model channel, or RUN_START or RUN_STOP; event time 0 is the publish time. */
     private IDtronChannelValued publish(IDtronChannelValued message, long eventTimeNanos) {
-        return publish(message, eventTimeNanos, "");
+        return publish(message, eventTimeNanos, "", 0);
     }
 
-    /** Publishes a message, with {@code text} on a channel that carries one ("" on others). */
-    private IDtronChannelValued publish(IDtronChannelValued message, long eventTimeNanos, String text) {
+    /**
+     * Publishes a message, with {@code text} on a channel that carries one ("" on others) and the announced end of
+     * the run on a run start (0 on others).
+     */
+    private IDtronChannelValued publish(IDtronChannelValued message, long eventTimeNanos, String text,
+            long endTimeNanos) {
         Objects.requireNonNull(message, "message");
         requireOpen();
         String name = message.getChannelName();
@@ -788,7 +801,7 @@ public final class Dtron implements AutoCloseable {
         }
         long now = currentTimeNanos();
         Stamp stamp = stamp(now, eventTimeNanos == 0 ? now : eventTimeNanos, "", 0);
-        byte[] bytes = SyncCodec.encode(name, message.getVariables(), stamp, text);
+        byte[] bytes = SyncCodec.encode(name, message.getVariables(), stamp, text, endTimeNanos);
         try {
             transport.publish(name, bytes);
         } catch (IOException e) {
@@ -796,7 +809,7 @@ public final class Dtron implements AutoCloseable {
         }
         counters.published();
         return DtronChannelValued.published(template != null ? template : DtronChannel.copyOf(message.getChannel()),
-                message.getVariables(), stamp, text);
+                message.getVariables(), stamp, text, endTimeNanos);
     }
 
     /** Stamps a message this member publishes now, with the next sequence number. */

@@ -47,6 +47,15 @@ public interface IDtronChannelValued extends IChannelSkeleton {
     }
 
     /**
+     * Returns, on a tester's {@link Dtron#RUN_START}, the end of the run it announces (time 0 plus its timeout) on
+     * the sender's wall clock, in nanoseconds since the epoch; 0 when it announces none (an older tester, a run of
+     * several testers) and on every other message.
+     */
+    default long getEndTimeNanos() {
+        return 0;
+    }
+
+    /**
      * Returns when the event happened on the sender's wall clock, in nanoseconds since the epoch: for an output
      * when the system produced it (see {@link Dtron#send(IDtronChannelValued, long)}), for an acknowledgement
      * ({@link Dtron#ACK}) when the input was applied. Equals {@link #getPublishTimeNanos()} when the sender gave

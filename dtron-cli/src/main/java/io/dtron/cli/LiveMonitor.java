@@ -227,7 +227,8 @@ final class LiveMonitor {
 
     /**
      * The line at the end: the runs, the violations of all and of each (of more than ten runs, those with violations,
-     * the others counted), the events, the messages too late to judge and, of a shield, those withheld.
+     * the others counted), the events, the messages too late to judge, of a shield those withheld, and the events
+     * after their runs' ends if any.
      */
     static String summary(BusMonitor.Result result, boolean shield) {
         int n = result.runs().size();
@@ -240,7 +241,13 @@ final class LiveMonitor {
                 .forEach(r -> perRun.add(Printer.name(r) + ": " + r.violations()));
         return "dtron monitor: " + n + " run" + (n == 1 ? "" : "s") + ", " + violations(result.violations()) + " ("
                 + String.join(", ", perRun) + "), " + events(result.events()) + ", " + result.late()
-                + " too late to judge" + (shield ? ", " + result.withheld() + " withheld" : "");
+                + " too late to judge" + (shield ? ", " + result.withheld() + " withheld" : "")
+                + afterTheEnd(result.afterEnd());
+    }
+
+    /** ", N after the run's end" when events came stamped after their run's end (not judged); else "". */
+    private static String afterTheEnd(long n) {
+        return n == 0 ? "" : ", " + n + " after the run's end (not judged)";
     }
 
     private static String violations(int v) {
@@ -331,7 +338,7 @@ final class LiveMonitor {
                 case NEXT_RUN -> " (the next run started before its end)";
                 case WATCH_ENDED -> "";
             } + ", " + run.late() + " too late to judge" + (shielding ? ", " + run.withheld() + " withheld" : "")
-                    + "; verdict published on dtron_alarm");
+                    + afterTheEnd(run.afterEnd()) + "; verdict published on dtron_alarm");
         }
 
         @Override

@@ -88,6 +88,12 @@ public final class BusBridge implements Adapter, AutoCloseable {
         run.stop();
     }
 
+    /** See {@link BusRun#stop(long)}. */
+    @Override
+    public void stop(long observedUntilMicros) {
+        run.stop(observedUntilMicros);
+    }
+
     /** Leaves the bus; closing twice does nothing. */
     @Override
     public void close() {

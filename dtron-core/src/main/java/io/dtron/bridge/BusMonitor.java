@@ -47,6 +47,14 @@ import org.slf4j.LoggerFactory;
  * start; the monitor then reports that run ({@link Sink#runEnded}) and waits for the next run's start. The watch ends
  * after {@link Settings#runs} runs, or at {@link #finish}.
  *
+ * <p>The monitor judges a run up to the instant the tester did: the stop's event time is the end of the tester's
+ * observation (its timeout, or its verdict's time when that came first), and the start announces the run's end (the
+ * timeout; {@link IDtronChannelValued#getEndTimeNanos()}), beyond which the monitor lets no time pass while it waits
+ * for the stop. Events stamped after the end are not judged but counted ({@link RunResult#afterEnd}); an event stamped
+ * before it is judged even if it arrives after the stop. As the tester, the monitor judges the events at the end
+ * itself, and a deadline only when the instant past it lies before the end. A tester that announces no end (an
+ * older one, a run of several testers) stamps its stop when it publishes it: the run ends there.
+ *
  * <p>Each alarm and each run's verdict are published on {@link Dtron#ALARM}, stamped with the run's id. A shield
  * ({@link Settings#shield})
  * judges the messages of one channel as they arrive and republishes those the model allows on another channel, for
@@ -134,8 +142,11 @@ public final class BusMonitor implements AutoCloseable {
      *
      * @param runId    the run's id ("" when no message named one: a system watched without a tester)
      * @param withheld the messages the shield withheld, with those of the time before the run since the last one
+     * @param afterEnd the events of the run stamped after its end (the tester's end of observation, or the end its
+     *                 start announced), which were not judged
      */
-    public record RunResult(String runId, int violations, long events, long late, long withheld, End end) {
+    public record RunResult(String runId, int violations, long events, long late, long withheld, End end,
+            long afterEnd) {
     }
 
     /** How the watch ended: the runs it watched, in order, and the error that stopped it, or null. */
@@ -163,6 +174,11 @@ public final class BusMonitor implements AutoCloseable {
         /** The messages the shield withheld in all runs. */
         public long withheld() {
             return runs.stream().mapToLong(RunResult::withheld).sum();
+        }
+
+        /** The events of all runs stamped after their runs' ends, not judged. */
+        public long afterEnd() {
+            return runs.stream().mapToLong(RunResult::afterEnd).sum();
         }
     }
 
@@ -361,11 +377,14 @@ public final class BusMonitor implements AutoCloseable {
     private long judgedTo = Long.MIN_VALUE;
     /** The end of the run, on the run's clock, once its stop came; else none. */
     private long stopAt = Long.MAX_VALUE;
+    /** The end of the run its start announced, on the run's clock; none when it announced none. */
+    private long endAt = Long.MAX_VALUE;
     /** The counts of the run watched (or, between runs, of the time since the last one). */
     private int violations;
     private long events;
     private long late;
     private long withheld;
+    private long afterEnd;
     /** Whether the run watched began with a run start. */
     private boolean startSeen;
     private final List<RunResult> runs = new ArrayList<>();
@@ -394,18 +413,18 @@ public final class BusMonitor implements AutoCloseable {
                 }
                 long now = nowMicros();
                 if (finishing) {
-                    judge(Math.min(now - window.micros(), stopAt));
+                    judgeBefore(Math.min(now - window.micros(), end()));
                     break;
                 }
                 if (monitor == null) {
                     continue; // between runs
                 }
-                if (stopAt != Long.MAX_VALUE && now - window.micros() >= stopAt) {
-                    judge(stopAt);
+                if (stopAt != Long.MAX_VALUE && now - window.micros() >= end()) {
+                    judgeBefore(end());
                     endRun(End.STOPPED);
                     continue;
                 }
-                judge(now - window.micros());
+                judgeBefore(Math.min(now - window.micros(), endAt));
                 if (monitor.stopped()) {
                     endRun(End.FIRST_VIOLATION);
                 }
@@ -426,7 +445,8 @@ public final class BusMonitor implements AutoCloseable {
 
     /** Whether the run watched (or the time since the last one) has anything to report. */
     private boolean watchedSomething() {
-        return startSeen || !runId.isEmpty() || events > 0 || violations > 0 || late > 0 || withheld > 0;
+        return startSeen || !runId.isEmpty() || events > 0 || violations > 0 || late > 0 || withheld > 0
+                || afterEnd > 0;
     }
 
     /**
@@ -435,8 +455,10 @@ public final class BusMonitor implements AutoCloseable {
      */
     private void endRun(End end) {
         End why = monitor != null && monitor.stopped() ? End.FIRST_VIOLATION : end;
+        long last = end();
+        afterEnd += held.stream().filter(h -> h.micros > last).count(); // held, then the stop came before them
         publishVerdict();
-        RunResult run = new RunResult(runId, violations, events, late, withheld, why);
+        RunResult run = new RunResult(runId, violations, events, late, withheld, why, afterEnd);
         runs.add(run);
         tester.setRunId("");
         monitor = null;
@@ -447,10 +469,12 @@ public final class BusMonitor implements AutoCloseable {
         clockStart = Long.MAX_VALUE;
         judgedTo = Long.MIN_VALUE;
         stopAt = Long.MAX_VALUE;
+        endAt = Long.MAX_VALUE;
         violations = 0;
         events = 0;
         late = 0;
         withheld = 0;
+        afterEnd = 0;
         done = settings.runs() > 0 && runs.size() >= settings.runs();
         sink.runEnded(run);
     }
@@ -518,6 +542,8 @@ public final class BusMonitor implements AutoCloseable {
                 clockStart = 0;
                 judgedTo = Long.MIN_VALUE;
                 stopAt = Long.MAX_VALUE;
+                endAt = m.getEndTimeNanos() == 0 ? Long.MAX_VALUE : Math.floorDiv(m.getEndTimeNanos()
+                        + m.getClockOffsetNanos() - timeline.zeroEpochNanos(), 1000);
                 sink.runStarted(runId, m.getVariables().get("timeunit"));
             }
             case "dtron_stop" -> {
@@ -537,16 +563,34 @@ public final class BusMonitor implements AutoCloseable {
      * without waiting for acknowledgements, up to its stop or its last event), and its watch ends.
      */
     private void endWithHeld(End end) {
-        long to = stopAt;
-        if (to == Long.MAX_VALUE) {
-            to = judgedTo;
+        held.forEach(h -> h.awaitingAck = false);
+        if (stopAt != Long.MAX_VALUE) {
+            judgeBefore(end());
+        } else {
+            long to = judgedTo;
             for (Held h : held) {
                 to = Math.max(to, h.micros);
             }
+            judge(to, to);
         }
-        held.forEach(h -> h.awaitingAck = false);
-        judge(to);
         endRun(end);
+    }
+
+    /**
+     * The end of the run watched on its clock: where the tester's observation ended, as its stop says, or else the
+     * end its start announced; none ({@link Long#MAX_VALUE}) before a stop of a run that announced none.
+     */
+    private long end() {
+        return Math.min(stopAt, endAt);
+    }
+
+    /**
+     * Judges the held events up to {@code to} and lets time pass to it, but at the run's announced end ({@link
+     * #endAt}): time passes only to just before it, so that a deadline is judged, as the tester judges it, only when
+     * the instant past it lies before the end.
+     */
+    private void judgeBefore(long to) {
+        judge(to, endAt != Long.MAX_VALUE && to >= end() ? to - 1 : to);
     }
 
     /** Whether a message belongs to the watched run: it carries its id, or none, or no run is known. */
@@ -564,8 +608,9 @@ public final class BusMonitor implements AutoCloseable {
         // stamped before time 0 of a run whose start this monitor saw (ordered before it): from the start, as the
         // tester takes it
         long micros = clockStart == 0 ? Math.max(0, timeline.eventMicros(m)) : timeline.eventMicros(m);
-        if (micros > stopAt) {
-            return; // after the run's end; one before it that the bus ordered after the stop is the run's
+        if (micros > end()) {
+            afterEnd++; // after the run's end; one before it that the bus ordered after the stop is the run's
+            return;
         }
         clockStart = Math.min(clockStart, micros);
         widen(m, micros);
@@ -596,12 +641,15 @@ public final class BusMonitor implements AutoCloseable {
         held.add(h);
     }
 
-    /** The monitor's thread judges, in time order, every held event up to {@code to}, and lets time pass to it. */
-    private void judge(long until) {
+    /**
+     * The monitor's thread judges, in time order, every held event up to {@code until}, and lets time pass to {@code
+     * timeTo} (at most {@code until}).
+     */
+    private void judge(long until, long timeTo) {
         if (monitor == null) {
             return;
         }
-        long to = release(until);
+        long to = Math.min(release(until), timeTo);
         if (to >= clockStart && to > judgedTo) {
             if (!monitor.allowsTimeTo(to)) {
                 // a deadline passed: first what this member received and has not handed over yet
@@ -674,9 +722,13 @@ public final class BusMonitor implements AutoCloseable {
         if (!ofThisRun(m) || stopAt != Long.MAX_VALUE) {
             return;
         }
+        if (timeline.eventMicros(m) > endAt) {
+            afterEnd++; // after the run's announced end: the tester judges it not, nor does the shield
+            return;
+        }
         long micros = Math.max(timeline.eventMicros(m), Math.max(judgedTo, monitor.lastMicros()));
         clockStart = Math.min(clockStart, micros);
-        judge(micros);
+        judge(micros, micros);
         events++;
         micros = Math.max(micros, monitor.lastMicros()); // a deadline passed on the way re-synchronised it
         Alarm a = monitor.withhold(new Event(m.getChannelName(), m.getVariables()), micros,

@@ -345,7 +345,7 @@ public final class BusRun implements AutoCloseable {
             return;
         }
         runTesters.awaitVerdicts(VERDICTS_TIMEOUT);
-        publishStop();
+        publishStop(0);
     }
 
     /**
@@ -705,8 +705,12 @@ public final class BusRun implements AutoCloseable {
         int unit = (int) Math.min(Integer.MAX_VALUE, runContext.timeUnitMicros());
         // the adapters' time 0 is the start's event time: the engine's time 0, however late the start is published
         running = true;
+        // the run's end, announced so that a monitor judges no further until the stop says where the tester stopped
+        long end = runContext.endMicros();
+        long endEpochNanos = end == Long.MAX_VALUE ? 0 : zeroEpochNanos + Math.multiplyExact(end, 1000L);
         try {
-            dtron.send(Dtron.RUN_START.constructValued(Map.of("timeunit", unit)), zeroEpochNanos);
+            tester.sendRunStart(Dtron.RUN_START.constructValued(Map.of("timeunit", unit)), zeroEpochNanos,
+                    endEpochNanos);
         } catch (DtronException | IllegalStateException e) {
             LOG.warn("Cannot publish the start of the run: {}", e.getMessage());
             context.inconclusive("cannot publish the start of the run on the bus: " + e.getMessage());
@@ -806,16 +810,37 @@ public final class BusRun implements AutoCloseable {
     public void stop() {
         running = false;
         if (!runTesters.several()) {
-            publishStop();
+            publishStop(0);
         }
     }
 
-    /** Publishes the end of the run and waits for it to come back. */
-    private void publishStop() {
+    /**
+     * Ends the run as {@link #stop()} does, with the end of the tester's observation as the stop's event time: the
+     * time on the run's clock up to which it judged the events ({@link io.dtron.engine.Adapter#stop(long)}), so that
+     * a monitor judges up to the same instant. In a run of several testers, whose stop comes after every tester's
+     * verdict ({@link #finish}), the stop is stamped when it is published.
+     */
+    public void stop(long observedUntilMicros) {
+        running = false;
+        if (!runTesters.several()) {
+            publishStop(timeline.zeroEpochNanos() + Math.multiplyExact(Math.max(0, observedUntilMicros), 1000L));
+        }
+    }
+
+    /**
+     * Publishes the end of the run, with {@code eventTimeNanos} as its event time (0: when it is published), and
+     * waits for it to come back.
+     */
+    private void publishStop(long eventTimeNanos) {
         CountDownLatch echo = new CountDownLatch(1);
         ownStop = echo;
         try {
-            dtron.send(Dtron.RUN_STOP.constructValued(Map.of()));
+            IDtronChannelValued stop = Dtron.RUN_STOP.constructValued(Map.of());
+            if (eventTimeNanos > 0) {
+                dtron.send(stop, eventTimeNanos);
+            } else {
+                dtron.send(stop);
+            }
         } catch (DtronException | IllegalStateException e) {
             LOG.warn("Cannot publish the end of the run: {}", e.getMessage());
             return;

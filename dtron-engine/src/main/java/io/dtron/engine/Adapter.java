@@ -59,4 +59,14 @@ public interface Adapter {
     /** Called once at the end of the run (the verdict is known). */
     default void stop() {
     }
+
+    /**
+     * Called once at the end of a test run whose verdict is known, instead of {@link #stop()}: {@code
+     * observedUntilMicros} is the time on the run's clock up to which the tester judged the events (its timeout, or
+     * its verdict's time when that came first), so that others who watch the run can judge up to the same instant.
+     * By default {@link #stop()}.
+     */
+    default void stop(long observedUntilMicros) {
+        stop();
+    }
 }

@@ -80,4 +80,12 @@ public interface AdapterContext {
 
     /** Microseconds per model time unit in this run. */
     long timeUnitMicros();
+
+    /**
+     * The end of the run on its clock, in microseconds since time 0: the tester judges no event after it (a stop
+     * condition may end the run earlier); {@link Long#MAX_VALUE} when the run has no such end. By default none.
+     */
+    default long endMicros() {
+        return Long.MAX_VALUE;
+    }
 }

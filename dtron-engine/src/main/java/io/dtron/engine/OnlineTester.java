@@ -255,13 +255,18 @@ public final class OnlineTester {
         run.warmUp();
         clock.begin(adapter.timeZero());
         adapter.start(new Context(clock, window));
-        TestResult result;
+        TestResult result = null;
         try {
             result = run.loop();
         } catch (ModelRuntimeException e) {
             result = run.result(Verdict.INCONCLUSIVE, "model error: " + e.format());
         } finally {
-            adapter.stop();
+            if (result != null) {
+                // the tester judged the events up to its end, or up to its verdict when that came first
+                adapter.stop(Math.min(result.durationMicros(), run.timeoutMicros));
+            } else {
+                adapter.stop();
+            }
         }
         run.recordPending();
         result = new TestResult(result.verdict(), result.explanation(), result.seed(), result.inputs(),
@@ -341,6 +346,11 @@ public final class OnlineTester {
         @Override
         public long timeUnitMicros() {
             return options.timeUnitMicros();
+        }
+
+        @Override
+        public long endMicros() {
+            return Math.multiplyExact(options.timeout(), options.timeUnitMicros());
         }
     }
 

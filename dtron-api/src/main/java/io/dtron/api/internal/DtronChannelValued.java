@@ -14,37 +14,48 @@ public final class DtronChannelValued implements IDtronChannelValued {
     private final Stamp stamp;
     private final long receiveTimeNanos;
     private final String text;
+    /** On a tester's run start, the announced end of the run (see {@link #getEndTimeNanos()}); else 0. */
+    private final long endTimeNanos;
 
     DtronChannelValued(DtronChannel channel, Map<String, Integer> variables, Stamp stamp, long receiveTimeNanos) {
-        this(channel, variables, stamp, receiveTimeNanos, "");
+        this(channel, variables, stamp, receiveTimeNanos, "", 0);
     }
 
     DtronChannelValued(DtronChannel channel, Map<String, Integer> variables, Stamp stamp, long receiveTimeNanos,
-            String text) {
+            String text, long endTimeNanos) {
         this.channel = channel;
         this.variables = Collections.unmodifiableMap(new LinkedHashMap<>(variables));
         this.stamp = Objects.requireNonNull(stamp, "stamp");
         this.receiveTimeNanos = receiveTimeNanos;
         this.text = Objects.requireNonNull(text, "text");
+        this.endTimeNanos = endTimeNanos;
     }
 
     /** Returns a message as this member published it: stamped, not received (receive time 0). */
     public static DtronChannelValued published(DtronChannel channel, Map<String, Integer> variables, Stamp stamp) {
-        return published(channel, variables, stamp, "");
+        return published(channel, variables, stamp, "", 0);
     }
 
-    /** Returns a message with a {@code text} as this member published it. */
+    /**
+     * Returns a message with a {@code text} (or "") and, on a run start, the announced end of the run (or 0), as this
+     * member published it.
+     */
     public static DtronChannelValued published(DtronChannel channel, Map<String, Integer> variables, Stamp stamp,
-            String text) {
+            String text, long endTimeNanos) {
         Map<String, Integer> ordered = new LinkedHashMap<>();
         channel.getVariableNames().forEach(name -> ordered.put(name, variables.get(name)));
         variables.forEach(ordered::putIfAbsent);
-        return new DtronChannelValued(channel, ordered, stamp, 0, text);
+        return new DtronChannelValued(channel, ordered, stamp, 0, text, endTimeNanos);
     }
 
     @Override
     public String getText() {
         return text;
+    }
+
+    @Override
+    public long getEndTimeNanos() {
+        return endTimeNanos;
     }
 
     /** Returns what the message carries besides its channel and variables, as on the wire. */
@@ -119,7 +130,7 @@ public final class DtronChannelValued implements IDtronChannelValued {
 
     @Override
     public byte[] toByteArray() {
-        return SyncCodec.encode(getChannelName(), variables, stamp, text);
+        return SyncCodec.encode(getChannelName(), variables, stamp, text, endTimeNanos);
     }
 
     @Override
@@ -129,12 +140,13 @@ public final class DtronChannelValued implements IDtronChannelValued {
                 && variables.equals(other.variables)
                 && stamp.equals(other.stamp)
                 && receiveTimeNanos == other.receiveTimeNanos
-                && text.equals(other.text);
+                && text.equals(other.text)
+                && endTimeNanos == other.endTimeNanos;
     }
 
     @Override
     public int hashCode() {
-        return Objects.hash(channel, variables, stamp, receiveTimeNanos, text);
+        return Objects.hash(channel, variables, stamp, receiveTimeNanos, text, endTimeNanos);
     }
 
     @Override

@@ -29,9 +29,13 @@ public final class SyncCodec {
         return builder(channelName, variables, stamp).build().toByteArray();
     }
 
-    /** Encodes a message with a text (field 18, on DTRON's channels that carry one); "" writes none. */
-    public static byte[] encode(String channelName, Map<String, Integer> variables, Stamp stamp, String text) {
-        return builder(channelName, variables, stamp).setText(text).build().toByteArray();
+    /**
+     * Encodes a message with a text (field 18, on DTRON's channels that carry one; "" writes none) and the announced
+     * end of a run (field 19, on a tester's run start; 0 writes none).
+     */
+    public static byte[] encode(String channelName, Map<String, Integer> variables, Stamp stamp, String text,
+            long endTimeNanos) {
+        return builder(channelName, variables, stamp).setText(text).setEndTimeNs(endTimeNanos).build().toByteArray();
     }
 
     private static Sync.Builder builder(String channelName, Map<String, Integer> variables, Stamp stamp) {
@@ -138,6 +142,6 @@ public final class SyncCodec {
         Map<String, Integer> ordered = new LinkedHashMap<>();
         template.getVariableNames().forEach(name -> ordered.put(name, values.get(name)));
         return new DtronChannelValued(template, ordered, stamp(sync, transportSender), receiveTimeNanos,
-                sync.getText());
+                sync.getText(), sync.getEndTimeNs());
     }
 }

@@ -1,6 +1,8 @@
 package io.dtron.api.internal;
 
 import io.dtron.api.Dtron;
+import io.dtron.api.DtronException;
+import io.dtron.api.IDtronChannelValued;
 import io.dtron.api.MemberDelay;
 import io.dtron.api.ServedChannels;
 import java.time.Duration;
@@ -28,6 +30,17 @@ public interface TesterSide {
      * tester sets it before publishing {@code RUN_START}.
      */
     void setRunId(String id);
+
+    /**
+     * Publishes a run's start ({@link Dtron#RUN_START}) with time 0 as its event time and the end of the run the
+     * tester announces ({@link IDtronChannelValued#getEndTimeNanos()}; 0 for none), both on this
+     * member's wall clock in nanoseconds since the epoch.
+     *
+     * @return the start as published
+     * @throws IllegalArgumentException if the message is no run start, or time 0 is not positive
+     * @throws DtronException           if the bus did not take it
+     */
+    IDtronChannelValued sendRunStart(IDtronChannelValued start, long zeroEpochNanos, long endEpochNanos);
 
     /**
      * Asks members whether they are there: pings the bus and waits until each of {@code members} answered, or the

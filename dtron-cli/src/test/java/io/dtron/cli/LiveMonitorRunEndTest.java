@@ -1,0 +1,149 @@
+package io.dtron.cli;
+
+import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertFalse;
+import static org.junit.jupiter.api.Assertions.assertTrue;
+
+import io.dtron.api.Dtron;
+import io.dtron.api.DtronOptions;
+import io.dtron.api.IDtronChannel;
+import io.dtron.api.IDtronChannelValued;
+import io.dtron.api.internal.TesterSide;
+import io.dtron.testsupport.Waits;
+import java.io.PrintWriter;
+import java.io.StringWriter;
+import java.net.InetAddress;
+import java.nio.file.Files;
+import java.nio.file.Path;
+import java.util.Map;
+import java.util.UUID;
+import java.util.concurrent.CompletableFuture;
+import java.util.concurrent.TimeUnit;
+import org.junit.jupiter.api.Test;
+import org.junit.jupiter.api.Timeout;
+import org.junit.jupiter.api.io.TempDir;
+
+/**
+ * {@code dtron monitor --cluster NAME} judges a run up to the tester's end of observation, which the run's start
+ * announces and its stop carries: a real JGroups member on loopback plays the tester and the server of the monitor
+ * tests' model (100 ms time units), publishing the run's messages with exact event times, so load changes nothing
+ * the tests assert. An event stamped after the end, and a deadline after it, are not judged even though the stop
+ * comes later (the tester judged neither); an event stamped before the end that the bus delivers after the stop is
+ * judged; a stop of a tester that announced no end (an older one) ends the run when it was published, as before.
+ */
+@Timeout(value = 2, unit = TimeUnit.MINUTES)
+class LiveMonitorRunEndTest {
+    private static final IDtronChannel REQ = IDtronChannel.of("req", "n");
+    private static final IDtronChannel RESP = IDtronChannel.of("resp", "n");
+    private static final long UNIT_NANOS = 100_000_000L;
+
+    @TempDir
+    Path dir;
+
+    /** The monitor on its own thread, and the member that publishes the run. */
+    private final class Watch implements AutoCloseable {
+        final StringWriter out = new StringWriter();
+        final StringWriter err = new StringWriter();
+        final CompletableFuture<Integer> exit;
+        final Dtron system;
+
+        Watch() throws Exception {
+            Path model = dir.resolve("server.xta");
+            Files.copy(MonitorCommandTest.SERVER, model);
+            String cluster = "runend-" + UUID.randomUUID().toString().substring(0, 8);
+            system = Dtron.connect(DtronOptions.builder().clusterName(cluster)
+                    .bindAddress(InetAddress.getLoopbackAddress()).build());
+            exit = CompletableFuture.supplyAsync(() -> DtronCommand.run(new String[] {"monitor", model.toString(),
+                "--cluster", cluster}, new PrintWriter(out, true), new PrintWriter(err, true)));
+            Waits.await("the monitor on the bus").until(() -> out.toString().contains(" as ") || exit.isDone());
+            Waits.await("the monitor among the members").until(() -> system.getMembers().size() == 2);
+            TesterSide.of(system).setRunId("c0ffee");
+        }
+
+        /** The monitor's exit code, once the run's watch ended. */
+        int exit() throws Exception {
+            return exit.get(1, TimeUnit.MINUTES);
+        }
+
+        String shown() {
+            return out + "\n" + err;
+        }
+
+        /** Publishes an event at {@code atNanos}; a request, the run's start's sender's input, is applied then. */
+        void send(IDtronChannel channel, int n, long atNanos) {
+            IDtronChannelValued sent = system.send(channel.constructValued(Map.of("n", n)), atNanos);
+            if (channel == REQ) {
+                system.acknowledge(sent, atNanos);
+            }
+        }
+
+        /** Waits until the wall clock has passed {@code nanos}, so that the monitor's time may have passed it. */
+        void awaitPast(long nanos) {
+            Waits.await("the wall clock past the run's end").until(() -> system.currentTimeNanos() > nanos);
+        }
+
+        @Override
+        public void close() {
+            system.close();
+        }
+    }
+
+    @Test
+    void anEventAndADeadlineAfterTheTestersEndAreNotJudgedThoughTheStopComesLater() throws Exception {
+        try (Watch watch = new Watch()) {
+            long t0 = watch.system.currentTimeNanos();
+            long end = t0 + 5 * UNIT_NANOS;
+            TesterSide.of(watch.system).sendRunStart(Dtron.RUN_START.constructValued(Map.of("timeunit", 100_000)),
+                    t0, end);
+            // a request at 3.5: its response is due by 6.5, after the end at 5; the response at 7, after the end
+            watch.send(REQ, 1, t0 + 35 * UNIT_NANOS / 10);
+            watch.send(RESP, 2, t0 + 7 * UNIT_NANOS);
+            // the stop comes well after the response's deadline, as a held-up tester's would
+            watch.awaitPast(t0 + 12 * UNIT_NANOS);
+            watch.system.send(Dtron.RUN_STOP.constructValued(Map.of()), end);
+            int exit = watch.exit();
+            String printed = watch.out.toString();
+            assertEquals(0, exit, watch.shown());
+            assertFalse(printed.contains("violation 1"), watch.shown());
+            assertTrue(printed.contains("run c0ffee ended: no violation, 1 event checked (the run ended), 0 too late"
+                    + " to judge, 1 after the run's end (not judged)"), watch.shown());
+            assertTrue(printed.contains("dtron monitor: 1 run, no violation (run c0ffee: 0), 1 event checked, 0 too"
+                    + " late to judge, 1 after the run's end (not judged)"), watch.shown());
+        }
+    }
+
+    @Test
+    void anEventStampedBeforeTheEndThatTheBusDeliversAfterTheStopIsJudged() throws Exception {
+        try (Watch watch = new Watch()) {
+            long t0 = watch.system.currentTimeNanos();
+            long end = t0 + 5 * UNIT_NANOS;
+            TesterSide.of(watch.system).sendRunStart(Dtron.RUN_START.constructValued(Map.of("timeunit", 100_000)),
+                    t0, end);
+            watch.send(REQ, 1, t0 + UNIT_NANOS);
+            watch.system.send(Dtron.RUN_STOP.constructValued(Map.of()), end);
+            // after the stop on the bus, stamped at 1.5: half a unit after the request, before the server's 1
+            watch.send(RESP, 2, t0 + 15 * UNIT_NANOS / 10);
+            int exit = watch.exit();
+            String printed = watch.out.toString();
+            assertEquals(2, exit, watch.shown());
+            assertTrue(printed.contains("violation 1 at t=1.500: resp(n=2)"), watch.shown());
+            assertTrue(printed.contains("1 violation, 2 events checked"), watch.shown());
+            assertFalse(printed.contains("after the run's end"), watch.shown());
+        }
+    }
+
+    @Test
+    void aStopOfATesterThatAnnouncedNoEndEndsTheRunWhenItWasPublished() throws Exception {
+        try (Watch watch = new Watch()) {
+            long t0 = watch.system.currentTimeNanos();
+            // an older tester: a start without an end, a stop stamped when it is published
+            watch.system.send(Dtron.RUN_START.constructValued(Map.of("timeunit", 100_000)), t0);
+            watch.send(REQ, 1, t0 + 35 * UNIT_NANOS / 10);
+            watch.awaitPast(t0 + 12 * UNIT_NANOS);
+            watch.system.send(Dtron.RUN_STOP.constructValued(Map.of()));
+            int exit = watch.exit();
+            assertEquals(2, exit, watch.shown());
+            assertTrue(watch.out.toString().contains("violation 1 at t=6.500: no event by t=6.500"), watch.shown());
+        }
+    }
+}
