@@ -134,14 +134,19 @@ public final class RacingAdapterMain {
         dtron.acknowledge(message, appliedAt);
     }
 
-    /** Applies start under the lock: done is due in 2 (or 8) units; returns when, on this member's clock. */
+    /**
+     * Applies start under the lock: done is due in 2 (or 8) units; returns when, on this member's clock. That time is
+     * read before the run time that done counts from, so that a thread held up between the two makes done later
+     * than 2 units after the acknowledged time, never earlier.
+     */
     private long apply() {
+        long appliedAt = dtron.currentTimeNanos();
         RunClock clock = dtron.runClock();
         if (clock.isRunning()) {
             double now = clock.nowUnits();
             schedule(now + doneUnits, DONE, doneUnits < DONE_DEADLINE ? now + DONE_DEADLINE : Double.MAX_VALUE);
         }
-        return dtron.currentTimeNanos();
+        return appliedAt;
     }
 
     /**
@@ -151,17 +156,20 @@ public final class RacingAdapterMain {
      */
     private void output(IDtronChannel channel, double deadlineUnits, long generation) {
         double now;
+        long happened;
         synchronized (this) {
             if (generation != this.generation) {
                 return; // start came before this output went out: done is due instead
             }
             sending = true;
+            // the output's time, read before the run time the next timeout counts from (as in apply)
+            happened = dtron.currentTimeNanos();
             now = dtron.runClock().nowUnits();
         }
         IDtronChannelValued start;
         long appliedAt = 0;
         try {
-            dtron.send(channel.constructValued(Map.of()));
+            dtron.send(channel.constructValued(Map.of()), happened);
         } finally {
             synchronized (this) {
                 sending = false;
