@@ -162,10 +162,18 @@ class ReceivingThreadTest {
             });
             Inbox acks = new Inbox(Dtron.ACK);
             tester.addDtronListener(acks);
+            // the adapter's listeners' thread hears of the tester's last change of what it serves (tester, sends move)
+            java.util.concurrent.atomic.AtomicBoolean heard = new java.util.concurrent.atomic.AtomicBoolean();
+            TesterSide.of(adapter).addServedChannelsListener(others -> {
+                ServedChannels s = others.get(tester.getMemberId());
+                if (s != null && s.tester() && s.sends().contains("move")) {
+                    heard.set(true);
+                }
+            });
             tester.declareOutputs(move);
             tester.send(Dtron.RUN_START.constructValued(Map.of("timeunit", 1000)));
             Waits.await("each knows what the other serves").until(() -> receives(tester, adapter, "move")
-                    && served(adapter, tester).map(s -> s.tester() && s.sends().contains("move")).orElse(false));
+                    && heard.get());
             // the adapter's listeners are idle and nothing more is queued for them (no member's served channels
             // change now): the input is delivered on the thread that received it
             assertTrue(TesterSide.of(adapter).awaitListeners(WAIT));
