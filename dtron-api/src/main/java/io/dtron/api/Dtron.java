@@ -577,7 +577,9 @@ public final class Dtron implements AutoCloseable {
     /**
      * Acknowledges an input: publishes on {@link #ACK} that this member applied it at {@code
      * appliedAtEpochNanos}. A member acknowledges each message once; a message it acknowledged before (itself or
-     * automatically when its listeners returned) is not acknowledged again.
+     * automatically when its listeners returned) is not acknowledged again. Called by a listener on the bus's
+     * receiving thread ({@link DtronListener#onReceivingThread}), it publishes once the listener has returned, and a
+     * failure then is logged.
      *
      * @param message             a message received from the bus, on a channel of the model
      * @param appliedAtEpochNanos when the input took effect, on this member's wall clock in nanoseconds since the
@@ -872,15 +874,11 @@ public final class Dtron implements AutoCloseable {
         try {
             publishClaimedAck(message, appliedAtNanos);
         } catch (DtronException | IllegalStateException e) {
-            logAckFailure(message, e);
-        }
-    }
-
-    private void logAckFailure(IDtronChannelValued message, RuntimeException e) {
-        if (closed) {
-            LOG.debug("{} closed before acknowledging {}", getMemberId(), message);
-        } else {
-            LOG.warn("{} cannot acknowledge {}: {}", getMemberId(), message, e.getMessage());
+            if (closed) {
+                LOG.debug("{} closed before acknowledging {}", getMemberId(), message);
+            } else {
+                LOG.warn("{} cannot acknowledge {}: {}", getMemberId(), message, e.getMessage());
+            }
         }
     }
 
