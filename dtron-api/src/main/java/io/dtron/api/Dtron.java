@@ -166,6 +166,8 @@ public final class Dtron implements AutoCloseable {
     private final List<java.util.function.Consumer<Map<String, ServedChannels>>> servedListeners =
             new CopyOnWriteArrayList<>();
     private final Counters counters = new Counters();
+    /** The listeners that may be called on the transport's receiving thread ({@link DtronListener#onReceivingThread}). */
+    private final Set<DtronListener> onReceivingThread = ConcurrentHashMap.newKeySet();
     private final AtomicLong sequence = new AtomicLong();
     private final SerialExecutor dispatcher;
     private final Object lock = new Object();
@@ -410,6 +412,9 @@ public final class Dtron implements AutoCloseable {
                 registrations.put(name, registration);
             }
             if (!registration.listeners().contains(listener)) {
+                if (asksReceivingThread(listener)) {
+                    onReceivingThread.add(listener);
+                }
                 registration.listeners().add(listener);
             }
         }
@@ -428,6 +433,7 @@ public final class Dtron implements AutoCloseable {
             if (registration == null || !registration.listeners().remove(listener)) {
                 return;
             }
+            onReceivingThread.remove(listener);
             listener.detach(this);
             if (registration.listeners().isEmpty()) {
                 registrations.remove(name);
@@ -580,7 +586,9 @@ public final class Dtron implements AutoCloseable {
     /**
      * Acknowledges an input: publishes on {@link #ACK} that this member applied it at {@code
      * appliedAtEpochNanos}. A member acknowledges each message once; a message it acknowledged before (itself or
-     * automatically when its listeners returned) is not acknowledged again.
+     * automatically when its listeners returned) is not acknowledged again. Called by a listener on the bus's
+     * receiving thread ({@link DtronListener#onReceivingThread}), it publishes once the listener has returned, and a
+     * failure then is logged.
      *
      * @param message             a message received from the bus, on a channel of the model
      * @param appliedAtEpochNanos when the input took effect, on this member's wall clock in nanoseconds since the
@@ -604,6 +612,14 @@ public final class Dtron implements AutoCloseable {
             throw new IllegalArgumentException("time must be positive: " + appliedAtEpochNanos);
         }
         requireOpen();
+        if (dispatcher.runsInline()) {
+            // not on the receiving thread (see DtronListener.onReceivingThread): right after the listener, in its place
+            if (!claimAck(message)) {
+                return false;
+            }
+            dispatcher.continueOnOwnThread(() -> acknowledgeClaimed(message, appliedAtEpochNanos));
+            return true;
+        }
         return publishAck(message, appliedAtEpochNanos);
     }
 
@@ -779,6 +795,10 @@ public final class Dtron implements AutoCloseable {
             long endTimeNanos) {
         Objects.requireNonNull(message, "message");
         requireOpen();
+        if (dispatcher.runsInline()) {
+            throw new IllegalStateException("a listener called on the bus's receiving thread may not send (see"
+                    + " DtronListener.onReceivingThread): send from another thread");
+        }
         String name = message.getChannelName();
         Registration registration = registrations.get(name);
         DtronChannel template = RESERVED.containsKey(name)
@@ -829,12 +849,24 @@ public final class Dtron implements AutoCloseable {
 
     /** Publishes an acknowledgement unless this member acknowledged the message before. */
     private boolean publishAck(IDtronChannelValued message, long appliedAtNanos) {
-        AckKey key = new AckKey(message.getSender(), message.getSequence());
-        synchronized (acknowledged) {
-            if (acknowledged.putIfAbsent(key, Boolean.TRUE) != null) {
-                return false;
-            }
+        if (!claimAck(message)) {
+            return false;
         }
+        publishClaimedAck(message, appliedAtNanos);
+        return true;
+    }
+
+    /** Notes that this member acknowledges a message; false if it did before. */
+    private boolean claimAck(IDtronChannelValued message) {
+        synchronized (acknowledged) {
+            return acknowledged.putIfAbsent(new AckKey(message.getSender(), message.getSequence()), Boolean.TRUE)
+                    == null;
+        }
+    }
+
+    /** Publishes the acknowledgement of a claimed message; on failure the claim is withdrawn. */
+    private void publishClaimedAck(IDtronChannelValued message, long appliedAtNanos) {
+        AckKey key = new AckKey(message.getSender(), message.getSequence());
         byte[] bytes = SyncCodec.encode(ACK.getChannelName(), Map.of(),
                 stamp(currentTimeNanos(), appliedAtNanos, message.getSender(), message.getSequence()));
         try {
@@ -848,7 +880,19 @@ public final class Dtron implements AutoCloseable {
             }
             throw (RuntimeException) e;
         }
-        return true;
+    }
+
+    /** Publishes the acknowledgement of a claimed message, logging a failure (there is no caller to tell). */
+    private void acknowledgeClaimed(IDtronChannelValued message, long appliedAtNanos) {
+        try {
+            publishClaimedAck(message, appliedAtNanos);
+        } catch (DtronException | IllegalStateException e) {
+            if (closed) {
+                LOG.debug("{} closed before acknowledging {}", getMemberId(), message);
+            } else {
+                LOG.warn("{} cannot acknowledge {}: {}", getMemberId(), message, e.getMessage());
+            }
+        }
     }
 
     /** Publishes a message of the clock-offset protocol; not counted. Called on the clock's or a probing thread. */
@@ -918,7 +962,7 @@ public final class Dtron implements AutoCloseable {
         runClock.offsetChanged();
     }
 
-    /** Called on the transport's thread: checks the message and queues it for the listeners. */
+    /** Called on the transport's thread: checks the message and hands it to the listeners ({@link #dispatch}). */
     private void received(BusMessage message) {
         if (closed) {
             return;
@@ -980,11 +1024,37 @@ public final class Dtron implements AutoCloseable {
     }
 
     /**
-     * Queues a message for the listeners, in the bus's order; an input (or a probe sent as one) to be acknowledged
-     * when they return.
+     * Hands a message to the listeners, in the bus's order; an input (or a probe sent as one) to be acknowledged
+     * when they return. Called on the transport's thread: when every listener of the channel may be called there
+     * ({@link DtronListener#onReceivingThread}; a probe has none) and nothing is queued for the listeners or being
+     * delivered, they are called at once on this thread, else the message is queued for the listeners' thread.
      */
     private void dispatch(IDtronChannelValued value, boolean acknowledge) {
-        dispatcher.execute(() -> deliver(value, acknowledge));
+        Runnable delivery = () -> deliver(value, acknowledge);
+        if (mayRunOnReceivingThread(value)) {
+            dispatcher.runOrExecute(delivery);
+        } else {
+            dispatcher.execute(delivery);
+        }
+    }
+
+    /** Whether all listeners of a message's channel may be called on the receiving thread (a probe has none). */
+    private boolean mayRunOnReceivingThread(IDtronChannelValued value) {
+        if (value.getChannelName().equals(ClockSync.PING)) {
+            return true;
+        }
+        Registration registration = registrations.get(value.getChannelName());
+        return registration != null && onReceivingThread.containsAll(registration.listeners());
+    }
+
+    private static boolean asksReceivingThread(DtronListener listener) {
+        try {
+            return listener.onReceivingThread();
+        } catch (RuntimeException e) {
+            LOG.warn("Listener {} failed to tell whether it may be called on the receiving thread: {}", listener,
+                    e.toString());
+            return false;
+        }
     }
 
     /**
@@ -1146,13 +1216,20 @@ public final class Dtron implements AutoCloseable {
     }
 
     /**
-     * Called on the dispatcher thread, in the bus's order; acknowledges the message after its listeners. A probe sent
-     * as an input ({@link TesterSide#probeAsInput}) takes the same way, but no listener hears it.
+     * Called on the dispatcher thread, or inline on the transport's thread (see {@link #dispatch}), in the bus's
+     * order; acknowledges the message after its listeners. A probe sent as an input ({@link TesterSide#probeAsInput})
+     * takes the same way, but no listener hears it.
      */
     private void deliver(IDtronChannelValued value, boolean acknowledge) {
         boolean probe = value.getChannelName().equals(ClockSync.PING);
         Registration registration = value.getChannel() == WARM_UP ? null : registrations.get(value.getChannelName());
         if (registration == null && !probe) {
+            return;
+        }
+        boolean inline = dispatcher.runsInline();
+        if (inline && !probe && !onReceivingThread.containsAll(registration.listeners())) {
+            // a listener that may not run here was added since dispatch: the listeners' thread delivers, in this place
+            dispatcher.continueOnOwnThread(() -> deliver(value, acknowledge));
             return;
         }
         boolean called = probe;
@@ -1171,14 +1248,15 @@ public final class Dtron implements AutoCloseable {
         }
         if (acknowledge && called && automatic) {
             long appliedAt = currentTimeNanos();
-            try {
-                publishAck(value, appliedAt);
-            } catch (DtronException | IllegalStateException e) {
-                if (closed) {
-                    LOG.debug("{} closed before acknowledging {}", getMemberId(), value);
-                } else {
-                    LOG.warn("{} cannot acknowledge {}: {}", getMemberId(), value, e.getMessage());
-                }
+            if (!claimAck(value)) {
+                return;
+            }
+            if (inline) {
+                // sending could wait for this very thread (see DtronListener.onReceivingThread): the listeners'
+                // thread publishes it next, before any message received meanwhile is delivered
+                dispatcher.continueOnOwnThread(() -> acknowledgeClaimed(value, appliedAt));
+            } else {
+                acknowledgeClaimed(value, appliedAt);
             }
         }
     }

@@ -5,9 +5,12 @@ import java.util.Objects;
 /**
  * Receives the messages of one channel from a {@link Dtron}.
  *
- * <p>All listeners of a {@code Dtron} are called on one thread, one message at
- * a time, in the bus's total order. A listener may reply inline through
- * {@link #getDtron()}. An exception thrown by {@link #messageReceived} is logged
+ * <p>All listeners of a {@code Dtron} are called one message at a time, in the
+ * bus's total order, on the {@code Dtron}'s listeners' thread; a listener that
+ * says so ({@link #onReceivingThread()}) may instead be called on the bus
+ * transport's receiving thread when nothing else is pending. A listener may
+ * reply inline through {@link #getDtron()} (one called on the receiving thread
+ * may not). An exception thrown by {@link #messageReceived} is logged
  * with the message and counted; the listener keeps receiving.
  *
  * <p>An input of the current run's tester is {@linkplain Dtron#ACK acknowledged}
@@ -68,6 +71,29 @@ public abstract class DtronListener {
      */
     protected boolean serves() {
         return true;
+    }
+
+    /**
+     * Returns whether this listener may be called on the bus transport's receiving thread (on an in-JVM bus, which
+     * hands messages over in memory, that may be the sending member's thread); false unless overridden. Asked once,
+     * when the listener is added. A message whose channel's listeners all say so is handed to them on the thread
+     * that received it when no message is queued for the listeners and none is being delivered, which spares a
+     * hand-off between threads (on a virtual machine whose idle CPUs sleep, 1 to 11 ms to wake the listeners'
+     * thread); otherwise it queues as any other. Either way listeners are called one message at a time, in the bus's
+     * order: a message received meanwhile waits for this one's listeners.
+     *
+     * <p>A listener that returns true promises that {@link #messageReceived} returns quickly and waits for nothing
+     * the bus delivers: it must not send on the bus ({@link Dtron#send} throws there), close the {@code Dtron}, wait
+     * for a message or a membership change, nor wait for a lock or any other thread that may itself be sending on
+     * the bus. On JGroups a member's first sends after it joined (and after a new coordinator took over) wait until
+     * the bus hands them back, on the very thread such a listener holds: waiting for that thread's send, the listener
+     * and the sender would wait for each other for good. Scheduling work on another thread ({@link
+     * RunClock#scheduleAt}, an executor) is fine, and so is {@link Dtron#acknowledge(IDtronChannelValued, long)},
+     * which then publishes when the listener has returned. The automatic acknowledgement of an input is published
+     * then too, with the time the listener returned.
+     */
+    protected boolean onReceivingThread() {
+        return false;
     }
 
     /** Attaches this listener to a {@code Dtron}; false if it already is attached to another one. */
