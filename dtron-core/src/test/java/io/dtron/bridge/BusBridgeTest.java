@@ -239,11 +239,20 @@ class BusBridgeTest {
         assertTrue(bridge.run().runDelays().get(0).highMicros() >= 25_000, "30 ms, give or take the clocks' error: "
                 + bridge.run().runDelays());
         assertEquals("output", bridge.run().runDelays().get(0).direction());
-        // a delay within half of the wider window changes nothing
+        // a delay within half of the wider window changes nothing; a loaded machine may hold the message up for
+        // longer than that (its delay is produced-to-received), and then it widens the window by its real delay
+        long wider = bridge.run().reorderWindowMicros();
         adapter.send(X.constructValued(Map.of()), adapter.currentTimeNanos() - 5_000_000);
         assertNotNull(context.outputs.poll(10, TimeUnit.SECONDS));
         assertNotNull(context.outputs.poll(10, TimeUnit.SECONDS));
-        assertEquals(1, bridge.run().widenings().size(), bridge.run().widenings().toString());
+        List<String> widenings = bridge.run().widenings();
+        long longest = bridge.run().runDelays().get(0).highMicros();
+        if (widenings.size() > 1) {
+            assertEquals(2, widenings.size(), widenings.toString());
+            assertTrue(longest > wider / 2 - 1000, "widened again although the second output took " + longest
+                    + " us, within half of " + wider + " us (give or take the clocks' error): " + widenings);
+            assertTrue(bridge.run().reorderWindowMicros() > wider, widenings.toString());
+        }
     }
 
     @Test
