@@ -508,7 +508,8 @@ static void control(dtron_bus *bus, const char *name, const Dtron__Sync *sync, c
         }
         announce(bus);
     } else if (strcmp(name, "dtron_ping") == 0) {
-        if (bus->tester && strcmp(sender, bus->tester) == 0) { /* the tester probes whether this member is there */
+        /* the tester probes whether this member is there; a live monitor (field probe) asks it as well */
+        if ((bus->tester && strcmp(sender, bus->tester) == 0) || sync->probe) {
             publish_sync(bus, "dtron_pong", NULL, 0, received, sender, sync->sequence, NULL);
         }
     } else if (strcmp(name, "dtron_pong") == 0) {

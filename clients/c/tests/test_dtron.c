@@ -452,6 +452,8 @@ typedef struct {
     int serve_ok, pings, acks;
     uint64_t acked_sequence;
     char acked_sender[32];
+    int pongs;                   /* the adapter's pongs to others than the tester */
+    uint64_t first_pong_acked;   /* the sequence number of the first of them */
     int64_t ack_offset, ack_error;
     uint64_t sequence;
     signer signer; /* with the bus's secret */
@@ -519,6 +521,12 @@ static void tester_received(natsConnection *nc, natsSubscription *sub, natsMsg *
             t->pings++;
             pthread_mutex_unlock(&t->lock);
             tester_publish(t, "dtron_pong", NULL, 0, sync->sender, sync->sequence, dtron_now_ns() + t->shift, NULL);
+        } else if (strcmp(channel, "dtron_pong") == 0 && strcmp(sync->acked_sender, "tester") != 0) {
+            pthread_mutex_lock(&t->lock);
+            if (t->pongs++ == 0) {
+                t->first_pong_acked = sync->acked_sequence;
+            }
+            pthread_mutex_unlock(&t->lock);
         } else if (strcmp(channel, "dtron_ack") == 0) {
             pthread_mutex_lock(&t->lock);
             t->acks++;
@@ -533,6 +541,27 @@ static void tester_received(natsConnection *nc, natsSubscription *sub, natsMsg *
         dtron__sync__free_unpacked(sync, NULL);
     }
     natsMsg_Destroy(msg);
+}
+
+/* A ping of "monitor", a member that is not the tester: a probe (field probe) or a ping of its own; its sequence. */
+static uint64_t monitor_ping(fake_tester *t, signer *monitor, uint64_t sequence, int probe) {
+    Dtron__Sync sync = DTRON__SYNC__INIT;
+    char subject[128];
+    sync.name = "dtron_ping";
+    sync.sender = "monitor";
+    sync.sequence = sequence;
+    sync.publish_time_ns = dtron_now_ns();
+    sync.acked_sender = "";
+    sync.probe = probe;
+    uint8_t buffer[256];
+    size_t length = dtron__sync__pack(&sync, buffer);
+    snprintf(subject, sizeof subject, "dtron.%s.c.dtron_ping", t->bus ? t->bus : "hand");
+    natsMsg *msg = NULL;
+    natsMsg_Create(&msg, subject, NULL, (const char *)buffer, (int)length);
+    sign(monitor, msg, 0, dtron_now_ns());
+    natsConnection_PublishMsg(t->nc, msg);
+    natsMsg_Destroy(msg);
+    return sequence;
 }
 
 static int resets;
@@ -583,6 +612,15 @@ static void test_handshake_clock_and_acknowledgements(void) {
     UNTIL(field(&t, &t.pings) >= 8 && dtron_clock_offset(adapter, &offset, &error));
     CHECK(dtron_clock_offset(adapter, &offset, &error));
     CHECK(error > 0 && llabs(offset - 50000000LL) <= error);
+    /* a live monitor's ping of its own goes unanswered, its probe is answered: the first pong to it is the probe's */
+    static signer monitor;
+    signer_of_bus(&monitor, "monitor");
+    monitor_ping(&t, &monitor, 1, 0);
+    uint64_t probe = monitor_ping(&t, &monitor, 2, 1);
+    UNTIL(field(&t, &t.pongs) >= 1);
+    pthread_mutex_lock(&t.lock);
+    CHECK(t.pongs >= 1 && t.first_pong_acked == probe);
+    pthread_mutex_unlock(&t.lock);
     tester_publish(&t, "dtron_start", "timeunit", 1000, NULL, 0, 0, NULL);
     UNTIL(dtron_run_running(adapter));
     CHECK(dtron_run_running(adapter));

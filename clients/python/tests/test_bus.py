@@ -32,12 +32,16 @@ async def until(condition: Callable[[], bool], seconds: float = 10) -> None:
 
 
 class FakeTester:
-    """A tester played with raw NATS: publishes Sync messages and records what the others publish."""
+    """A tester played with raw NATS: publishes Sync messages and records what the others publish. As another
+    ``member`` (``tester`` False), a member that is not the tester, which answers no ping: a live monitor."""
 
-    def __init__(self, nc: Any, bus: str, home: Path, clock_shift_ns: int = 0, host_clock: str = "") -> None:
+    def __init__(self, nc: Any, bus: str, home: Path, clock_shift_ns: int = 0, host_clock: str = "",
+                 member: str = "tester", tester: bool = True) -> None:
         self.nc = nc
         self.host_clock = host_clock
-        self.signer = Signer(bus_secret(home), "tester")
+        self.member = member
+        self.tester = tester
+        self.signer = Signer(bus_secret(home), member)
         self.js = nc.jetstream()
         self.bus = bus
         self.shift = clock_shift_ns
@@ -52,13 +56,13 @@ class FakeTester:
         channel = msg.subject.rsplit(".", 1)[1]
         sync = Sync_pb2.Sync.FromString(msg.data)
         self.seen.append((channel, sync))
-        if channel == "dtron_ping" and sync.sender != "tester":
+        if channel == "dtron_ping" and self.tester and sync.sender != self.member:
             await self.publish("dtron_pong", event_time_ns=time.time_ns() + self.shift, acked_sender=sync.sender,
                                acked_sequence=sync.sequence, host_clock=self.host_clock)
 
     async def publish(self, channel: str, variables: dict[str, int] | None = None, **fields: Any) -> Sync_pb2.Sync:
         self.sequence += 1
-        sync = Sync_pb2.Sync(name=channel, sender="tester", sequence=self.sequence,
+        sync = Sync_pb2.Sync(name=channel, sender=self.member, sequence=self.sequence,
                              publish_time_ns=time.time_ns() + self.shift, **fields)
         for name, value in (variables or {}).items():
             sync.variables.add(name=name, value=value)
@@ -129,6 +133,34 @@ def test_the_handshake_the_clock_offset_and_acknowledgements(nats_url: str, dtro
         assert len(resets) == 1 and resets[0].sender == "tester"
         await tester.publish("dtron_stop")
         await until(lambda: not adapter.run_clock.running)
+        await adapter.close()
+        await nc.close()
+
+    run(test)
+
+
+def test_a_member_answers_its_testers_pings_and_a_monitors_probe_but_not_its_other_pings(nats_url: str,
+                                                                                          dtron_home: Path) -> None:
+    async def test() -> None:
+        nc = await nats.connect(nats_url)
+        adapter = await dtron.connect(nats_url, bus="probe", member="adapter")
+        tester = FakeTester(nc, "probe", dtron_home)
+        monitor = FakeTester(nc, "probe", dtron_home, member="monitor", tester=False)
+        await tester.start()
+        await monitor.start()
+        await tester.publish("dtron_hello")
+        await until(lambda: adapter.clock_offset is not None)
+        # a monitor's ping of its own, its probe (a live monitor's before a deadline), then the tester's ping
+        await monitor.publish("dtron_ping")
+        probe = await monitor.publish("dtron_ping", probe=True)
+        asked = await tester.publish("dtron_ping")
+
+        def answers() -> list[tuple[str, int]]:
+            return [(p.acked_sender, p.acked_sequence) for p in tester.on("dtron_pong") if p.sender == "adapter"]
+
+        await until(lambda: ("tester", asked.sequence) in answers())
+        # the answers come in the pings' order: the probe's and the tester's; the monitor's other ping has none
+        assert answers() == [("monitor", probe.sequence), ("tester", asked.sequence)]
         await adapter.close()
         await nc.close()
 

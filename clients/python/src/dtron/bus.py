@@ -551,7 +551,8 @@ class Bus:
                 self._learn_tester(sender)
             self._announce()
         elif channel == "dtron_ping":
-            if sender == self._tester:  # the tester probes whether this member is there
+            # the tester probes whether this member is there; a live monitor (field probe) asks it as well
+            if sender == self._tester or sync.probe:
                 self._control("dtron_pong", event_ns=received_ns, acked=(sender, sync.sequence))
         elif channel == "dtron_pong":
             if sync.acked_sender != self.member or sender != self._tester:

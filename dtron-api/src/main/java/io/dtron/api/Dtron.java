@@ -897,13 +897,14 @@ public final class Dtron implements AutoCloseable {
 
     /** Publishes a message of the clock-offset protocol; not counted. Called on the clock's or a probing thread. */
     private void publishControl(String channel, long seq, long publishTimeNanos, long eventTimeNanos,
-            String ackedSender, long ackedSequence, boolean asInput) {
+            String ackedSender, long ackedSequence, boolean asInput, boolean probe) {
         if (closed) {
             return;
         }
         try {
             transport.publish(channel, SyncCodec.encodeControl(channel,
-                    stamp(seq, publishTimeNanos, eventTimeNanos, ackedSender, ackedSequence), asInput, hostClock));
+                    stamp(seq, publishTimeNanos, eventTimeNanos, ackedSender, ackedSequence), asInput, probe,
+                    hostClock));
         } catch (IOException | RuntimeException e) {
             LOG.debug("{} cannot publish on {}: {}", getMemberId(), channel, e.toString());
         }
@@ -1136,7 +1137,8 @@ public final class Dtron implements AutoCloseable {
                         reject(message, e);
                     }
                 } else {
-                    clockSync.pingReceived(stamp.sender(), stamp.sequence(), receiveTime, peerTester);
+                    clockSync.pingReceived(stamp.sender(), stamp.sequence(), receiveTime, peerTester,
+                            sync.getProbe());
                 }
             }
             case ClockSync.PONG -> clockSync.pongReceived(stamp.sender(), stamp.ackedSender(), stamp.ackedSequence(),

@@ -23,6 +23,8 @@ import java.util.List;
 import java.util.Map;
 import java.util.Objects;
 import java.util.PriorityQueue;
+import java.util.Set;
+import java.util.TreeSet;
 import java.util.concurrent.BlockingQueue;
 import java.util.concurrent.CountDownLatch;
 import java.util.concurrent.LinkedBlockingQueue;
@@ -37,8 +39,10 @@ import org.slf4j.LoggerFactory;
  * clock offset, an input where its adapter's acknowledgement places it; {@link RunTimeline}) within the reorder window
  * ({@link ReorderWindow}, fixed or automatic), and feeds them to a {@link Monitor} on a thread of its own. That thread
  * also lets time pass on the run's clock, so a missed deadline is found when the deadline is a reorder window old,
- * not at the next message. The run's id and time 0 come from the tester's {@link Dtron#RUN_START}: at each, the
- * monitor starts again (from the options' start); a monitor that joins during a run starts at once. Time passes for
+ * not at the next message, and once the members that send the model's outputs answered its probe, as the tester's
+ * before it declares a deadline missed ({@link TesterSide#probe}), or a second passed. The run's id and time 0 come
+ * from the tester's {@link Dtron#RUN_START}: at each, the monitor starts again (from the options' start); a monitor
+ * that joins during a run starts at once. Time passes for
  * the monitor from the run's start or from the first event it sees, so a system that has not started yet raises no
  * alarm.
  *
@@ -64,6 +68,11 @@ public final class BusMonitor implements AutoCloseable {
     private static final Logger LOG = LoggerFactory.getLogger(BusMonitor.class);
     /** How long the monitor waits, when it joins, for its clock's offset to a tester on the bus. */
     static final Duration OFFSET_TIMEOUT = Duration.ofSeconds(2);
+    /**
+     * How long the monitor waits for the adapters' answers to its probe before it lets a deadline pass, as the tester
+     * does; then it judges without them.
+     */
+    static final Duration PROBE_TIMEOUT = Duration.ofSeconds(1);
     /** How long the monitor waits for its listeners to catch up before it lets a deadline pass. */
     static final Duration CATCH_UP_TIMEOUT = Duration.ofSeconds(1);
     /**
@@ -651,12 +660,19 @@ public final class BusMonitor implements AutoCloseable {
         }
         long to = Math.min(release(until), timeTo);
         if (to >= clockStart && to > judgedTo) {
+            String silent = null;
             if (!monitor.allowsTimeTo(to)) {
-                // a deadline passed: first what this member received and has not handed over yet
+                // a deadline passed: first what the adapters sent before it, then what this member received and has
+                // not handed over yet
+                silent = probeAdapters();
                 catchUp();
                 to = Math.min(to, release(to));
             }
-            report(monitor.advanceTo(to), null, false);
+            Alarm a = monitor.advanceTo(to);
+            if (a != null && silent != null) {
+                sink.note(silent);
+            }
+            report(a, null, false);
             judgedTo = Math.max(judgedTo, to);
         }
     }
@@ -678,7 +694,51 @@ public final class BusMonitor implements AutoCloseable {
         return to;
     }
 
-    /** Waits until this member's listeners have taken what the bus delivered (a second at most), and takes it. */
+    /**
+     * Before the monitor lets a deadline pass, it asks the adapters as the tester does ({@link TesterSide#probe}, with
+     * a ping every member answers whoever sent it): the members that send the model's outputs (every other member but
+     * the testers when none said it sends one). An answer comes after everything its member sent before it, so an
+     * output stamped before the deadline whose message was held up is then here. Returns what to say with an alarm
+     * about the members that did not answer within {@link #PROBE_TIMEOUT} (stopped, overloaded, or members that do
+     * not answer probes: taps, other producers), or null when all answered.
+     */
+    private String probeAdapters() {
+        Set<String> askedFor = new TreeSet<>();
+        Set<String> others = new TreeSet<>(dtron.getMembers());
+        others.remove(dtron.getMemberId());
+        dtron.getTester().ifPresent(others::remove);
+        others.removeAll(tester.getOtherTesters());
+        tester.getMembersServedChannels().forEach((member, served) -> {
+            if (others.contains(member) && served.sends().stream().anyMatch(c -> positions.containsKey(c)
+                    && !inputNames.contains(c))) {
+                askedFor.add(member);
+            }
+        });
+        Set<String> expected = askedFor.isEmpty() ? others : askedFor;
+        if (expected.isEmpty()) {
+            return null;
+        }
+        Set<String> answered;
+        try {
+            answered = tester.probe(expected, PROBE_TIMEOUT);
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+            return "the monitor was interrupted while it asked the adapters for what they sent before the deadline";
+        }
+        List<String> silent = expected.stream().filter(m -> !answered.contains(m)).toList();
+        if (silent.isEmpty()) {
+            return null;
+        }
+        return "member" + (silent.size() == 1 ? " " : "s ") + String.join(", ", silent) + " did not answer the"
+                + " monitor's probe before the deadline was judged (asked for " + PROBE_TIMEOUT.toMillis() + " ms):"
+                + " stopped, overloaded, or not answering probes; what it sent before the deadline may be missing";
+    }
+
+    /**
+     * Waits until this member's listeners have taken what the bus delivered (a second at most), and takes the events
+     * and acknowledgements among it, in order, up to the first other arrival (a shield's message, a run's start or
+     * stop), which waits until the deadline was judged: it would judge in the middle of this judgement.
+     */
     private void catchUp() {
         try {
             if (!tester.awaitListeners(CATCH_UP_TIMEOUT)) {
@@ -687,7 +747,10 @@ public final class BusMonitor implements AutoCloseable {
         } catch (InterruptedException e) {
             Thread.currentThread().interrupt();
         }
-        drain();
+        for (Object next = arrivals.peek(); !done && next instanceof Arrival a && (a.kind().equals("event")
+                || a.kind().equals(Dtron.ACK.getChannelName())); next = arrivals.peek()) {
+            take((Arrival) arrivals.poll());
+        }
     }
 
     private void observe(Held h) {

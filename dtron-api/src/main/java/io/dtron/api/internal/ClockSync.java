@@ -59,9 +59,11 @@ public final class ClockSync implements AutoCloseable {
          * @param ackedSequence    on a pong the ping's sequence number, else 0
          * @param asInput          on a ping of a {@link #probe}: whether the members are asked to answer it as they
          *                         acknowledge an input (field {@code as_input} of {@code Sync}), else false
+         * @param probe            on a ping of a {@link #probe} but as an input: true, every member answers it whoever
+         *                         sent it (field {@code probe} of {@code Sync}); false on a clock sample's ping
          */
         void publish(String channel, long sequence, long publishTimeNanos, long eventTimeNanos, String ackedSender,
-                long ackedSequence, boolean asInput);
+                long ackedSequence, boolean asInput, boolean probe);
     }
 
     /**
@@ -236,14 +238,15 @@ public final class ClockSync implements AutoCloseable {
     /**
      * Called when a ping arrived: the tester answers it with its clock at {@code receiveTimeNanos}, and a member
      * answers the ping (a {@link #probe}) of its tester, or of another tester of the run ({@code fromPeerTester}),
-     * the same way.
+     * the same way, and a {@code probe} of any other member (a live monitor's) too.
      */
-    public void pingReceived(String from, long sequence, long receiveTimeNanos, boolean fromPeerTester) {
-        if (!answersPingOf(from, fromPeerTester)) {
+    public void pingReceived(String from, long sequence, long receiveTimeNanos, boolean fromPeerTester,
+            boolean probe) {
+        if (!answersPingOf(from, fromPeerTester) && !(probe && !from.equals(me))) {
             return;
         }
         submit(() -> publisher.publish(PONG, nextSequence.getAsLong(), clock.getAsLong(), receiveTimeNanos, from,
-                sequence, false));
+                sequence, false, false));
     }
 
     /**
@@ -322,11 +325,12 @@ public final class ClockSync implements AutoCloseable {
     }
 
     /**
-     * Pings every member and waits until each of {@code expected} answered, or the timeout passed: a member whose
-     * tester this member is answers a ping as the tester answers theirs. Messages are delivered in each member's
-     * order, so an answer also means that everything the member sent before it has arrived. With {@code asInput} the
-     * ping asks the members to answer it as they acknowledge an input (see {@link #probeAnswered}); a member that
-     * does not know how answers with a pong, which counts as well.
+     * Pings every member and waits until each of {@code expected} answered, or the timeout passed: the ping is marked
+     * {@code probe}, which every member answers whoever this member is (a tester, a live monitor). Messages are
+     * delivered in each member's order, so an answer also means that everything the member sent before it has
+     * arrived. With {@code asInput} the ping asks the members to answer it as they acknowledge an input (see {@link
+     * #probeAnswered}), and is not marked: only the members whose tester this member is, or that take it for another
+     * tester of their run, answer it; a member that does not know how answers with a pong, which counts as well.
      *
      * @return the members that answered
      * @throws InterruptedException if the thread was interrupted while waiting
@@ -338,7 +342,7 @@ public final class ClockSync implements AutoCloseable {
         Set<String> answered = new LinkedHashSet<>();
         probes.put(sequence, answered);
         try {
-            publisher.publish(PING, sequence, now, now, "", 0, asInput);
+            publisher.publish(PING, sequence, now, now, "", 0, asInput, !asInput);
             long deadline = System.nanoTime() + timeout.toNanos();
             synchronized (answered) {
                 while (!answered.containsAll(expected)) {
@@ -406,13 +410,13 @@ public final class ClockSync implements AutoCloseable {
             pinging = schedule(() -> ping(generation, count + 1),
                     count + 1 < BURST ? BURST_SPACING_MILLIS : PING_PERIOD_MILLIS);
         }
-        publisher.publish(PING, sequence, sentAt, sentAt, "", 0, false);
+        publisher.publish(PING, sequence, sentAt, sentAt, "", 0, false, false);
     }
 
     private void hello() {
         if (isTester()) {
             long now = clock.getAsLong();
-            publisher.publish(HELLO, nextSequence.getAsLong(), now, now, "", 0, false);
+            publisher.publish(HELLO, nextSequence.getAsLong(), now, now, "", 0, false, false);
         }
     }
 

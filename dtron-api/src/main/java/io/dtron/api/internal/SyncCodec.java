@@ -58,11 +58,13 @@ public final class SyncCodec {
 
     /**
      * Encodes a message of the clock-offset protocol, without variables; {@code asInput} (on a ping) asks the members
-     * to answer it as they acknowledge an input; {@code hostClock} is the sender's {@link HostClock} id, or "".
+     * to answer it as they acknowledge an input, {@code probe} (on a ping) asks every member to answer it, whoever
+     * sent it; {@code hostClock} is the sender's {@link HostClock} id, or "".
      */
-    public static byte[] encodeControl(String channelName, Stamp stamp, boolean asInput, String hostClock) {
-        return builder(channelName, Map.of(), stamp).setAsInput(asInput).setHostClock(hostClock).build()
-                .toByteArray();
+    public static byte[] encodeControl(String channelName, Stamp stamp, boolean asInput, boolean probe,
+            String hostClock) {
+        return builder(channelName, Map.of(), stamp).setAsInput(asInput).setProbe(probe).setHostClock(hostClock)
+                .build().toByteArray();
     }
 
     /**

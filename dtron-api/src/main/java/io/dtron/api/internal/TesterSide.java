@@ -44,10 +44,11 @@ public interface TesterSide {
 
     /**
      * Asks members whether they are there: pings the bus and waits until each of {@code members} answered, or the
-     * timeout passed. A member answers its tester's ping from its own thread, as long as its process runs and reaches
-     * the bus; a member that was killed, stopped or cut off does not. Since every member's messages arrive in the
-     * order it sent them, an answer also means that the messages it sent before have arrived: when this returns,
-     * they have been delivered to this member's listeners.
+     * timeout passed. A member answers this ping (marked {@code probe}) from its own thread whoever sent it, a tester
+     * or a live monitor, as long as its process runs and reaches the bus; a member that was killed, stopped or cut
+     * off does not, nor does one of DTRON before the mark, but for its tester's ping. Since every member's messages
+     * arrive in the order it sent them, an answer also means that the messages it sent before have arrived: when this
+     * returns, they have been delivered to this member's listeners.
      *
      * @return the members of {@code members} that answered
      * @throws InterruptedException if the thread was interrupted while waiting

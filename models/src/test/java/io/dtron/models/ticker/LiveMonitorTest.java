@@ -1,6 +1,7 @@
 package io.dtron.models.ticker;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
+import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import io.dtron.api.Dtron;
@@ -143,7 +144,7 @@ public class LiveMonitorTest {
             Result tester = new Command(run("correct", bus, 100, dir.resolve("correct.jsonl"))).get();
             Result watched = correctMonitor.get();
             if (tester.exit() == 0) {
-                agreesWithAPassedRun(watched.out(), tester.out(), 100, 10_000, watched.shown() + tester.shown());
+                agreesWithAPassedRun(watched.out(), watched.shown() + tester.shown());
             } else if (tester.exit() == 2) {
                 assertEquals(2, watched.exit(), "the run FAILED, yet:\n" + watched.shown() + tester.shown());
             }
@@ -217,8 +218,7 @@ public class LiveMonitorTest {
                 counts.add(violations);
                 perRun.add("run " + ids.get(i) + ": " + violations);
                 if (testers.get(i).exit() == 0) {
-                    agreesWithAPassedRun(out.substring(from, ended.end()), out, testers.get(i).out(), 100, 10_000,
-                            "run " + (i + 1) + " PASSED, yet:\n" + all);
+                    agreesWithAPassedRun(out.substring(from, ended.end()), "run " + (i + 1) + ":\n" + all);
                 } else if (testers.get(i).exit() == 2) {
                     assertEquals(1, violations, "run " + (i + 1) + " FAILED, yet:\n" + all);
                     assertEquals("stopped at the first violation", ended.group(3), all);
@@ -253,44 +253,13 @@ public class LiveMonitorTest {
     }
 
     /**
-     * Asserts that the monitor's {@code output} agrees with a run its tester PASSED ({@code testerOutput}): no
-     * violation after the tester's timeout (the monitor judges up to the tester's end of observation, which the run's
-     * stop carries), and none at all unless an output of the run took longer to arrive, as the tester measured it,
-     * than the widest reorder window the monitor had: before the tester declares a deadline missed, it asks the
-     * adapters whether they are there, and their answers bring what they sent before, while the monitor, a passive
-     * member, declares it when the deadline is a reorder window old.
+     * Asserts that the monitor's lines of a run its tester PASSED agree with it: no violation. Before the monitor lets
+     * a deadline pass, it asks the adapters as the tester does, and their answers bring what they sent before, however
+     * long their messages took; a member that does not answer is given as long as the tester gives it.
      */
-    static void agreesWithAPassedRun(String output, String testerOutput, int timeoutUnits, long unitMicros,
-            String shown) {
-        agreesWithAPassedRun(output, output, testerOutput, timeoutUnits, unitMicros, shown);
-    }
-
-    /** As {@link #agreesWithAPassedRun(String, String, int, long, String)}, for the run's lines of {@code output}. */
-    static void agreesWithAPassedRun(String runLines, String output, String testerOutput, int timeoutUnits,
-            long unitMicros, String shown) {
-        Matcher v = Pattern.compile("(?m)^violation \\d+ at t=(\\d+)\\.(\\d{3}):").matcher(runLines);
-        boolean any = false;
-        while (v.find()) {
-            long micros = Long.parseLong(v.group(1)) * unitMicros + Long.parseLong(v.group(2)) * unitMicros / 1000;
-            assertTrue(micros <= timeoutUnits * unitMicros, "a violation after the tester's end, yet the run PASSED:\n"
-                    + shown);
-            any = true;
-        }
-        if (!any) {
-            return;
-        }
-        long window = 0;
-        Matcher w = Pattern.compile("reorder window (?:auto from|widened to) (\\d+) us").matcher(output);
-        while (w.find()) {
-            window = Math.max(window, Long.parseLong(w.group(1)));
-        }
-        double delayed = 0;
-        Matcher d = Pattern.compile("output \\S+ [\\d.]+ ms to ([\\d.]+) ms").matcher(testerOutput);
-        while (d.find()) {
-            delayed = Math.max(delayed, Double.parseDouble(d.group(1)) * 1000);
-        }
-        assertTrue(delayed > window, "the run PASSED, and no output took longer than the monitor's reorder window of "
-                + window + " us, yet:\n" + shown);
+    static void agreesWithAPassedRun(String runLines, String shown) {
+        assertFalse(Pattern.compile("(?m)^violation \\d+ at").matcher(runLines).find(), "the run PASSED, yet:\n"
+                + shown);
     }
 
     @Test
@@ -315,7 +284,7 @@ public class LiveMonitorTest {
             Result watched = monitor.get();
             String both = watched.shown() + tester.shown();
             if (tester.exit() == 0) {
-                agreesWithAPassedRun(watched.out(), tester.out(), 300, 10_000, both);
+                agreesWithAPassedRun(watched.out(), both);
             } else if (tester.exit() == 2) {
                 assertEquals(2, watched.exit(), "the run FAILED, yet:\n" + both);
                 Matcher m = VIOLATION.matcher(watched.out());
@@ -365,8 +334,7 @@ public class LiveMonitorTest {
                 Result tester = new Command(run("correct", bus, 100, dir.resolve("correct.jsonl"))).get();
                 Result watched = correct.get();
                 if (tester.exit() == 0) {
-                    agreesWithAPassedRun(watched.out(), tester.out(), 100, 10_000, watched.shown()
-                            + tester.shown());
+                    agreesWithAPassedRun(watched.out(), watched.shown() + tester.shown());
                 }
                 Command slowMonitor = monitor(bus);
                 Result slow = new Command(run("slow", bus, 300, dir.resolve("slow.jsonl"))).get();
