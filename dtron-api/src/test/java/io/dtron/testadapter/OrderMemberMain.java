@@ -100,7 +100,9 @@ public final class OrderMemberMain {
                 Files.write(out, received);
             }
             dtron.send(finished.constructValued(Map.of()));
-            boolean allDone = allFinished.await(30, TimeUnit.SECONDS);
+            // the others may take long to catch up (a member that lost its server and reconnected, on a loaded
+            // machine): wait for them as long as the tests wait for the slowest member (150 s)
+            boolean allDone = allFinished.await(150, TimeUnit.SECONDS);
             if (!complete || !allDone) {
                 System.err.println(name + ": received " + received.size() + ", finished " + finishedMembers);
                 System.exit(3);
