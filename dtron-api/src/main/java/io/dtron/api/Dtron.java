@@ -168,6 +168,8 @@ public final class Dtron implements AutoCloseable {
     private final Counters counters = new Counters();
     /** The listeners that may be called on the transport's receiving thread ({@link DtronListener#onReceivingThread}). */
     private final Set<DtronListener> onReceivingThread = ConcurrentHashMap.newKeySet();
+    /** The members that said in the handshake that they hold inputs sent ahead until they are due. */
+    private final Set<String> holdingMembers = ConcurrentHashMap.newKeySet();
     private final AtomicLong sequence = new AtomicLong();
     private final SerialExecutor dispatcher;
     private final Object lock = new Object();
@@ -195,7 +197,21 @@ public final class Dtron implements AutoCloseable {
                     || endEpochNanos < 0) {
                 throw new IllegalArgumentException("not a run start with positive times: " + start);
             }
-            return publish(start, zeroEpochNanos, "", endEpochNanos);
+            return publish(start, zeroEpochNanos, "", endEpochNanos, 0);
+        }
+
+        @Override
+        public IDtronChannelValued sendAhead(IDtronChannelValued input, long dueEpochNanos) {
+            if (dueEpochNanos <= 0 || RESERVED.containsKey(input.getChannelName())) {
+                throw new IllegalArgumentException("not an input of a model channel with a positive due time: "
+                        + input);
+            }
+            return publish(input, 0, "", 0, dueEpochNanos);
+        }
+
+        @Override
+        public boolean holdsInputs(String member) {
+            return holdingMembers.contains(member);
         }
 
         @Override
@@ -568,7 +584,7 @@ public final class Dtron implements AutoCloseable {
         if (!TEXT.contains(Objects.requireNonNull(message, "message").getChannelName())) {
             throw new IllegalArgumentException("channel '" + message.getChannelName() + "' carries no text");
         }
-        return publish(message, 0, text, 0);
+        return publish(message, 0, text, 0, 0);
     }
 
     /**
@@ -784,15 +800,15 @@ public final class Dtron implements AutoCloseable {
 
     /** Publishes a message of a model channel, or RUN_START or RUN_STOP; event time 0 is the publish time. */
     private IDtronChannelValued publish(IDtronChannelValued message, long eventTimeNanos) {
-        return publish(message, eventTimeNanos, "", 0);
+        return publish(message, eventTimeNanos, "", 0, 0);
     }
 
     /**
-     * Publishes a message, with {@code text} on a channel that carries one ("" on others) and the announced end of
-     * the run on a run start (0 on others).
+     * Publishes a message, with {@code text} on a channel that carries one ("" on others), the announced end of
+     * the run on a run start (0 on others) and the due time of an input sent ahead (0 on others).
      */
     private IDtronChannelValued publish(IDtronChannelValued message, long eventTimeNanos, String text,
-            long endTimeNanos) {
+            long endTimeNanos, long dueTimeNanos) {
         Objects.requireNonNull(message, "message");
         requireOpen();
         if (dispatcher.runsInline()) {
@@ -821,7 +837,7 @@ public final class Dtron implements AutoCloseable {
         }
         long now = currentTimeNanos();
         Stamp stamp = stamp(now, eventTimeNanos == 0 ? now : eventTimeNanos, "", 0);
-        byte[] bytes = SyncCodec.encode(name, message.getVariables(), stamp, text, endTimeNanos);
+        byte[] bytes = SyncCodec.encode(name, message.getVariables(), stamp, text, endTimeNanos, dueTimeNanos);
         try {
             transport.publish(name, bytes);
         } catch (IOException e) {
@@ -829,7 +845,7 @@ public final class Dtron implements AutoCloseable {
         }
         counters.published();
         return DtronChannelValued.published(template != null ? template : DtronChannel.copyOf(message.getChannel()),
-                message.getVariables(), stamp, text, endTimeNanos);
+                message.getVariables(), stamp, text, endTimeNanos, dueTimeNanos);
     }
 
     /** Stamps a message this member publishes now, with the next sequence number. */
@@ -1028,11 +1044,18 @@ public final class Dtron implements AutoCloseable {
      * Hands a message to the listeners, in the bus's order; an input (or a probe sent as one) to be acknowledged
      * when they return. Called on the transport's thread: when every listener of the channel may be called there
      * ({@link DtronListener#onReceivingThread}; a probe has none) and nothing is queued for the listeners or being
-     * delivered, they are called at once on this thread, else the message is queued for the listeners' thread.
+     * delivered, they are called at once on this thread, else the message is queued for the listeners' thread. An
+     * input its tester sent ahead ({@link IDtronChannelValued#getDueTimeNanos()}) is handed to them by the run clock's
+     * thread when it is due, the listeners' thread waiting meanwhile.
      */
     private void dispatch(IDtronChannelValued value, boolean acknowledge) {
         Runnable delivery = () -> deliver(value, acknowledge);
-        if (mayRunOnReceivingThread(value)) {
+        long due = acknowledge ? value.getDueTimeNanos() : 0;
+        if (due > 0 || value.getChannel() == WARM_UP) {
+            // an input its tester sent ahead: delivered by the run clock when it is due, what follows behind it (the
+            // warm-up message, due at once, takes this way too, so that a run's first such input does not pay for it)
+            dispatcher.execute(() -> runClock.runAt(due + value.getClockOffsetNanos(), delivery));
+        } else if (mayRunOnReceivingThread(value)) {
             dispatcher.runOrExecute(delivery);
         } else {
             dispatcher.execute(delivery);
@@ -1121,6 +1144,11 @@ public final class Dtron implements AutoCloseable {
             case ChannelHandshake.SERVE -> {
                 if (sync.getTester()) {
                     testersSeen.add(stamp.sender());
+                }
+                if (sync.getHoldsInputs()) {
+                    holdingMembers.add(stamp.sender());
+                } else {
+                    holdingMembers.remove(stamp.sender());
                 }
                 handshake.servedReceived(new ServedChannels(stamp.sender(), Set.copyOf(sync.getReceivesList()),
                         Set.copyOf(sync.getSendsList()), sync.getJoinsRun(), sync.getTester()));

@@ -56,6 +56,14 @@ public interface IDtronChannelValued extends IChannelSkeleton {
     }
 
     /**
+     * Returns, on an input its tester sent ahead of its time, when the input is due on the sender's wall clock, in
+     * nanoseconds since the epoch: a member hands it to its listeners then, not before; 0 on every other message.
+     */
+    default long getDueTimeNanos() {
+        return 0;
+    }
+
+    /**
      * Returns when the event happened on the sender's wall clock, in nanoseconds since the epoch: for an output
      * when the system produced it (see {@link Dtron#send(IDtronChannelValued, long)}), for an acknowledgement
      * ({@link Dtron#ACK}) when the input was applied. Equals {@link #getPublishTimeNanos()} when the sender gave

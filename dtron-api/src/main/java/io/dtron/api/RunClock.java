@@ -53,6 +53,12 @@ public final class RunClock {
      * threads may end milliseconds late when its CPU was idle, a spin of this length does not.
      */
     private static final long SPIN_NANOS = 1_000_000;
+    /** The longest an input sent ahead is held ({@link #runAt}): a tester sends inputs milliseconds ahead. */
+    private static final long MAX_HOLD_NANOS = 1_000_000_000;
+    /** How often a thread waiting in {@link #runAt} looks whether its task was cancelled (the run stopped). */
+    private static final long HOLD_CHECK_NANOS = 10_000_000;
+    /** How far ahead the warm-up ({@link #warmUp}) hands a task to {@link #runAt}. */
+    private static final long RUN_AT_WARM_UP_NANOS = 2_000_000;
 
     private final String member;
     private final LongSupplier wallClock;
@@ -254,8 +260,8 @@ public final class RunClock {
     // ---- called by Dtron
 
     /**
-     * Runs a clock of its own through a run: started, read, tasks scheduled and cancelled, one run on its thread,
-     * stopped and closed. So a fresh process loads and first runs this code when it joins the bus, not at time 0 of
+     * Runs a clock of its own through a run: started, read, tasks scheduled and cancelled, one run on its thread and
+     * one handed to it ({@link #runAt}), stopped and closed. So a fresh process loads and first runs this code when it joins the bus, not at time 0 of
      * its first run, when an adapter may have a few milliseconds to act. Waits at most {@code limit} for the task;
      * touches no other clock.
      */
@@ -269,6 +275,7 @@ public final class RunClock {
             CountDownLatch ran = new CountDownLatch(1);
             clock.scheduleAt(0, ran::countDown);
             ran.await(limit.toNanos(), TimeUnit.NANOSECONDS);
+            clock.runAt(EpochClock.nowNanos() + RUN_AT_WARM_UP_NANOS, () -> { });
             clock.stop();
         } catch (InterruptedException e) {
             Thread.currentThread().interrupt();
@@ -310,6 +317,66 @@ public final class RunClock {
             cancelAll();
         } finally {
             lock.unlock();
+        }
+    }
+
+    /**
+     * Runs {@code task} on the clock's thread when the tester's clock, as estimated here, reads {@code dueEpochNanos}
+     * (the tester's wall clock, in nanoseconds since the epoch) in the current run, and waits until it has run: an
+     * input its tester sent ahead of its time is handed to the listeners then, from the thread that spins the last
+     * millisecond before its tasks (a thread woken from a timed wait may come milliseconds late), while what follows
+     * it waits behind. Runs it at once on the calling thread when the time has passed or no run is under way, and
+     * when the run stops or {@value #MAX_HOLD_NANOS} ns have passed before it ran.
+     */
+    void runAt(long dueEpochNanos, Runnable task) {
+        Run current = run;
+        if (current == null || !current.running() || Thread.currentThread() == thread) {
+            task.run();
+            return;
+        }
+        AtomicBoolean claimed = new AtomicBoolean();
+        CountDownLatch ran = new CountDownLatch(1);
+        Task scheduled = schedule(() -> {
+            if (claimed.compareAndSet(false, true)) {
+                try {
+                    task.run();
+                } finally {
+                    ran.countDown();
+                }
+            }
+        }, current, dueEpochNanos - current.testerTimeZero(), 0);
+        long limit = System.nanoTime() + MAX_HOLD_NANOS;
+        boolean interrupted = false;
+        while (ran.getCount() > 0 && !scheduled.isCancelled() && System.nanoTime() < limit) {
+            try {
+                ran.await(HOLD_CHECK_NANOS, TimeUnit.NANOSECONDS);
+            } catch (InterruptedException e) {
+                interrupted = true;
+                break;
+            }
+        }
+        scheduled.cancel();
+        if (claimed.compareAndSet(false, true)) {
+            task.run(); // the run stopped, or the clock's thread did not come to it in time
+        } else {
+            ranUninterruptibly(ran);
+        }
+        if (interrupted) {
+            Thread.currentThread().interrupt();
+        }
+    }
+
+    private static void ranUninterruptibly(CountDownLatch ran) {
+        boolean interrupted = false;
+        while (ran.getCount() > 0) {
+            try {
+                ran.await();
+            } catch (InterruptedException e) {
+                interrupted = true;
+            }
+        }
+        if (interrupted) {
+            Thread.currentThread().interrupt();
         }
     }
 

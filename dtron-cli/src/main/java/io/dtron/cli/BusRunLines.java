@@ -110,8 +110,10 @@ final class BusRunLines implements BusRunSequence.Steps {
     @Override
     public void warmedUp() {
         say("dtron run: " + lateness.describe(unitMicros) + ", and each input channel's delay to its adapter further"
-                + " inside");
-        lateness.narrowInputWindow(network, testInterface, unitMicros, "--virtual-time", run::inputDelayMicros)
+                + " inside; inputs to adapters that hold them until their time are sent ahead by that much instead,"
+                + " and aimed only as far inside as the adapters' precision");
+        lateness.narrowInputWindow(network, testInterface, unitMicros, "--virtual-time", run::inputDelayMicros,
+                channel -> run.inputLeadMicros(channel) > 0)
                 .ifPresent(warning -> {
                     err.println("dtron run: warning: " + warning);
                     err.flush();

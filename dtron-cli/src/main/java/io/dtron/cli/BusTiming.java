@@ -51,8 +51,9 @@ final class BusTiming {
         }
         return String.format(Locale.ROOT, "dtron run: probed the adapters in %d rounds over %.2f s%s, each probe an"
                 + " input that reaches no listener, %s (the last"
-                + " rounds' round trips up to %s); each input is aimed at least its adapters' round trip inside the end"
-                + " of its window, or the 99th percentile of its channel's delays once inputs are acknowledged",
+                + " rounds' round trips up to %s); each input is sent at least its adapters' round trip ahead of its"
+                + " time when they hold inputs until then, else aimed that far inside the end of its window, or the"
+                + " 99th percentile of its channel's delays once inputs are acknowledged",
                 probing.rounds(), probing.millis() / 1000.0, warmedUp ? " while the engine warmed up" : "",
                 probing.steady() ? "until their round trips were steady" : "until the limit, their round trips still"
                         + " uneven", millis(probing.lastMicros()));

@@ -276,7 +276,8 @@ final class ControlCommand implements Callable<Integer> {
         try (bridge) {
             // the controller's thread wakes up late on a busy machine: commands are aimed that far inside their windows
             SchedulingDelay lateness = SchedulingDelay.measureWarmingUp(network, testInterface);
-            lateness.narrowInputWindow(network, testInterface, unit, "--plant model --virtual-time", channel -> 0)
+            lateness.narrowInputWindow(network, testInterface, unit, "--plant model --virtual-time", channel -> 0,
+                    channel -> false)
                     .ifPresent(warning -> err.println("dtron control: warning: " + warning.replace("(INCONCLUSIVE,"
                             + " input executed too late)", "(the controller then stops: the command's window had"
                             + " closed)")));

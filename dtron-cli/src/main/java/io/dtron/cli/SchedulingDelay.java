@@ -11,6 +11,7 @@ import java.util.List;
 import java.util.Locale;
 import java.util.Optional;
 import java.util.function.Consumer;
+import java.util.function.Predicate;
 import java.util.function.ToLongFunction;
 
 /**
@@ -57,7 +58,7 @@ record SchedulingDelay(long worstMicros, long marginMicros) {
         if (said != null) {
             said.accept("dtron " + command + ": " + delay.describe(unitMicros));
         }
-        delay.narrowInputWindow(network, testInterface, unitMicros, virtualTimeOption, channel -> 0)
+        delay.narrowInputWindow(network, testInterface, unitMicros, virtualTimeOption, channel -> 0, channel -> false)
                 .ifPresent(warning -> {
                     err.println("dtron " + command + ": warning: " + warning);
                     err.flush();
@@ -82,21 +83,25 @@ record SchedulingDelay(long worstMicros, long marginMicros) {
      * A warning when an input channel's narrowest window ({@link ObservableWindow#narrowest}) at {@code unitMicros} per
      * time unit is narrower than the room its inputs need: this margin plus {@code inputDelayMicros} of the channel
      * (its way to the system, by name; 0 in the tester's process). Inputs in such a window are aimed at its start and
-     * may still come late. Names each such channel with its figures. {@code virtualTimeOption} is the option that
-     * runs in virtual time instead.
+     * may still come late. An input sent ahead of its time ({@code sentAhead}, its adapter holding it until then)
+     * needs only its channel's {@code inputDelayMicros}: how exactly the adapter applies it at its time. Names each
+     * such channel with its figures. {@code virtualTimeOption} is the option that runs in virtual time instead.
      */
     Optional<String> narrowInputWindow(Network network, TestInterface testInterface, long unitMicros,
-            String virtualTimeOption, ToLongFunction<String> inputDelayMicros) {
+            String virtualTimeOption, ToLongFunction<String> inputDelayMicros, Predicate<String> sentAhead) {
         List<String> narrow = new ArrayList<>();
         for (TestInterface.ObservableChannel input : testInterface.inputs()) {
             TestInterface one = new TestInterface(List.of(input), List.of(), testInterface.timeUnitMicros(),
                     testInterface.timeout());
             long delay = Math.max(0, inputDelayMicros.applyAsLong(input.name()));
-            long room = marginMicros + delay;
+            boolean ahead = sentAhead.test(input.name());
+            long room = ahead ? delay : marginMicros + delay;
             ObservableWindow.narrowest(network, one).filter(w -> w.width() * unitMicros < room).ifPresent(w ->
                     narrow.add("the window of input " + w + " is " + w.width() + " time units of " + unitMicros
                             + " us, narrower than the " + (delay == 0 ? "margin of " + room + " us that inputs need"
-                            + " here" : "room of " + room + " us that its inputs need here (a margin of "
+                            + " here" : ahead ? "room of " + room + " us that its inputs need here (sent ahead of their"
+                            + " time, for how exactly the adapter applies them then)" : "room of " + room
+                            + " us that its inputs need here (a margin of "
                             + marginMicros + " us for the tester's lateness and " + delay + " us for their way to"
                             + " the adapter)") + (w.width() == 0 ? "" : "; a time unit of at least "
                             + ceilDiv(room, w.width()) + " us leaves room")));

@@ -30,8 +30,9 @@ class BusTimingTest {
     void theProbesBeforeTheRunSayHowManyRoundsAndWhyTheyStopped() {
         assertEquals("dtron run: probed the adapters in 14 rounds over 0.45 s while the engine warmed up, each probe an"
                 + " input that reaches no listener, until their round trips were steady (the last rounds' round trips"
-                + " up to 0.812 ms); each input is aimed at least its adapters' round trip inside the end of its"
-                + " window, or the 99th percentile of its channel's delays once inputs are acknowledged",
+                + " up to 0.812 ms); each input is sent at least its adapters' round trip ahead of its time when they"
+                + " hold inputs until then, else aimed that far inside the end of its window, or the 99th percentile"
+                + " of its channel's delays once inputs are acknowledged",
                 BusTiming.probingLine(new BusRun.Probing(14, true, 812, 450), true));
         assertTrue(BusTiming.probingLine(new BusRun.Probing(120, false, 31_000, 3_010), false).startsWith(
                 "dtron run: probed the adapters in 120 rounds over 3.01 s, each probe an input that reaches no"

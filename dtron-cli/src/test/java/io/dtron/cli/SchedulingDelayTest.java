@@ -31,10 +31,10 @@ class SchedulingDelayTest {
         TestInterface ti = TestInterface.fromFile(lightContr, TRON.resolve("LightContr.trn"));
         // LightContr's narrowest input window is tens of units wide: ample at 1 ms per unit with a 2 ms margin
         assertEquals(Optional.empty(), SchedulingDelay.of(1000).narrowInputWindow(lightContr, ti, 1000, "--virtual-time",
-                c -> 0));
+                c -> 0, c -> false));
         // a loaded machine that wakes the tester up to a second late needs windows of 2 s
-        String warning = SchedulingDelay.of(1_000_000).narrowInputWindow(lightContr, ti, 1000, "--virtual-time", c -> 0)
-                .orElseThrow();
+        String warning = SchedulingDelay.of(1_000_000).narrowInputWindow(lightContr, ti, 1000, "--virtual-time", c -> 0,
+                c -> false).orElseThrow();
         assertTrue(warning.startsWith("the window of input "), warning);
         assertTrue(warning.contains("narrower than the margin of 2000000 us that inputs need here; a time unit of at"
                 + " least "), warning);
@@ -42,10 +42,18 @@ class SchedulingDelayTest {
                 + " (INCONCLUSIVE, input executed too late)"), warning);
         // on a bus, the way of the inputs to their adapter adds to the room, per channel
         String bus = SchedulingDelay.of(1000).narrowInputWindow(lightContr, ti, 1000, "--virtual-time",
-                c -> c.equals("grasp") ? 150_000 : 0).orElseThrow();
+                c -> c.equals("grasp") ? 150_000 : 0, c -> false).orElseThrow();
         assertTrue(bus.startsWith("the window of input grasp in "), bus);
         assertTrue(bus.contains(" is 100 time units of 1000 us, narrower than the room of 152000 us that its inputs"
                 + " need here (a margin of 2000 us for the tester's lateness and 150000 us for their way to the adapter); a"
                 + " time unit of at least 1520 us leaves room: inputs"), bus);
+        // sent ahead of its time, an input needs only its adapter's precision: not the tester's lateness
+        assertEquals(Optional.empty(), SchedulingDelay.of(1_000_000).narrowInputWindow(lightContr, ti, 1000,
+                "--virtual-time", c -> 300, c -> true));
+        String ahead = SchedulingDelay.of(1000).narrowInputWindow(lightContr, ti, 1000, "--virtual-time",
+                c -> c.equals("grasp") ? 150_000 : 0, c -> c.equals("grasp")).orElseThrow();
+        assertTrue(ahead.contains(" narrower than the room of 150000 us that its inputs need here (sent ahead of"
+                + " their time, for how exactly the adapter applies them then); a time unit of at least 1500 us"
+                + " leaves room"), ahead);
     }
 }

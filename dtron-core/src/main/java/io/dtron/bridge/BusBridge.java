@@ -58,6 +58,18 @@ public final class BusBridge implements Adapter, AutoCloseable {
         run.publishInput(input);
     }
 
+    /** See {@link BusRun#publishInput(Event, long)}. */
+    @Override
+    public void perform(Event input, long dueMicros) {
+        run.publishInput(input, dueMicros);
+    }
+
+    /** See {@link BusRun#inputLeadMicros(String)}. */
+    @Override
+    public long inputLeadMicros(String channel) {
+        return run.inputLeadMicros(channel);
+    }
+
     /** See {@link BusRun#unreachable()}. */
     @Override
     public Optional<String> unreachable() {

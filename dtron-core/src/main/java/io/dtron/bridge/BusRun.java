@@ -143,6 +143,8 @@ public final class BusRun implements AutoCloseable {
     private final AdapterProbes probes;
     /** When each input of the run was published, on the run's clock in microseconds, by its number. */
     private final Map<Long, Long> inputSentMicros = new ConcurrentHashMap<>();
+    /** When each input published ahead of its time is due, by the engine's number. */
+    private final Map<Long, Long> inputDueMicros = new ConcurrentHashMap<>();
     /** Inputs of other testers of the run, observed as outputs, until their acknowledgements say when they happened. */
     private final Map<String, IDtronChannelValued> heldPeerInputs = new ConcurrentHashMap<>();
     /** The testers of a run of several: ready to join, joined, the leader, their verdicts. */
@@ -585,6 +587,17 @@ public final class BusRun implements AutoCloseable {
     }
 
     /**
+     * How far ahead of its time an input on {@code channel} is published ({@link #publishInput(Event, long)}): when
+     * every adapter that receives it holds inputs until they are due (every member of DTRON's Java API does), the
+     * way such an input takes, measured as for {@link #inputDelayMicros} of inputs sent at their time, which then
+     * says only how late after its due time one was applied; 0 when some receiver applies inputs on arrival (the
+     * Python and C clients, TRON's adapters behind a bridge).
+     */
+    public long inputLeadMicros(String channel) {
+        return probes.inputLeadMicros(channel);
+    }
+
+    /**
      * Sets the reorder window the next run starts with, in microseconds, and whether the run widens it when a
      * message of the run takes more than half of it (to twice that message's delay, rounded up to a millisecond):
      * {@code --delta auto}. A fixed window ({@code auto} false) stays as the user set it.
@@ -661,6 +674,7 @@ public final class BusRun implements AutoCloseable {
         runDelays.clear();
         acknowledging = inputsReceivedByHandshakeMembers();
         inputSentMicros.clear();
+        inputDueMicros.clear();
         heldPeerInputs.clear();
         window.newRun();
         runTesters.runStarts();
@@ -786,18 +800,35 @@ public final class BusRun implements AutoCloseable {
      * @throws IllegalArgumentException if the event is not an input of the interface
      */
     public void publishInput(Event input) {
+        publishInput(input, -1);
+    }
+
+    /**
+     * Publishes an input of the model ahead of its time, due at {@code dueMicros} on the run's clock: the adapters
+     * that receive it hold it until then ({@link #inputLeadMicros}); a negative time publishes it as {@link
+     * #publishInput(Event)} does.
+     *
+     * @throws IllegalArgumentException if the event is not an input of the interface
+     */
+    public void publishInput(Event input, long dueMicros) {
         IDtronChannel channel = inputs.get(input.channel());
         if (channel == null) {
             throw new IllegalArgumentException("'" + input.channel() + "' is not an input of the interface");
         }
         // the lock holds an acknowledgement that comes back before its input's number is known
         synchronized (inputNumbers) {
-            IDtronChannelValued sent = publish(channel.constructValued(input.values()), "input " + input);
+            IDtronChannelValued value = channel.constructValued(input.values());
+            IDtronChannelValued sent = dueMicros < 0 ? publish(value, "input " + input)
+                    : publishAhead(value, timeline.zeroEpochNanos() + Math.multiplyExact(dueMicros, 1000L),
+                    "input " + input);
             performed++;
             if (sent != null) {
                 inputNumbers.put(sent.getSequence(), performed);
                 inputChannels.put(performed, input.channel());
                 inputSentMicros.put(performed, timeline.publishedMicros(sent));
+                if (dueMicros >= 0) {
+                    inputDueMicros.put(performed, dueMicros);
+                }
             }
         }
     }
@@ -916,10 +947,23 @@ public final class BusRun implements AutoCloseable {
         try {
             return dtron.send(message);
         } catch (DtronException | IllegalStateException e) {
-            LOG.warn("Cannot publish {}: {}", what, e.getMessage());
-            context.inconclusive("cannot publish " + what + " on the bus: " + e.getMessage());
-            return null;
+            return cannotPublish(what, e);
         }
+    }
+
+    private IDtronChannelValued publishAhead(IDtronChannelValued message, long dueEpochNanos, String what) {
+        try {
+            return tester.sendAhead(message, dueEpochNanos);
+        } catch (DtronException | IllegalStateException e) {
+            return cannotPublish(what, e);
+        }
+    }
+
+    /** The bus did not take a message: the run ends INCONCLUSIVE saying so. */
+    private IDtronChannelValued cannotPublish(String what, RuntimeException e) {
+        LOG.warn("Cannot publish {}: {}", what, e.getMessage());
+        context.inconclusive("cannot publish " + what + " on the bus: " + e.getMessage());
+        return null;
     }
 
     /**
@@ -981,9 +1025,14 @@ public final class BusRun implements AutoCloseable {
             long applied = timeline.eventMicros(ack);
             String channel = inputChannels.getOrDefault(number, "?");
             Long sent = inputSentMicros.remove(number);
+            Long due = inputDueMicros.remove(number);
             if (sent != null) {
                 measured("input", channel, applied - sent);
-                inputDelays.applied(channel, applied - sent, RunTimeline.errorMicros(ack));
+                if (due != null) {
+                    inputDelays.appliedAhead(channel, sent, due, applied, RunTimeline.errorMicros(ack));
+                } else {
+                    inputDelays.applied(channel, applied - sent, RunTimeline.errorMicros(ack));
+                }
             }
             arrived(ack, "acknowledgement of " + channel, applied);
             context.inputApplied(number, applied, RunTimeline.errorMicros(ack));

@@ -56,6 +56,27 @@ public interface Adapter {
         return 0;
     }
 
+    /**
+     * Returns how long before its time an input on {@code channel} may be performed with {@link #perform(Event,
+     * long)}, in microseconds: the adapter hands it to the system under test at that time, not before, so that the
+     * input's way to the system is taken before its time instead of after it. The tester then performs such an input
+     * this much ahead (and aims it only {@link #inputDelayMicros} inside the end of its window, for how exactly the
+     * adapter keeps the time). Asked before every input; must return at once. 0 by default: inputs are performed at
+     * their time.
+     */
+    default long inputLeadMicros(String channel) {
+        return 0;
+    }
+
+    /**
+     * Applies an input at run time {@code dueMicros}, which may lie up to {@link #inputLeadMicros} ahead: the
+     * adapter holds it until then (or applies it on arrival when that is later). By default {@link #perform(Event)}
+     * at once, for adapters whose lead is 0.
+     */
+    default void perform(Event input, long dueMicros) {
+        perform(input);
+    }
+
     /** Called once at the end of the run (the verdict is known). */
     default void stop() {
     }

@@ -366,6 +366,8 @@ public final class OnlineTester {
         long micros;
         /** The event happened within this many microseconds of {@link #micros}: the clocks' error bound. */
         long uncertainty;
+        /** For an input: whether the tester performed it ahead of its time, for its adapter to hold until then. */
+        boolean ahead;
         /** For an input: whether its adapter acknowledged it. */
         boolean acknowledged;
         /**
@@ -377,6 +379,11 @@ public final class OnlineTester {
         long afterMicros;
         /** What the event took, once judged allowed; null before, or when a verdict came at or before it. */
         Recorder.Step taken;
+
+        /** How an explanation says when the input left: "sent", or "due" for one performed ahead of its time. */
+        String sentOrDue() {
+            return ahead ? "due" : "sent";
+        }
 
         Pending(Event event, boolean input, long ordinal, long micros) {
             this.event = event;
@@ -520,9 +527,9 @@ public final class OnlineTester {
                         // the verdict depends on where that input was applied, which its acknowledgement will say
                         until = held.finalMicros() + ACK_PATIENCE * window();
                         if (now >= until) {
-                            return result(Verdict.INCONCLUSIVE, "input " + unacknowledged.event + " was sent at "
-                                    + time(unacknowledged.sentMicros) + ", but the acknowledgement of when it was"
-                                    + " applied had not come by " + time(now) + ", and the verdict depends on it: "
+                            return result(Verdict.INCONCLUSIVE, "input " + unacknowledged.event + " was "
+                                    + unacknowledged.sentOrDue() + " at " + time(unacknowledged.sentMicros)
+                                    + ", but the acknowledgement of when it was applied had not come by " + time(now) + ", and the verdict depends on it: "
                                     + held.result().verdict() + " if it was applied then (" + held.result()
                                     .explanation() + ")");
                         }
@@ -534,6 +541,14 @@ public final class OnlineTester {
                     continue;
                 }
                 commit(now - window());
+                if (lastMicros > now) {
+                    // an input performed ahead is due later: the tester takes up the run at its time
+                    TestResult verdict = receive(clock.awaitUntil(lastMicros));
+                    if (verdict != null) {
+                        return verdict;
+                    }
+                    continue;
+                }
                 if (until != null && stoppedBy == null && now < timeoutMicros) {
                     stoppedBy = until.met(stopContext(now));
                     if (stoppedBy != null) {
@@ -574,17 +589,20 @@ public final class OnlineTester {
                 }
                 Plan plan = plan();
                 long elapsed = ticks.floor(now - lastMicros);
-                // room before a window's end: for the tester's own lateness, and for the input's way to the system
+                // room before a window's end: for the tester's own lateness (unless the input is sent ahead of its
+                // time by that much more), and for the input's way to the system
                 long lateness = Math.max(inputMargin, ticks.ceil(2 * clock.worstLatenessMicros()));
                 Plan.Choice choice = plan.choose(elapsed, random, options.delayPolicy(),
                         options.delayBound() * ticksPerUnit, options.shortDelayBound() * ticksPerUnit,
-                        input -> lateness + ticks.ceil(Math.max(0, adapter.inputDelayMicros(input.name()))),
+                        input -> (sentAhead(input.name()) ? 0 : lateness) + ticks.ceil(roomMicros(input.name())),
                         earliestInput(), steerer == null ? null : steerer.scorer());
                 long at = lastMicros + ticks.micros(choice.ticks());
                 // a deadline within the test is declared missed only when the outputs stamped before it had the
                 // reorder window to arrive
                 boolean deadline = !choice.isInput() && choice.ticks() > plan.deadline() && deadlineBeforeTheEnd(plan);
-                long target = choice.isInput() ? at : deadline ? at + window() : Math.min(timeoutMicros, at);
+                // an input the adapter holds until its time is performed ahead by the way it takes to the system
+                long ahead = choice.isInput() ? leadMicros(choice.input().name(), at, now, ticks.micros(lateness)) : 0;
+                long target = choice.isInput() ? at - ahead : deadline ? at + window() : Math.min(timeoutMicros, at);
                 long wake = stopWake(now);
                 if (wake < target) {
                     // a time(T) of the stop condition comes first: look at it then, and plan again
@@ -603,7 +621,8 @@ public final class OnlineTester {
                     }
                 } else if (choice.isInput()) {
                     RunClock.TimedEvent earlier = clock.drain();
-                    TestResult verdict = earlier != null ? receive(earlier) : apply(choice, plan);
+                    TestResult verdict = earlier != null ? receive(earlier)
+                            : apply(choice, plan, ahead > 0 ? at : -1);
                     if (verdict != null) {
                         return verdict;
                     }
@@ -646,6 +665,36 @@ public final class OnlineTester {
                             + whyTimePassed(choice) : "") + ". " + plan.explainOutputs(this::time, lastMicros));
                 }
             }
+        }
+
+        /**
+         * Whether inputs on {@code channel} are performed ahead of their time: the adapter holds them until then
+         * ({@link Adapter#inputLeadMicros}), and the run has a reorder window, which alone lets the tester place an
+         * output that comes before an input it performed ahead.
+         */
+        private boolean sentAhead(String channel) {
+            return window() > 0 && adapter.inputLeadMicros(channel) > 0;
+        }
+
+        /**
+         * How far ahead of its time {@code at} an input on {@code channel} is performed: the adapter's lead ({@link
+         * Adapter#inputLeadMicros}) and the tester's own {@code latenessMicros} in waking up, at most up to {@code
+         * now}; 0 when inputs on the channel are not sent ahead ({@link #sentAhead}).
+         */
+        private long leadMicros(String channel, long at, long now, long latenessMicros) {
+            if (!sentAhead(channel)) {
+                return 0;
+            }
+            return Math.max(0, Math.min(at - now, adapter.inputLeadMicros(channel) + latenessMicros));
+        }
+
+        /**
+         * The room an input on {@code channel} needs before its window's end for its way to the system: the adapter's
+         * {@link Adapter#inputDelayMicros}, and its lead as well when inputs are not sent ahead ({@link #leadMicros}).
+         */
+        private long roomMicros(String channel) {
+            long room = Math.max(0, adapter.inputDelayMicros(channel));
+            return window() == 0 ? room + Math.max(0, adapter.inputLeadMicros(channel)) : room;
         }
 
         /** The steerer's verdict on the goals at {@code now} (reached, or no longer reachable), or null. */
@@ -881,7 +930,8 @@ public final class OnlineTester {
                 acknowledgements++;
             }
             if (input != null && micros - input.sentMicros > window()) {
-                return result(Verdict.INCONCLUSIVE, "input " + input.event + ", sent at " + time(input.sentMicros)
+                return result(Verdict.INCONCLUSIVE, "input " + input.event + ", " + input.sentOrDue() + " at "
+                        + time(input.sentMicros)
                         + ", was applied at " + time(micros) + ", " + Plan.units(micros - input.sentMicros, unit)
                         + " time units later: more than the reorder window of " + Plan.units(window(), unit) + " time"
                         + " units, after the tester had committed to it");
@@ -938,7 +988,8 @@ public final class OnlineTester {
             if (atTime.isEmpty()) {
                 Pending late = inputAppliedAfter(at);
                 if (late != null) {
-                    return result(Verdict.INCONCLUSIVE, "input " + late.event + ", sent at " + time(late.sentMicros)
+                    return result(Verdict.INCONCLUSIVE, "input " + late.event + ", " + late.sentOrDue() + " at "
+                            + time(late.sentMicros)
                             + ", was applied at " + time(late.micros) + ", after output " + event + " happened at "
                             + time(at) + ": the model cannot let that much time pass before the input (input"
                             + " executed too late)");
@@ -1101,7 +1152,8 @@ public final class OnlineTester {
                 }
             }
             if (next.isEmpty()) {
-                String late = p.micros > p.sentMicros ? " It was sent at " + time(p.sentMicros) + " and applied "
+                String late = p.micros > p.sentMicros ? " It was " + p.sentOrDue() + " at " + time(p.sentMicros)
+                        + " and applied "
                         + Plan.units(p.micros - p.sentMicros, unit) + " time units later." : "";
                 return result(Verdict.INCONCLUSIVE, "input " + p.event + " was executed at " + time(p.micros)
                         + ", when the environment no longer allowed it, after the events that happened before it"
@@ -1119,11 +1171,17 @@ public final class OnlineTester {
             return null;
         }
 
-        private TestResult apply(Plan.Choice choice, Plan plan) {
-            long now = clock.quietNow();
-            if (now < 0) {
+        /**
+         * Applies the chosen input now, or, when {@code dueMicros} is not negative, performs it now for that later
+         * time ({@link Adapter#perform(Event, long)}) and places it there.
+         */
+        private TestResult apply(Plan.Choice choice, Plan plan, long dueMicros) {
+            long quiet = clock.quietNow();
+            if (quiet < 0) {
                 return null; // an output came in after the drain: the loop observes it, then plans again
             }
+            boolean ahead = dueMicros > quiet;
+            long now = ahead ? dueMicros : quiet;
             long delta = ticks.floor(now - lastMicros);
             TestInterface.ObservableChannel channel = choice.input();
             coverage.begin();
@@ -1138,7 +1196,11 @@ public final class OnlineTester {
             Map<String, Integer> values = valuesOf(channel, chosen.state());
             Event event = new Event(channel.name(), values);
             // published first, the bookkeeping after: the input's way to the system starts at its time
-            adapter.perform(event);
+            if (ahead) {
+                adapter.perform(event, now);
+            } else {
+                adapter.perform(event);
+            }
             List<io.dtron.engine.internal.sem.SymState> next = new ArrayList<>();
             List<StateSet.Successor> taken = new ArrayList<>();
             for (StateSet.Successor s : moves) {
@@ -1155,6 +1217,7 @@ public final class OnlineTester {
             lastMicros = now;
             lastTaken = null;
             Pending p = new Pending(event, true, ++performed, now);
+            p.ahead = ahead;
             p.after = set;
             p.afterMicros = now;
             p.taken = step;

@@ -485,4 +485,97 @@ class OnlineTesterTest {
                 + " executed too late). The model allowed these inputs: go between t=10.000 and t=20.000"),
                 r.explanation());
     }
+
+    @Test
+    void anInputToAnAdapterThatHoldsItIsPerformedAheadAndPlacedAtItsTime() throws Exception {
+        // the adapter holds go until its time (a lead of 4 units), applies it then and answers done a unit later
+        Network n = ModelLoader.load("go.xta", GO);
+        List<long[]> performed = new ArrayList<>();
+        List<Long> applied = new ArrayList<>();
+        Adapter holding = new Adapter() {
+            private AdapterContext context;
+            private long ordinal;
+
+            @Override
+            public void start(AdapterContext context) {
+                this.context = context;
+            }
+
+            @Override
+            public void perform(Event input) {
+                throw new AssertionError("go is performed ahead of its time, never at it");
+            }
+
+            @Override
+            public void perform(Event input, long dueMicros) {
+                long number = ++ordinal;
+                performed.add(new long[] {context.clock().nowMicros(), dueMicros});
+                context.clock().schedule(dueMicros - context.clock().nowMicros(), () -> {
+                    context.inputApplied(number, dueMicros);
+                    context.clock().schedule(context.timeUnitMicros(), () -> context.report(Event.of("done")));
+                });
+            }
+
+            @Override
+            public long inputLeadMicros(String channel) {
+                return 4 * context.timeUnitMicros();
+            }
+
+            @Override
+            public boolean acknowledgesInputs() {
+                return true;
+            }
+        };
+        TestResult r = new OnlineTester(n, TestInterface.fromNames(n), holding, TestOptions.defaults(5)
+                .withTimeout(200).withReorderWindow(2_000)).addListener(new TestListener() {
+                    @Override
+                    public void inputApplied(Event input, long micros) {
+                        applied.add(micros);
+                    }
+                }).run();
+        assertEquals(Verdict.PASSED, r.verdict(), r.explanation());
+        assertTrue(performed.size() >= 2, r.explanation());
+        for (int i = 0; i < performed.size(); i++) {
+            long at = performed.get(i)[0];
+            long due = performed.get(i)[1];
+            // performed 4 units ahead (or at once, when the window opens sooner), placed at its time
+            assertTrue(due > at && due - at <= 4_000, "performed at " + at + ", due at " + due);
+            assertEquals(due, applied.get(i));
+        }
+        // each due inside its window: 10 to 20 units after the last done (after time 0 for the first)
+        assertTrue(performed.get(0)[1] >= 10_000 && performed.get(0)[1] <= 20_000, "first due " + performed.get(0)[1]);
+    }
+
+    @Test
+    void withoutAReorderWindowNoInputIsPerformedAhead() throws Exception {
+        // an output stamped before an input performed ahead could not be placed before it: inputs go at their time
+        Network n = ModelLoader.load("go.xta", GO);
+        Adapter holding = new Adapter() {
+            private AdapterContext context;
+
+            @Override
+            public void start(AdapterContext context) {
+                this.context = context;
+            }
+
+            @Override
+            public void perform(Event input) {
+                context.clock().schedule(context.timeUnitMicros(), () -> context.report(Event.of("done")));
+            }
+
+            @Override
+            public void perform(Event input, long dueMicros) {
+                throw new AssertionError("performed ahead without a reorder window");
+            }
+
+            @Override
+            public long inputLeadMicros(String channel) {
+                return 4 * context.timeUnitMicros();
+            }
+        };
+        TestResult r = new OnlineTester(n, TestInterface.fromNames(n), holding,
+                TestOptions.defaults(5).withTimeout(100)).run();
+        assertEquals(Verdict.PASSED, r.verdict(), r.explanation());
+        assertTrue(r.inputs() >= 2, r.explanation());
+    }
 }

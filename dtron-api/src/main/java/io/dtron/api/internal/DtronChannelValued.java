@@ -16,36 +16,39 @@ public final class DtronChannelValued implements IDtronChannelValued {
     private final String text;
     /** On a tester's run start, the announced end of the run (see {@link #getEndTimeNanos()}); else 0. */
     private final long endTimeNanos;
+    /** On an input the tester sent ahead, when it is due (see {@link #getDueTimeNanos()}); else 0. */
+    private final long dueTimeNanos;
 
     DtronChannelValued(DtronChannel channel, Map<String, Integer> variables, Stamp stamp, long receiveTimeNanos) {
-        this(channel, variables, stamp, receiveTimeNanos, "", 0);
+        this(channel, variables, stamp, receiveTimeNanos, "", 0, 0);
     }
 
     DtronChannelValued(DtronChannel channel, Map<String, Integer> variables, Stamp stamp, long receiveTimeNanos,
-            String text, long endTimeNanos) {
+            String text, long endTimeNanos, long dueTimeNanos) {
         this.channel = channel;
         this.variables = Collections.unmodifiableMap(new LinkedHashMap<>(variables));
         this.stamp = Objects.requireNonNull(stamp, "stamp");
         this.receiveTimeNanos = receiveTimeNanos;
         this.text = Objects.requireNonNull(text, "text");
         this.endTimeNanos = endTimeNanos;
+        this.dueTimeNanos = dueTimeNanos;
     }
 
     /** Returns a message as this member published it: stamped, not received (receive time 0). */
     public static DtronChannelValued published(DtronChannel channel, Map<String, Integer> variables, Stamp stamp) {
-        return published(channel, variables, stamp, "", 0);
+        return published(channel, variables, stamp, "", 0, 0);
     }
 
     /**
-     * Returns a message with a {@code text} (or "") and, on a run start, the announced end of the run (or 0), as this
-     * member published it.
+     * Returns a message with a {@code text} (or ""), on a run start the announced end of the run (or 0), and on an
+     * input sent ahead its due time (or 0), as this member published it.
      */
     public static DtronChannelValued published(DtronChannel channel, Map<String, Integer> variables, Stamp stamp,
-            String text, long endTimeNanos) {
+            String text, long endTimeNanos, long dueTimeNanos) {
         Map<String, Integer> ordered = new LinkedHashMap<>();
         channel.getVariableNames().forEach(name -> ordered.put(name, variables.get(name)));
         variables.forEach(ordered::putIfAbsent);
-        return new DtronChannelValued(channel, ordered, stamp, 0, text, endTimeNanos);
+        return new DtronChannelValued(channel, ordered, stamp, 0, text, endTimeNanos, dueTimeNanos);
     }
 
     @Override
@@ -56,6 +59,11 @@ public final class DtronChannelValued implements IDtronChannelValued {
     @Override
     public long getEndTimeNanos() {
         return endTimeNanos;
+    }
+
+    @Override
+    public long getDueTimeNanos() {
+        return dueTimeNanos;
     }
 
     /** Returns what the message carries besides its channel and variables, as on the wire. */
@@ -130,7 +138,7 @@ public final class DtronChannelValued implements IDtronChannelValued {
 
     @Override
     public byte[] toByteArray() {
-        return SyncCodec.encode(getChannelName(), variables, stamp, text, endTimeNanos);
+        return SyncCodec.encode(getChannelName(), variables, stamp, text, endTimeNanos, dueTimeNanos);
     }
 
     @Override
@@ -141,12 +149,13 @@ public final class DtronChannelValued implements IDtronChannelValued {
                 && stamp.equals(other.stamp)
                 && receiveTimeNanos == other.receiveTimeNanos
                 && text.equals(other.text)
-                && endTimeNanos == other.endTimeNanos;
+                && endTimeNanos == other.endTimeNanos
+                && dueTimeNanos == other.dueTimeNanos;
     }
 
     @Override
     public int hashCode() {
-        return Objects.hash(channel, variables, stamp, receiveTimeNanos, text, endTimeNanos);
+        return Objects.hash(channel, variables, stamp, receiveTimeNanos, text, endTimeNanos, dueTimeNanos);
     }
 
     @Override

@@ -30,12 +30,14 @@ public final class SyncCodec {
     }
 
     /**
-     * Encodes a message with a text (field 18, on DTRON's channels that carry one; "" writes none) and the announced
-     * end of a run (field 19, on a tester's run start; 0 writes none).
+     * Encodes a message with a text (field 18, on DTRON's channels that carry one; "" writes none), the announced
+     * end of a run (field 19, on a tester's run start; 0 writes none) and the due time of an input sent ahead (field
+     * 22; 0 writes none).
      */
     public static byte[] encode(String channelName, Map<String, Integer> variables, Stamp stamp, String text,
-            long endTimeNanos) {
-        return builder(channelName, variables, stamp).setText(text).setEndTimeNs(endTimeNanos).build().toByteArray();
+            long endTimeNanos, long dueTimeNanos) {
+        return builder(channelName, variables, stamp).setText(text).setEndTimeNs(endTimeNanos)
+                .setDueTimeNs(dueTimeNanos).build().toByteArray();
     }
 
     private static Sync.Builder builder(String channelName, Map<String, Integer> variables, Stamp stamp) {
@@ -69,12 +71,13 @@ public final class SyncCodec {
 
     /**
      * Encodes a {@code dtron_serve} message of the channel-serving handshake: no variables, the channels the sender
-     * receives and sends.
+     * receives and sends, and that it holds inputs sent ahead until they are due (field 21), as every member of this
+     * API does.
      */
     public static byte[] encodeServed(String channelName, Stamp stamp, Collection<String> receives,
             Collection<String> sends, boolean joinsRun, boolean tester) {
         return builder(channelName, Map.of(), stamp).addAllReceives(receives).addAllSends(sends).setJoinsRun(joinsRun)
-                .setTester(tester).build().toByteArray();
+                .setTester(tester).setHoldsInputs(true).build().toByteArray();
     }
 
     /** Returns the stamp a parsed message carries, with {@code transportSender} when it names no sender. */
@@ -144,6 +147,6 @@ public final class SyncCodec {
         Map<String, Integer> ordered = new LinkedHashMap<>();
         template.getVariableNames().forEach(name -> ordered.put(name, values.get(name)));
         return new DtronChannelValued(template, ordered, stamp(sync, transportSender), receiveTimeNanos,
-                sync.getText(), sync.getEndTimeNs());
+                sync.getText(), sync.getEndTimeNs(), sync.getDueTimeNs());
     }
 }

@@ -43,6 +43,23 @@ public interface TesterSide {
     IDtronChannelValued sendRunStart(IDtronChannelValued start, long zeroEpochNanos, long endEpochNanos);
 
     /**
+     * Publishes an input ahead of its time, with the time it is due on this member's wall clock in nanoseconds since
+     * the epoch ({@link IDtronChannelValued#getDueTimeNanos()}): a member that {@linkplain #holdsInputs holds
+     * inputs} hands it to its listeners then, not before.
+     *
+     * @return the input as published
+     * @throws IllegalArgumentException if the due time is not positive, or the message is none of a model channel
+     * @throws DtronException           if the bus did not take it
+     */
+    IDtronChannelValued sendAhead(IDtronChannelValued input, long dueEpochNanos);
+
+    /**
+     * Whether {@code member} said in the channel-serving handshake that it holds an input sent ahead until it is due
+     * (as every member of this API does; other languages' clients apply every input on arrival).
+     */
+    boolean holdsInputs(String member);
+
+    /**
      * Asks members whether they are there: pings the bus and waits until each of {@code members} answered, or the
      * timeout passed. A member answers this ping (marked {@code probe}) from its own thread whoever sent it, a tester
      * or a live monitor, as long as its process runs and reaches the bus; a member that was killed, stopped or cut

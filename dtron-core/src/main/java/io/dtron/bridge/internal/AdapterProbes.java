@@ -129,17 +129,41 @@ public final class AdapterProbes {
     }
 
     /**
-     * How long an input on {@code channel} may take to reach the system: the longer of the probe round trip before
-     * the run of the adapters that receive it and the 99th percentile of the delays of its inputs acknowledged so far
-     * (see {@link InputDelays#roomMicros}); 0 before anything was measured.
+     * The room an input on {@code channel} needs before its window's end: for inputs sent at their time, how long one
+     * may take to reach the system, the longer of the probe round trip before the run of the adapters that receive it
+     * and the 99th percentile of the delays of its inputs acknowledged so far (see {@link InputDelays#roomMicros}),
+     * 0 before anything was measured; for inputs sent ahead ({@link #inputLeadMicros}), how late after their due
+     * time the adapters applied them ({@link InputDelays#heldRoomMicros}).
      */
     public long inputDelayMicros(String channel) {
+        List<String> receivers = receivers(channel);
+        return holdInputs(receivers) ? inputDelays.heldRoomMicros(channel)
+                : inputDelays.roomMicros(channel, receivers);
+    }
+
+    /**
+     * How far ahead of its time an input on {@code channel} is sent: when every adapter member that receives it holds
+     * inputs until they are due ({@link TesterSide#holdsInputs}), the way an input takes to them ({@link
+     * InputDelays#roomMicros}); else 0, and inputs are sent at their time.
+     */
+    public long inputLeadMicros(String channel) {
+        List<String> receivers = receivers(channel);
+        return holdInputs(receivers) ? inputDelays.roomMicros(channel, receivers) : 0;
+    }
+
+    /** Whether inputs of a channel received by {@code receivers} are sent ahead: there are some, and all hold them. */
+    private boolean holdInputs(List<String> receivers) {
+        return !receivers.isEmpty() && receivers.stream().allMatch(tester::holdsInputs);
+    }
+
+    /** The adapter members that receive {@code channel}, as they said in the handshake. */
+    private List<String> receivers(String channel) {
         List<String> receivers = new ArrayList<>();
         tester.getMembersServedChannels().forEach((member, served) -> {
             if (served.receives().contains(channel) && !peerTester.test(member)) {
                 receivers.add(member);
             }
         });
-        return inputDelays.roomMicros(channel, receivers);
+        return receivers;
     }
 }

@@ -11,7 +11,8 @@ import java.util.concurrent.ConcurrentHashMap;
  * Not API. How long inputs take to reach the adapters, for the room the tester leaves before an input's window
  * closes: per adapter member, the round trip of the tester's probes before the run (an upper bound of the way
  * there, on the tester's own clock), and per channel, the delays of the inputs the adapters acknowledged, published
- * to applied, each with its clock error. Also says when the probes' round trips have become steady. Thread-safe.
+ * to applied, each with its clock error, and for inputs sent ahead of their time how late after it they were applied.
+ * Also says when the probes' round trips have become steady. Thread-safe.
  */
 public final class InputDelays {
     /** How many rounds of probes must be steady, compared with as many rounds before them. */
@@ -26,9 +27,15 @@ public final class InputDelays {
     static final double IMPROVING = 0.85;
     /** How many acknowledged delays are kept per channel, the latest. */
     private static final int KEPT = 256;
+    /**
+     * The least room, in microseconds, an input sent ahead needs before its window's end: an adapter hands it to its
+     * listeners from a spinning thread, and the listener reads the clock for its acknowledgement after that.
+     */
+    static final long HELD_ROOM_MICROS = 300;
 
     private final Map<String, Long> probedMicros = new ConcurrentHashMap<>();
     private final Map<String, ArrayDeque<Long>> appliedMicros = new ConcurrentHashMap<>();
+    private final Map<String, ArrayDeque<Long>> heldLateMicros = new ConcurrentHashMap<>();
 
     /**
      * Whether round trips (one per round, in order) are steady: there are at least twice {@link #STEADY_ROUNDS}, and
@@ -75,13 +82,51 @@ public final class InputDelays {
 
     /** Records an input on {@code channel} that an adapter applied {@code delayMicros} after it was published. */
     public void applied(String channel, long delayMicros, long errorMicros) {
-        ArrayDeque<Long> kept = appliedMicros.computeIfAbsent(channel, c -> new ArrayDeque<>());
+        keep(appliedMicros, channel, Math.max(0, delayMicros) + Math.max(0, errorMicros));
+    }
+
+    /**
+     * Records an input on {@code channel} sent ahead, due at {@code dueMicros}, that an adapter applied at {@code
+     * appliedMicros} give or take {@code errorMicros}, {@code sentMicros} being when it was published: how late after
+     * its due time it was applied is kept for {@link #heldRoomMicros}; one applied later than that room came later
+     * than it was due, and its delay from publication counts as an input's way ({@link #applied}).
+     */
+    public void appliedAhead(String channel, long sentMicros, long dueMicros, long appliedMicros, long errorMicros) {
+        long late = Math.max(0, appliedMicros - dueMicros) + Math.max(0, errorMicros);
+        if (late > heldRoomMicros(channel)) {
+            applied(channel, appliedMicros - sentMicros, errorMicros);
+        }
+        keep(heldLateMicros, channel, late);
+    }
+
+    private static void keep(Map<String, ArrayDeque<Long>> byChannel, String channel, long micros) {
+        ArrayDeque<Long> kept = byChannel.computeIfAbsent(channel, c -> new ArrayDeque<>());
         synchronized (kept) {
             if (kept.size() == KEPT) {
                 kept.removeFirst();
             }
-            kept.addLast(Math.max(0, delayMicros) + Math.max(0, errorMicros));
+            kept.addLast(micros);
         }
+    }
+
+    /**
+     * The room an input on {@code channel} sent ahead needs before its window's end, in microseconds: the 99th
+     * percentile of how late after their due time its inputs were applied, with their clock errors, and at least
+     * {@value #HELD_ROOM_MICROS}.
+     */
+    public long heldRoomMicros(String channel) {
+        return Math.max(HELD_ROOM_MICROS, p99(heldLateMicros.get(channel)));
+    }
+
+    private static long p99(ArrayDeque<Long> kept) {
+        if (kept == null) {
+            return 0;
+        }
+        long[] values;
+        synchronized (kept) {
+            values = kept.stream().mapToLong(Long::longValue).toArray();
+        }
+        return values.length == 0 ? 0 : LatencySummary.of(values).p99Micros();
     }
 
     /**
@@ -96,14 +141,6 @@ public final class InputDelays {
                 probed = Math.max(probed, e.getValue());
             }
         }
-        ArrayDeque<Long> kept = appliedMicros.get(channel);
-        if (kept == null) {
-            return probed;
-        }
-        long[] delays;
-        synchronized (kept) {
-            delays = kept.stream().mapToLong(Long::longValue).toArray();
-        }
-        return Math.max(probed, LatencySummary.of(delays).p99Micros());
+        return Math.max(probed, p99(appliedMicros.get(channel)));
     }
 }

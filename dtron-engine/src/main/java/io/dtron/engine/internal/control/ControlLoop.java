@@ -162,7 +162,9 @@ public final class ControlLoop {
             long lateness = Math.max(inputMargin, ticks.ceil(2 * clock.worstLatenessMicros()));
             Plan.Choice choice = plan.choose(elapsed, random, policy == ControlPolicy.RANDOM
                             ? io.dtron.engine.DelayPolicy.RANDOM : io.dtron.engine.DelayPolicy.EAGER, 0, 0,
-                    input -> lateness + ticks.ceil(Math.max(0, plant.inputDelayMicros(input.name()))),
+                    // commands go at their time: the way they take is room before a window's end, lead included
+                    input -> lateness + ticks.ceil(Math.max(0, plant.inputDelayMicros(input.name()))
+                            + Math.max(0, plant.inputLeadMicros(input.name()))),
                     earliestCommand(),
                     steerer == null ? null : steerer.scorer());
             long at = lastMicros + ticks.micros(choice.ticks());
