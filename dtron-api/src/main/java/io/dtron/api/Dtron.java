@@ -168,6 +168,11 @@ public final class Dtron implements AutoCloseable {
     private final Counters counters = new Counters();
     /** The listeners that may be called on the transport's receiving thread ({@link DtronListener#onReceivingThread}). */
     private final Set<DtronListener> onReceivingThread = ConcurrentHashMap.newKeySet();
+    /**
+     * On the run clock's thread while it hands an input sent ahead to the listeners ({@link #deliverWhenDue}): the
+     * acknowledgements they make, published by the listeners' thread after them.
+     */
+    private final ThreadLocal<List<Runnable>> deferredAcks = new ThreadLocal<>();
     /** The members that said in the handshake that they hold inputs sent ahead until they are due. */
     private final Set<String> holdingMembers = ConcurrentHashMap.newKeySet();
     private final AtomicLong sequence = new AtomicLong();
@@ -603,8 +608,9 @@ public final class Dtron implements AutoCloseable {
      * Acknowledges an input: publishes on {@link #ACK} that this member applied it at {@code
      * appliedAtEpochNanos}. A member acknowledges each message once; a message it acknowledged before (itself or
      * automatically when its listeners returned) is not acknowledged again. Called by a listener on the bus's
-     * receiving thread ({@link DtronListener#onReceivingThread}), it publishes once the listener has returned, and a
-     * failure then is logged.
+     * receiving thread ({@link DtronListener#onReceivingThread}), or on an input sent ahead of its time (handed to the
+     * listeners by the run clock's thread), it publishes once the listener has returned, and a failure then is
+     * logged.
      *
      * @param message             a message received from the bus, on a channel of the model
      * @param appliedAtEpochNanos when the input took effect, on this member's wall clock in nanoseconds since the
@@ -634,6 +640,15 @@ public final class Dtron implements AutoCloseable {
                 return false;
             }
             dispatcher.continueOnOwnThread(() -> acknowledgeClaimed(message, appliedAtEpochNanos));
+            return true;
+        }
+        List<Runnable> deferred = deferredAcks.get();
+        if (deferred != null) {
+            // not on the run clock's thread, which hands an input sent ahead to the listeners: by theirs, after them
+            if (!claimAck(message)) {
+                return false;
+            }
+            deferred.add(() -> acknowledgeClaimed(message, appliedAtEpochNanos));
             return true;
         }
         return publishAck(message, appliedAtEpochNanos);
@@ -1054,12 +1069,30 @@ public final class Dtron implements AutoCloseable {
         if (due > 0 || value.getChannel() == WARM_UP) {
             // an input its tester sent ahead: delivered by the run clock when it is due, what follows behind it (the
             // warm-up message, due at once, takes this way too, so that a run's first such input does not pay for it)
-            dispatcher.execute(() -> runClock.runAt(due + value.getClockOffsetNanos(), delivery));
+            dispatcher.execute(() -> deliverWhenDue(due + value.getClockOffsetNanos(), delivery));
         } else if (mayRunOnReceivingThread(value)) {
             dispatcher.runOrExecute(delivery);
         } else {
             dispatcher.execute(delivery);
         }
+    }
+
+    /**
+     * Called on the listeners' thread: hands a message to the listeners from the run clock's thread at {@code
+     * dueEpochNanos} ({@link RunClock#runAt}) and then publishes the acknowledgements made meanwhile, here: a
+     * publication may wait for the bus for milliseconds, and the run clock's thread runs the system's timed outputs.
+     */
+    private void deliverWhenDue(long dueEpochNanos, Runnable delivery) {
+        List<Runnable> acks = new ArrayList<>(1);
+        runClock.runAt(dueEpochNanos, () -> {
+            deferredAcks.set(acks);
+            try {
+                delivery.run();
+            } finally {
+                deferredAcks.remove();
+            }
+        });
+        acks.forEach(Runnable::run);
     }
 
     /** Whether all listeners of a message's channel may be called on the receiving thread (a probe has none). */
@@ -1281,10 +1314,13 @@ public final class Dtron implements AutoCloseable {
             if (!claimAck(value)) {
                 return;
             }
+            List<Runnable> deferred = deferredAcks.get();
             if (inline) {
                 // sending could wait for this very thread (see DtronListener.onReceivingThread): the listeners'
                 // thread publishes it next, before any message received meanwhile is delivered
                 dispatcher.continueOnOwnThread(() -> acknowledgeClaimed(value, appliedAt));
+            } else if (deferred != null) {
+                deferred.add(() -> acknowledgeClaimed(value, appliedAt)); // see deliverWhenDue
             } else {
                 acknowledgeClaimed(value, appliedAt);
             }

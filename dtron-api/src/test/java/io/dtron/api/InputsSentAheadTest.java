@@ -33,6 +33,8 @@ class InputsSentAheadTest {
     private Inbox acks;
     /** What the adapter's listener was handed: the amount, and the run time then. */
     private final BlockingQueue<long[]> heard = new LinkedBlockingQueue<>();
+    /** The threads the adapter's listener was called on, in order. */
+    private final BlockingQueue<String> threads = new LinkedBlockingQueue<>();
     /** Time 0 of the run, on the tester's wall clock. */
     private long zeroEpoch;
 
@@ -47,6 +49,7 @@ class InputsSentAheadTest {
             @Override
             public void messageReceived(IDtronChannelValued message) {
                 heard.add(new long[] {message.getVariables().get("amount"), getDtron().runClock().nowNanos()});
+                threads.add(Thread.currentThread().getName());
             }
         });
         Inbox starts = new Inbox(Dtron.RUN_START);
@@ -81,6 +84,9 @@ class InputsSentAheadTest {
         assertEquals(1, first[0], "the input sent ahead comes first, as the bus ordered it");
         assertTrue(first[1] >= dueRun, "heard at " + first[1] + " ns of the run, due at " + dueRun);
         assertEquals(2, second[0]);
+        // the input sent ahead is handed over by the run clock's thread, which spins the last stretch before it
+        assertTrue(threads.take().startsWith("dtron-run-clock-"), "called on the run clock's thread");
+        assertTrue(threads.take().startsWith("dtron-listeners-"), "the next on the listeners' thread");
         assertTrue(second[1] >= first[1], "the next input waited behind it");
         IDtronChannelValued ack = acks.take();
         assertEquals(ahead.getSequence(), ack.getAckedSequence());

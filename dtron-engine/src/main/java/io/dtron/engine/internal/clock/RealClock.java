@@ -64,12 +64,21 @@ public final class RealClock extends RunClock {
             }
             long remaining = targetMicros - nowMicros();
             if (remaining <= 0) {
-                if (slept && -remaining > worstLateness) {
+                if (slept && !loose() && -remaining > worstLateness) {
                     worstLateness = -remaining;
                 }
                 return true;
             }
             slept = true;
+            if (loose()) {
+                try {
+                    awaitOutput(remaining * 1000);
+                } catch (InterruptedException e) {
+                    Thread.currentThread().interrupt();
+                    return true;
+                }
+                continue;
+            }
             if (remaining <= SPIN_MICROS) {
                 // a timed wait may end milliseconds late on an idle CPU (of a virtual machine above all): the last
                 // stretch before the target is spun, watching for outputs

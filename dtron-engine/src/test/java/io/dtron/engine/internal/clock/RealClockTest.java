@@ -121,4 +121,19 @@ class RealClockTest {
         assertTrue(clock.worstLatenessMicros() >= 2_990_000, "lateness " + clock.worstLatenessMicros());
         assertTrue(clock.worstLatenessMicros() <= seen, clock.worstLatenessMicros() + " > " + seen);
     }
+
+    @org.junit.jupiter.api.Test
+    @Timeout(value = 60, unit = TimeUnit.SECONDS)
+    void aLooseWaitReachesItsTimeOrAnOutputAndIsNotCountedAsLateness() throws Exception {
+        RealClock clock = new RealClock();
+        clock.begin(java.util.OptionalLong.empty());
+        long target = clock.nowMicros() + 5_000;
+        assertEquals(null, clock.awaitLooselyUntil(target));
+        assertTrue(clock.nowMicros() >= target, "returned at " + clock.nowMicros() + ", before " + target);
+        // however late it woke up, a loose wait is no measure of how late the tester acts
+        assertEquals(0, clock.worstLatenessMicros());
+        clock.report(Event.of("tick"));
+        RunClock.TimedEvent output = clock.awaitLooselyUntil(clock.nowMicros() + 60_000_000);
+        assertEquals(Event.of("tick"), output.event());
+    }
 }
