@@ -110,8 +110,8 @@ final class BusRunLines implements BusRunSequence.Steps {
     @Override
     public void warmedUp() {
         say("dtron run: " + lateness.describe(unitMicros) + ", and each input channel's delay to its adapter further"
-                + " inside; inputs to adapters that hold them until their time are sent ahead by that much instead,"
-                + " and aimed only as far inside as the adapters' precision");
+                + " inside; inputs to adapters that hold them until their time are sent ahead by that delay instead,"
+                + " and aimed inside by how late after their time the adapters applied them");
         lateness.narrowInputWindow(network, testInterface, unitMicros, "--virtual-time", run::inputDelayMicros,
                 channel -> run.inputLeadMicros(channel) > 0)
                 .ifPresent(warning -> {

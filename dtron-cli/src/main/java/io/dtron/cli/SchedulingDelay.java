@@ -83,8 +83,8 @@ record SchedulingDelay(long worstMicros, long marginMicros) {
      * A warning when an input channel's narrowest window ({@link ObservableWindow#narrowest}) at {@code unitMicros} per
      * time unit is narrower than the room its inputs need: this margin plus {@code inputDelayMicros} of the channel
      * (its way to the system, by name; 0 in the tester's process). Inputs in such a window are aimed at its start and
-     * may still come late. An input sent ahead of its time ({@code sentAhead}, its adapter holding it until then)
-     * needs only its channel's {@code inputDelayMicros}: how exactly the adapter applies it at its time. Names each
+     * may still come late. For an input sent ahead of its time ({@code sentAhead}, its adapter holding it until then)
+     * the channel's {@code inputDelayMicros} is how late after its time the adapter applied such inputs. Names each
      * such channel with its figures. {@code virtualTimeOption} is the option that runs in virtual time instead.
      */
     Optional<String> narrowInputWindow(Network network, TestInterface testInterface, long unitMicros,
@@ -95,15 +95,14 @@ record SchedulingDelay(long worstMicros, long marginMicros) {
                     testInterface.timeout());
             long delay = Math.max(0, inputDelayMicros.applyAsLong(input.name()));
             boolean ahead = sentAhead.test(input.name());
-            long room = ahead ? delay : marginMicros + delay;
+            long room = marginMicros + delay;
             ObservableWindow.narrowest(network, one).filter(w -> w.width() * unitMicros < room).ifPresent(w ->
                     narrow.add("the window of input " + w + " is " + w.width() + " time units of " + unitMicros
                             + " us, narrower than the " + (delay == 0 ? "margin of " + room + " us that inputs need"
-                            + " here" : ahead ? "room of " + room + " us that its inputs need here (sent ahead of their"
-                            + " time, for how exactly the adapter applies them then)" : "room of " + room
-                            + " us that its inputs need here (a margin of "
-                            + marginMicros + " us for the tester's lateness and " + delay + " us for their way to"
-                            + " the adapter)") + (w.width() == 0 ? "" : "; a time unit of at least "
+                            + " here" : "room of " + room + " us that its inputs need here (a margin of "
+                            + marginMicros + " us for the tester's lateness and " + delay + (ahead ? " us for how"
+                            + " late after their time the adapter applied them, sent ahead of it)" : " us for their way"
+                            + " to the adapter)")) + (w.width() == 0 ? "" : "; a time unit of at least "
                             + ceilDiv(room, w.width()) + " us leaves room")));
         }
         if (narrow.isEmpty()) {

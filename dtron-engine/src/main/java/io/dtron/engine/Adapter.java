@@ -60,9 +60,9 @@ public interface Adapter {
      * Returns how long before its time an input on {@code channel} may be performed with {@link #perform(Event,
      * long)}, in microseconds: the adapter hands it to the system under test at that time, not before, so that the
      * input's way to the system is taken before its time instead of after it. The tester then performs such an input
-     * this much ahead (and aims it only {@link #inputDelayMicros} inside the end of its window, for how exactly the
-     * adapter keeps the time). Asked before every input; must return at once. 0 by default: inputs are performed at
-     * their time.
+     * this much ahead (and aims it its lateness margin and {@link #inputDelayMicros} inside the end of its window, the
+     * latter for how exactly the adapter keeps the time). Asked before every input; must return at once. 0 by
+     * default: inputs are performed at their time.
      */
     default long inputLeadMicros(String channel) {
         return 0;

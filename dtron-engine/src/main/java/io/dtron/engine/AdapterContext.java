@@ -39,8 +39,8 @@ public interface AdapterContext {
      * Reports that input number {@code ordinal} (1 for the first input the engine passed to {@link Adapter#perform},
      * 2 for the next, ...) was applied to the system under test at {@code eventMicros} on the run's clock, later than
      * the engine performed it. Thread-safe. The tester then places the input at that time (an input is never placed
-     * before the time it was performed, or for one performed ahead, its due time); if the environment did not allow it then, the run ends INCONCLUSIVE (the
-     * input was executed too late), never FAILED.
+     * before the time it was performed, or for one performed ahead, its due time); if the environment did not allow
+     * it then, the run ends INCONCLUSIVE (the input was executed too late), never FAILED.
      */
     void inputApplied(long ordinal, long eventMicros);
 

@@ -529,7 +529,8 @@ public final class OnlineTester {
                         if (now >= until) {
                             return result(Verdict.INCONCLUSIVE, "input " + unacknowledged.event + " was "
                                     + unacknowledged.sentOrDue() + " at " + time(unacknowledged.sentMicros)
-                                    + ", but the acknowledgement of when it was applied had not come by " + time(now) + ", and the verdict depends on it: "
+                                    + ", but the acknowledgement of when it was applied had not come by " + time(now)
+                                    + ", and the verdict depends on it: "
                                     + held.result().verdict() + " if it was applied then (" + held.result()
                                     .explanation() + ")");
                         }
@@ -590,12 +591,12 @@ public final class OnlineTester {
                 }
                 Plan plan = plan();
                 long elapsed = ticks.floor(now - lastMicros);
-                // room before a window's end: for the tester's own lateness (unless the input is sent ahead of its
-                // time by that much more), and for the input's way to the system
+                // room before a window's end: for the tester's own lateness (a measure of how late this machine's
+                // threads act, an adapter's that keeps an input's time as well), and for the input's way to the system
                 long lateness = Math.max(inputMargin, ticks.ceil(2 * clock.worstLatenessMicros()));
                 Plan.Choice choice = plan.choose(elapsed, random, options.delayPolicy(),
                         options.delayBound() * ticksPerUnit, options.shortDelayBound() * ticksPerUnit,
-                        input -> (sentAhead(input.name()) ? 0 : lateness) + ticks.ceil(roomMicros(input.name())),
+                        input -> lateness + ticks.ceil(roomMicros(input.name())),
                         earliestInput(), steerer == null ? null : steerer.scorer());
                 long at = lastMicros + ticks.micros(choice.ticks());
                 // a deadline within the test is declared missed only when the outputs stamped before it had the
