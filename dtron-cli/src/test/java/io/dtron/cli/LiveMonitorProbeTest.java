@@ -6,21 +6,15 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import io.dtron.api.BusRecord;
 import io.dtron.api.Dtron;
-import io.dtron.api.DtronOptions;
 import io.dtron.api.IDtronChannel;
 import io.dtron.api.IDtronChannelValued;
 import io.dtron.api.internal.TesterSide;
 import io.dtron.bridge.internal.ReorderWindow;
 import io.dtron.testsupport.Waits;
-import java.io.PrintWriter;
 import java.io.StringWriter;
-import java.net.InetAddress;
-import java.nio.file.Files;
 import java.nio.file.Path;
 import java.util.Map;
 import java.util.Set;
-import java.util.UUID;
-import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.TimeUnit;
 import java.util.concurrent.atomic.AtomicBoolean;
 import org.junit.jupiter.api.Test;
@@ -46,26 +40,19 @@ class LiveMonitorProbeTest {
 
     /** The monitor on its own thread, the tester's member and the server's. */
     private final class Watch implements AutoCloseable {
-        final StringWriter out = new StringWriter();
-        final StringWriter err = new StringWriter();
-        final CompletableFuture<Integer> exit;
+        final MonitorOnBus monitor;
+        final StringWriter out;
         final Dtron tester;
         final Dtron server;
         final long t0;
 
         Watch() throws Exception {
-            Path model = dir.resolve("server.xta");
-            Files.copy(MonitorCommandTest.SERVER, model);
-            String cluster = "probe-" + UUID.randomUUID().toString().substring(0, 8);
-            tester = Dtron.connect(DtronOptions.builder().clusterName(cluster)
-                    .bindAddress(InetAddress.getLoopbackAddress()).build());
-            server = Dtron.connect(DtronOptions.builder().clusterName(cluster)
-                    .bindAddress(InetAddress.getLoopbackAddress()).build());
+            monitor = new MonitorOnBus(dir, "probe");
+            out = monitor.out;
+            tester = monitor.member();
+            server = monitor.member();
             server.declareOutputs(RESP);
-            exit = CompletableFuture.supplyAsync(() -> DtronCommand.run(new String[] {"monitor", model.toString(),
-                "--cluster", cluster}, new PrintWriter(out, true), new PrintWriter(err, true)));
-            Waits.await("the monitor on the bus").until(() -> out.toString().contains(" as ") || exit.isDone());
-            Waits.await("the monitor among the members").until(() -> tester.getMembers().size() == 3);
+            monitor.start(tester, 3);
             TesterSide.of(tester).setRunId("c0ffee");
             t0 = tester.currentTimeNanos();
             // a request at 1: its response is due by 4; the run ends at 6
@@ -87,11 +74,11 @@ class LiveMonitorProbeTest {
             Waits.await("the wall clock past the run's end").until(() -> tester.currentTimeNanos()
                     > t0 + 8 * UNIT_NANOS);
             tester.send(Dtron.RUN_STOP.constructValued(Map.of()), t0 + 6 * UNIT_NANOS);
-            return exit.get(1, TimeUnit.MINUTES);
+            return monitor.exit();
         }
 
         String shown() {
-            return out + "\n" + err;
+            return monitor.shown();
         }
 
         @Override

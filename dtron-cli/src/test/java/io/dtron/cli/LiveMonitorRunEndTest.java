@@ -5,19 +5,13 @@ import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import io.dtron.api.Dtron;
-import io.dtron.api.DtronOptions;
 import io.dtron.api.IDtronChannel;
 import io.dtron.api.IDtronChannelValued;
 import io.dtron.api.internal.TesterSide;
 import io.dtron.testsupport.Waits;
-import java.io.PrintWriter;
 import java.io.StringWriter;
-import java.net.InetAddress;
-import java.nio.file.Files;
 import java.nio.file.Path;
 import java.util.Map;
-import java.util.UUID;
-import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.TimeUnit;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.Timeout;
@@ -42,31 +36,25 @@ class LiveMonitorRunEndTest {
 
     /** The monitor on its own thread, and the member that publishes the run. */
     private final class Watch implements AutoCloseable {
-        final StringWriter out = new StringWriter();
-        final StringWriter err = new StringWriter();
-        final CompletableFuture<Integer> exit;
+        final MonitorOnBus monitor;
+        final StringWriter out;
         final Dtron system;
 
         Watch() throws Exception {
-            Path model = dir.resolve("server.xta");
-            Files.copy(MonitorCommandTest.SERVER, model);
-            String cluster = "runend-" + UUID.randomUUID().toString().substring(0, 8);
-            system = Dtron.connect(DtronOptions.builder().clusterName(cluster)
-                    .bindAddress(InetAddress.getLoopbackAddress()).build());
-            exit = CompletableFuture.supplyAsync(() -> DtronCommand.run(new String[] {"monitor", model.toString(),
-                "--cluster", cluster}, new PrintWriter(out, true), new PrintWriter(err, true)));
-            Waits.await("the monitor on the bus").until(() -> out.toString().contains(" as ") || exit.isDone());
-            Waits.await("the monitor among the members").until(() -> system.getMembers().size() == 2);
+            monitor = new MonitorOnBus(dir, "runend");
+            out = monitor.out;
+            system = monitor.member();
+            monitor.start(system, 2);
             TesterSide.of(system).setRunId("c0ffee");
         }
 
         /** The monitor's exit code, once the run's watch ended. */
         int exit() throws Exception {
-            return exit.get(1, TimeUnit.MINUTES);
+            return monitor.exit();
         }
 
         String shown() {
-            return out + "\n" + err;
+            return monitor.shown();
         }
 
         /** Publishes an event at {@code atNanos}; a request, the run's start's sender's input, is applied then. */
