@@ -48,6 +48,12 @@ public final class BusBridge implements Adapter, AutoCloseable {
         return run;
     }
 
+    /** See {@link BusRun#prepare()}. */
+    @Override
+    public void prepare() {
+        run.prepare();
+    }
+
     @Override
     public void start(AdapterContext context) {
         run.start(context);

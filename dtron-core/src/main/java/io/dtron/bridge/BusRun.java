@@ -143,6 +143,8 @@ public final class BusRun implements AutoCloseable {
     private final AdapterProbes probes;
     /** When each input of the run was published, on the run's clock in microseconds, by its number. */
     private final Map<Long, Long> inputSentMicros = new ConcurrentHashMap<>();
+    /** Whether {@link #prepare} got the next run ready, which its start then takes as it is. */
+    private boolean prepared;
     /** When each input published ahead of its time is due, by the engine's number. */
     private final Map<Long, Long> inputDueMicros = new ConcurrentHashMap<>();
     /** Inputs of other testers of the run, observed as outputs, until their acknowledgements say when they happened. */
@@ -669,8 +671,14 @@ public final class BusRun implements AutoCloseable {
         runMembers.goneBeforeStart(startMembers).ifPresent(context::inconclusive);
     }
 
-    private void startRun(AdapterContext runContext) {
-        context = Objects.requireNonNull(runContext, "runContext");
+    /**
+     * Gets the next run ready before its time 0: clears what the last run left and takes the view of the members
+     * and what they serve that the run decides by, once the bus's listeners have caught up (a round trip through
+     * their thread, milliseconds that would otherwise be the run's first). {@link #start} does it when it was not
+     * done.
+     */
+    public void prepare() {
+        prepared = true;
         runDelays.clear();
         acknowledging = inputsReceivedByHandshakeMembers();
         inputSentMicros.clear();
@@ -705,6 +713,14 @@ public final class BusRun implements AutoCloseable {
             inputChannels.clear();
             performed = 0;
         }
+    }
+
+    private void startRun(AdapterContext runContext) {
+        context = Objects.requireNonNull(runContext, "runContext");
+        if (!prepared) {
+            prepare();
+        }
+        prepared = false;
         // the run's clock is the starting tester's: a joining tester's own time 0 is its engine's, on that clock
         long nowNanos = dtron.currentTimeNanos() + (joining ? dtron.getClockOffsetNanos() : 0);
         long zeroEpochNanos = timeline.startedAt(nowNanos, runContext.clock().nowMicros());

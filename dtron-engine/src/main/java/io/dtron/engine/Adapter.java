@@ -10,6 +10,14 @@ import java.util.Optional;
  */
 public interface Adapter {
 
+    /**
+     * Called once before time 0 of the run, before {@link #timeZero()} and {@link #start}: what the adapter does to
+     * get ready that should not take the run's time (on a bus, its view of the members and what they serve). Nothing
+     * by default.
+     */
+    default void prepare() {
+    }
+
     /** Called once before the first input; keep the context to report outputs and to schedule timers. */
     void start(AdapterContext context);
 

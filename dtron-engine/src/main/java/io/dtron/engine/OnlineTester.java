@@ -253,6 +253,7 @@ public final class OnlineTester {
         steererUsed = steering != null;
         Run run = new Run(semantics, partition, clock, new Random(options.seed()), ticksPerUnit, window, coverage);
         run.warmUp();
+        adapter.prepare();
         clock.begin(adapter.timeZero());
         adapter.start(new Context(clock, window));
         TestResult result = null;

@@ -106,6 +106,7 @@ public final class ControlLoop {
         clock = options.virtualTime() ? new VirtualClock() : new RealClock();
         inputMargin = options.virtualTime() ? 0 : ticks.ceil(options.inputMarginMicros());
         plan(); // once before time starts, so that a cold start does not eat real time
+        plant.prepare();
         clock.begin(plant.timeZero());
         plant.start(new Context());
         try {
