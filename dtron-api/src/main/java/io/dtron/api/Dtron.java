@@ -634,21 +634,11 @@ public final class Dtron implements AutoCloseable {
             throw new IllegalArgumentException("time must be positive: " + appliedAtEpochNanos);
         }
         requireOpen();
-        if (dispatcher.runsInline()) {
-            // not on the receiving thread (see DtronListener.onReceivingThread): right after the listener, in its place
+        if (acknowledgesAfterListener()) {
             if (!claimAck(message)) {
                 return false;
             }
-            dispatcher.continueOnOwnThread(() -> acknowledgeClaimed(message, appliedAtEpochNanos));
-            return true;
-        }
-        List<Runnable> deferred = deferredAcks.get();
-        if (deferred != null) {
-            // not on the run clock's thread, which hands an input sent ahead to the listeners: by theirs, after them
-            if (!claimAck(message)) {
-                return false;
-            }
-            deferred.add(() -> acknowledgeClaimed(message, appliedAtEpochNanos));
+            acknowledgeAfterListener(message, appliedAtEpochNanos);
             return true;
         }
         return publishAck(message, appliedAtEpochNanos);
@@ -885,6 +875,28 @@ public final class Dtron implements AutoCloseable {
         }
         publishClaimedAck(message, appliedAtNanos);
         return true;
+    }
+
+    /**
+     * Whether the calling thread, a listener's, leaves the publication of its acknowledgements to the listeners' thread
+     * after the listener returned: on the bus's receiving thread ({@link DtronListener#onReceivingThread}) sending
+     * could wait for this very thread, and on the run clock's thread handing over an input sent ahead ({@link
+     * #deliverWhenDue}) it would hold up the system's timed outputs.
+     */
+    private boolean acknowledgesAfterListener() {
+        return dispatcher.runsInline() || deferredAcks.get() != null;
+    }
+
+    /** Publishes a claimed acknowledgement by the listeners' thread, right after the listener that made it. */
+    private void acknowledgeAfterListener(IDtronChannelValued message, long appliedAtNanos) {
+        Runnable ack = () -> acknowledgeClaimed(message, appliedAtNanos);
+        List<Runnable> deferred = deferredAcks.get();
+        if (deferred != null) {
+            deferred.add(ack); // published when the run clock's thread is done (see deliverWhenDue)
+        } else {
+            // before any message received meanwhile is delivered
+            dispatcher.continueOnOwnThread(ack);
+        }
     }
 
     /** Notes that this member acknowledges a message; false if it did before. */
@@ -1314,13 +1326,8 @@ public final class Dtron implements AutoCloseable {
             if (!claimAck(value)) {
                 return;
             }
-            List<Runnable> deferred = deferredAcks.get();
-            if (inline) {
-                // sending could wait for this very thread (see DtronListener.onReceivingThread): the listeners'
-                // thread publishes it next, before any message received meanwhile is delivered
-                dispatcher.continueOnOwnThread(() -> acknowledgeClaimed(value, appliedAt));
-            } else if (deferred != null) {
-                deferred.add(() -> acknowledgeClaimed(value, appliedAt)); // see deliverWhenDue
+            if (acknowledgesAfterListener()) {
+                acknowledgeAfterListener(value, appliedAt);
             } else {
                 acknowledgeClaimed(value, appliedAt);
             }

@@ -671,24 +671,14 @@ public final class OnlineTester {
         }
 
         /**
-         * Whether inputs on {@code channel} are performed ahead of their time: the adapter holds them until then
-         * ({@link Adapter#inputLeadMicros}), and the run has a reorder window, which alone lets the tester place an
-         * output that comes before an input it performed ahead.
-         */
-        private boolean sentAhead(String channel) {
-            return window() > 0 && adapter.inputLeadMicros(channel) > 0;
-        }
-
-        /**
          * How far ahead of its time {@code at} an input on {@code channel} is performed: the adapter's lead ({@link
          * Adapter#inputLeadMicros}) and the tester's own {@code latenessMicros} in waking up, at most up to {@code
-         * now}; 0 when inputs on the channel are not sent ahead ({@link #sentAhead}).
+         * now}; 0 when the adapter holds no inputs (its lead is 0) or the run has no reorder window, which alone lets
+         * the tester place an output that comes before an input it performed ahead.
          */
         private long leadMicros(String channel, long at, long now, long latenessMicros) {
-            if (!sentAhead(channel)) {
-                return 0;
-            }
-            return Math.max(0, Math.min(at - now, adapter.inputLeadMicros(channel) + latenessMicros));
+            long lead = window() > 0 ? adapter.inputLeadMicros(channel) : 0;
+            return lead <= 0 ? 0 : Math.max(0, Math.min(at - now, lead + latenessMicros));
         }
 
         /**
