@@ -1,17 +1,18 @@
 package io.dtron.cli;
 
+import static io.dtron.cli.MonitorOnBus.REQ;
+import static io.dtron.cli.MonitorOnBus.RESP;
+import static io.dtron.cli.MonitorOnBus.UNIT_NANOS;
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import io.dtron.api.BusRecord;
 import io.dtron.api.Dtron;
-import io.dtron.api.IDtronChannel;
 import io.dtron.api.IDtronChannelValued;
 import io.dtron.api.internal.TesterSide;
 import io.dtron.bridge.internal.ReorderWindow;
 import io.dtron.testsupport.Waits;
-import java.io.StringWriter;
 import java.nio.file.Path;
 import java.util.Map;
 import java.util.Set;
@@ -31,24 +32,18 @@ import org.junit.jupiter.api.io.TempDir;
  */
 @Timeout(value = 2, unit = TimeUnit.MINUTES)
 class LiveMonitorProbeTest {
-    private static final IDtronChannel REQ = IDtronChannel.of("req", "n");
-    private static final IDtronChannel RESP = IDtronChannel.of("resp", "n");
-    private static final long UNIT_NANOS = 100_000_000L;
-
     @TempDir
     Path dir;
 
     /** The monitor on its own thread, the tester's member and the server's. */
     private final class Watch implements AutoCloseable {
         final MonitorOnBus monitor;
-        final StringWriter out;
         final Dtron tester;
         final Dtron server;
         final long t0;
 
         Watch() throws Exception {
             monitor = new MonitorOnBus(dir, "probe");
-            out = monitor.out;
             tester = monitor.member();
             server = monitor.member();
             server.declareOutputs(RESP);
@@ -103,7 +98,7 @@ class LiveMonitorProbeTest {
                 }
             });
             int exit = watch.stop();
-            String printed = watch.out.toString();
+            String printed = watch.monitor.out.toString();
             assertTrue(published.get(), "the monitor asked the server after the deadline\n" + watch.shown());
             assertEquals(0, exit, watch.shown());
             assertFalse(printed.contains("violation 1"), watch.shown());
@@ -115,7 +110,7 @@ class LiveMonitorProbeTest {
     void aServerThatMissedTheDeadlineRaisesTheAlarmAtTheDeadline() throws Exception {
         try (Watch watch = new Watch()) {
             int exit = watch.stop();
-            String printed = watch.out.toString();
+            String printed = watch.monitor.out.toString();
             assertEquals(2, exit, watch.shown());
             assertTrue(printed.contains("violation 1 at t=4.000: no event by t=4.000"), watch.shown());
             assertFalse(printed.contains("did not answer"), watch.shown());

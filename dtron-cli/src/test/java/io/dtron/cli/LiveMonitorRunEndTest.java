@@ -1,5 +1,8 @@
 package io.dtron.cli;
 
+import static io.dtron.cli.MonitorOnBus.REQ;
+import static io.dtron.cli.MonitorOnBus.RESP;
+import static io.dtron.cli.MonitorOnBus.UNIT_NANOS;
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertTrue;
@@ -9,7 +12,6 @@ import io.dtron.api.IDtronChannel;
 import io.dtron.api.IDtronChannelValued;
 import io.dtron.api.internal.TesterSide;
 import io.dtron.testsupport.Waits;
-import java.io.StringWriter;
 import java.nio.file.Path;
 import java.util.Map;
 import java.util.concurrent.TimeUnit;
@@ -27,22 +29,16 @@ import org.junit.jupiter.api.io.TempDir;
  */
 @Timeout(value = 2, unit = TimeUnit.MINUTES)
 class LiveMonitorRunEndTest {
-    private static final IDtronChannel REQ = IDtronChannel.of("req", "n");
-    private static final IDtronChannel RESP = IDtronChannel.of("resp", "n");
-    private static final long UNIT_NANOS = 100_000_000L;
-
     @TempDir
     Path dir;
 
     /** The monitor on its own thread, and the member that publishes the run. */
     private final class Watch implements AutoCloseable {
         final MonitorOnBus monitor;
-        final StringWriter out;
         final Dtron system;
 
         Watch() throws Exception {
             monitor = new MonitorOnBus(dir, "runend");
-            out = monitor.out;
             system = monitor.member();
             monitor.start(system, 2);
             TesterSide.of(system).setRunId("c0ffee");
@@ -90,7 +86,7 @@ class LiveMonitorRunEndTest {
             watch.awaitPast(t0 + 12 * UNIT_NANOS);
             watch.system.send(Dtron.RUN_STOP.constructValued(Map.of()), end);
             int exit = watch.exit();
-            String printed = watch.out.toString();
+            String printed = watch.monitor.out.toString();
             assertEquals(0, exit, watch.shown());
             assertFalse(printed.contains("violation 1"), watch.shown());
             assertTrue(printed.contains("run c0ffee ended: no violation, 1 event checked (the run ended), 0 too late"
@@ -112,7 +108,7 @@ class LiveMonitorRunEndTest {
             // after the stop on the bus, stamped at 1.5: half a unit after the request, before the server's 1
             watch.send(RESP, 2, t0 + 15 * UNIT_NANOS / 10);
             int exit = watch.exit();
-            String printed = watch.out.toString();
+            String printed = watch.monitor.out.toString();
             assertEquals(2, exit, watch.shown());
             assertTrue(printed.contains("violation 1 at t=1.500: resp(n=2)"), watch.shown());
             assertTrue(printed.contains("1 violation, 2 events checked"), watch.shown());
@@ -131,7 +127,7 @@ class LiveMonitorRunEndTest {
             watch.system.send(Dtron.RUN_STOP.constructValued(Map.of()));
             int exit = watch.exit();
             assertEquals(2, exit, watch.shown());
-            assertTrue(watch.out.toString().contains("violation 1 at t=6.500: no event by t=6.500"), watch.shown());
+            assertTrue(watch.monitor.out.toString().contains("violation 1 at t=6.500: no event by t=6.500"), watch.shown());
         }
     }
 }

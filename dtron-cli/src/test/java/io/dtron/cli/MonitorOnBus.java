@@ -2,6 +2,7 @@ package io.dtron.cli;
 
 import io.dtron.api.Dtron;
 import io.dtron.api.DtronOptions;
+import io.dtron.api.IDtronChannel;
 import io.dtron.testsupport.Waits;
 import java.io.IOException;
 import java.io.PrintWriter;
@@ -18,6 +19,11 @@ import java.util.concurrent.TimeUnit;
  * its own on loopback, run on a thread of its own, for tests whose real members play the run's tester and system.
  */
 final class MonitorOnBus {
+    /** The model's request, an input of the system, and its response, an output. */
+    static final IDtronChannel REQ = IDtronChannel.of("req", "n");
+    static final IDtronChannel RESP = IDtronChannel.of("resp", "n");
+    /** The time unit the tests' runs announce (100 ms), in nanoseconds. */
+    static final long UNIT_NANOS = 100_000_000L;
     final StringWriter out = new StringWriter();
     final StringWriter err = new StringWriter();
     /** The bus's name: {@code prefix} and a random suffix. */

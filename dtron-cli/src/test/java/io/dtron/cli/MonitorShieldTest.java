@@ -1,5 +1,7 @@
 package io.dtron.cli;
 
+import static io.dtron.cli.MonitorOnBus.REQ;
+import static io.dtron.cli.MonitorOnBus.RESP;
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
@@ -32,8 +34,6 @@ import org.junit.jupiter.api.io.TempDir;
  */
 @Timeout(value = 2, unit = TimeUnit.MINUTES)
 class MonitorShieldTest {
-    private static final IDtronChannel REQ = IDtronChannel.of("req", "n");
-    private static final IDtronChannel RESP = IDtronChannel.of("resp", "n");
 
     @Test
     void theShieldWithholdsTheForbiddenResponseAndPassesTheAllowedOne(@TempDir Path dir) throws Exception {

@@ -412,36 +412,48 @@ class OnlineTesterTest {
             system Sys, Env;
             """;
 
+    /** {@link #GO}'s system: answers done one unit after each go it applies. */
+    private static class GoSystem implements Adapter {
+        AdapterContext context;
+
+        @Override
+        public void start(AdapterContext context) {
+            this.context = context;
+        }
+
+        @Override
+        public void perform(Event input) {
+            answer();
+        }
+
+        /** Reports done one unit from now. */
+        void answer() {
+            context.clock().schedule(context.timeUnitMicros(), () -> context.report(Event.of("done")));
+        }
+    }
+
+    /** Runs {@link #GO} against {@code system}, adding the times the tester applied go at to {@code applied}. */
+    private static TestResult runGo(Adapter system, TestOptions options, List<Long> applied) throws Exception {
+        Network n = ModelLoader.load("go.xta", GO);
+        return new OnlineTester(n, TestInterface.fromNames(n), system, options).addListener(new TestListener() {
+            @Override
+            public void inputApplied(Event input, long micros) {
+                applied.add(micros);
+            }
+        }).run();
+    }
+
     /** When go was applied, in each run with an adapter whose inputs on go take {@code delayUnits} to arrive. */
     private static List<Long> goTimes(long delayUnits, DelayPolicy policy) throws Exception {
-        Network n = ModelLoader.load("go.xta", GO);
         List<Long> applied = new ArrayList<>();
-        Adapter delayed = new Adapter() {
-            private AdapterContext context;
-
-            @Override
-            public void start(AdapterContext context) {
-                this.context = context;
-            }
-
-            @Override
-            public void perform(Event input) {
-                context.clock().schedule(context.timeUnitMicros(), () -> context.report(Event.of("done")));
-            }
-
+        Adapter delayed = new GoSystem() {
             @Override
             public long inputDelayMicros(String channel) {
                 assertEquals("go", channel);
                 return delayUnits * context.timeUnitMicros();
             }
         };
-        TestResult r = new OnlineTester(n, TestInterface.fromNames(n), delayed,
-                TestOptions.defaults(3).withTimeout(100).withDelayPolicy(policy, 0)).addListener(new TestListener() {
-                    @Override
-                    public void inputApplied(Event input, long micros) {
-                        applied.add(micros);
-                    }
-                }).run();
+        TestResult r = runGo(delayed, TestOptions.defaults(3).withTimeout(100).withDelayPolicy(policy, 0), applied);
         assertEquals(Verdict.PASSED, r.verdict(), r.explanation());
         return applied;
     }
@@ -489,17 +501,10 @@ class OnlineTesterTest {
     @Test
     void anInputToAnAdapterThatHoldsItIsPerformedAheadAndPlacedAtItsTime() throws Exception {
         // the adapter holds go until its time (a lead of 4 units), applies it then and answers done a unit later
-        Network n = ModelLoader.load("go.xta", GO);
         List<long[]> performed = new ArrayList<>();
         List<Long> applied = new ArrayList<>();
-        Adapter holding = new Adapter() {
-            private AdapterContext context;
+        Adapter holding = new GoSystem() {
             private long ordinal;
-
-            @Override
-            public void start(AdapterContext context) {
-                this.context = context;
-            }
 
             @Override
             public void perform(Event input) {
@@ -512,7 +517,7 @@ class OnlineTesterTest {
                 performed.add(new long[] {context.clock().nowMicros(), dueMicros});
                 context.clock().schedule(dueMicros - context.clock().nowMicros(), () -> {
                     context.inputApplied(number, dueMicros);
-                    context.clock().schedule(context.timeUnitMicros(), () -> context.report(Event.of("done")));
+                    answer();
                 });
             }
 
@@ -526,13 +531,7 @@ class OnlineTesterTest {
                 return true;
             }
         };
-        TestResult r = new OnlineTester(n, TestInterface.fromNames(n), holding, TestOptions.defaults(5)
-                .withTimeout(200).withReorderWindow(2_000)).addListener(new TestListener() {
-                    @Override
-                    public void inputApplied(Event input, long micros) {
-                        applied.add(micros);
-                    }
-                }).run();
+        TestResult r = runGo(holding, TestOptions.defaults(5).withTimeout(200).withReorderWindow(2_000), applied);
         assertEquals(Verdict.PASSED, r.verdict(), r.explanation());
         assertTrue(performed.size() >= 2, r.explanation());
         for (int i = 0; i < performed.size(); i++) {
@@ -549,20 +548,7 @@ class OnlineTesterTest {
     @Test
     void withoutAReorderWindowNoInputIsPerformedAhead() throws Exception {
         // an output stamped before an input performed ahead could not be placed before it: inputs go at their time
-        Network n = ModelLoader.load("go.xta", GO);
-        Adapter holding = new Adapter() {
-            private AdapterContext context;
-
-            @Override
-            public void start(AdapterContext context) {
-                this.context = context;
-            }
-
-            @Override
-            public void perform(Event input) {
-                context.clock().schedule(context.timeUnitMicros(), () -> context.report(Event.of("done")));
-            }
-
+        Adapter holding = new GoSystem() {
             @Override
             public void perform(Event input, long dueMicros) {
                 throw new AssertionError("performed ahead without a reorder window");
@@ -573,8 +559,7 @@ class OnlineTesterTest {
                 return 4 * context.timeUnitMicros();
             }
         };
-        TestResult r = new OnlineTester(n, TestInterface.fromNames(n), holding,
-                TestOptions.defaults(5).withTimeout(100)).run();
+        TestResult r = runGo(holding, TestOptions.defaults(5).withTimeout(100), new ArrayList<>());
         assertEquals(Verdict.PASSED, r.verdict(), r.explanation());
         assertTrue(r.inputs() >= 2, r.explanation());
     }
