@@ -13,6 +13,7 @@ import java.nio.file.Path;
 import java.util.UUID;
 import java.util.concurrent.CompletableFuture;
 import java.util.concurrent.TimeUnit;
+import java.util.stream.Stream;
 
 /**
  * {@code dtron monitor} of the monitor tests' server model ({@link MonitorCommandTest#SERVER}) on a JGroups bus of
@@ -44,10 +45,15 @@ final class MonitorOnBus {
                 .build());
     }
 
-    /** Starts the monitor, and waits until it is on the bus, one of {@code members} that {@code member} sees. */
-    void start(Dtron member, int members) {
-        exit = CompletableFuture.supplyAsync(() -> DtronCommand.run(new String[] {"monitor", model.toString(),
-            "--cluster", cluster}, new PrintWriter(out, true), new PrintWriter(err, true)));
+    /**
+     * Starts the monitor, with {@code options} after the model and bus, and waits until it is on the bus, one of
+     * {@code members} that {@code member} sees.
+     */
+    void start(Dtron member, int members, String... options) {
+        String[] args = Stream.concat(Stream.of("monitor", model.toString(), "--cluster", cluster),
+                Stream.of(options)).toArray(String[]::new);
+        exit = CompletableFuture.supplyAsync(() -> DtronCommand.run(args, new PrintWriter(out, true),
+                new PrintWriter(err, true)));
         Waits.await("the monitor on the bus").until(() -> out.toString().contains(" as ") || exit.isDone());
         Waits.await("the monitor among the members").until(() -> member.getMembers().size() == members);
     }

@@ -616,7 +616,7 @@ public final class BusMonitor implements AutoCloseable {
         }
         // stamped before time 0 of a run whose start this monitor saw (ordered before it): from the start, as the
         // tester takes it
-        long micros = clockStart == 0 ? Math.max(0, timeline.eventMicros(m)) : timeline.eventMicros(m);
+        long micros = startSeen ? Math.max(0, timeline.eventMicros(m)) : joined(timeline.eventMicros(m));
         if (micros > end()) {
             afterEnd++; // after the run's end; one before it that the bus ordered after the stop is the run's
             return;
@@ -635,6 +635,23 @@ public final class BusMonitor implements AutoCloseable {
         }
         held.add(h);
         inputs.put(m.getSender() + "/" + m.getSequence(), h);
+    }
+
+    /**
+     * The time of an event seen by a monitor that joined a running system ({@code micros} on its clock): while it has
+     * judged nothing, an event stamped before its time 0 (held up on its way, or the watch's thread started late)
+     * moves time 0 back to it, with the times of what it holds, so that nothing is too late to judge before the
+     * monitor judged anything.
+     */
+    private long joined(long micros) {
+        if (startSeen || judgedTo != Long.MIN_VALUE || micros >= 0) {
+            return micros;
+        }
+        timeline.startedAt(timeline.zeroEpochNanos(), -micros);
+        held.forEach(h -> h.micros -= micros); // the same shift for all: their order stays
+        clockStart = clockStart == Long.MAX_VALUE ? clockStart : clockStart - micros;
+        stopAt = stopAt == Long.MAX_VALUE ? stopAt : stopAt - micros;
+        return 0;
     }
 
     /** An acknowledgement places the input it names where its adapter applied it. */
@@ -768,7 +785,8 @@ public final class BusMonitor implements AutoCloseable {
     private void late(Held h) {
         late++;
         monitor.forgetHistory();
-        sink.note(h.message.getChannelName() + " from " + h.message.getSender() + " came " + (judgedTo - h.micros)
+        sink.note(h.message.getChannelName() + " from " + h.message.getSender() + " came "
+                + (Math.max(judgedTo, monitor.lastMicros()) - h.micros)
                 + " us after the monitor had judged its time (reorder window " + window.micros() + " us): not judged;"
                 + " the monitor starts again from every reachable state");
     }
@@ -789,7 +807,7 @@ public final class BusMonitor implements AutoCloseable {
             afterEnd++; // after the run's announced end: the tester judges it not, nor does the shield
             return;
         }
-        long micros = Math.max(timeline.eventMicros(m), Math.max(judgedTo, monitor.lastMicros()));
+        long micros = Math.max(joined(timeline.eventMicros(m)), Math.max(judgedTo, monitor.lastMicros()));
         clockStart = Math.min(clockStart, micros);
         judge(micros, micros);
         events++;
