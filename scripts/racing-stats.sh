@@ -13,6 +13,10 @@
 #   -u US        microseconds per time unit (default 10000)
 #   -v VARIANT   correct (default) or late: done 3 units after the model's deadline, FAILED whenever its input landed
 #   -t UNITS     the timeout of each run in time units (default 200)
+#
+# The adapter's JVM compiles with C1 alone (-XX:TieredStopAtLevel=1), as adapters.md advises at time units of a few
+# ms; RACING_ADAPTER_JAVA_OPTS replaces that option (empty: the JVM's defaults), RACING_TESTER_JAVA_OPTS adds options
+# to the tester's JVM (-XX:TieredStopAtLevel=4 keeps its C2, see tester.md).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 jar=$root/dtron-cli/target/dtron.jar
@@ -25,11 +29,11 @@ if [ "${1:-}" = "--one" ]; then
     unit=$1 variant=$2 timeout=$3
     cluster=racing-$$-$RANDOM
     adapter_log=$(mktemp /tmp/racing-adapter.XXXXXX)
-    java -cp "$classes:$jar" io.dtron.cli.RacingAdapterMain "$cluster" "$variant" > "$adapter_log" 2>&1 &
+    java ${RACING_ADAPTER_JAVA_OPTS--XX:TieredStopAtLevel=1} -cp "$classes:$jar" io.dtron.cli.RacingAdapterMain "$cluster" "$variant" > "$adapter_log" 2>&1 &
     adapter=$!
     trap 'kill "$adapter" 2>/dev/null || true; rm -f "$adapter_log"' EXIT
     set +e
-    java -jar "$jar" run "$model" --cluster "$cluster" --timeunit "$unit" --timeout "$timeout" --wait-timeout 60
+    java ${RACING_TESTER_JAVA_OPTS:-} -jar "$jar" run "$model" --cluster "$cluster" --timeunit "$unit" --timeout "$timeout" --wait-timeout 60
     code=$?
     set -e
     # the adapter's warnings (an output it sent after its deadline: its JVM was held up) go in the run's log

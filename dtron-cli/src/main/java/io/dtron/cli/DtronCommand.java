@@ -39,7 +39,8 @@ public final class DtronCommand implements Callable<Integer> {
 
     /**
      * Runs the command line and exits with its exit code. Running out of heap or stack in any thread ends the
-     * JVM with one line and exit code 1, not with a stack trace.
+     * JVM with one line and exit code 1, not with a stack trace. A real-time run in this JVM compiles with C1 alone
+     * ({@link RealTimeJit}).
      */
     public static void main(String[] args) {
         Thread.UncaughtExceptionHandler others = Thread.getDefaultUncaughtExceptionHandler();
@@ -56,6 +57,7 @@ public final class DtronCommand implements Callable<Integer> {
             System.err.println("dtron: " + limit + " (in thread " + thread.getName() + ")");
             System.exit(1);
         });
+        RealTimeJit.ownJvm();
         System.exit(run(args, new PrintWriter(System.out, true), new PrintWriter(System.err, true)));
     }
 

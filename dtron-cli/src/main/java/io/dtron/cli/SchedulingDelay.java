@@ -31,9 +31,11 @@ record SchedulingDelay(long worstMicros, long marginMicros) {
 
     /**
      * Measures while the engine warms up on {@code network} on another thread ({@link EngineWarmUp}), as a cold JVM
-     * compiles and collects when a run starts; returns when both are done (about 300 ms).
+     * compiles and collects when a run starts; returns when both are done (about 300 ms). In dtron's own JVM the
+     * compiling is C1's alone from here ({@link RealTimeJit}).
      */
     static SchedulingDelay measureWarmingUp(Network network, TestInterface testInterface) {
+        RealTimeJit.compileQuickly();
         Thread warmUp = new Thread(() -> EngineWarmUp.run(network, testInterface), "dtron-warm-up");
         warmUp.setDaemon(true);
         warmUp.start();

@@ -132,8 +132,8 @@ public final class BusRun implements AutoCloseable {
     private final Map<String, ClockOffset> offsets = new ConcurrentHashMap<>();
     /** The number of each input of the run (1 for the first) by the sequence number of its message. */
     private final Map<Long, Long> inputNumbers = new HashMap<>();
-    /** The channel of each input of the run, by its number. */
-    private final Map<Long, String> inputChannels = new ConcurrentHashMap<>();
+    /** Each input of the run published and not yet acknowledged, by its number. */
+    private final Map<Long, SentInput> sentInputs = new ConcurrentHashMap<>();
     private long performed;
     /** The delays of this run's messages by "input NAME" and "output NAME" (see {@link ChannelDelay}). */
     private final Map<String, ChannelDelay> runDelays = new ConcurrentHashMap<>();
@@ -141,12 +141,8 @@ public final class BusRun implements AutoCloseable {
     private final InputDelays inputDelays = new InputDelays();
     /** The probes of the adapter members before a run, which measure how long inputs take to reach them. */
     private final AdapterProbes probes;
-    /** When each input of the run was published, on the run's clock in microseconds, by its number. */
-    private final Map<Long, Long> inputSentMicros = new ConcurrentHashMap<>();
     /** Whether {@link #prepare} got the next run ready, which its start then takes as it is. */
     private boolean prepared;
-    /** When each input published ahead of its time is due, by the engine's number. */
-    private final Map<Long, Long> inputDueMicros = new ConcurrentHashMap<>();
     /** Inputs of other testers of the run, observed as outputs, until their acknowledgements say when they happened. */
     private final Map<String, IDtronChannelValued> heldPeerInputs = new ConcurrentHashMap<>();
     /** The testers of a run of several: ready to join, joined, the leader, their verdicts. */
@@ -681,8 +677,7 @@ public final class BusRun implements AutoCloseable {
         prepared = true;
         runDelays.clear();
         acknowledging = inputsReceivedByHandshakeMembers();
-        inputSentMicros.clear();
-        inputDueMicros.clear();
+        sentInputs.clear();
         heldPeerInputs.clear();
         window.newRun();
         runTesters.runStarts();
@@ -710,7 +705,7 @@ public final class BusRun implements AutoCloseable {
 
         synchronized (inputNumbers) {
             inputNumbers.clear();
-            inputChannels.clear();
+            sentInputs.clear();
             performed = 0;
         }
     }
@@ -840,11 +835,7 @@ public final class BusRun implements AutoCloseable {
             performed++;
             if (sent != null) {
                 inputNumbers.put(sent.getSequence(), performed);
-                inputChannels.put(performed, input.channel());
-                inputSentMicros.put(performed, timeline.publishedMicros(sent));
-                if (dueMicros >= 0) {
-                    inputDueMicros.put(performed, dueMicros);
-                }
+                sentInputs.put(performed, new SentInput(input.channel(), timeline.publishedMicros(sent), dueMicros));
             }
         }
     }
@@ -1039,15 +1030,15 @@ public final class BusRun implements AutoCloseable {
         recordOffset(ack);
         if (number != null) {
             long applied = timeline.eventMicros(ack);
-            String channel = inputChannels.getOrDefault(number, "?");
-            Long sent = inputSentMicros.remove(number);
-            Long due = inputDueMicros.remove(number);
+            SentInput sent = sentInputs.remove(number);
+            String channel = sent == null ? "?" : sent.channel();
             if (sent != null) {
-                measured("input", channel, applied - sent);
-                if (due != null) {
-                    inputDelays.appliedAhead(channel, sent, due, applied, RunTimeline.errorMicros(ack));
+                measured("input", channel, applied - sent.sentMicros());
+                if (sent.dueMicros() >= 0) {
+                    inputDelays.appliedAhead(channel, sent.sentMicros(), sent.dueMicros(), applied,
+                            RunTimeline.errorMicros(ack));
                 } else {
-                    inputDelays.applied(channel, applied - sent, RunTimeline.errorMicros(ack));
+                    inputDelays.applied(channel, applied - sent.sentMicros(), RunTimeline.errorMicros(ack));
                 }
             }
             arrived(ack, "acknowledgement of " + channel, applied);
@@ -1168,5 +1159,12 @@ public final class BusRun implements AutoCloseable {
             context.inconclusive("adapter member" + (gone.size() == 1 ? " " : "s ") + String.join(", ", gone)
                     + " left the bus (members now " + members + "); the system under test may be gone");
         }
+    }
+
+    /**
+     * An input the run published: its channel, when it was published and when it is due (on the run's clock in
+     * microseconds; -1 for an input published at its time).
+     */
+    private record SentInput(String channel, long sentMicros, long dueMicros) {
     }
 }
