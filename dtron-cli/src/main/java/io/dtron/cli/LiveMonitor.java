@@ -4,6 +4,7 @@ import io.dtron.api.DtronException;
 import io.dtron.api.DtronOptions;
 import io.dtron.bridge.BusMonitor;
 import io.dtron.bridge.BusRun;
+import io.dtron.engine.JsonString;
 import io.dtron.engine.UnsupportedModelException;
 import io.dtron.engine.monitor.Alarm;
 import io.dtron.engine.monitor.Monitor;
@@ -308,7 +309,7 @@ final class LiveMonitor {
         return () -> secret.apply(transport.get());
     }
 
-    /** Prints what the monitor finds, from its thread, and writes the alarms' JSON lines. */
+    /** Prints what the monitor finds, from its thread, and writes the alarms' and notes' JSON lines. */
     private static final class Printer implements BusMonitor.Sink {
         private final PrintWriter out;
         private final Writer alarms;
@@ -349,22 +350,29 @@ final class LiveMonitor {
 
         @Override
         public void alarm(Alarm alarm, boolean withheld) {
-            try {
-                alarms.write(alarm.toJson());
-                alarms.write('\n');
-                alarms.flush();
-            } catch (IOException e) {
-                throw new UncheckedIOException(e);
-            }
+            write(alarm.toJson());
             synchronized (out) {
                 MonitorCommand.print(out, alarm, unit, withheld ? "; withheld: not republished on " + shielded : "");
                 out.flush();
             }
         }
 
+        /** A note is printed, and written among the alarms as {@code {"kind":"note","text":...}}. */
         @Override
         public void note(String line) {
+            write("{\"kind\":\"note\",\"text\":" + JsonString.quote(line) + "}");
             line("dtron monitor: " + line);
+        }
+
+        /** Writes a line of JSON to the alarms' file. */
+        private void write(String json) {
+            try {
+                alarms.write(json);
+                alarms.write('\n');
+                alarms.flush();
+            } catch (IOException e) {
+                throw new UncheckedIOException(e);
+            }
         }
 
         void line(String line) {

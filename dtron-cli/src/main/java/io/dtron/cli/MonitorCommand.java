@@ -87,7 +87,8 @@ final class MonitorCommand implements Callable<Integer> {
             + " from every reachable state consistent with the event.")
     private boolean keepGoing;
 
-    @Option(names = "--alarms", paramLabel = "FILE", description = "Write every alarm as a line of JSON to FILE.")
+    @Option(names = "--alarms", paramLabel = "FILE", description = "Write every alarm as a line of JSON to FILE (live, the"
+            + " monitor's notes too: messages too late to judge, a widened window, members silent before an alarm).")
     private Path alarmsFile;
 
     @Override

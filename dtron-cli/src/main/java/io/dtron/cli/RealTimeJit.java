@@ -13,11 +13,11 @@ import org.slf4j.LoggerFactory;
  * Keeps the JIT's optimising compiler (C2) out of the JVM of a real-time run: methods are compiled by the quick
  * compiler (C1) alone. In a fresh JVM on a machine of two cores, C2's compilations of the first seconds take a core for
  * milliseconds at a time, and a run whose windows are a few milliseconds wide loses them (at 1 ms per time unit the
- * racing sample passed 8 of 20 runs with C2, 16 of 20 without it in the tester's JVM, 20 of 20 without it in the
+ * racing sample passed 8 of 20 runs with C2, 32 of 40 without it in the tester's JVM, 39 of 40 without it in the
  * adapter's JVM too). C1's code is slower, which a run in real time does not feel: it waits for its times.
  *
- * <p>Only a JVM that dtron's own main started ({@link #ownJvm}): an embedding program (a test, the JUnit extension) keeps
- * its compilers. A JVM started with an option of its own about compilation ({@code -XX:TieredStopAtLevel}, {@code
+ * <p>Only a JVM that dtron's own main started ({@link #ownJvm}): an embedding program (a test, the JUnit extension)
+ * keeps its compilers. A JVM started with an option of its own about compilation ({@code -XX:TieredStopAtLevel}, {@code
  * -XX:-TieredCompilation}, {@code -XX:CompileCommand}, ...) is left as it is: {@code java -XX:TieredStopAtLevel=4
  * -jar dtron.jar run ...} keeps C2.
  */

@@ -7,7 +7,9 @@ import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import io.dtron.api.Dtron;
+import java.nio.file.Files;
 import java.nio.file.Path;
+import java.util.List;
 import java.util.Map;
 import java.util.concurrent.TimeUnit;
 import org.junit.jupiter.api.Test;
@@ -17,8 +19,8 @@ import org.junit.jupiter.api.io.TempDir;
 /**
  * {@code dtron monitor --cluster NAME} joins a running system (no run start on the bus): a request stamped before the
  * monitor began to watch, then its response in time, are both judged, with no alarm and nothing too late to judge.
- * The system's member stamps the times, the request's before the monitor was even started, so load changes nothing
- * the test asserts (the shield test failed by chance when the monitor's thread began after the first request).
+ * The system's member stamps the times, the request's before the monitor was even started (so that it took more than
+ * half the reorder window, which widens, as a note among the alarms says), so load changes nothing the test asserts (the shield test failed by chance when the monitor's thread began after the first request).
  */
 @Timeout(value = 2, unit = TimeUnit.MINUTES)
 class LiveMonitorJoinTest {
@@ -28,13 +30,19 @@ class LiveMonitorJoinTest {
         MonitorOnBus monitor = new MonitorOnBus(dir, "join");
         try (Dtron system = monitor.member()) {
             long before = system.currentTimeNanos();
-            monitor.start(system, 2, "--timeunit", "100000", "--duration", "2");
+            Path alarms = dir.resolve("alarms.jsonl");
+            monitor.start(system, 2, "--timeunit", "100000", "--duration", "2", "--alarms", alarms.toString());
             // the model: a response 1 to 3 units after its request
             system.send(REQ.constructValued(Map.of("n", 1)), before);
             system.send(RESP.constructValued(Map.of("n", 2)), before + 2 * UNIT_NANOS);
             assertEquals(0, monitor.exit(), monitor.shown());
             assertTrue(monitor.shown().contains("no violation") && monitor.shown().contains("2 events checked, 0 too"
                     + " late to judge"), monitor.shown());
+            // the request took longer than half the window (it was stamped before the monitor joined): the note
+            // that the window widened is printed and written among the alarms, which are none
+            List<String> lines = Files.readAllLines(alarms);
+            assertTrue(lines.stream().allMatch(l -> l.startsWith("{\"kind\":\"note\",\"text\":\""))
+                    && lines.stream().anyMatch(l -> l.contains("reorder window widened")), lines.toString());
         }
     }
 }
