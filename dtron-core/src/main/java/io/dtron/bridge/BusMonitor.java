@@ -864,7 +864,7 @@ public final class BusMonitor implements AutoCloseable {
         values.put("withheld", withholding ? 1 : 0);
         values.put("verdict", verdict ? 1 : 0);
         // the alarm's time on this member's wall clock, which the message's clock offset brings to the run's
-        long epochNanos = timeline.zeroEpochNanos() + micros * 1000 - dtron.getClockOffsetNanos();
+        long epochNanos = timeline.epochNanos(micros) - dtron.getClockOffsetNanos();
         try {
             dtron.send(Dtron.ALARM.constructValued(values), Math.max(1, epochNanos));
         } catch (DtronException | IllegalStateException e) {

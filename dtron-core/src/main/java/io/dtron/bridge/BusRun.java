@@ -677,7 +677,6 @@ public final class BusRun implements AutoCloseable {
         prepared = true;
         runDelays.clear();
         acknowledging = inputsReceivedByHandshakeMembers();
-        sentInputs.clear();
         heldPeerInputs.clear();
         window.newRun();
         runTesters.runStarts();
@@ -732,7 +731,7 @@ public final class BusRun implements AutoCloseable {
         running = true;
         // the run's end, announced so that a monitor judges no further until the stop says where the tester stopped
         long end = runContext.endMicros();
-        long endEpochNanos = end == Long.MAX_VALUE ? 0 : zeroEpochNanos + Math.multiplyExact(end, 1000L);
+        long endEpochNanos = end == Long.MAX_VALUE ? 0 : timeline.epochNanos(end);
         try {
             tester.sendRunStart(Dtron.RUN_START.constructValued(Map.of("timeunit", unit)), zeroEpochNanos,
                     endEpochNanos);
@@ -830,8 +829,7 @@ public final class BusRun implements AutoCloseable {
         synchronized (inputNumbers) {
             IDtronChannelValued value = channel.constructValued(input.values());
             IDtronChannelValued sent = dueMicros < 0 ? publish(value, "input " + input)
-                    : publishAhead(value, timeline.zeroEpochNanos() + Math.multiplyExact(dueMicros, 1000L),
-                    "input " + input);
+                    : publishAhead(value, timeline.epochNanos(dueMicros), "input " + input);
             performed++;
             if (sent != null) {
                 inputNumbers.put(sent.getSequence(), performed);
@@ -861,7 +859,7 @@ public final class BusRun implements AutoCloseable {
     public void stop(long observedUntilMicros) {
         running = false;
         if (!runTesters.several()) {
-            publishStop(timeline.zeroEpochNanos() + Math.multiplyExact(Math.max(0, observedUntilMicros), 1000L));
+            publishStop(timeline.epochNanos(Math.max(0, observedUntilMicros)));
         }
     }
 

@@ -40,6 +40,11 @@ public final class RunTimeline {
         return zeroEpochNanos;
     }
 
+    /** Returns {@code runMicros} on the run's clock as a time on the run's wall clock, in nanoseconds since the epoch. */
+    public long epochNanos(long runMicros) {
+        return zeroEpochNanos + Math.multiplyExact(runMicros, 1000L);
+    }
+
     /**
      * A run of several testers: time 0 is {@code zeroEpochNanos} on this member's wall clock, before the engine
      * starts; {@link #timeZero()} names it until {@link #takeAnnounced()}.
