@@ -28,8 +28,11 @@ import java.nio.file.Path;
 import java.time.Duration;
 import java.util.ArrayList;
 import java.util.List;
+import java.util.Locale;
 import java.util.Optional;
 import java.util.concurrent.Callable;
+import java.util.concurrent.ScheduledExecutorService;
+import java.util.concurrent.atomic.AtomicInteger;
 import java.util.function.Supplier;
 import picocli.CommandLine.Command;
 import picocli.CommandLine.Mixin;
@@ -339,7 +342,8 @@ final class ControlCommand implements Callable<Integer> {
     /** Runs the controller, with the file of new versions watched, and prints its end. */
     private int run(Controller controller, TestInterface testInterface, long unit, PrintWriter out)
             throws ModelException {
-        controller.addListener(new Printer(out, unit));
+        Printer printer = new Printer(out, unit);
+        controller.addListener(printer);
         ModelVersionFile versions = reloadFrom == null ? null : new ModelVersionFile(reloadFrom, model, interfaceFile,
                 testInterface, new ModelVersionFile.Sink() {
                     @Override
@@ -353,6 +357,8 @@ final class ControlCommand implements Callable<Integer> {
                     }
                 });
         ControlResult result;
+        long began = System.nanoTime();
+        ScheduledExecutorService progress = Progress.every(() -> printer.progress(began));
         try {
             if (versions != null) {
                 versions.checkNow();
@@ -360,6 +366,7 @@ final class ControlCommand implements Callable<Integer> {
             }
             result = controller.run();
         } finally {
+            Progress.stop(progress);
             if (versions != null) {
                 versions.close();
             }
@@ -399,14 +406,43 @@ final class ControlCommand implements Callable<Integer> {
         return new ParameterException(spec.commandLine(), message);
     }
 
-    /** Prints the alarms, the safe action and the model versions as they come. */
+    /**
+     * Prints the alarms, the safe action and the model versions as they come, and a progress line when asked (every
+     * {@link Progress#EVERY}, whether or not anything happens): the commands and readings so far and the time of the
+     * last.
+     */
     private static final class Printer implements ControlListener {
         private final PrintWriter out;
         private final long unit;
+        private final AtomicInteger commands = new AtomicInteger();
+        private final AtomicInteger readings = new AtomicInteger();
+        private volatile long lastMicros = -1;
 
         Printer(PrintWriter out, long unit) {
             this.out = out;
             this.unit = unit;
+        }
+
+        @Override
+        public void commandSent(Event command, long micros) {
+            commands.incrementAndGet();
+            lastMicros = micros;
+        }
+
+        @Override
+        public void readingTaken(Event reading, long micros) {
+            readings.incrementAndGet();
+            lastMicros = micros;
+        }
+
+        /** The progress line of a run that began at {@code beganNanos}. */
+        void progress(long beganNanos) {
+            int c = commands.get();
+            int r = readings.get();
+            long last = lastMicros;
+            print(String.format(Locale.ROOT, "progress: %.0f s elapsed, ", (System.nanoTime() - beganNanos) / 1e9) + c
+                    + (c == 1 ? " command" : " commands") + " sent, " + r + (r == 1 ? " reading" : " readings")
+                    + (last < 0 ? "" : ", the last at " + ControlResult.time(last, unit)));
         }
 
         @Override
@@ -416,6 +452,7 @@ final class ControlCommand implements Callable<Integer> {
 
         @Override
         public void safeActionTaken(Event command, long micros) {
+            commandSent(command, micros); // counted among the commands, as the summary counts it
             print("safe action " + command + " sent at " + ControlResult.time(micros, unit));
         }
 

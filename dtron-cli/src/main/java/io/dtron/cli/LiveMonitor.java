@@ -23,6 +23,8 @@ import java.nio.file.Path;
 import java.time.Duration;
 import java.util.ArrayList;
 import java.util.List;
+import java.util.Locale;
+import java.util.concurrent.ScheduledExecutorService;
 import java.util.function.Function;
 import java.util.function.Supplier;
 import picocli.CommandLine.Mixin;
@@ -194,6 +196,8 @@ final class LiveMonitor {
             }
         }, "dtron-monitor-end");
         Runtime.getRuntime().addShutdownHook(hook);
+        long began = System.nanoTime();
+        ScheduledExecutorService progress = Progress.every(() -> printer.progress(began, monitor.progress()));
         BusMonitor.Result result;
         try (monitor) {
             result = duration == null ? monitor.await(Duration.ofSeconds(RunDefaults.MAX_WAIT_SECONDS))
@@ -206,6 +210,7 @@ final class LiveMonitor {
             err.println("dtron monitor: interrupted");
             return 1;
         } finally {
+            Progress.stop(progress);
             try {
                 Runtime.getRuntime().removeShutdownHook(hook);
             } catch (IllegalStateException e) {
@@ -355,6 +360,33 @@ final class LiveMonitor {
                 MonitorCommand.print(out, alarm, unit, withheld ? "; withheld: not republished on " + shielded : "");
                 out.flush();
             }
+        }
+
+        /**
+         * The progress line of a watch that began at {@code beganNanos} (every {@link Progress#EVERY}, whether or not
+         * anything happens): the time watching, the run watched and the time up to which it was judged, its counts,
+         * and the runs ended before it.
+         */
+        void progress(long beganNanos, BusMonitor.Progress p) {
+            StringBuilder line = new StringBuilder(String.format(Locale.ROOT, "progress: %.0f s watching",
+                    (System.nanoTime() - beganNanos) / 1e9));
+            if (p.watching()) {
+                line.append(", ").append(p.runId().isEmpty() ? "the watch" : "run " + p.runId());
+                if (p.judgedToMicros() >= 0) {
+                    line.append(" judged to t=").append(MonitorCommand.units(p.judgedToMicros(), unit));
+                }
+                line.append(", ").append(events(p.events())).append(", ").append(violations(p.violations()))
+                        .append(", ").append(p.late()).append(" too late to judge");
+                if (shielding) {
+                    line.append(", ").append(p.withheld()).append(" withheld");
+                }
+            } else {
+                line.append(", waiting for a run's start");
+            }
+            if (p.runsEnded() > 0) {
+                line.append(", ").append(p.runsEnded()).append(p.runsEnded() == 1 ? " run" : " runs").append(" ended");
+            }
+            line(line.toString());
         }
 
         /** A note is printed, and written among the alarms as {@code {"kind":"note","text":...}}. */

@@ -213,12 +213,14 @@ final class MonitorCommand implements Callable<Integer> {
         private int rejected;
         private long endMicros = -1;
         private long lastMicros = -1;
+        private final ReplayProgress progress;
 
         Replay(Monitor monitor, PrintWriter out, PrintWriter err, long unit) {
             this.monitor = monitor;
             this.out = out;
             this.err = err;
             this.unit = unit;
+            this.progress = new ReplayProgress(out, unit, Progress.EVERY);
         }
 
         @Override
@@ -233,6 +235,7 @@ final class MonitorCommand implements Callable<Integer> {
             lastMicros = Math.max(lastMicros, micros);
             endMicros = Math.max(endMicros, micros);
             report(a);
+            progress.after(line, lastMicros, monitor, rejected);
         }
 
         @Override
@@ -249,6 +252,7 @@ final class MonitorCommand implements Callable<Integer> {
             rejected++;
             err.println(replay + ":" + line + ": " + reason);
             monitor.forgetHistory();
+            progress.after(line, lastMicros, monitor, rejected);
         }
 
         void report(Alarm a) {

@@ -37,12 +37,31 @@ final class Progress implements TestListener, AutoCloseable {
         this.out = out;
         this.unitMicros = options.timeUnitMicros();
         this.virtualTime = options.virtualTime();
-        timer = Executors.newSingleThreadScheduledExecutor(task -> {
+        timer = every(this::print);
+    }
+
+    /**
+     * Runs {@code line} every {@link #EVERY} on a daemon thread of its own, the first time {@link #EVERY} from now;
+     * {@link #stop} ends it.
+     */
+    static ScheduledExecutorService every(Runnable line) {
+        ScheduledExecutorService timer = Executors.newSingleThreadScheduledExecutor(task -> {
             Thread thread = new Thread(task, "dtron-progress");
             thread.setDaemon(true);
             return thread;
         });
-        timer.scheduleAtFixedRate(this::print, EVERY.toMillis(), EVERY.toMillis(), TimeUnit.MILLISECONDS);
+        timer.scheduleAtFixedRate(line, EVERY.toMillis(), EVERY.toMillis(), TimeUnit.MILLISECONDS);
+        return timer;
+    }
+
+    /** Ends the lines of a timer {@link #every} made, waiting a second at most for a line being printed. */
+    static void stop(ScheduledExecutorService timer) {
+        timer.shutdownNow();
+        try {
+            timer.awaitTermination(1, TimeUnit.SECONDS);
+        } catch (InterruptedException e) {
+            Thread.currentThread().interrupt();
+        }
     }
 
     @Override
@@ -89,11 +108,6 @@ final class Progress implements TestListener, AutoCloseable {
 
     @Override
     public void close() {
-        timer.shutdownNow();
-        try {
-            timer.awaitTermination(1, TimeUnit.SECONDS);
-        } catch (InterruptedException e) {
-            Thread.currentThread().interrupt();
-        }
+        stop(timer);
     }
 }

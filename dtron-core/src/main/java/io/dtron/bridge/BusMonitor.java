@@ -158,6 +158,18 @@ public final class BusMonitor implements AutoCloseable {
             long afterEnd) {
     }
 
+    /**
+     * How far the watch is, for a progress line; read on any thread ({@link #progress}).
+     *
+     * @param runId          the run watched ("" when no message named one: a system watched without a tester)
+     * @param watching       whether a monitor watches now (false between runs, waiting for a run's start)
+     * @param judgedToMicros the time up to which the run was judged, on its clock; negative before anything was
+     * @param runsEnded      how many runs' watches ended before this one
+     */
+    public record Progress(String runId, boolean watching, long judgedToMicros, long events, int violations, long late,
+            long withheld, int runsEnded) {
+    }
+
     /** How the watch ended: the runs it watched, in order, and the error that stopped it, or null. */
     public record Result(List<RunResult> runs, String error) {
         /** Copies the runs. */
@@ -207,6 +219,7 @@ public final class BusMonitor implements AutoCloseable {
     private final CountDownLatch ended = new CountDownLatch(1);
     private final IDtronChannel shieldedChannel;
     private volatile Result result;
+    private volatile Progress progress = new Progress("", false, -1, 0, 0, 0, 0, 0);
     private Thread worker;
 
     /** An event on a model channel, held until it is a reorder window old. */
@@ -328,6 +341,11 @@ public final class BusMonitor implements AutoCloseable {
         return m;
     }
 
+    /** How far the watch is now: what the monitor's thread last judged. */
+    public Progress progress() {
+        return progress;
+    }
+
     /** Returns this member's id on the bus. */
     public String memberId() {
         return dtron.getMemberId();
@@ -437,6 +455,7 @@ public final class BusMonitor implements AutoCloseable {
                 if (monitor.stopped()) {
                     endRun(End.FIRST_VIOLATION);
                 }
+                showProgress();
             }
         } catch (InterruptedException e) {
             Thread.currentThread().interrupt();
@@ -450,6 +469,12 @@ public final class BusMonitor implements AutoCloseable {
         }
         result = new Result(runs, error);
         ended.countDown();
+    }
+
+    /** Shows the other threads how far the watch is ({@link #progress}). */
+    private void showProgress() {
+        progress = new Progress(runId, monitor != null, judgedTo == Long.MIN_VALUE ? -1 : judgedTo, events,
+                violations, late, withheld, runs.size());
     }
 
     /** Whether the run watched (or the time since the last one) has anything to report. */
@@ -485,6 +510,7 @@ public final class BusMonitor implements AutoCloseable {
         withheld = 0;
         afterEnd = 0;
         done = settings.runs() > 0 && runs.size() >= settings.runs();
+        showProgress();
         sink.runEnded(run);
     }
 

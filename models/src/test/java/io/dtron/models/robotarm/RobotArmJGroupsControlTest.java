@@ -11,6 +11,8 @@ import java.util.List;
 import java.util.UUID;
 import java.util.concurrent.ThreadLocalRandom;
 import java.util.concurrent.TimeUnit;
+import java.util.regex.Matcher;
+import java.util.regex.Pattern;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.Timeout;
 import org.junit.jupiter.api.io.TempDir;
@@ -69,6 +71,12 @@ class RobotArmJGroupsControlTest {
         ArmControl.assertControlledWithoutAlarm(run);
         assertTrue(run.out().contains("against the plant on bus '" + cluster + "' at 127.0.0.1"), run.shown());
         assertBusSummary(run);
+        // 40 units of 250 ms: a progress line every five seconds of the run's ten
+        String out = run.out().replace(System.lineSeparator(), "\n");
+        Matcher progress = Pattern.compile("\nprogress: \\d+ s elapsed, \\d+ commands? sent, \\d+ readings?(, the last"
+                + " at t=\\d+\\.\\d{3})?\n").matcher(out);
+        assertTrue(progress.find(), run.shown());
+        assertTrue(progress.start() < out.indexOf("control COMPLETED"), run.shown());
     }
 
     @Test
