@@ -205,6 +205,7 @@ final class LiveMonitor {
             if (result == null) {
                 result = monitor.finish();
             }
+            Progress.stop(progress); // before the bus is left: no line after the watch's end
         } catch (InterruptedException e) {
             Thread.currentThread().interrupt();
             err.println("dtron monitor: interrupted");
