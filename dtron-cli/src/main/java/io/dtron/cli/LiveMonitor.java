@@ -22,8 +22,10 @@ import java.nio.file.Files;
 import java.nio.file.Path;
 import java.time.Duration;
 import java.util.ArrayList;
+import java.util.LinkedHashMap;
 import java.util.List;
 import java.util.Locale;
+import java.util.Map;
 import java.util.concurrent.ScheduledExecutorService;
 import java.util.function.Function;
 import java.util.function.Supplier;
@@ -79,7 +81,8 @@ final class LiveMonitor {
     private String shield;
 
     /** What the monitor starts from, and the options the replay shares. */
-    record Start(Path model, Long timeUnit, String from, long toleranceMicros, boolean keepGoing, Path alarmsFile) {
+    record Start(Path model, Long timeUnit, String from, long toleranceMicros, boolean keepGoing, Path alarmsFile,
+            Path junitFile) {
     }
 
     /** Whether a bus was given: the monitor watches it. */
@@ -223,13 +226,40 @@ final class LiveMonitor {
                 err.println("dtron monitor: cannot write " + start.alarmsFile() + ": " + e.getMessage());
             }
         }
+        String summary = summary(result, shield != null);
+        if (start.junitFile() != null && !MonitorJunit.write(start.junitFile(), start.model(), printer.cases(
+                result.error()), properties(start, result, joinFrom, runFrom, window), (System.nanoTime() - began)
+                / 1e9, result.error() == null ? summary : result.error(), err)) {
+            return 1;
+        }
         if (result.error() != null) {
             err.println("dtron monitor: " + start.model() + ": " + result.error());
             return 1;
         }
-        printer.line(summary(result, shield != null));
+        printer.line(summary);
         int v = result.violations();
         return v > 0 ? 2 : result.late() > 0 ? 3 : 0;
+    }
+
+    /** The properties of {@code --junit}: the watch's settings and the counts of all its runs. */
+    private Map<String, String> properties(Start start, BusMonitor.Result result, String joinFrom, String runFrom,
+            long window) {
+        Map<String, String> p = new LinkedHashMap<>();
+        p.put("model", start.model().toString());
+        p.put("bus", clusterName());
+        p.put("from_joining", joinFrom);
+        p.put("from_run_start", runFrom);
+        p.put("reorder_window_us", (delta == null || delta.equals("auto") ? "auto from " : "") + window);
+        p.put("tolerance_us", Long.toString(start.toleranceMicros()));
+        if (shield != null) {
+            p.put("shield", shieldChannels()[0] + " on " + shieldChannels()[1]);
+            p.put("withheld", Long.toString(result.withheld()));
+        }
+        p.put("runs", Integer.toString(result.runs().size()));
+        p.put("events", Long.toString(result.events()));
+        p.put("violations", Integer.toString(result.violations()));
+        p.put("too_late", Long.toString(result.late()));
+        return p;
     }
 
     /**
@@ -322,6 +352,9 @@ final class LiveMonitor {
         private final String shielded;
         private final boolean shielding;
         private volatile long unit;
+        /** For --junit: the first alarm of the run watched (null while none), and the cases of the runs ended. */
+        private Alarm firstAlarm;
+        private final List<JunitXml.Case> cases = new ArrayList<>();
 
         Printer(PrintWriter out, Writer alarms, long unit, String shielded, boolean shielding) {
             this.out = out;
@@ -338,6 +371,11 @@ final class LiveMonitor {
 
         @Override
         public void runEnded(BusMonitor.RunResult run) {
+            synchronized (cases) {
+                cases.add(MonitorJunit.runCase(name(run), run.violations(), firstAlarm, unit, run.late() == 0 ? null
+                        : run.late() + (run.late() == 1 ? " message" : " messages") + " came too late to judge"));
+                firstAlarm = null;
+            }
             line(name(run) + " ended: " + violations(run.violations()) + ", " + events(run.events()) + switch (run
                     .end()) {
                 case STOPPED -> " (the run ended)";
@@ -356,6 +394,9 @@ final class LiveMonitor {
 
         @Override
         public void alarm(Alarm alarm, boolean withheld) {
+            synchronized (cases) {
+                firstAlarm = firstAlarm == null ? alarm : firstAlarm;
+            }
             write(alarm.toJson());
             synchronized (out) {
                 MonitorCommand.print(out, alarm, unit, withheld ? "; withheld: not republished on " + shielded : "");
@@ -388,6 +429,20 @@ final class LiveMonitor {
                 line.append(", ").append(p.runsEnded()).append(p.runsEnded() == 1 ? " run" : " runs").append(" ended");
             }
             line(line.toString());
+        }
+
+        /**
+         * The test cases of the runs watched, for {@code --junit}; with an {@code error} that stopped the watch, one
+         * more, an error with it.
+         */
+        List<JunitXml.Case> cases(String error) {
+            synchronized (cases) {
+                List<JunitXml.Case> all = new ArrayList<>(cases);
+                if (error != null) {
+                    all.add(new JunitXml.Case("the watch", "error", "ERROR", error));
+                }
+                return all;
+            }
         }
 
         /** A note is printed, and written among the alarms as {@code {"kind":"note","text":...}}. */

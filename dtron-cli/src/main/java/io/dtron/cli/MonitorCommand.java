@@ -14,7 +14,10 @@ import java.io.Writer;
 import java.nio.charset.StandardCharsets;
 import java.nio.file.Files;
 import java.nio.file.Path;
+import java.util.LinkedHashMap;
+import java.util.List;
 import java.util.Locale;
+import java.util.Map;
 import java.util.concurrent.Callable;
 import picocli.CommandLine.Command;
 import picocli.CommandLine.Mixin;
@@ -91,6 +94,11 @@ final class MonitorCommand implements Callable<Integer> {
             + " monitor's notes too: messages too late to judge, a widened window, members silent before an alarm).")
     private Path alarmsFile;
 
+    @Option(names = "--junit", paramLabel = "FILE.xml", description = "Write what the monitor judged as a JUnit XML"
+            + " report to FILE.xml: one test case for the replay, or per run watched on a bus; a violation a failure"
+            + " with the first, rejected lines or messages too late to judge an error.")
+    private Path junit;
+
     @Override
     public Integer call() {
         PrintWriter out = spec.commandLine().getOut();
@@ -107,6 +115,9 @@ final class MonitorCommand implements Callable<Integer> {
         }
         if (replay != null && live.onBus()) {
             throw usage("--replay checks a recorded run; leave out --cluster and --bus, or --replay");
+        }
+        if (junit != null && JunitXml.folderProblem(junit) != null) {
+            throw usage(JunitXml.folderProblem(junit));
         }
         if (replay == null) {
             live.check(this::usage);
@@ -130,7 +141,7 @@ final class MonitorCommand implements Callable<Integer> {
         }
         if (replay == null) {
             return live.watch(network, testInterface, new LiveMonitor.Start(model, timeUnit, from, toleranceMicros,
-                    keepGoing, alarmsFile), out, err, this::usage);
+                    keepGoing, alarmsFile, junit), out, err, this::usage);
         }
         TraceReader.Format format = TraceReader.formatOf(replay);
         Monitor monitor;
@@ -168,12 +179,36 @@ final class MonitorCommand implements Callable<Integer> {
         }
         double seconds = (System.nanoTime() - began) / 1e9;
         int violations = monitor.violations();
-        out.println("dtron monitor: " + (violations == 0 ? "no violation" : violations + " violation"
+        String summary = "dtron monitor: " + (violations == 0 ? "no violation" : violations + " violation"
                 + (violations == 1 ? "" : "s")) + ", " + monitor.events() + " event" + (monitor.events() == 1 ? "" : "s")
                 + " checked" + (monitor.stopped() ? " (stopped at the first violation)" : "") + ", " + r.rejected
                 + " line" + (r.rejected == 1 ? "" : "s") + " rejected, in " + String.format(Locale.ROOT, "%.2f s",
-                seconds));
+                seconds);
+        out.println(summary);
+        if (junit != null && !replayReport(r, monitor, format, unit, seconds, summary, err)) {
+            return 1;
+        }
         return violations > 0 ? 2 : r.rejected > 0 ? 3 : 0;
+    }
+
+    /** {@code --junit} of a replay: one test case; returns false if the file could not be written. */
+    private boolean replayReport(Replay r, Monitor monitor, TraceReader.Format format, long unit, double seconds,
+            String summary, PrintWriter err) {
+        JunitXml.Case replayed = MonitorJunit.runCase("replay of " + replay, monitor.violations(), r.firstAlarm, unit,
+                r.rejected == 0 ? null : r.rejected + " line" + (r.rejected == 1 ? "" : "s") + " of the trace rejected,"
+                        + " the first " + r.firstRejected);
+        Map<String, String> properties = new LinkedHashMap<>();
+        properties.put("model", model.toString());
+        properties.put("trace", replay.toString());
+        properties.put("format", format == TraceReader.Format.CSV ? "csv" : "json-lines");
+        properties.put("from", from == null ? "initial" : from);
+        properties.put("timeunit_us", Long.toString(unit));
+        properties.put("tolerance_us", Long.toString(toleranceMicros));
+        properties.put("continue", Boolean.toString(keepGoing));
+        properties.put("events", Long.toString(monitor.events()));
+        properties.put("violations", Integer.toString(monitor.violations()));
+        properties.put("rejected_lines", Integer.toString(r.rejected));
+        return MonitorJunit.write(junit, model, List.of(replayed), properties, seconds, summary, err);
     }
 
     private MonitorOptions options(long unit) {
@@ -214,6 +249,9 @@ final class MonitorCommand implements Callable<Integer> {
         private long endMicros = -1;
         private long lastMicros = -1;
         private final ReplayProgress progress;
+        /** The first alarm, and the first line rejected ("LINE: reason"), for --junit; null until they come. */
+        private Alarm firstAlarm;
+        private String firstRejected;
 
         Replay(Monitor monitor, PrintWriter out, PrintWriter err, long unit) {
             this.monitor = monitor;
@@ -250,6 +288,9 @@ final class MonitorCommand implements Callable<Integer> {
         @Override
         public void rejected(int line, String reason) {
             rejected++;
+            if (firstRejected == null) {
+                firstRejected = line + ": " + reason;
+            }
             err.println(replay + ":" + line + ": " + reason);
             monitor.forgetHistory();
             progress.after(line, lastMicros, monitor, rejected);
@@ -258,6 +299,9 @@ final class MonitorCommand implements Callable<Integer> {
         void report(Alarm a) {
             if (a == null) {
                 return;
+            }
+            if (firstAlarm == null) {
+                firstAlarm = a;
             }
             try {
                 alarms.write(a.toJson());

@@ -10,6 +10,7 @@ import io.dtron.api.Dtron;
 import io.dtron.api.IDtronChannelValued;
 import io.dtron.api.internal.TesterSide;
 import io.dtron.testsupport.Waits;
+import java.nio.file.Files;
 import java.nio.file.Path;
 import java.util.Map;
 import java.util.concurrent.TimeUnit;
@@ -23,7 +24,8 @@ import org.junit.jupiter.api.io.TempDir;
  * {@code dtron monitor --cluster NAME} prints a progress line every five seconds while it watches, whether or not
  * anything happens: a real JGroups member on loopback plays the tester and the server of the monitor tests' model
  * (100 ms time units), one request and its response, then nothing until the stop. The lines repeat, so the test waits
- * for the first that counts both events, whenever load lets the monitor judge them.
+ * for the first that counts both events, whenever load lets the monitor judge them. The watch's {@code --junit}
+ * report holds the run as a passing test case.
  */
 @Timeout(value = 2, unit = TimeUnit.MINUTES)
 class LiveMonitorProgressTest {
@@ -37,7 +39,7 @@ class LiveMonitorProgressTest {
     void aWatchShowsHowFarItJudgedEveryFiveSeconds() throws Exception {
         MonitorOnBus monitor = new MonitorOnBus(dir, "progress");
         try (Dtron system = monitor.member()) {
-            monitor.start(system, 2);
+            monitor.start(system, 2, "--junit", dir.resolve("watch.xml").toString());
             TesterSide.of(system).setRunId("c0ffee");
             long t0 = system.currentTimeNanos();
             TesterSide.of(system).sendRunStart(Dtron.RUN_START.constructValued(Map.of("timeunit", 100_000)), t0,
@@ -57,6 +59,13 @@ class LiveMonitorProgressTest {
             assertTrue(printed.indexOf("progress: ") < printed.indexOf("run c0ffee ended: no violation, 2 events"
                     + " checked"), monitor.shown());
         }
+        // --junit: the run a passing test case, the counts as properties
+        String xml = Files.readString(dir.resolve("watch.xml"));
+        assertTrue(xml.contains("<testsuite name=\"dtron monitor " + dir.resolve("server.xta") + "\" tests=\"1\""
+                + " failures=\"0\" errors=\"0\""), xml);
+        assertTrue(xml.contains("<testcase name=\"run c0ffee\" classname=\"dtron.monitor.server\""), xml);
+        assertTrue(xml.contains("<property name=\"events\" value=\"2\"/>"), xml);
+        assertTrue(xml.contains("<property name=\"runs\" value=\"1\"/>"), xml);
     }
 
     private static String lines(MonitorOnBus monitor) {

@@ -13,6 +13,7 @@ import io.dtron.api.IDtronChannelValued;
 import io.dtron.api.internal.TesterSide;
 import io.dtron.testsupport.Waits;
 import java.nio.file.Path;
+import java.util.List;
 import java.util.Map;
 import java.util.concurrent.TimeUnit;
 import org.junit.jupiter.api.Test;
@@ -37,10 +38,10 @@ class LiveMonitorRunEndTest {
         final MonitorOnBus monitor;
         final Dtron system;
 
-        Watch() throws Exception {
+        Watch(String... options) throws Exception {
             monitor = new MonitorOnBus(dir, "runend");
             system = monitor.member();
-            monitor.start(system, 2);
+            monitor.start(system, 2, options);
             TesterSide.of(system).setRunId("c0ffee");
         }
 
@@ -98,7 +99,8 @@ class LiveMonitorRunEndTest {
 
     @Test
     void anEventStampedBeforeTheEndThatTheBusDeliversAfterTheStopIsJudged() throws Exception {
-        try (Watch watch = new Watch()) {
+        Path xml = dir.resolve("watch.xml");
+        try (Watch watch = new Watch("--junit", xml.toString())) {
             long t0 = watch.system.currentTimeNanos();
             long end = t0 + 5 * UNIT_NANOS;
             TesterSide.of(watch.system).sendRunStart(Dtron.RUN_START.constructValued(Map.of("timeunit", 100_000)),
@@ -114,6 +116,15 @@ class LiveMonitorRunEndTest {
             assertTrue(printed.contains("1 violation, 2 events checked"), watch.shown());
             assertFalse(printed.contains("after the run's end"), watch.shown());
         }
+        // --junit: the run a test case, failed with its violation
+        org.w3c.dom.Element suite = javax.xml.parsers.DocumentBuilderFactory.newInstance().newDocumentBuilder()
+                .parse(xml.toFile()).getDocumentElement();
+        assertEquals(List.of("1", "1", "0"), List.of(suite.getAttribute("tests"), suite.getAttribute("failures"),
+                suite.getAttribute("errors")));
+        assertEquals("run c0ffee", ((org.w3c.dom.Element) suite.getElementsByTagName("testcase").item(0))
+                .getAttribute("name"));
+        String failure = ((org.w3c.dom.Element) suite.getElementsByTagName("failure").item(0)).getAttribute("message");
+        assertTrue(failure.startsWith("violation 1 at t=1.500: resp(n=2)"), failure);
     }
 
     @Test

@@ -30,7 +30,8 @@ import org.junit.jupiter.api.io.TempDir;
  * {@code dtron monitor --cluster NAME --shield resp} between a producer of the monitor tests' server model and a
  * consumer, real JGroups members on loopback: the response the model forbids (before the server's 1 time unit) is
  * withheld, which the alarm on {@code dtron_alarm} says, and the allowed one is republished on {@code
- * resp_shielded}, where the consumer listens. The producer stamps its events' times, so load changes nothing.
+ * resp_shielded}, where the consumer listens. The producer stamps its events' times, and a run's start ends the
+ * watch once the shield has passed one and withheld the other, so load changes nothing.
  */
 @Timeout(value = 2, unit = TimeUnit.MINUTES)
 class MonitorShieldTest {
@@ -61,7 +62,7 @@ class MonitorShieldTest {
             StringWriter err = new StringWriter();
             CompletableFuture<Integer> exit = CompletableFuture.supplyAsync(() -> DtronCommand.run(new String[] {
                 "monitor", model.toString(), "--cluster", cluster, "--timeunit", "100000", "--shield", "resp",
-                "--duration", "3"}, new PrintWriter(out, true), new PrintWriter(err, true)));
+                "--duration", "60"}, new PrintWriter(out, true), new PrintWriter(err, true)));
             Waits.await("the shield on the bus").until(() -> out.toString().contains(" as ") || exit.isDone());
             Waits.await("the shield among the members").until(() -> producer.getMembers().size() == 3);
             // the server's times, 100 ms per unit: a request, a response 10 ms later (the model: 1 to 3 units), one
@@ -70,12 +71,19 @@ class MonitorShieldTest {
             producer.send(REQ.constructValued(Map.of("n", 1)), t0);
             IDtronChannelValued early = producer.send(RESP.constructValued(Map.of("n", 2)), t0 + 10_000_000L);
             producer.send(RESP.constructValued(Map.of("n", 2)), t0 + 150_000_000L);
+            // the shield judges its channel's messages as they come: once it passed one and withheld the other, a
+            // run's start ends the watch of the running system (and the monitor, which follows one run), whatever
+            // the load made of the times between
+            Waits.await("the allowed response passed and the alarm of the other").until(() -> shielded.size() == 1
+                    && !alarms.isEmpty() || exit.isDone());
+            producer.send(Dtron.RUN_START.constructValued(Map.of("timeunit", 100_000)), producer.currentTimeNanos());
             assertEquals(2, exit.get(1, TimeUnit.MINUTES), out + "\n" + err);
             String printed = out.toString();
             assertTrue(printed.contains("violation 1 at t=") && printed.contains("resp(n=2) at t=")
                     && printed.contains("is not allowed then") && printed.contains("withheld: not republished on"
                     + " resp_shielded"), printed);
-            assertTrue(printed.contains("1 violation, 3 events checked, 0 too late to judge, 1 withheld"), printed);
+            assertTrue(printed.contains("dtron monitor: 1 run, 1 violation (the watch: 1), 3 events checked, 0 too late"
+                    + " to judge, 1 withheld"), printed);
             // the shield's messages in its order: the allowed response, the alarm and the verdict
             Waits.await("the verdict on dtron_alarm").until(() -> alarms.stream()
                     .anyMatch(a -> a.getVariables().get("verdict") == 1));

@@ -477,10 +477,14 @@ public final class BusMonitor implements AutoCloseable {
                 violations, late, withheld, runs.size());
     }
 
-    /** Whether the run watched (or the time since the last one) has anything to report. */
+    /**
+     * Whether the run watched (or the time since the last one) has anything to report: events it held and has not
+     * judged yet count, so that a run start that comes before they are a reorder window old ends the watch with them
+     * judged, as it would a moment later, instead of dropping them.
+     */
     private boolean watchedSomething() {
-        return startSeen || !runId.isEmpty() || events > 0 || violations > 0 || late > 0 || withheld > 0
-                || afterEnd > 0;
+        return startSeen || !runId.isEmpty() || events > 0 || !held.isEmpty() || violations > 0 || late > 0
+                || withheld > 0 || afterEnd > 0;
     }
 
     /**
