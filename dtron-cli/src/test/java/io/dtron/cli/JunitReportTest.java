@@ -234,7 +234,8 @@ class JunitReportTest {
         return (Element) list.item(0);
     }
 
-    private static Map<String, String> properties(Element suite) {
+    /** The suite's properties by name, in order. */
+    static Map<String, String> properties(Element suite) {
         Map<String, String> map = new LinkedHashMap<>();
         NodeList list = suite.getElementsByTagName("property");
         for (int i = 0; i < list.getLength(); i++) {

@@ -117,8 +117,7 @@ class LiveMonitorRunEndTest {
             assertFalse(printed.contains("after the run's end"), watch.shown());
         }
         // --junit: the run a test case, failed with its violation
-        org.w3c.dom.Element suite = javax.xml.parsers.DocumentBuilderFactory.newInstance().newDocumentBuilder()
-                .parse(xml.toFile()).getDocumentElement();
+        org.w3c.dom.Element suite = JunitReportTest.parse(xml).getDocumentElement();
         assertEquals(List.of("1", "1", "0"), List.of(suite.getAttribute("tests"), suite.getAttribute("failures"),
                 suite.getAttribute("errors")));
         assertEquals("run c0ffee", ((org.w3c.dom.Element) suite.getElementsByTagName("testcase").item(0))

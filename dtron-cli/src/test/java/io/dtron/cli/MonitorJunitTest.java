@@ -4,14 +4,11 @@ import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import java.nio.file.Path;
-import java.util.LinkedHashMap;
 import java.util.List;
 import java.util.Map;
-import javax.xml.parsers.DocumentBuilderFactory;
 import org.junit.jupiter.api.Test;
 import org.junit.jupiter.api.io.TempDir;
 import org.w3c.dom.Element;
-import org.w3c.dom.NodeList;
 
 /**
  * {@code dtron monitor --replay TRACE --junit FILE.xml} read back as the tools read it (a DOM parser that refuses
@@ -30,19 +27,11 @@ class MonitorJunitTest {
     Path dir;
 
     private static Element parse(Path xml) throws Exception {
-        DocumentBuilderFactory f = DocumentBuilderFactory.newInstance();
-        f.setFeature("http://apache.org/xml/features/disallow-doctype-decl", true);
-        return f.newDocumentBuilder().parse(xml.toFile()).getDocumentElement();
+        return JunitReportTest.parse(xml).getDocumentElement();
     }
 
     private static Map<String, String> properties(Element suite) {
-        Map<String, String> p = new LinkedHashMap<>();
-        NodeList all = suite.getElementsByTagName("property");
-        for (int i = 0; i < all.getLength(); i++) {
-            Element e = (Element) all.item(i);
-            p.put(e.getAttribute("name"), e.getAttribute("value"));
-        }
-        return p;
+        return JunitReportTest.properties(suite);
     }
 
     private static List<String> counts(Element suite) {
