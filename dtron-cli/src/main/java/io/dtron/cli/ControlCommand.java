@@ -22,13 +22,16 @@ import io.dtron.model.ModelException;
 import io.dtron.model.ModelLoader;
 import io.dtron.model.Network;
 import io.dtron.model.TestInterface;
+import java.io.IOException;
 import java.io.PrintWriter;
 import java.nio.file.Files;
 import java.nio.file.Path;
 import java.time.Duration;
 import java.util.ArrayList;
+import java.util.LinkedHashMap;
 import java.util.List;
 import java.util.Locale;
+import java.util.Map;
 import java.util.Optional;
 import java.util.concurrent.Callable;
 import java.util.concurrent.ScheduledExecutorService;
@@ -73,6 +76,12 @@ final class ControlCommand implements Callable<Integer> {
     @Option(names = "--plant", paramLabel = "model",
             description = "The plant: 'model', the model's own plant part simulated in this process (without a bus).")
     private String plant;
+
+    @Option(names = "--junit", paramLabel = "FILE.xml",
+            description = "Write the run as a JUnit XML report to FILE.xml: one test case, an alarm a failure (with"
+                    + " the safe action taken), a run stopped for another reason an error; the settings and counts as"
+                    + " properties.")
+    private Path junit;
 
     @Option(names = "--plant-mutant", paramLabel = "N",
             description = "With --plant model: mutant N of the plant part instead (the numbers dtron mutants prints),"
@@ -202,6 +211,9 @@ final class ControlCommand implements Callable<Integer> {
         if (duration <= 0) {
             throw usage("--duration must be a positive number of time units: " + duration);
         }
+        if (junit != null && JunitXml.folderProblem(junit) != null) {
+            throw usage(JunitXml.folderProblem(junit));
+        }
         if (safeAction != null && safeLocation != null) {
             throw usage("give --safe-action or --safe-location, not both");
         }
@@ -249,7 +261,7 @@ final class ControlCommand implements Callable<Integer> {
         out.println("dtron control: " + model + " against " + plantName + ", policy " + policy + ", " + duration
                 + " time units in virtual time, seed " + runSeed);
         out.flush();
-        return run(controller, testInterface, unit, out);
+        return run(controller, testInterface, unit, plantName, out, err);
     }
 
     /**
@@ -317,7 +329,7 @@ final class ControlCommand implements Callable<Integer> {
                         + BusRunLines.servedSummary(bridge.run()) + (versions == null ? "" : "; model versions are"
                         + " taken from the bus"));
                 out.flush();
-                exit = run(controller, testInterface, unit, out);
+                exit = run(controller, testInterface, unit, "the plant on " + where, out, err);
             }
             BusSession.printSummary(bridge.run(), "controller", out);
             BusTiming.runDelays(bridge.run()).ifPresent(out::println);
@@ -339,9 +351,12 @@ final class ControlCommand implements Callable<Integer> {
         return controller;
     }
 
-    /** Runs the controller, with the file of new versions watched, and prints its end. */
-    private int run(Controller controller, TestInterface testInterface, long unit, PrintWriter out)
-            throws ModelException {
+    /**
+     * Runs the controller of {@code plantName}, with the file of new versions watched, prints its end and writes
+     * {@code --junit}.
+     */
+    private int run(Controller controller, TestInterface testInterface, long unit, String plantName, PrintWriter out,
+            PrintWriter err) throws ModelException {
         Printer printer = new Printer(out, unit);
         controller.addListener(printer);
         ModelVersionFile versions = reloadFrom == null ? null : new ModelVersionFile(reloadFrom, model, interfaceFile,
@@ -377,11 +392,54 @@ final class ControlCommand implements Callable<Integer> {
             out.println("no safe action (--safe-action, --safe-location): the controller stopped");
         }
         out.println(result.summary(unit));
+        if (junit != null && !report(result, unit, plantName, (System.nanoTime() - began) / 1e9, err)) {
+            return 1;
+        }
         return switch (result.outcome()) {
             case COMPLETED -> 0;
             case ALARM -> 2;
             case STOPPED -> 3;
         };
+    }
+
+    /**
+     * {@code --junit}: the run as one test case, an alarm a failure, a run stopped for another reason an error;
+     * returns false, having said why, if the file could not be written.
+     */
+    private boolean report(ControlResult result, long unit, String plantName, double seconds, PrintWriter err) {
+        String name = "control against " + plantName + ", seed " + result.seed();
+        JunitXml.Case run = switch (result.outcome()) {
+            case COMPLETED -> new JunitXml.Case(name, null, null, "completed");
+            case ALARM -> new JunitXml.Case(name, "failure", "ALARM", "ALARM at " + ControlResult.time(
+                    result.alarmMicros(), unit) + ": " + result.reason() + (result.safeAction() == null
+                    ? "; no safe action" : "; safe action " + result.safeAction() + " taken"));
+            case STOPPED -> new JunitXml.Case(name, "error", "STOPPED", result.reason());
+        };
+        Map<String, String> p = new LinkedHashMap<>();
+        p.put("model", model.toString());
+        p.put("plant", plantName);
+        p.put("policy", policy);
+        p.put("seed", Long.toString(result.seed()));
+        p.put("duration", Long.toString(duration));
+        p.put("timeunit_us", Long.toString(unit));
+        p.put("virtual_time", Boolean.toString(virtualTime));
+        p.put("outcome", result.outcome().name());
+        p.put("commands", Integer.toString(result.commands()));
+        p.put("readings", Integer.toString(result.readings()));
+        p.put("alarms", Integer.toString(result.alarms()));
+        if (result.safeAction() != null) {
+            p.put("safe_action", result.safeAction());
+        }
+        p.put("versions_taken", String.join("; ", result.versions()));
+        p.put("versions_refused", String.join("; ", result.refused()));
+        try {
+            JunitXml.write(junit, "dtron control " + model, JunitXml.className("dtron.control.", model), List.of(run),
+                    p, seconds, result.summary(unit));
+            return true;
+        } catch (IOException e) {
+            err.println("dtron control: cannot write " + junit + ": " + e.getMessage());
+            return false;
+        }
     }
 
     private Mutant mutant(Network network, TestInterface testInterface, int number) {

@@ -249,7 +249,7 @@ final class LiveMonitor {
         p.put("bus", clusterName());
         p.put("from_joining", joinFrom);
         p.put("from_run_start", runFrom);
-        p.put("reorder_window_us", (delta == null || delta.equals("auto") ? "auto from " : "") + window);
+        p.put("reorder_window", (delta == null || delta.equals("auto") ? "auto from " : "") + window + " us");
         p.put("tolerance_us", Long.toString(start.toleranceMicros()));
         if (shield != null) {
             p.put("shield", shieldChannels()[0] + " on " + shieldChannels()[1]);

@@ -15,7 +15,7 @@ import org.junit.jupiter.api.io.TempDir;
  * stack trace; a bus with no plant on it is one line too.
  */
 class ControlCommandTest {
-    private static final String ARM = Path.of("../models/src/main/resources/io/dtron/models/robotarm/robot-arm.xta")
+    static final String ARM = Path.of("../models/src/main/resources/io/dtron/models/robotarm/robot-arm.xta")
             .toString();
 
     private static void refused(String expected, String... options) {
