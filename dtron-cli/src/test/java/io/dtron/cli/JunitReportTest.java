@@ -234,6 +234,14 @@ class JunitReportTest {
         return (Element) list.item(0);
     }
 
+    /** The message of the one test case of a suite, a failure of {@code type}; asserts that it is that. */
+    static String onlyFailure(Element suite, String type) {
+        assertEquals(List.of("1", "1", "0"), JunitPageIT.counts(suite));
+        Element failure = (Element) suite.getElementsByTagName("failure").item(0);
+        assertEquals(type, failure.getAttribute("type"));
+        return failure.getAttribute("message");
+    }
+
     /** The suite's properties by name, in order. */
     static Map<String, String> properties(Element suite) {
         Map<String, String> map = new LinkedHashMap<>();

@@ -34,10 +34,6 @@ class MonitorJunitTest {
         return JunitReportTest.properties(suite);
     }
 
-    private static List<String> counts(Element suite) {
-        return List.of(suite.getAttribute("tests"), suite.getAttribute("failures"), suite.getAttribute("errors"));
-    }
-
     @Test
     void aCorrectLogIsOnePassingCaseWithTheCountsAsProperties() throws Exception {
         Path xml = dir.resolve("ok.xml");
@@ -46,7 +42,7 @@ class MonitorJunitTest {
         assertEquals(0, r.exit(), r.out() + r.err());
         Element suite = parse(xml);
         assertEquals("dtron monitor " + MonitorCommandTest.SERVER, suite.getAttribute("name"));
-        assertEquals(List.of("1", "0", "0"), counts(suite));
+        assertEquals(List.of("1", "0", "0"), JunitPageIT.counts(suite));
         Element test = (Element) suite.getElementsByTagName("testcase").item(0);
         assertEquals("replay of " + dir.resolve("ok.csv"), test.getAttribute("name"));
         assertEquals("dtron.monitor.server", test.getAttribute("classname"));
@@ -68,10 +64,7 @@ class MonitorJunitTest {
                 "--continue", "--junit", xml.toString());
         assertEquals(2, r.exit(), r.out() + r.err());
         Element suite = parse(xml);
-        assertEquals(List.of("1", "1", "0"), counts(suite));
-        Element failure = (Element) suite.getElementsByTagName("failure").item(0);
-        assertEquals("VIOLATION", failure.getAttribute("type"));
-        String message = failure.getAttribute("message");
+        String message = JunitReportTest.onlyFailure(suite, "VIOLATION");
         assertTrue(message.startsWith("violation 1 at t=6.500: resp(n=9) at t=6.500 is not allowed then"), message);
         assertTrue(message.endsWith(" (2 violations in all)"), message);
         assertTrue(r.out().contains("violation 1 at t=6.500: resp(n=9) at t=6.500 is not allowed then"), r.out());
@@ -88,7 +81,7 @@ class MonitorJunitTest {
                 "--junit", xml.toString());
         assertEquals(3, r.exit(), r.out() + r.err());
         Element suite = parse(xml);
-        assertEquals(List.of("1", "0", "1"), counts(suite));
+        assertEquals(List.of("1", "0", "1"), JunitPageIT.counts(suite));
         Element error = (Element) suite.getElementsByTagName("error").item(0);
         assertEquals("INCOMPLETE", error.getAttribute("type"));
         assertEquals("1 line of the trace rejected, the first 4: value of 'n' is not a 32-bit integer: many",
