@@ -352,8 +352,7 @@ final class LiveMonitor {
         private final String shielded;
         private final boolean shielding;
         private volatile long unit;
-        /** For --junit: the first alarm of the run watched (null while none), and the cases of the runs ended. */
-        private Alarm firstAlarm;
+        /** For --junit: the cases of the runs ended. */
         private final List<JunitXml.Case> cases = new ArrayList<>();
 
         Printer(PrintWriter out, Writer alarms, long unit, String shielded, boolean shielding) {
@@ -372,9 +371,8 @@ final class LiveMonitor {
         @Override
         public void runEnded(BusMonitor.RunResult run) {
             synchronized (cases) {
-                cases.add(MonitorJunit.runCase(name(run), run.violations(), firstAlarm, unit, run.late() == 0 ? null
-                        : run.late() + (run.late() == 1 ? " message" : " messages") + " came too late to judge"));
-                firstAlarm = null;
+                cases.add(MonitorJunit.runCase(name(run), run.violations(), run.firstAlarm(), unit, run.late() == 0
+                        ? null : run.late() + (run.late() == 1 ? " message" : " messages") + " came too late to judge"));
             }
             line(name(run) + " ended: " + violations(run.violations()) + ", " + events(run.events()) + switch (run
                     .end()) {
@@ -394,9 +392,6 @@ final class LiveMonitor {
 
         @Override
         public void alarm(Alarm alarm, boolean withheld) {
-            synchronized (cases) {
-                firstAlarm = firstAlarm == null ? alarm : firstAlarm;
-            }
             write(alarm.toJson());
             synchronized (out) {
                 MonitorCommand.print(out, alarm, unit, withheld ? "; withheld: not republished on " + shielded : "");

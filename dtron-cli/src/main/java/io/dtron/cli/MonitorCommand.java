@@ -194,9 +194,10 @@ final class MonitorCommand implements Callable<Integer> {
     /** {@code --junit} of a replay: one test case; returns false if the file could not be written. */
     private boolean replayReport(Replay r, Monitor monitor, TraceReader.Format format, long unit, double seconds,
             String summary, PrintWriter err) {
-        JunitXml.Case replayed = MonitorJunit.runCase("replay of " + replay, monitor.violations(), r.firstAlarm, unit,
-                r.rejected == 0 ? null : r.rejected + " line" + (r.rejected == 1 ? "" : "s") + " of the trace rejected,"
-                        + " the first " + r.firstRejected);
+        String missing = r.rejected == 0 ? null : r.rejected + " line" + (r.rejected == 1 ? "" : "s") + " of the trace"
+                + " rejected, the first " + r.firstRejected;
+        JunitXml.Case replayed = MonitorJunit.runCase("replay of " + replay, monitor.violations(), monitor.firstAlarm(),
+                unit, missing);
         Map<String, String> properties = new LinkedHashMap<>();
         properties.put("model", model.toString());
         properties.put("trace", replay.toString());
@@ -249,8 +250,7 @@ final class MonitorCommand implements Callable<Integer> {
         private long endMicros = -1;
         private long lastMicros = -1;
         private final ReplayProgress progress;
-        /** The first alarm, and the first line rejected ("LINE: reason"), for --junit; null until they come. */
-        private Alarm firstAlarm;
+        /** The first line rejected ("LINE: reason"), for --junit; null until one is. */
         private String firstRejected;
 
         Replay(Monitor monitor, PrintWriter out, PrintWriter err, long unit) {
@@ -299,9 +299,6 @@ final class MonitorCommand implements Callable<Integer> {
         void report(Alarm a) {
             if (a == null) {
                 return;
-            }
-            if (firstAlarm == null) {
-                firstAlarm = a;
             }
             try {
                 alarms.write(a.toJson());

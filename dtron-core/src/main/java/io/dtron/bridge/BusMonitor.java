@@ -153,9 +153,10 @@ public final class BusMonitor implements AutoCloseable {
      * @param withheld the messages the shield withheld, with those of the time before the run since the last one
      * @param afterEnd the events of the run stamped after its end (the tester's end of observation, or the end its
      *                 start announced), which were not judged
+     * @param firstAlarm the run's first violation, or null when it had none
      */
     public record RunResult(String runId, int violations, long events, long late, long withheld, End end,
-            long afterEnd) {
+            long afterEnd, Alarm firstAlarm) {
     }
 
     /**
@@ -496,7 +497,8 @@ public final class BusMonitor implements AutoCloseable {
         long last = end();
         afterEnd += held.stream().filter(h -> h.micros > last).count(); // held, then the stop came before them
         publishVerdict();
-        RunResult run = new RunResult(runId, violations, events, late, withheld, why, afterEnd);
+        RunResult run = new RunResult(runId, violations, events, late, withheld, why, afterEnd,
+                monitor == null ? null : monitor.firstAlarm());
         runs.add(run);
         tester.setRunId("");
         monitor = null;
