@@ -22,7 +22,6 @@ import io.dtron.model.ModelException;
 import io.dtron.model.ModelLoader;
 import io.dtron.model.Network;
 import io.dtron.model.TestInterface;
-import java.io.IOException;
 import java.io.PrintWriter;
 import java.nio.file.Files;
 import java.nio.file.Path;
@@ -432,14 +431,7 @@ final class ControlCommand implements Callable<Integer> {
         }
         p.put("versions_taken", String.join("; ", result.versions()));
         p.put("versions_refused", String.join("; ", result.refused()));
-        try {
-            JunitXml.write(junit, "dtron control " + model, JunitXml.className("dtron.control.", model), List.of(run),
-                    p, seconds, result.summary(unit));
-            return true;
-        } catch (IOException e) {
-            err.println("dtron control: cannot write " + junit + ": " + e.getMessage());
-            return false;
-        }
+        return JunitXml.writeOrSay(junit, "control", model, List.of(run), p, seconds, result.summary(unit), err);
     }
 
     private Mutant mutant(Network network, TestInterface testInterface, int number) {

@@ -7,6 +7,7 @@ import io.dtron.engine.Verdict;
 import io.dtron.engine.coverage.Coverage;
 import java.io.IOException;
 import java.io.OutputStream;
+import java.io.PrintWriter;
 import java.nio.file.Files;
 import java.nio.file.Path;
 import java.time.Instant;
@@ -180,6 +181,23 @@ final class JunitXml {
             xml.close();
         } catch (XMLStreamException e) {
             throw new IOException(e.getMessage(), e);
+        }
+    }
+
+    /**
+     * Writes the report of {@code dtron COMMAND MODEL} as {@link #write} does (suite {@code dtron COMMAND MODEL}, class
+     * {@code dtron.COMMAND.} and the model's name); returns false, having said why on {@code err}, if the file cannot
+     * be written.
+     */
+    static boolean writeOrSay(Path file, String command, Path model, List<Case> cases, Map<String, String> properties,
+            double seconds, String output, PrintWriter err) {
+        try {
+            write(file, "dtron " + command + " " + model, className("dtron." + command + ".", model), cases, properties,
+                    seconds, output);
+            return true;
+        } catch (IOException e) {
+            err.println("dtron " + command + ": cannot write " + file + ": " + e.getMessage());
+            return false;
         }
     }
 

@@ -227,9 +227,9 @@ final class LiveMonitor {
             }
         }
         String summary = summary(result, shield != null);
-        if (start.junitFile() != null && !MonitorJunit.write(start.junitFile(), start.model(), printer.cases(
-                result.error()), properties(start, result, joinFrom, runFrom, window), (System.nanoTime() - began)
-                / 1e9, result.error() == null ? summary : result.error(), err)) {
+        if (start.junitFile() != null && !JunitXml.writeOrSay(start.junitFile(), "monitor", start.model(),
+                printer.cases(result.error()), properties(start, result, joinFrom, runFrom, window),
+                (System.nanoTime() - began) / 1e9, result.error() == null ? summary : result.error(), err)) {
             return 1;
         }
         if (result.error() != null) {
@@ -371,7 +371,7 @@ final class LiveMonitor {
         @Override
         public void runEnded(BusMonitor.RunResult run) {
             synchronized (cases) {
-                cases.add(MonitorJunit.runCase(name(run), run.violations(), run.firstAlarm(), unit, run.late() == 0
+                cases.add(MonitorCommand.junitCase(name(run), run.violations(), run.firstAlarm(), unit, run.late() == 0
                         ? null : run.late() + (run.late() == 1 ? " message" : " messages") + " came too late to judge"));
             }
             line(name(run) + " ended: " + violations(run.violations()) + ", " + events(run.events()) + switch (run

@@ -196,7 +196,7 @@ final class MonitorCommand implements Callable<Integer> {
             String summary, PrintWriter err) {
         String missing = r.rejected == 0 ? null : r.rejected + " line" + (r.rejected == 1 ? "" : "s") + " of the trace"
                 + " rejected, the first " + r.firstRejected;
-        JunitXml.Case replayed = MonitorJunit.runCase("replay of " + replay, monitor.violations(), monitor.firstAlarm(),
+        JunitXml.Case replayed = junitCase("replay of " + replay, monitor.violations(), monitor.firstAlarm(),
                 unit, missing);
         Map<String, String> properties = new LinkedHashMap<>();
         properties.put("model", model.toString());
@@ -209,7 +209,7 @@ final class MonitorCommand implements Callable<Integer> {
         properties.put("events", Long.toString(monitor.events()));
         properties.put("violations", Integer.toString(monitor.violations()));
         properties.put("rejected_lines", Integer.toString(r.rejected));
-        return MonitorJunit.write(junit, model, List.of(replayed), properties, seconds, summary, err);
+        return JunitXml.writeOrSay(junit, "monitor", model, List.of(replayed), properties, seconds, summary, err);
     }
 
     private MonitorOptions options(long unit) {
@@ -331,6 +331,24 @@ final class MonitorCommand implements Callable<Integer> {
         if (a.number() == PRINTED) {
             out.println("(further violations are counted, not printed)");
         }
+    }
+
+    /**
+     * The {@code --junit} case {@code name} of a replay or a run watched on a bus (a violation a failure with the
+     * first, missing evidence an error, else a pass): {@code violations} and the {@code first} of them (null if not
+     * seen), with times in units of {@code unitMicros}; {@code missing} says what evidence was missing (null: none).
+     */
+    static JunitXml.Case junitCase(String name, int violations, Alarm first, long unitMicros, String missing) {
+        if (violations > 0) {
+            String what = first == null ? violations + " violations"
+                    : "violation " + first.number() + " at t=" + MonitorCommand.units(first.micros(), unitMicros) + ": "
+                            + first.explanation() + (violations > 1 ? " (" + violations + " violations in all)" : "");
+            return new JunitXml.Case(name, "failure", "VIOLATION", what);
+        }
+        if (missing != null) {
+            return new JunitXml.Case(name, "error", "INCOMPLETE", missing);
+        }
+        return new JunitXml.Case(name, null, null, "no violation");
     }
 
     /** A time on the run's clock in time units, with three decimals. */
