@@ -1,5 +1,8 @@
 package io.dtron.cli;
 
+import static io.dtron.cli.MonitorCommand.events;
+import static io.dtron.cli.MonitorCommand.violations;
+
 import io.dtron.api.DtronException;
 import io.dtron.api.DtronOptions;
 import io.dtron.bridge.BusMonitor;
@@ -285,14 +288,6 @@ final class LiveMonitor {
     /** ", N after the run's end" when events came stamped after their run's end (not judged); else "". */
     private static String afterTheEnd(long n) {
         return n == 0 ? "" : ", " + n + " after the run's end (not judged)";
-    }
-
-    private static String violations(int v) {
-        return v == 0 ? "no violation" : v + " violation" + (v == 1 ? "" : "s");
-    }
-
-    private static String events(long e) {
-        return e + " event" + (e == 1 ? "" : "s") + " checked";
     }
 
     /** The reorder window: {@code --delta US}, or the automatic one's start. */

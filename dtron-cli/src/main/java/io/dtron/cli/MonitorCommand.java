@@ -179,11 +179,9 @@ final class MonitorCommand implements Callable<Integer> {
         }
         double seconds = (System.nanoTime() - began) / 1e9;
         int violations = monitor.violations();
-        String summary = "dtron monitor: " + (violations == 0 ? "no violation" : violations + " violation"
-                + (violations == 1 ? "" : "s")) + ", " + monitor.events() + " event" + (monitor.events() == 1 ? "" : "s")
-                + " checked" + (monitor.stopped() ? " (stopped at the first violation)" : "") + ", " + r.rejected
-                + " line" + (r.rejected == 1 ? "" : "s") + " rejected, in " + String.format(Locale.ROOT, "%.2f s",
-                seconds);
+        String summary = "dtron monitor: " + violations(violations) + ", " + events(monitor.events())
+                + (monitor.stopped() ? " (stopped at the first violation)" : "") + ", " + rejected(r.rejected)
+                + ", in " + String.format(Locale.ROOT, "%.2f s", seconds);
         out.println(summary);
         if (junit != null && !replayReport(r, monitor, format, unit, seconds, summary, err)) {
             return 1;
@@ -349,6 +347,21 @@ final class MonitorCommand implements Callable<Integer> {
             return new JunitXml.Case(name, "error", "INCOMPLETE", missing);
         }
         return new JunitXml.Case(name, null, null, "no violation");
+    }
+
+    /** The violations counted, in words: {@code no violation}, {@code 1 violation}, {@code 2 violations}. */
+    static String violations(int v) {
+        return v == 0 ? "no violation" : v + " violation" + (v == 1 ? "" : "s");
+    }
+
+    /** The events checked, in words: {@code 1 event checked}, {@code 2 events checked}. */
+    static String events(long e) {
+        return e + " event" + (e == 1 ? "" : "s") + " checked";
+    }
+
+    /** The lines of a trace rejected, in words: {@code 0 lines rejected}, {@code 1 line rejected}. */
+    static String rejected(int lines) {
+        return lines + " line" + (lines == 1 ? "" : "s") + " rejected";
     }
 
     /** A time on the run's clock in time units, with three decimals. */

@@ -41,11 +41,10 @@ final class ReplayProgress {
             return;
         }
         nextNanos = now + everyNanos;
-        int v = monitor.violations();
         out.println(String.format(Locale.ROOT, "progress: %.0f s, line %d", (now - beganNanos) / 1e9, line)
-                + (micros >= 0 ? ", t=" + MonitorCommand.units(micros, unitMicros) : "") + ", " + monitor.events()
-                + (monitor.events() == 1 ? " event" : " events") + " checked, " + (v == 0 ? "no violation" : v + (v == 1 ? " violation" : " violations")) + ", "
-                + rejected + (rejected == 1 ? " line" : " lines") + " rejected");
+                + (micros >= 0 ? ", t=" + MonitorCommand.units(micros, unitMicros) : "") + ", "
+                + MonitorCommand.events(monitor.events()) + ", " + MonitorCommand.violations(monitor.violations())
+                + ", " + MonitorCommand.rejected(rejected));
         out.flush();
     }
 }
