@@ -262,8 +262,8 @@ public final class RunClock {
     /**
      * Runs a clock of its own through a run: started, read, tasks scheduled and cancelled, one run on its thread and
      * one handed to it ({@link #runAt}), stopped and closed. So a fresh process loads and first runs this code when it
-     * joins the bus, not at time 0 of its first run, when an adapter may have a few milliseconds to act. Waits at most {@code limit} for the task;
-     * touches no other clock.
+     * joins the bus, not at time 0 of its first run, when an adapter may have a few milliseconds to act. Waits at most
+     * {@code limit} for the task; touches no other clock.
      */
     static void warmUp(Duration limit) {
         RunClock clock = new RunClock("warm-up", EpochClock::nowNanos, () -> 0);

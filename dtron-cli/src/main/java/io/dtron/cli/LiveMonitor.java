@@ -366,8 +366,9 @@ final class LiveMonitor {
         @Override
         public void runEnded(BusMonitor.RunResult run) {
             synchronized (cases) {
-                cases.add(MonitorCommand.junitCase(name(run), run.violations(), run.firstAlarm(), unit, run.late() == 0
-                        ? null : run.late() + (run.late() == 1 ? " message" : " messages") + " came too late to judge"));
+                String missing = run.late() == 0 ? null
+                        : run.late() + (run.late() == 1 ? " message" : " messages") + " came too late to judge";
+                cases.add(MonitorCommand.junitCase(name(run), run.violations(), run.firstAlarm(), unit, missing));
             }
             line(name(run) + " ended: " + violations(run.violations()) + ", " + events(run.events()) + switch (run
                     .end()) {

@@ -90,8 +90,9 @@ final class MonitorCommand implements Callable<Integer> {
             + " from every reachable state consistent with the event.")
     private boolean keepGoing;
 
-    @Option(names = "--alarms", paramLabel = "FILE", description = "Write every alarm as a line of JSON to FILE (live, the"
-            + " monitor's notes too: messages too late to judge, a widened window, members silent before an alarm).")
+    @Option(names = "--alarms", paramLabel = "FILE", description = "Write every alarm as a line of JSON to FILE (live,"
+            + " the monitor's notes too: messages too late to judge, a widened window, members silent before an"
+            + " alarm).")
     private Path alarmsFile;
 
     @Option(names = "--junit", paramLabel = "FILE.xml", description = "Write what the monitor judged as a JUnit XML"

@@ -19,7 +19,8 @@ import org.junit.jupiter.api.io.TempDir;
  */
 class RealTimeJitTest {
     /** A directive's C2 part that excludes what it matches, in HotSpot's print of the directives. */
-    private static final Pattern C2_EXCLUDED = Pattern.compile("c2 directives:\\s+inline: -\\s+Enable:true Exclude:true");
+    private static final Pattern C2_EXCLUDED = Pattern.compile(
+            "c2 directives:\\s+inline: -\\s+Enable:true Exclude:true");
 
     @TempDir
     Path dir;

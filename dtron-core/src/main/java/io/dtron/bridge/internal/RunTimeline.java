@@ -40,7 +40,9 @@ public final class RunTimeline {
         return zeroEpochNanos;
     }
 
-    /** Returns {@code runMicros} on the run's clock as a time on the run's wall clock, in nanoseconds since the epoch. */
+    /**
+     * Returns {@code runMicros} on the run's clock as a time on the run's wall clock, in nanoseconds since the epoch.
+     */
     public long epochNanos(long runMicros) {
         return zeroEpochNanos + Math.multiplyExact(runMicros, 1000L);
     }
