@@ -95,11 +95,6 @@ public final class StepWatch implements AutoCloseable {
             return TimeUnit.NANOSECONDS.toMillis(browserStartNanos);
         }
 
-        /** Returns whether the watch logged the step as slow while it ran. */
-        public boolean loggedSlow() {
-            return loggedSlow;
-        }
-
         /** Notes that the step spent this long starting its user's browser. */
         public void browserStarted(long nanos) {
             browserStartNanos += nanos;

@@ -35,10 +35,6 @@ final class Diagnostics {
         return all.stream().anyMatch(Diagnostic::isError);
     }
 
-    int errorCount() {
-        return (int) all.stream().filter(Diagnostic::isError).count();
-    }
-
     List<Diagnostic> all() {
         return all;
     }

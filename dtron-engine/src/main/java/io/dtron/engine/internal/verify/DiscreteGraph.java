@@ -67,7 +67,6 @@ public final class DiscreteGraph {
     private final List<SymState> nodes = new ArrayList<>();
     private final List<Arc[]> arcs = new ArrayList<>();
     private final int[] edgeOffset;
-    private final int edgeCount;
     private final BitSet[] goalNodes;
     private final boolean complete;
     private final long zoneStates;
@@ -81,7 +80,6 @@ public final class DiscreteGraph {
             edgeOffset[p.index()] = offset;
             offset += p.edges().size();
         }
-        this.edgeCount = offset;
         this.goalNodes = new BitSet[goals];
         for (int g = 0; g < goals; g++) {
             goalNodes[g] = new BitSet();
@@ -254,11 +252,6 @@ public final class DiscreteGraph {
             p++; // processes without edges share an offset with the next
         }
         return p;
-    }
-
-    /** How many edges the network has. */
-    public int edgeCount() {
-        return edgeCount;
     }
 
     /** The node of {@code s}'s discrete part, or -1 when the exploration did not meet it. */
