@@ -58,7 +58,7 @@ final class CoverageCommand implements Callable<Integer> {
                     try {
                         text = Files.readString(f, StandardCharsets.UTF_8);
                     } catch (IOException e) {
-                        err.println("dtron coverage merge: cannot read " + f + ": " + e.getMessage());
+                        err.println("dtron coverage merge: cannot read " + f + ": " + OutputFile.reason(e));
                         return 1;
                     }
                     try {
@@ -88,7 +88,7 @@ final class CoverageCommand implements Callable<Integer> {
                     try {
                         Files.writeString(output, CoverageJson.write(union), StandardCharsets.UTF_8);
                     } catch (IOException e) {
-                        err.println("dtron coverage merge: cannot write " + output + ": " + e.getMessage());
+                        err.println("dtron coverage merge: cannot write " + output + ": " + OutputFile.reason(e));
                         return 1;
                     }
                 }

@@ -89,7 +89,7 @@ final class CoverageOptions {
             try {
                 Files.writeString(file, CoverageJson.write(c), StandardCharsets.UTF_8);
             } catch (IOException e) {
-                err.println("dtron run: cannot write the coverage file " + file + ": " + e.getMessage());
+                err.println("dtron run: cannot write the coverage file " + file + ": " + OutputFile.reason(e));
                 err.flush();
             }
         }

@@ -113,7 +113,7 @@ final class DeltaCommand implements Callable<Integer> {
         } catch (NoSuchFileException e) {
             throw new DeltaDelays.Refusal("cannot write " + output + ": no such folder " + target.getParent());
         } catch (IOException e) {
-            throw new DeltaDelays.Refusal("cannot write " + output + ": " + e.getMessage());
+            throw new DeltaDelays.Refusal("cannot write " + output + ": " + OutputFile.reason(e));
         }
     }
 

@@ -167,7 +167,7 @@ final class DeltaDelays {
         } catch (NoSuchFileException e) {
             throw new Refusal(report + ": no such file");
         } catch (IOException e) {
-            throw new Refusal(report + ": cannot read the report: " + e.getMessage());
+            throw new Refusal(report + ": cannot read the report: " + OutputFile.reason(e));
         }
         try {
             return DeltaReport.parse(json);
@@ -182,7 +182,7 @@ final class DeltaDelays {
         } catch (NoSuchFileException e) {
             throw new Refusal(model + ": no such file");
         } catch (IOException e) {
-            throw new Refusal(model + ": cannot read the model: " + e.getMessage());
+            throw new Refusal(model + ": cannot read the model: " + OutputFile.reason(e));
         }
     }
 

@@ -15,6 +15,8 @@ import java.util.Map;
  */
 final class Json {
     private static final int MAX_DEPTH = 64;
+    /** The longest number literal read: longer ones (no time or value needs them) are an error, not a slow parse. */
+    private static final int MAX_NUMBER_LENGTH = 100;
 
     private final String text;
     private int at;
@@ -22,6 +24,15 @@ final class Json {
 
     private Json(String text) {
         this.text = text;
+    }
+
+    /**
+     * A value {@link #parse} gave, as a message shows it: a string quoted and escaped, long ones cut at 100
+     * characters.
+     */
+    static String text(Object value) {
+        String s = value instanceof String string ? io.dtron.engine.JsonString.quote(string) : String.valueOf(value);
+        return s.length() <= 100 ? s : s.substring(0, 100) + "... (" + s.length() + " characters)";
     }
 
     /** The one value of {@code text}. */
@@ -199,6 +210,12 @@ final class Json {
             if (!digits()) {
                 throw error("a number needs digits in its exponent");
             }
+        }
+        int length = at - start;
+        if (length > MAX_NUMBER_LENGTH) {
+            at = start;
+            throw error("a number of " + length + " characters is longer than DTRON reads (at most "
+                    + MAX_NUMBER_LENGTH + ")");
         }
         String literal = text.substring(start, at);
         if (integer) {

@@ -180,7 +180,8 @@ final class JunitXml {
             xml.writeEndDocument();
             xml.close();
         } catch (XMLStreamException e) {
-            throw new IOException(e.getMessage(), e);
+            // the writer's own failure (a full disk) is the IOException it wraps
+            throw e.getNestedException() instanceof IOException io ? io : new IOException(e.getMessage(), e);
         }
     }
 
@@ -196,16 +197,9 @@ final class JunitXml {
                     seconds, output);
             return true;
         } catch (IOException e) {
-            err.println("dtron " + command + ": cannot write " + file + ": " + e.getMessage());
+            err.println("dtron " + command + ": cannot write " + file + ": " + OutputFile.reason(e));
             return false;
         }
-    }
-
-    /** Why {@code --junit FILE} cannot be written (its folder does not exist), or null when it can be. */
-    static String folderProblem(Path file) {
-        Path folder = file.toAbsolutePath().getParent();
-        return folder != null && Files.isDirectory(folder) ? null
-                : "--junit " + file + ": the folder " + folder + " does not exist";
     }
 
     /** The class name of the test cases of {@code model}: {@code prefix} and the file's name without extension. */

@@ -165,7 +165,7 @@ final class LiveMonitor {
             alarms = start.alarmsFile() == null ? Writer.nullWriter()
                     : Files.newBufferedWriter(start.alarmsFile(), StandardCharsets.UTF_8);
         } catch (IOException e) {
-            err.println("dtron monitor: cannot write " + start.alarmsFile() + ": " + e.getMessage());
+            err.println("dtron monitor: cannot write " + start.alarmsFile() + ": " + OutputFile.reason(e));
             return 1;
         }
         Printer printer = new Printer(out, alarms, unit, shielded[1], shield != null);
@@ -226,7 +226,7 @@ final class LiveMonitor {
             try {
                 alarms.close();
             } catch (IOException e) {
-                err.println("dtron monitor: cannot write " + start.alarmsFile() + ": " + e.getMessage());
+                err.println("dtron monitor: cannot write " + start.alarmsFile() + ": " + OutputFile.reason(e));
             }
         }
         String summary = summary(result, shield != null);

@@ -1,6 +1,7 @@
 package io.dtron.cli;
 
 import io.dtron.engine.Event;
+import io.dtron.engine.TestOptions;
 import io.dtron.engine.UnsupportedModelException;
 import io.dtron.engine.monitor.Alarm;
 import io.dtron.engine.monitor.Monitor;
@@ -104,11 +105,13 @@ final class MonitorCommand implements Callable<Integer> {
     public Integer call() {
         PrintWriter out = spec.commandLine().getOut();
         PrintWriter err = spec.commandLine().getErr();
-        if (timeUnit != null && timeUnit <= 0) {
-            throw usage("--timeunit must be a positive number of microseconds: " + timeUnit);
+        if (timeUnit != null && (timeUnit <= 0 || timeUnit > TestOptions.MAX_DURATION_MICROS)) {
+            throw usage("--timeunit must be a positive number of microseconds, at most "
+                    + TestOptions.MAX_DURATION_MICROS + ": " + timeUnit);
         }
-        if (toleranceMicros < 0) {
-            throw usage("--tolerance must not be negative: " + toleranceMicros);
+        if (toleranceMicros < 0 || toleranceMicros > TestOptions.MAX_DURATION_MICROS) {
+            throw usage("--tolerance must be 0 to " + TestOptions.MAX_DURATION_MICROS + " us (about 292 years): "
+                    + toleranceMicros);
         }
         if (replay == null && !live.onBus()) {
             throw usage("give the run to check: --replay TRACE, or the bus to watch: --cluster NAME or --bus"
@@ -117,16 +120,20 @@ final class MonitorCommand implements Callable<Integer> {
         if (replay != null && live.onBus()) {
             throw usage("--replay checks a recorded run; leave out --cluster and --bus, or --replay");
         }
-        if (junit != null && JunitXml.folderProblem(junit) != null) {
-            throw usage(JunitXml.folderProblem(junit));
+        for (String problem : new String[] {junit == null ? null : OutputFile.problem("--junit", junit, model,
+                replay, interfaceFile), alarmsFile == null ? null : OutputFile.problem("--alarms", alarmsFile, model,
+                replay, interfaceFile, junit)}) {
+            if (problem != null) {
+                throw usage(problem);
+            }
         }
         if (replay == null) {
             live.check(this::usage);
         } else {
             live.checkReplay(this::usage);
         }
-        if (replay != null && (!Files.isReadable(replay) || Files.isDirectory(replay))) {
-            err.println("dtron monitor: cannot read " + replay);
+        if (replay != null && OutputFile.unreadable(replay) != null) {
+            err.println("dtron monitor: cannot read " + replay + ": " + OutputFile.unreadable(replay));
             return 1;
         }
         CommandModel.Loaded loaded = CommandModel.load("monitor", model, interfaceFile, err);
@@ -148,11 +155,19 @@ final class MonitorCommand implements Callable<Integer> {
         Monitor monitor;
         long unit;
         try {
-            unit = RunDefaults.timeUnit(timeUnit, format == TraceReader.Format.JSON_LINES
-                    ? TraceReader.timeUnit(replay) : null, testInterface.timeUnitMicros());
+            Long traceUnit;
+            try {
+                traceUnit = format == TraceReader.Format.JSON_LINES && timeUnit == null
+                        ? TraceReader.timeUnit(replay) : null;
+            } catch (IllegalArgumentException e) {
+                err.println("dtron monitor: " + replay + ":1: " + e.getMessage() + ": give the time unit with"
+                        + " --timeunit");
+                return 1;
+            }
+            unit = RunDefaults.timeUnit(timeUnit, traceUnit, testInterface.timeUnitMicros());
             monitor = Monitor.of(network, testInterface, options(unit));
         } catch (IOException e) {
-            err.println("dtron monitor: cannot read " + replay + ": " + e.getMessage());
+            err.println("dtron monitor: cannot read " + replay + ": " + OutputFile.reason(e));
             return 1;
         } catch (QueryException e) {
             throw usage("--from: " + e.getMessage());
@@ -166,17 +181,24 @@ final class MonitorCommand implements Callable<Integer> {
                 + (keepGoing ? ", going on after violations" : ""));
         Replay r = new Replay(monitor, out, err, unit);
         long began = System.nanoTime();
-        try (Writer alarms = alarmsFile == null ? Writer.nullWriter()
-                : Files.newBufferedWriter(alarmsFile, StandardCharsets.UTF_8)) {
-            r.alarms = alarms;
+        try {
+            r.alarms = alarmsFile == null ? Writer.nullWriter()
+                    : Files.newBufferedWriter(alarmsFile, StandardCharsets.UTF_8);
+        } catch (IOException e) {
+            err.println("dtron monitor: cannot write the alarms to " + alarmsFile + ": " + OutputFile.reason(e));
+            return 1;
+        }
+        try {
             TraceReader.read(replay, format, r);
             r.report(r.endMicros >= 0 ? monitor.advanceTo(r.endMicros) : null);
         } catch (IOException e) {
-            err.println("dtron monitor: cannot read " + replay + " or write the alarms: " + e.getMessage());
+            err.println("dtron monitor: cannot read " + replay + ": " + OutputFile.reason(e));
             return 1;
         } catch (UnsupportedModelException e) {
             err.println("dtron monitor: " + model + ": " + e.getMessage());
             return 1;
+        } finally {
+            r.closeAlarms();
         }
         double seconds = (System.nanoTime() - began) / 1e9;
         int violations = monitor.violations();
@@ -285,7 +307,10 @@ final class MonitorCommand implements Callable<Integer> {
         }
 
         @Override
-        public void rejected(int line, String reason) {
+        public void rejected(int line, String why) {
+            // a line of megabytes (a value, a channel name) is not echoed whole
+            String reason = why.length() <= 300 ? why : why.substring(0, 300) + "... (" + why.length()
+                    + " characters)";
             rejected++;
             if (firstRejected == null) {
                 firstRejected = line + ": " + reason;
@@ -303,9 +328,25 @@ final class MonitorCommand implements Callable<Integer> {
                 alarms.write(a.toJson());
                 alarms.write('\n');
             } catch (IOException e) {
-                throw new java.io.UncheckedIOException(e);
+                alarmsLost(e);
             }
             print(out, a, unit, "");
+        }
+
+        /** Closes the file of {@code --alarms}, saying if what it held could not be written. */
+        void closeAlarms() {
+            try {
+                alarms.close();
+            } catch (IOException e) {
+                alarmsLost(e);
+            }
+        }
+
+        /** The file of {@code --alarms} failed: said once, and the replay goes on without it. */
+        private void alarmsLost(IOException e) {
+            err.println("dtron monitor: cannot write the alarms to " + alarmsFile + ": " + OutputFile.reason(e)
+                    + "; the replay goes on without the file");
+            alarms = Writer.nullWriter();
         }
     }
 

@@ -50,8 +50,8 @@ import picocli.CommandLine.Spec;
                 "Options of dtron run that choose inputs (--seed, --timeunit, --delay-policy, --delay-bound,"
                         + " --strategy, --goal, --horizon, ...) are passed to every run: --strategy coverage or goal"
                         + " steers each run as dtron run would.",
-                "Exit code 0, 3 when the model as its own system does not PASS with every seed, 1 usage or model"
-                        + " error."})
+                "Exit code 0 when the analysis ran (whatever the score), 3 when the model as its own system does"
+                        + " not PASS with every seed, 1 usage or model error."})
 final class MutantsCommand implements Callable<Integer> {
     /** Options of dtron run that name a system under test, a bus or a file of one run: not for mutants. */
     private static final Set<String> NOT_FOR_MUTANTS = Set.of("--sut", "--sut-seed", "--classpath", "--cluster",
@@ -59,6 +59,9 @@ final class MutantsCommand implements Callable<Integer> {
             "--wait-for-adapters", "--wait-timeout", "--adapter", "--tron-adapter", "--backend", "--delta", "--trace",
             "--trace-max-size",
             "--delta-report", "--delta-from", "--bus", "--timeout", "--report", "--live");
+    /** Options of dtron run about one run's coverage: mutants are killed or survive, their runs' coverage is not kept. */
+    private static final Set<String> COVERAGE_OF_ONE_RUN = Set.of("--coverage", "--until", "--traps",
+            "--coverage-budget");
 
     @Spec
     private CommandSpec spec;
@@ -116,8 +119,11 @@ final class MutantsCommand implements Callable<Integer> {
         if (checkSeconds <= 0) {
             throw usage("--check-time must be a positive number of seconds: " + checkSeconds);
         }
-        if (junit != null && JunitXml.folderProblem(junit) != null) {
-            throw usage(JunitXml.folderProblem(junit));
+        for (String problem : new String[] {junit == null ? null : OutputFile.problem("--junit", junit, model,
+                interfaceFile), json == null ? null : OutputFile.problem("--json", json, model, interfaceFile)}) {
+            if (problem != null) {
+                throw usage(problem);
+            }
         }
         CommandModel.Loaded loaded = CommandModel.load("mutants", model, interfaceFile, err);
         if (loaded == null) {
@@ -165,7 +171,7 @@ final class MutantsCommand implements Callable<Integer> {
             try {
                 Files.writeString(json, json(report, options, steering), StandardCharsets.UTF_8);
             } catch (IOException e) {
-                err.println("dtron mutants: cannot write " + json + ": " + e.getMessage());
+                err.println("dtron mutants: cannot write " + json + ": " + OutputFile.reason(e));
                 return 1;
             }
         }
@@ -173,7 +179,7 @@ final class MutantsCommand implements Callable<Integer> {
             try {
                 writeJunit(report, options, steering, threadCount);
             } catch (IOException e) {
-                err.println("dtron mutants: cannot write the JUnit report " + junit + ": " + e.getMessage());
+                err.println("dtron mutants: cannot write the JUnit report " + junit + ": " + OutputFile.reason(e));
                 return 1;
             }
         }
@@ -220,6 +226,10 @@ final class MutantsCommand implements Callable<Integer> {
             throw usage(e.getMessage().replaceFirst("^dtron run: ", ""));
         }
         for (CommandLine.Model.OptionSpec o : parsed.matchedOptions()) {
+            if (COVERAGE_OF_ONE_RUN.contains(o.longestName())) {
+                throw usage(o.longestName() + " is an option of one run's coverage (dtron run); the runs against"
+                        + " mutants end when a run FAILS or after --budget time units, and their coverage is not kept");
+            }
             if (NOT_FOR_MUTANTS.contains(o.longestName())) {
                 throw usage(o.longestName() + (o.longestName().equals("--timeout")
                         ? " is dtron run's: give each mutant's run its time units with --budget"

@@ -68,7 +68,7 @@ final class ReportCommand implements Callable<Integer> {
             err.println("dtron report: " + trace + ": no such file");
             return 1;
         } catch (IOException e) {
-            err.println("dtron report: cannot read " + trace + ": " + e.getMessage());
+            err.println("dtron report: cannot read " + trace + ": " + OutputFile.reason(e));
             return 1;
         } catch (IllegalArgumentException e) {
             err.println("dtron report: " + e.getMessage());
@@ -77,7 +77,7 @@ final class ReportCommand implements Callable<Integer> {
         try {
             ReportPage.write(record, output);
         } catch (IOException e) {
-            err.println("dtron report: cannot write " + output + ": " + e.getMessage());
+            err.println("dtron report: cannot write " + output + ": " + OutputFile.reason(e));
             return 1;
         }
         out.println("dtron report: " + record.eventCount() + " inputs and outputs of " + trace + " written to "

@@ -103,7 +103,7 @@ final class ReportOptions {
                 ReportPage.write(record, file);
                 out.println("dtron run: report written to " + file);
             } catch (IOException e) {
-                err.println("dtron run: cannot write the report " + file + ": " + e.getMessage());
+                err.println("dtron run: cannot write the report " + file + ": " + OutputFile.reason(e));
                 err.flush();
             }
             out.flush();

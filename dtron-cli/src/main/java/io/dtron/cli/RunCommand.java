@@ -168,7 +168,8 @@ final class RunCommand implements Callable<Integer> {
     private Path interfaceFile;
 
     @Option(names = "--virtual-time",
-            description = "Run in virtual time: deterministic and as fast as the CPU allows (--sut only).")
+            description = "Run in virtual time: deterministic and as fast as the CPU allows (with --sut or"
+                    + " --tron-adapter; a run on the bus is in real time).")
     private boolean virtualTime;
 
     @Option(names = "--seed", paramLabel = "N", description = "Seed of the random choices (default: from the clock).")
@@ -186,15 +187,16 @@ final class RunCommand implements Callable<Integer> {
             description = "How input times are chosen: random, eager, lazy or random-bounded (default: random).")
     private String delayPolicy;
 
-    @Option(names = "--delay-bound", paramLabel = "N|SHORT,LONG", defaultValue = "0",
-            description = "For random-bounded: the largest delay after an input's window opens, in time units; or"
-                    + " SHORT,LONG: for each delay at most SHORT or at most LONG, one of the two at random (TRON's"
-                    + " -P SHORT,LONG).")
+    @Option(names = "--delay-bound", paramLabel = "N|SHORT,LONG",
+            description = "With --delay-policy random-bounded (and only with it, which needs it): the largest delay"
+                    + " after an input's window opens, in time units; or SHORT,LONG: for each delay at most SHORT or"
+                    + " at most LONG, one of the two at random (TRON's -P SHORT,LONG).")
     private String delayBound;
 
     @Option(names = "--delta", paramLabel = "US|auto", defaultValue = "auto",
             description = "On the bus: the reorder window, how long the tester holds its judgement for messages still"
-                    + " in transit; every message is placed by the time its sender stamped on it (auto: from the"
+                    + " in transit; every message is placed by the time its sender stamped on it (auto, the"
+                    + " default: from the"
                     + " delays measured before the run, at least " + BusRun.AUTO_WINDOW_FLOOR_MICROS + " us, widened"
                     + " during the run when a message takes more than half of it).")
     private String delta;
@@ -212,7 +214,8 @@ final class RunCommand implements Callable<Integer> {
 
     @Option(names = "--junit", paramLabel = "FILE.xml",
             description = "Write the run as a JUnit XML report to FILE.xml, as Surefire, Jenkins and GitLab read it:"
-                    + " one test case per run, or per goal, named by the seed (and the goal); FAILED a failure with"
+                    + " one test case per run, or per goal, named by the system, the seed (and the goal); FAILED a"
+                    + " failure with"
                     + " the explanation, INCONCLUSIVE an error with its reason; the seed, the coverage and the goals"
                     + " not reached as properties.")
     private Path junit;
@@ -375,6 +378,18 @@ final class RunCommand implements Callable<Integer> {
 
     /** {@code options} with the delay bound of {@code --delay-bound}: N, or SHORT,LONG. */
     private TestOptions withDelayBound(TestOptions options) {
+        boolean bounded = options.delayPolicy() == DelayPolicy.RANDOM_BOUNDED;
+        if (delayBound == null) {
+            if (bounded) {
+                throw new IllegalArgumentException("--delay-policy random-bounded needs --delay-bound N or SHORT,LONG"
+                        + " (model time units)");
+            }
+            return options;
+        }
+        if (!bounded) {
+            throw new IllegalArgumentException("--delay-bound " + delayBound + " bounds the delays of --delay-policy"
+                    + " random-bounded only, not of " + delayPolicy);
+        }
         String bound = delayBound.strip();
         try {
             if (bound.matches("\\d+")) {
@@ -383,7 +398,7 @@ final class RunCommand implements Callable<Integer> {
             if (bound.matches("\\d+,\\d+")) {
                 long shortBound = Long.parseLong(bound.substring(0, bound.indexOf(',')));
                 long longBound = Long.parseLong(bound.substring(bound.indexOf(',') + 1));
-                if (options.delayPolicy() == DelayPolicy.RANDOM_BOUNDED && shortBound <= longBound) {
+                if (shortBound <= longBound) {
                     return options.withShortOrLongDelays(shortBound, longBound);
                 }
             }
@@ -391,7 +406,7 @@ final class RunCommand implements Callable<Integer> {
             // too large for a number: said below
         }
         throw new IllegalArgumentException("--delay-bound " + delayBound + ": give N or SHORT,LONG with SHORT <= LONG"
-                + " (model time units; SHORT,LONG with --delay-policy random-bounded)");
+                + " (model time units)");
     }
 
     private DelayPolicy parseDelayPolicy() {
@@ -563,8 +578,13 @@ final class RunCommand implements Callable<Integer> {
             throw usage("--trace-max-size bounds the --trace file: give --trace FILE too");
         }
         traceMaxBytes();
-        if (junit != null && JunitXml.folderProblem(junit) != null) {
-            throw usage(JunitXml.folderProblem(junit));
+        for (String problem : new String[] {junit == null ? null : OutputFile.problem("--junit", junit, model,
+                interfaceFile), trace == null ? null : OutputFile.problem("--trace", trace, model, interfaceFile),
+                coverage.file == null ? null : OutputFile.problem("--coverage", coverage.file, model, interfaceFile),
+                report.file == null ? null : OutputFile.problem("--report", report.file, model, interfaceFile)}) {
+            if (problem != null) {
+                throw usage(problem);
+            }
         }
         if (tronBackend && trace != null) {
             throw usage("--trace records DTRON's engine; with --backend tron, TRON keeps its own log");
@@ -827,7 +847,7 @@ final class RunCommand implements Callable<Integer> {
                     result, unit, options.timeout(), options.virtualTime(), steering),
                     (System.nanoTime() - startNanos) / 1e9, output);
         } catch (IOException e) {
-            throw new JunitFailure("cannot write the JUnit report " + junit + ": " + e.getMessage(), e);
+            throw new JunitFailure("cannot write the JUnit report " + junit + ": " + OutputFile.reason(e), e);
         }
     }
 

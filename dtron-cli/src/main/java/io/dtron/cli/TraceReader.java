@@ -1,8 +1,12 @@
 package io.dtron.cli;
 
 import io.dtron.engine.Event;
+import io.dtron.engine.TestOptions;
 import java.io.BufferedReader;
 import java.io.IOException;
+import java.io.InputStreamReader;
+import java.nio.charset.CharsetDecoder;
+import java.nio.charset.CodingErrorAction;
 import java.nio.charset.StandardCharsets;
 import java.nio.file.Files;
 import java.nio.file.Path;
@@ -54,21 +58,42 @@ final class TraceReader {
      * @throws IOException if the file cannot be read
      */
     static Long timeUnit(Path file) throws IOException {
-        try (BufferedReader in = Files.newBufferedReader(file, StandardCharsets.UTF_8)) {
-            String first = in.readLine();
-            if (first == null || !first.startsWith("{")) {
+        try (BufferedReader in = reader(file)) {
+            String first = withoutByteOrderMark(in.readLine());
+            if (first == null || !first.strip().startsWith("{")) {
                 return null;
             }
+            Map<?, ?> m;
             try {
-                if (Json.parse(first) instanceof Map<?, ?> m && "start".equals(m.get("kind"))
-                        && m.get("timeunit_us") instanceof Long unit && unit > 0) {
-                    return unit;
-                }
+                m = Json.parse(first.strip()) instanceof Map<?, ?> parsed ? parsed : Map.of();
             } catch (IllegalArgumentException e) {
+                return null; // the reading rejects the line, saying why
+            }
+            Object unit = m.get("timeunit_us");
+            if (!"start".equals(m.get("kind")) || unit == null) {
                 return null;
             }
-            return null;
+            if (unit instanceof Long micros && micros > 0 && micros <= TestOptions.MAX_DURATION_MICROS) {
+                return micros;
+            }
+            throw new IllegalArgumentException("the start line's timeunit_us " + Json.text(unit) + " is no"
+                    + " positive number of microseconds (at most " + TestOptions.MAX_DURATION_MICROS + ")");
         }
+    }
+
+    /**
+     * A reader of {@code file} as UTF-8 that does not stop at bytes that are not UTF-8: they become U+FFFD, and the
+     * line holding them is rejected.
+     */
+    private static BufferedReader reader(Path file) throws IOException {
+        CharsetDecoder utf8 = StandardCharsets.UTF_8.newDecoder().onMalformedInput(CodingErrorAction.REPLACE)
+                .onUnmappableCharacter(CodingErrorAction.REPLACE);
+        return new BufferedReader(new InputStreamReader(Files.newInputStream(file), utf8));
+    }
+
+    /** {@code line} without the byte order mark some editors put at the start of a UTF-8 file. */
+    private static String withoutByteOrderMark(String line) {
+        return line != null && line.startsWith("\uFEFF") ? line.substring(1) : line;
     }
 
     /**
@@ -77,15 +102,21 @@ final class TraceReader {
      * @throws IOException if the file cannot be read
      */
     static void read(Path file, Format format, Sink sink) throws IOException {
-        try (BufferedReader in = Files.newBufferedReader(file, StandardCharsets.UTF_8)) {
+        try (BufferedReader in = reader(file)) {
             String line;
             int number = 0;
             boolean first = true;
             long[] timeout = {Long.MAX_VALUE};
             while ((line = in.readLine()) != null) {
                 number++;
-                String trimmed = line.strip();
+                String trimmed = (number == 1 ? withoutByteOrderMark(line) : line).strip();
                 if (trimmed.isEmpty()) {
+                    continue;
+                }
+                if (trimmed.indexOf('\uFFFD') >= 0) {
+                    sink.rejected(number, "not UTF-8 text (a byte at column " + (line.indexOf('\uFFFD') + 1)
+                            + " is no UTF-8 character)");
+                    first = false;
                     continue;
                 }
                 try {
@@ -163,15 +194,24 @@ final class TraceReader {
         if (!(t instanceof Long micros)) {
             throw new IllegalArgumentException("no \"t_us\" integer (the time in microseconds)");
         }
+        return checked(micros);
+    }
+
+    /** {@code micros}, a time of the run, if DTRON can time it. */
+    private static long checked(long micros) {
         if (micros < 0) {
             throw new IllegalArgumentException("negative time " + micros);
+        }
+        if (micros > TestOptions.MAX_DURATION_MICROS) {
+            throw new IllegalArgumentException("time " + micros + " us is later than DTRON can time (at most "
+                    + TestOptions.MAX_DURATION_MICROS + " us, about 292 years)");
         }
         return micros;
     }
 
     private static int integer(String name, Object value) {
         if (!(value instanceof Long l) || l < Integer.MIN_VALUE || l > Integer.MAX_VALUE) {
-            throw new IllegalArgumentException("value of '" + name + "' is not a 32-bit integer: " + value);
+            throw new IllegalArgumentException("value of '" + name + "' is not a 32-bit integer: " + Json.text(value));
         }
         return (int) (long) l;
     }
@@ -187,9 +227,7 @@ final class TraceReader {
         } catch (NumberFormatException e) {
             throw new IllegalArgumentException("time '" + fields[0].strip() + "' is no whole number of microseconds");
         }
-        if (micros < 0) {
-            throw new IllegalArgumentException("negative time " + micros);
-        }
+        checked(micros);
         String channel = fields[1].strip();
         if (channel.isEmpty()) {
             throw new IllegalArgumentException("no channel");

@@ -139,7 +139,7 @@ final class TronCommand implements Callable<Integer> {
                     log.write(System.lineSeparator());
                     log.flush();
                 } catch (IOException e) {
-                    out.println("dtron tron: cannot write the log: " + e.getMessage());
+                    out.println("dtron tron: cannot write the log: " + OutputFile.reason(e));
                 }
             }
         }
@@ -177,7 +177,7 @@ final class TronCommand implements Callable<Integer> {
                 : Files.newBufferedWriter(logFile, StandardCharsets.UTF_8))) {
             return run(network, choice, runSeed, printer, err);
         } catch (IOException e) {
-            err.println("dtron tron: cannot write " + logFile + ": " + e.getMessage());
+            err.println("dtron tron: cannot write " + logFile + ": " + OutputFile.reason(e));
             return 1;
         }
     }
@@ -349,7 +349,7 @@ final class TronCommand implements Callable<Integer> {
             err.println("dtron tron: " + model + ": " + e.getMessage());
             return 1;
         } catch (IOException e) {
-            err.println("dtron tron: cannot write the trace " + trace + ": " + e.getMessage());
+            err.println("dtron tron: cannot write the trace " + trace + ": " + OutputFile.reason(e));
             return 1;
         }
         printer.println("TEST " + result.verdict() + ": " + result.explanation());
@@ -358,7 +358,7 @@ final class TronCommand implements Callable<Integer> {
                 Files.writeString(statsFile, result.statisticsLine() + System.lineSeparator(),
                         StandardCharsets.UTF_8, StandardOpenOption.CREATE, StandardOpenOption.APPEND);
             } catch (IOException e) {
-                err.println("dtron tron: cannot write the statistics " + statsFile + ": " + e.getMessage());
+                err.println("dtron tron: cannot write the statistics " + statsFile + ": " + OutputFile.reason(e));
                 return 1;
             }
         }

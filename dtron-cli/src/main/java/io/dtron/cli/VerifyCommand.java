@@ -76,6 +76,8 @@ final class VerifyCommand implements Callable<Integer> {
     @Option(names = "--time-limit", paramLabel = "SECONDS", description = "Give up a query after this long: its"
             + " answer is then unknown.")
     private Double timeLimit;
+    /** The longest --time-limit: what a Duration of nanoseconds in a long holds. */
+    private static final long MAX_TIME_LIMIT_SECONDS = 9_223_372_036L;
 
     @Option(names = "--memory-limit", paramLabel = "MB", description = "Give up a query when the heap in use"
             + " passes this many MB: its answer is then unknown.")
@@ -101,7 +103,7 @@ final class VerifyCommand implements Callable<Integer> {
             err.println("dtron verify: " + e.getFile() + ": error: no such file");
             return 1;
         } catch (IOException e) {
-            err.println("dtron verify: " + e.getMessage());
+            err.println("dtron verify: " + OutputFile.reason(e));
             return 1;
         } finally {
             out.flush();
@@ -112,8 +114,11 @@ final class VerifyCommand implements Callable<Integer> {
     private int verify(PrintWriter out, PrintWriter err) throws ModelException, IOException {
         // with JSON traces, standard output holds the JSON alone (one trace a line) and the text goes to stderr
         PrintWriter text = traceFormat == Format.json ? err : out;
-        if (timeLimit != null && timeLimit < 0 || memoryLimit != null && memoryLimit <= 0) {
-            err.println("dtron verify: --time-limit must not be negative and --memory-limit must be positive");
+        if (timeLimit != null && !(timeLimit >= 0 && timeLimit <= MAX_TIME_LIMIT_SECONDS)
+                || memoryLimit != null && !(memoryLimit > 0 && memoryLimit <= Long.MAX_VALUE >> 20)) {
+            err.println("dtron verify: --time-limit must be a number of seconds from 0 to " + MAX_TIME_LIMIT_SECONDS
+                    + " (about 292 years) and --memory-limit a positive number of MB, at most "
+                    + (Long.MAX_VALUE >> 20));
             return 1;
         }
         Network network;
@@ -150,7 +155,16 @@ final class VerifyCommand implements Callable<Integer> {
             }
         }
         if (queryFile != null) {
-            toCheck.addAll(Query.parseFile(Files.readString(queryFile, StandardCharsets.UTF_8)));
+            String queryText;
+            try {
+                queryText = Files.readString(queryFile, StandardCharsets.UTF_8);
+            } catch (NoSuchFileException e) {
+                throw e;
+            } catch (IOException e) {
+                err.println("dtron verify: cannot read " + queryFile + ": " + OutputFile.reason(e));
+                return 1;
+            }
+            toCheck.addAll(Query.parseFile(queryText));
         }
         String source = "--query";
         if (queryFile != null) {

@@ -226,7 +226,64 @@ class MonitorCommandTest {
         assertTrue(r.out().contains("event times give or take 300 us"), r.out());
         CommandRun negative = monitor(dir, "l.csv", log, SERVER.toString(), "--tolerance", "-1");
         assertEquals(1, negative.exit());
-        assertTrue(negative.err().startsWith("dtron monitor: --tolerance must not be negative"), negative.err());
+        assertTrue(negative.err().startsWith("dtron monitor: --tolerance must be 0 to 9223372036854775 us"),
+                negative.err());
+    }
+
+    @Test
+    void badBytesAndHugeNumbersAreRejectedLinesAndTheReplayGoesOn(@TempDir Path dir) throws Exception {
+        List<String> trace = record(dir, SERVER, 7, 100);
+        java.io.ByteArrayOutputStream bytes = new java.io.ByteArrayOutputStream();
+        bytes.write(new byte[] {(byte) 0xEF, (byte) 0xBB, (byte) 0xBF}); // a byte order mark before the start line
+        for (String line : trace) {
+            bytes.write((line + "\n").getBytes(StandardCharsets.UTF_8));
+            if (line.contains("\"kind\":\"start\"")) {
+                bytes.write("{\"t_us\":1,\"channel\":\"r\u00e9q\"}\n".getBytes(StandardCharsets.ISO_8859_1));
+                bytes.write(("{\"t_us\":" + "9".repeat(100_000) + "}\n").getBytes(StandardCharsets.UTF_8));
+                bytes.write("{\"t_us\":9223372036854775000,\"channel\":\"req\"}\n".getBytes(StandardCharsets.UTF_8));
+            }
+        }
+        Path file = dir.resolve("bad.jsonl");
+        Files.write(file, bytes.toByteArray());
+        CommandRun r = CommandRun.of("monitor", SERVER.toString(), "--replay", file.toString());
+        assertEquals(3, r.exit(), "the correct run's events pass, three lines are rejected: " + r.out() + r.err());
+        assertTrue(r.out().contains("time units of 1000 us"), "the start line after the mark is read: " + r.out());
+        assertTrue(r.err().contains("bad.jsonl:2: not UTF-8 text (a byte at column 23 is no UTF-8 character)"),
+                r.err());
+        assertTrue(r.err().contains("bad.jsonl:3: line 1, column 9: a number of 100000 characters is longer than"
+                + " DTRON reads (at most 100)"), r.err());
+        assertTrue(r.err().contains("bad.jsonl:4: time 9223372036854775000 us is later than DTRON can time"), r.err());
+        assertTrue(r.err().length() < 2_000, "a long line is not echoed: " + r.err().length());
+        assertTrue(r.out().contains("no violation, "), r.out());
+        assertTrue(r.out().contains(", 3 lines rejected"), r.out());
+    }
+
+    @Test
+    void outputsThatWouldDestroyAnInputOrCannotBeWrittenAreRefusedBeforeTheReplay(@TempDir Path dir) throws Exception {
+        List<String> lines = csv(record(dir, SERVER, 7, 100));
+        Path log = dir.resolve("l.csv");
+        Files.write(log, lines, StandardCharsets.UTF_8);
+        for (String[] output : new String[][] {{"--alarms", log.toString()}, {"--junit", log.toString()},
+                {"--junit", SERVER.toString()}}) {
+            CommandRun r = CommandRun.of("monitor", SERVER.toString(), "--replay", log.toString(), output[0],
+                    output[1]);
+            assertEquals(1, r.exit(), r.out() + r.err());
+            assertTrue(r.err().startsWith("dtron monitor: " + output[0] + " " + output[1] + ": is the command's"
+                    + " input "), r.err());
+            assertEquals("", r.out(), "refused before the replay");
+        }
+        assertEquals(lines, Files.readAllLines(log, StandardCharsets.UTF_8), "the trace is untouched");
+        CommandRun folder = CommandRun.of("monitor", SERVER.toString(), "--replay", log.toString(), "--junit",
+                dir.toString());
+        assertEquals(1, folder.exit());
+        assertTrue(folder.err().startsWith("dtron monitor: --junit " + dir + ": is a folder; give a file in it"),
+                folder.err());
+        Path badUnit = dir.resolve("unit.jsonl");
+        Files.writeString(badUnit, "{\"kind\":\"start\",\"timeunit_us\":-7}\n");
+        CommandRun unit = CommandRun.of("monitor", SERVER.toString(), "--replay", badUnit.toString());
+        assertEquals(1, unit.exit());
+        assertEquals("dtron monitor: " + badUnit + ":1: the start line's timeunit_us -7 is no positive number of"
+                + " microseconds (at most 9223372036854775): give the time unit with --timeunit", unit.err().strip());
     }
 
     @Test
@@ -237,7 +294,8 @@ class MonitorCommandTest {
         assertTrue(r.err().startsWith("dtron monitor: --from: "), r.err());
         CommandRun missing = CommandRun.of("monitor", SERVER.toString(), "--replay", dir.resolve("none.jsonl").toString());
         assertEquals(1, missing.exit());
-        assertEquals("dtron monitor: cannot read " + dir.resolve("none.jsonl"), missing.err().strip());
+        assertEquals("dtron monitor: cannot read " + dir.resolve("none.jsonl") + ": no such file",
+                missing.err().strip());
         CommandRun runs = CommandRun.of("monitor", SERVER.toString(), "--cluster", "never-joined", "--runs", "-1");
         assertEquals(1, runs.exit());
         assertTrue(runs.err().startsWith("dtron monitor: --runs must be a number of runs, at least 0 (0: every run):"

@@ -87,6 +87,14 @@ class MutantsPageTest {
         assertEquals(1, timeout.exit());
         assertTrue(timeout.err().startsWith("dtron mutants: --timeout is dtron run's: give each mutant's run its"
                 + " time units with --budget"), timeout.err());
+        CommandRun coverage = CommandRun.of("mutants", file, "--coverage", dir.resolve("c.json").toString());
+        assertEquals(1, coverage.exit());
+        assertTrue(coverage.err().startsWith("dtron mutants: --coverage is an option of one run's coverage"),
+                coverage.err());
+        assertFalse(Files.exists(dir.resolve("c.json")));
+        CommandRun until = CommandRun.of("mutants", file, "--until", "time(1)");
+        assertEquals(1, until.exit());
+        assertTrue(until.err().startsWith("dtron mutants: --until is an option of one run's coverage"), until.err());
         CommandRun policy = CommandRun.of("mutants", file, "--delay-policy", "sometimes");
         assertEquals(1, policy.exit());
         assertTrue(policy.err().startsWith("dtron mutants: unknown delay policy 'sometimes'"), policy.err());

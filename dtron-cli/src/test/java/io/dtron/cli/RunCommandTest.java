@@ -227,6 +227,24 @@ class RunCommandTest {
     }
 
     @Test
+    void aDelayBoundGoesWithTheBoundedPolicyAndItNeedsOne() {
+        CommandRun none = CommandRun.of("run", model.toString(), "--sut", TickerForTests.class.getName(),
+                "--virtual-time", "--delay-policy", "random-bounded");
+        assertOneLineUsageError(none);
+        assertTrue(none.err().startsWith("dtron run: --delay-policy random-bounded needs --delay-bound N or"
+                + " SHORT,LONG"), none.err());
+        CommandRun eager = CommandRun.of("run", model.toString(), "--sut", TickerForTests.class.getName(),
+                "--virtual-time", "--delay-policy", "eager", "--delay-bound", "5");
+        assertOneLineUsageError(eager);
+        assertTrue(eager.err().startsWith("dtron run: --delay-bound 5 bounds the delays of --delay-policy"
+                + " random-bounded only, not of eager"), eager.err());
+        CommandRun bounded = CommandRun.of("run", model.toString(), "--sut", TickerForTests.class.getName(),
+                "--virtual-time", "--seed", "1", "--timeout", "50", "--delay-policy", "random-bounded",
+                "--delay-bound", "1,5");
+        assertEquals(0, bounded.exit(), bounded.out() + bounded.err());
+    }
+
+    @Test
     void aSystemUnderTestThatThrowsIsReportedOnOneLineWithoutAStackTrace() {
         CommandRun r = CommandRun.of("run", model.toString(), "--sut", TickerForTests.class.getName() + ":broken", "--virtual-time");
         assertEquals(1, r.exit(), r.out() + r.err());

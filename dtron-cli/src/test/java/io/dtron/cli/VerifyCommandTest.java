@@ -219,6 +219,16 @@ class VerifyCommandTest {
         assertTrue(error.out().contains("unknown: the time limit was reached"), error.out());
         assertTrue(error.out().contains("error: query 'A[] j > 0', column 5: unknown name 'j'"), error.out());
         assertEquals(1, error.exit(), error.out() + error.err());
+        // limits that no clock or heap could reach are refused, not wrapped around
+        for (String[] limit : new String[][] {{"--memory-limit", "9223372036854775807"}, {"--time-limit", "NaN"},
+                {"--time-limit", "1e300"}}) {
+            CommandRun huge = CommandRun.of("verify", grows.toString(), "--query", "A[] i < 30000", limit[0],
+                    limit[1]);
+            assertEquals(1, huge.exit(), huge.out() + huge.err());
+            assertTrue(huge.err().startsWith("dtron verify: --time-limit must be a number of seconds from 0 to"
+                    + " 9223372036 (about 292 years) and --memory-limit a positive number of MB, at most"
+                    + " 8796093022207"), huge.err());
+        }
     }
 
     @Test
