@@ -19,9 +19,9 @@ final class NatsBusOptions {
     private static final Pattern BUS_NAME = Pattern.compile("[A-Za-z0-9_-]{1,64}");
 
     @Option(names = "--bus", paramLabel = "nats://HOST:PORT[,...]",
-            description = "Bus mode: use the NATS JetStream bus on these servers (comma-separated, servers of one"
-                    + " NATS cluster) instead of the embedded JGroups bus; adapters in Java, Python and C join it."
-                    + " The cluster name names the bus's stream.")
+            description = "Use the NATS JetStream bus on these servers (comma-separated, servers of one NATS"
+                    + " cluster) instead of the embedded JGroups bus; members in Java, Python and C (adapters,"
+                    + " plants, taps) join it. The cluster name names the bus's stream.")
     private String bus;
 
     @Option(names = "--nats-user", paramLabel = "USER",
@@ -49,8 +49,8 @@ final class NatsBusOptions {
     private Path tlsCa;
 
     @Option(names = "--nats-replicas", paramLabel = "N",
-            description = "With --bus: the replicas of the bus's stream if this run creates it (default 1; 3 in a"
-                    + " cluster of three servers survives one failing).")
+            description = "With --bus: the replicas of the bus's stream when this command creates it (the stream"
+                    + " does not exist yet; default 1; 3 in a cluster of three servers survives one failing).")
     private Integer replicas;
 
     /** Whether {@code --bus} was given: the bus is NATS, not the embedded JGroups one. */

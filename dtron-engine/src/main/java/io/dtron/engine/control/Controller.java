@@ -55,7 +55,8 @@ public final class Controller {
             throw new IllegalArgumentException("the goal policy needs at least one goal (E<> p)");
         }
         if (policy != ControlPolicy.GOAL && !goals.isEmpty()) {
-            throw new IllegalArgumentException("goals steer only the goal policy, not " + policy);
+            throw new IllegalArgumentException("goals steer only the goal policy, not the "
+                    + policy.name().toLowerCase(java.util.Locale.ROOT) + " one");
         }
         this.policy = policy;
         this.goals = List.copyOf(goals);
