@@ -64,12 +64,12 @@ public record Diagnostic(Severity severity, Pos pos, String file, String message
 
     /** The template the problem is in, or null. */
     public String template() {
-        return pos == null ? null : pos.fragment().template();
+        return pos == null ? null : pos.fragment().templateAt(pos.start());
     }
 
     /** The kind of label or element the problem is in ({@code guard}, {@code declaration}...), or null. */
     public String labelKind() {
-        return pos == null ? null : pos.fragment().kind();
+        return pos == null ? null : pos.fragment().kindAt(pos.start());
     }
 
     /**
@@ -88,6 +88,13 @@ public record Diagnostic(Severity severity, Pos pos, String file, String message
             }
             sb.append(labelKind()).append(pos.fragment().kind() != null && isLabel(labelKind()) ? " label" : "")
                     .append(", column ").append(pos.columnInFragment()).append(')');
+        } else if (pos != null && template() != null) {
+            // an .xta file: the file's line and column, and the template and label around them
+            sb.append(" (template ").append(template());
+            if (labelKind() != null) {
+                sb.append(", ").append(labelKind()).append(isLabel(labelKind()) ? " label" : "");
+            }
+            sb.append(')');
         }
         return sb.toString();
     }

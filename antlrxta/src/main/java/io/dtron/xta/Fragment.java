@@ -1,5 +1,6 @@
 package io.dtron.xta;
 
+import io.dtron.xta.internal.XtaPlaces;
 import java.util.Arrays;
 import java.util.Objects;
 
@@ -19,9 +20,17 @@ public final class Fragment {
     private final int[] runStarts;
     /** The file offset of each run's first character. */
     private final int[] runFileStarts;
+    /** For an .xta file: where its templates and labels stand, found at the first question; else null. */
+    private final boolean xta;
+    private XtaPlaces places;
 
     private Fragment(String file, String template, String kind, String text, LineMap fileLines, int[] runStarts,
                      int[] runFileStarts) {
+        this(file, template, kind, text, fileLines, runStarts, runFileStarts, false);
+    }
+
+    private Fragment(String file, String template, String kind, String text, LineMap fileLines, int[] runStarts,
+                     int[] runFileStarts, boolean xta) {
         this.file = Objects.requireNonNull(file, "file");
         this.template = template;
         this.kind = kind;
@@ -29,11 +38,20 @@ public final class Fragment {
         this.fileLines = Objects.requireNonNull(fileLines, "fileLines");
         this.runStarts = runStarts;
         this.runFileStarts = runFileStarts;
+        this.xta = xta;
     }
 
     /** A whole text file: its offsets are the file's offsets. */
     public static Fragment ofFile(String file, String text) {
         return new Fragment(file, null, null, text, LineMap.of(text), null, null);
+    }
+
+    /**
+     * A whole {@code .xta} (or {@code .ta}) file: as {@link #ofFile}, and a position in it knows its template and
+     * label ({@link #templateAt}, {@link #kindAt}).
+     */
+    public static Fragment ofXtaFile(String file, String text) {
+        return new Fragment(file, null, null, text, LineMap.of(text), null, null, true);
     }
 
     /**
@@ -79,7 +97,34 @@ public final class Fragment {
 
     /** The same text attributed to {@code template} (for a template's name, read before it is known). */
     public Fragment withTemplate(String template) {
-        return new Fragment(file, template, kind, text, fileLines, runStarts, runFileStarts);
+        return new Fragment(file, template, kind, text, fileLines, runStarts, runFileStarts, xta);
+    }
+
+    /** The template of the character at {@code offset}: this fragment's, or in an .xta file the one around it. */
+    public String templateAt(int offset) {
+        XtaPlaces.Place place = placeAt(offset);
+        return place != null ? place.template() : template;
+    }
+
+    /**
+     * The kind of label or element of the character at {@code offset}: this fragment's, or in an .xta file that of
+     * the label around it ({@code guard}, {@code invariant}, {@code declaration}, ...), or null.
+     */
+    public String kindAt(int offset) {
+        XtaPlaces.Place place = placeAt(offset);
+        return place != null ? place.kind() : kind;
+    }
+
+    private XtaPlaces.Place placeAt(int offset) {
+        if (!xta) {
+            return null;
+        }
+        synchronized (this) {
+            if (places == null) {
+                places = XtaPlaces.of(text);
+            }
+        }
+        return places.at(offset);
     }
 
     /** The file name as the user gave it. */

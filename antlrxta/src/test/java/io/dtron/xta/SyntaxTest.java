@@ -160,6 +160,38 @@ class SyntaxTest {
     }
 
     @Test
+    void anXtaErrorNamesItsTemplateAndLabelAndOneBadLabelIsOneError() {
+        String xta = """
+                // a comment with process X() { trans A -> B { guard x; }; }
+                chan c;
+                int g;
+                process Server() {
+                    clock x;
+                    int[0,9] n = g +;
+                    state Idle, Busy { x <= 3 + };
+                    init Idle;
+                    trans Idle -> Busy { sync c?; assign x = 0; },
+                          Busy -> Idle { guard x >= ; sync c!; assign n = (n + 1) % 10; };
+                }
+                process Client() { state A; init A; trans A -> A { select v : int[0,9]; sync c!; assign g = v +; }; }
+                system Server, Client;
+                """;
+        List<String> errors = ModelSyntax.parseXta("s.xta", xta).diagnostics().stream().map(Diagnostic::format)
+                .toList();
+        assertEquals(List.of(
+                "s.xta:6:21: error: syntax error: an operand is missing after '+' (template Server, declaration)",
+                "s.xta:7:33: error: syntax error: an operand is missing after '+' (template Server, invariant label)",
+                "s.xta:10:37: error: syntax error: an operand is missing after '>=' (template Server, guard label)",
+                "s.xta:12:96: error: syntax error: an operand is missing after '+' (template Client, assignment"
+                        + " label)"), errors);
+        Parsed<Nta> unknown = ModelSyntax.parseXta("u.xta", "chan c;\nprocess P() { state A; init A; trans A -> A"
+                + " { guard y > 1; sync c!; }; }\nsystem P;\n");
+        assertTrue(unknown.diagnostics().isEmpty(), "names are resolved later: " + unknown.diagnostics());
+        assertEquals("P", Fragment.ofXtaFile("u.xta", "process P() { state A { x <= 1 }; }").templateAt(25));
+        assertEquals("invariant", Fragment.ofXtaFile("u.xta", "process P() { state A { x <= 1 }; }").kindAt(25));
+    }
+
+    @Test
     void xmlLayoutIsKept() {
         String xml = """
                 <nta><template><name x="5" y="6">T</name>

@@ -35,9 +35,32 @@ public final class Parsing {
     /** Parses an XTA or TA file. */
     public static Parsed<Nta> xta(String file, String text) {
         List<Diagnostic> diagnostics = new ArrayList<>();
-        AstBuilder.Section s = section(Fragment.ofFile(file, text), UppaalParser::xtaFile,
+        AstBuilder.Section s = section(Fragment.ofXtaFile(file, text), UppaalParser::xtaFile,
                 UppaalParser.XtaFileContext::topItem, UppaalParser.XtaFileContext::systemLine, diagnostics);
-        return new Parsed<>(s == null ? null : new Nta(file, s.declarations(), s.system(), List.of()), diagnostics);
+        return new Parsed<>(s == null ? null : new Nta(file, s.declarations(), s.system(), List.of()),
+                withoutFollowingSyntaxErrors(text, diagnostics));
+    }
+
+    /**
+     * {@code diagnostics} without the syntax errors in an edge's labels after the first one there: the parser's
+     * recovery from one bad label reads the rest of the edge out of step ({@code guard x >= ; sync a!} gave five
+     * more errors, none real); the others stay.
+     */
+    private static List<Diagnostic> withoutFollowingSyntaxErrors(String text, List<Diagnostic> diagnostics) {
+        XtaPlaces places = null;
+        java.util.Set<Integer> edgesInError = new java.util.HashSet<>();
+        List<Diagnostic> kept = new ArrayList<>();
+        for (Diagnostic d : diagnostics) {
+            if (d.isError() && d.message().startsWith("syntax error") && d.pos() != null) {
+                places = places == null ? XtaPlaces.of(text) : places;
+                int edge = places.edgeAt(d.pos().start());
+                if (edge >= 0 && !edgesInError.add(edge)) {
+                    continue;
+                }
+            }
+            kept.add(d);
+        }
+        return kept;
     }
 
     private static int literalTokenType(String literal) {

@@ -23,7 +23,7 @@ class UnsupportedModelTest {
     @Test
     void aBranchpointIsRefusedWithItsPlace() throws Exception {
         assertEquals("the model cannot start: m.xta:5:18: error: a branchpoint cannot be run by DTRON's engine: it is a"
-                + " probabilistic choice of statistical model checking, and the engine has no probabilities",
+                + " probabilistic choice of statistical model checking, and the engine has no probabilities (template P)",
                 refusal("""
                         process P() {
                         state A, B;
@@ -39,7 +39,7 @@ class UnsupportedModelTest {
     void aBuiltInFunctionOfStatisticalModelCheckingIsRefused() throws Exception {
         assertEquals("the model cannot start: m.xta:2:58: error: the built-in function 'fint' cannot be run by"
                 + " DTRON's engine: the engine evaluates the integer functions of the model, not the real-valued and"
-                + " random functions of statistical model checking",
+                + " random functions of statistical model checking (template P, assignment label)",
                 refusal("""
                         int i;
                         process P() { state A; init A; trans A -> A { assign i = fint(3); }; }
@@ -50,7 +50,7 @@ class UnsupportedModelTest {
     @Test
     void aSpawnIsRefused() throws Exception {
         assertEquals("the model cannot start: m.xta:3:54: error: dynamic templates (spawn, exit, numOf) cannot be run"
-                + " by DTRON's engine: the engine runs the fixed set of processes of the system line",
+                + " by DTRON's engine: the engine runs the fixed set of processes of the system line (template P, assignment label)",
                 refusal("""
                         dynamic W();
                         process W() { state A; init A; }
