@@ -96,6 +96,7 @@ public final class DtronCommand implements Callable<Integer> {
             // the stack that held the command's data has unwound: its memory is garbage, so printing works
             err.println("dtron: " + JvmLimits.describe(e));
             err.flush();
+            LoggerFactory.getLogger(DtronCommand.class).debug("out of heap or stack", e);
             return 1;
         }
     }

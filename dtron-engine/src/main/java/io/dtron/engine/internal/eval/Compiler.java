@@ -22,6 +22,10 @@ final class Compiler {
     private final FunctionCode[] functions;
     private final Map<Expression.ConstantTable, Integer> tables = new IdentityHashMap<>();
     private boolean inFunction;
+    /** The functions whose code exists and whose bodies are still to compile ({@link #function}). */
+    private final java.util.ArrayDeque<Integer> bodiesToCompile = new java.util.ArrayDeque<>();
+    /** Whether a call of {@link #function} further out compiles the bodies of {@link #bodiesToCompile}. */
+    private boolean compilingBodies;
     private int rootSlots;
 
     Compiler(Network network, Env env) {
@@ -234,24 +238,43 @@ final class Compiler {
         return args;
     }
 
+    /**
+     * The code of function {@code index}. Its body is compiled after the call that asks for it, from a list, not
+     * inside it: a chain of functions each calling the next (a thousand deep) would otherwise compile as deep a
+     * recursion and overflow the stack.
+     */
     private FunctionCode function(int index) {
         FunctionCode code = functions[index];
         if (code != null) {
             return code;
         }
-        Function f = network.functions().get(index);
-        code = new FunctionCode(f);
+        code = new FunctionCode(network.functions().get(index));
         functions[index] = code;
+        bodiesToCompile.add(index);
+        if (compilingBodies) {
+            return code; // the outermost call compiles it
+        }
+        compilingBodies = true;
         boolean outer = inFunction;
-        inFunction = true;
         boolean done = false;
         try {
-            code.body = statement(f.body(), f);
+            inFunction = true;
+            while (!bodiesToCompile.isEmpty()) {
+                int next = bodiesToCompile.peek();
+                Function f = network.functions().get(next);
+                functions[next].body = statement(f.body(), f);
+                bodiesToCompile.poll();
+            }
             done = true;
         } finally {
             inFunction = outer;
+            compilingBodies = false;
             if (!done) {
-                functions[index] = null;
+                // a body that does not compile: neither it nor those still to compile are kept
+                for (int pending : bodiesToCompile) {
+                    functions[pending] = null;
+                }
+                bodiesToCompile.clear();
             }
         }
         return code;

@@ -198,6 +198,33 @@ class FunctionTest {
     }
 
     @Test
+    void aLongChainOfFunctionsCompilesWithoutRecursionAndRunsToTheLimitOfCalls() throws InterruptedException {
+        // f1 calls f0, f2 calls f1, ...: compiling each callee inside its caller overflowed the stack at about a
+        // thousand functions, with no place named
+        StringBuilder functions = new StringBuilder("int f0() { return 1; }\n");
+        for (int i = 1; i < 3000; i++) {
+            functions.append("int f").append(i).append("() { return f").append(i - 1).append("() + 1; }\n");
+        }
+        TestModel m = TestModel.guards(functions.toString(), "f900()", "f2999()");
+        Throwable[] thrown = new Throwable[2];
+        Thread small = new Thread(null, () -> {
+            try {
+                thrown[0] = new AssertionError(m.guard(0));
+                m.guard(1);
+            } catch (Throwable t) {
+                thrown[1] = t;
+            }
+        }, "small stack", 1 << 20);
+        small.start();
+        small.join();
+        assertEquals("901", String.valueOf(thrown[0] == null ? thrown[1] : thrown[0].getMessage()),
+                "a chain of 900 calls runs");
+        assertTrue(thrown[1] instanceof ModelRuntimeException, String.valueOf(thrown[1]));
+        assertTrue(thrown[1].getMessage().matches("the calls nest \\d+ deep \\(in 'f\\d+'\\), too deep to go on; .*"),
+                thrown[1].getMessage());
+    }
+
+    @Test
     void aRecursionDeeperThanTheJavaStackIsAModelErrorToo() throws InterruptedException {
         TestModel m = TestModel.guards("""
                 int n = 999;
