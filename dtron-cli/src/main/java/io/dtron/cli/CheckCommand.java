@@ -43,8 +43,8 @@ final class CheckCommand implements Callable<Integer> {
     private List<Path> models;
 
     @Option(names = "--interface", paramLabel = "FILE.trn",
-            description = "TRON interface file (inputs, outputs, attached variables) for the model; by default the"
-                    + " interface comes from i_/o_ channel names.")
+            description = "TRON interface file (inputs, outputs, attached variables) for the model (one model"
+                    + " only); by default the interface comes from i_/o_ channel names.")
     private Path interfaceFile;
 
     @Option(names = {"-q", "--quiet"}, description = "Print errors only.")

@@ -216,6 +216,9 @@ final class ControlCommand implements Callable<Integer> {
         if (safeAction != null && safeLocation != null) {
             throw usage("give --safe-action or --safe-location, not both");
         }
+        if (reloadFrom != null && (reloadFrom.toString().isEmpty() || Files.isDirectory(reloadFrom))) {
+            throw usage("--reload-from " + reloadFrom + ": give the file new versions are written to, not a folder");
+        }
         if (reloadFrom != null && !Files.isDirectory(reloadFrom.toAbsolutePath().getParent())) {
             throw usage("--reload-from " + reloadFrom + ": its folder does not exist");
         }
@@ -370,6 +373,10 @@ final class ControlCommand implements Callable<Integer> {
                         controller.refuse(version, reason);
                     }
                 });
+        if (reloadFrom != null && !Files.exists(reloadFrom)) {
+            out.println("dtron control: --reload-from " + reloadFrom + ": no such file yet; a version written there"
+                    + " is checked when it appears");
+        }
         ControlResult result;
         long began = System.nanoTime();
         ScheduledExecutorService progress = Progress.every(() -> printer.progress(began));

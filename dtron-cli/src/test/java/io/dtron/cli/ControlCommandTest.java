@@ -70,6 +70,18 @@ class ControlCommandTest {
                 "--virtual-time", "--plant-mutant", "99");
         refused("--reload-from /no/such/folder/v2.xta: its folder does not exist", "--plant", "model", "--duration",
                 "10", "--virtual-time", "--reload-from", "/no/such/folder/v2.xta");
+        refused("--reload-from /tmp: give the file new versions are written to, not a folder", "--plant", "model",
+                "--duration", "10", "--virtual-time", "--reload-from", "/tmp");
+    }
+
+    @Test
+    void aVersionFileNotThereYetIsSaidAndTheRunGoesOn(@TempDir Path dir) {
+        Path later = dir.resolve("later.xta");
+        CommandRun r = CommandRun.of("control", ARM, "--plant", "model", "--duration", "100", "--virtual-time",
+                "--seed", "1", "--reload-from", later.toString());
+        assertEquals(0, r.exit(), r.out() + r.err());
+        assertTrue(r.out().contains("dtron control: --reload-from " + later + ": no such file yet; a version written"
+                + " there is checked when it appears\n"), r.out());
     }
 
     @Test

@@ -76,7 +76,8 @@ class RunCommandTest {
         assertEquals(1, r.exit(), r.out() + r.err());
         assertEquals("dtron run: " + smc + ": the model cannot start: " + smc + ":8:92: error: the built-in function"
                 + " 'random' cannot be run by DTRON's engine: the engine evaluates the integer functions of the model,"
-                + " not the real-valued and random functions of statistical model checking", r.err().strip());
+                + " not the real-valued and random functions of statistical model checking (template Env, assignment"
+                + " label)", r.err().strip());
     }
 
     @Test
@@ -93,7 +94,7 @@ class RunCommandTest {
         assertEquals(1, r.exit(), r.out() + r.err());
         assertEquals("dtron run: " + hybrid + ": the model cannot start: " + hybrid + ":8:78: error: a clock set to a"
                 + " real number or to another clock cannot be run by DTRON's engine: the engine resets clocks to"
-                + " integers, as zones need", r.err().strip());
+                + " integers, as zones need (template Env, assignment label)", r.err().strip());
     }
 
     @Test
