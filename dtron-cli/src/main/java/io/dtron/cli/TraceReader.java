@@ -131,7 +131,8 @@ final class TraceReader {
                         json(trimmed, number, sink, timeout);
                     }
                 } catch (IllegalArgumentException e) {
-                    sink.rejected(number, e.getMessage());
+                    // the line is the file's: a JSON error's "line 1" inside it would contradict the file's line
+                    sink.rejected(number, e.getMessage().replaceFirst("^line 1, column ", "column "));
                 }
             }
         }

@@ -29,6 +29,10 @@ class JsonTest {
         assertEquals("line 1, column 65: nested more than 64 levels deep", message("[".repeat(65) + "]".repeat(65)));
         assertEquals(List.of(List.of()), Json.parse("[".repeat(2) + "]".repeat(2)));
         assertEquals("line 1, column 2: unknown escape '\\x'", message("\"\\x\""));
+        // a number of a million digits is refused at once, not parsed in quadratic time
+        assertEquals("line 1, column 2: a number of 1000000 characters is longer than DTRON reads (at most 100)",
+                message("[" + "9".repeat(1_000_000) + "]"));
+        assertEquals(new BigDecimal("0." + "9".repeat(98)), Json.parse("0." + "9".repeat(98)));
     }
 
     private static String message(String json) {

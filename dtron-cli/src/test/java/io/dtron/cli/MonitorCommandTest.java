@@ -250,7 +250,7 @@ class MonitorCommandTest {
         assertTrue(r.out().contains("time units of 1000 us"), "the start line after the mark is read: " + r.out());
         assertTrue(r.err().contains("bad.jsonl:2: not UTF-8 text (a byte at column 23 is no UTF-8 character)"),
                 r.err());
-        assertTrue(r.err().contains("bad.jsonl:3: line 1, column 9: a number of 100000 characters is longer than"
+        assertTrue(r.err().contains("bad.jsonl:3: column 9: a number of 100000 characters is longer than"
                 + " DTRON reads (at most 100)"), r.err());
         assertTrue(r.err().contains("bad.jsonl:4: time 9223372036854775000 us is later than DTRON can time"), r.err());
         assertTrue(r.err().length() < 2_000, "a long line is not echoed: " + r.err().length());
