@@ -4,7 +4,7 @@ import java.util.Arrays;
 
 /**
  * The clock bounds of a guard or invariant, listed without a zone: each is {@code x_i - x_j ⋈ c} as a clock
- * pair and a raw {@link io.dtron.engine.zone.Bound} in ticks ({@code j} or {@code i} is 0 for a bound on one
+ * pair and a raw {@link io.dtron.engine.internal.zone.Bound} in ticks ({@code j} or {@code i} is 0 for a bound on one
  * clock). The evaluator appends; the caller reads and clears. Reusable without allocating.
  */
 public final class ClockBounds {

@@ -1,7 +1,7 @@
 package io.dtron.engine.internal.eval;
 
-import io.dtron.engine.zone.Bound;
-import io.dtron.engine.zone.Dbm;
+import io.dtron.engine.internal.zone.Bound;
+import io.dtron.engine.internal.zone.Dbm;
 import io.dtron.xta.Pos;
 import java.util.Arrays;
 

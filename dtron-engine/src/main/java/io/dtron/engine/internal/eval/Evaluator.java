@@ -1,6 +1,6 @@
 package io.dtron.engine.internal.eval;
 
-import io.dtron.engine.zone.Dbm;
+import io.dtron.engine.internal.zone.Dbm;
 import io.dtron.model.Expression;
 import io.dtron.model.Network;
 import io.dtron.model.Type;

@@ -180,7 +180,7 @@ public final class ClockLimits {
             upperBound = true;
             lowerBound = true;
         }
-        if (constant[0] > io.dtron.engine.zone.Bound.MAX_VALUE / 4) {
+        if (constant[0] > io.dtron.engine.internal.zone.Bound.MAX_VALUE / 4) {
             return false;
         }
         int c = (int) constant[0];

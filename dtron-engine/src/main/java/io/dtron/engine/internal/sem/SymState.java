@@ -1,6 +1,6 @@
 package io.dtron.engine.internal.sem;
 
-import io.dtron.engine.zone.Dbm;
+import io.dtron.engine.internal.zone.Dbm;
 import java.util.Arrays;
 
 /**

@@ -5,7 +5,7 @@ import io.dtron.engine.internal.sem.DiscreteCache;
 import io.dtron.engine.internal.sem.Partition;
 import io.dtron.engine.internal.sem.Semantics;
 import io.dtron.engine.internal.sem.SymState;
-import io.dtron.engine.zone.Bound;
+import io.dtron.engine.internal.zone.Bound;
 import io.dtron.model.TestInterface;
 import java.util.ArrayList;
 import java.util.Collections;

@@ -6,7 +6,7 @@ import io.dtron.engine.internal.sem.Semantics;
 import io.dtron.engine.internal.sem.SymState;
 import io.dtron.engine.verify.Query;
 import io.dtron.engine.verify.QueryException;
-import io.dtron.engine.zone.Dbm;
+import io.dtron.engine.internal.zone.Dbm;
 import io.dtron.model.Network;
 import io.dtron.model.Process;
 import java.util.ArrayDeque;
@@ -138,7 +138,7 @@ public final class DiscreteGraph {
         for (int i = 0; i < n; i++) {
             for (int j = 0; j < n; j++) {
                 int bound = Math.max(a.upperBound(i, j), b.upperBound(i, j));
-                if (i != j && bound != io.dtron.engine.zone.Bound.INFINITY) {
+                if (i != j && bound != io.dtron.engine.internal.zone.Bound.INFINITY) {
                     h.constrain(i, j, bound);
                 }
             }

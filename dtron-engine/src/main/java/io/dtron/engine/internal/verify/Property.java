@@ -1,8 +1,8 @@
 package io.dtron.engine.internal.verify;
 
 import io.dtron.engine.internal.sem.SymState;
-import io.dtron.engine.zone.Bound;
-import io.dtron.engine.zone.Dbm;
+import io.dtron.engine.internal.zone.Bound;
+import io.dtron.engine.internal.zone.Dbm;
 import java.util.ArrayList;
 import java.util.List;
 

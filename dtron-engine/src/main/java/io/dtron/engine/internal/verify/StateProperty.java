@@ -40,7 +40,7 @@ public final class StateProperty {
         if (!property.dependsOnZone()) {
             return property.holds(s);
         }
-        List<io.dtron.engine.zone.Dbm> parts = new ArrayList<>(1);
+        List<io.dtron.engine.internal.zone.Dbm> parts = new ArrayList<>(1);
         property.restrict(s, s.zone(), x -> List.of(), parts);
         return !parts.isEmpty();
     }

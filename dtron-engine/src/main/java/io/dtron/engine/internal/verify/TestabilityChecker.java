@@ -11,7 +11,7 @@ import io.dtron.engine.verify.TestabilityReport.Check;
 import io.dtron.engine.verify.TestabilityReport.Problem;
 import io.dtron.engine.verify.VerificationResult.Statistics;
 import io.dtron.engine.verify.VerifierOptions;
-import io.dtron.engine.zone.Dbm;
+import io.dtron.engine.internal.zone.Dbm;
 import io.dtron.model.Edge;
 import io.dtron.model.Network;
 import io.dtron.model.Process;

@@ -1,7 +1,7 @@
 package io.dtron.engine.internal.verify;
 
-import io.dtron.engine.zone.Bound;
-import io.dtron.engine.zone.Dbm;
+import io.dtron.engine.internal.zone.Bound;
+import io.dtron.engine.internal.zone.Dbm;
 import java.util.ArrayList;
 import java.util.List;
 

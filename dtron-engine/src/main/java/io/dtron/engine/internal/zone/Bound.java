@@ -1,4 +1,4 @@
-package io.dtron.engine.zone;
+package io.dtron.engine.internal.zone;
 
 /**
   * Raw encoding of one bound {@code x_i - x_j < c} or {@code x_i - x_j <= c} as an {@code int}.

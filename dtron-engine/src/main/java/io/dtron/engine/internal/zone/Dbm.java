@@ -1,8 +1,8 @@
-package io.dtron.engine.zone;
+package io.dtron.engine.internal.zone;
 
-import static io.dtron.engine.zone.Bound.INFINITY;
-import static io.dtron.engine.zone.Bound.LE_ZERO;
-import static io.dtron.engine.zone.Bound.LT_ZERO;
+import static io.dtron.engine.internal.zone.Bound.INFINITY;
+import static io.dtron.engine.internal.zone.Bound.LE_ZERO;
+import static io.dtron.engine.internal.zone.Bound.LT_ZERO;
 
 import java.util.Arrays;
 import java.util.Objects;

@@ -1,4 +1,4 @@
-package io.dtron.engine.zone;
+package io.dtron.engine.internal.zone;
 
 /** How the set of valuations of one zone relates to that of another; see {@link Dbm#relation}. */
 public enum Relation {

@@ -1,13 +1,13 @@
 package io.dtron.engine.internal.eval;
 
-import static io.dtron.engine.zone.Bound.le;
-import static io.dtron.engine.zone.Bound.lt;
+import static io.dtron.engine.internal.zone.Bound.le;
+import static io.dtron.engine.internal.zone.Bound.lt;
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertThrows;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
-import io.dtron.engine.zone.Dbm;
+import io.dtron.engine.internal.zone.Dbm;
 import io.dtron.model.Expression;
 import io.dtron.model.Location;
 import org.junit.jupiter.api.Test;

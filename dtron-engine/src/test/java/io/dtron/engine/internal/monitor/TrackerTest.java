@@ -5,8 +5,8 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import io.dtron.engine.internal.sem.Semantics;
 import io.dtron.engine.internal.sem.SymState;
-import io.dtron.engine.zone.Bound;
-import io.dtron.engine.zone.Dbm;
+import io.dtron.engine.internal.zone.Bound;
+import io.dtron.engine.internal.zone.Dbm;
 import io.dtron.model.ModelLoader;
 import io.dtron.model.Network;
 import io.dtron.model.TestInterface;

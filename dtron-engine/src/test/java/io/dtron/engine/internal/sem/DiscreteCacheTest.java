@@ -3,7 +3,7 @@ package io.dtron.engine.internal.sem;
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
-import io.dtron.engine.zone.Bound;
+import io.dtron.engine.internal.zone.Bound;
 import io.dtron.model.ModelLoader;
 import io.dtron.model.Network;
 import java.util.ArrayDeque;

@@ -4,7 +4,7 @@ import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertNotEquals;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
-import io.dtron.engine.zone.Bound;
+import io.dtron.engine.internal.zone.Bound;
 import io.dtron.model.ModelLoader;
 import io.dtron.model.Network;
 import java.util.ArrayList;

@@ -3,8 +3,8 @@ package io.dtron.engine.internal.verify;
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
-import io.dtron.engine.zone.Bound;
-import io.dtron.engine.zone.Dbm;
+import io.dtron.engine.internal.zone.Bound;
+import io.dtron.engine.internal.zone.Dbm;
 import java.util.ArrayList;
 import java.util.List;
 import java.util.Random;

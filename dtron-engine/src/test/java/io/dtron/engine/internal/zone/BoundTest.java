@@ -1,10 +1,10 @@
-package io.dtron.engine.zone;
+package io.dtron.engine.internal.zone;
 
-import static io.dtron.engine.zone.Bound.INFINITY;
-import static io.dtron.engine.zone.Bound.MAX_VALUE;
-import static io.dtron.engine.zone.Bound.add;
-import static io.dtron.engine.zone.Bound.le;
-import static io.dtron.engine.zone.Bound.lt;
+import static io.dtron.engine.internal.zone.Bound.INFINITY;
+import static io.dtron.engine.internal.zone.Bound.MAX_VALUE;
+import static io.dtron.engine.internal.zone.Bound.add;
+import static io.dtron.engine.internal.zone.Bound.le;
+import static io.dtron.engine.internal.zone.Bound.lt;
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertThrows;

@@ -1,4 +1,4 @@
-package io.dtron.engine.zone;
+package io.dtron.engine.internal.zone;
 
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertFalse;

@@ -1,13 +1,13 @@
-package io.dtron.engine.zone;
+package io.dtron.engine.internal.zone;
 
-import static io.dtron.engine.zone.Zones.assertCanonical;
-import static io.dtron.engine.zone.Zones.existsGridPoint;
-import static io.dtron.engine.zone.Zones.gridDen;
+import static io.dtron.engine.internal.zone.Zones.assertCanonical;
+import static io.dtron.engine.internal.zone.Zones.existsGridPoint;
+import static io.dtron.engine.internal.zone.Zones.gridDen;
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
-import io.dtron.engine.zone.Zones.Constraint;
+import io.dtron.engine.internal.zone.Zones.Constraint;
 import java.util.ArrayList;
 import java.util.Arrays;
 import java.util.Collections;

@@ -1,11 +1,11 @@
-package io.dtron.engine.zone;
+package io.dtron.engine.internal.zone;
 
-import static io.dtron.engine.zone.Bound.INFINITY;
-import static io.dtron.engine.zone.Bound.MAX_VALUE;
-import static io.dtron.engine.zone.Bound.le;
-import static io.dtron.engine.zone.Bound.lt;
-import static io.dtron.engine.zone.Zones.assertCanonical;
-import static io.dtron.engine.zone.Zones.point;
+import static io.dtron.engine.internal.zone.Bound.INFINITY;
+import static io.dtron.engine.internal.zone.Bound.MAX_VALUE;
+import static io.dtron.engine.internal.zone.Bound.le;
+import static io.dtron.engine.internal.zone.Bound.lt;
+import static io.dtron.engine.internal.zone.Zones.assertCanonical;
+import static io.dtron.engine.internal.zone.Zones.point;
 import static org.junit.jupiter.api.Assertions.assertEquals;
 import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertNotEquals;
