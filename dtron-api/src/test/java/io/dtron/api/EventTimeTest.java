@@ -10,7 +10,7 @@ import static org.junit.jupiter.api.Assertions.assertTrue;
 import io.dtron.api.internal.BusConnector;
 import io.dtron.api.internal.SyncCodec;
 import io.dtron.api.internal.proto.Sync;
-import io.dtron.bus.Transport;
+import io.dtron.bus.internal.Transport;
 import io.dtron.testsupport.Inbox;
 import java.time.Duration;
 import java.util.List;

@@ -10,7 +10,7 @@ import io.dtron.api.InvalidMessageException.Reason;
 import io.dtron.api.internal.BusConnector;
 import io.dtron.api.internal.proto.Sync;
 import io.dtron.api.internal.proto.Variable;
-import io.dtron.bus.Transport;
+import io.dtron.bus.internal.Transport;
 import io.dtron.bus.internal.JGroupsTransport;
 import io.dtron.testsupport.Inbox;
 import io.dtron.testsupport.LogCapture;

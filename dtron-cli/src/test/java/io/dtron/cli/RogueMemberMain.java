@@ -5,7 +5,7 @@ import io.dtron.api.DtronOptions;
 import io.dtron.api.internal.BusConnector;
 import io.dtron.api.internal.proto.Sync;
 import io.dtron.api.internal.proto.Variable;
-import io.dtron.bus.Transport;
+import io.dtron.bus.internal.Transport;
 import io.dtron.bus.internal.JGroupsTransport;
 import java.util.concurrent.CountDownLatch;
 import java.util.concurrent.TimeUnit;

@@ -1,7 +1,7 @@
 package io.dtron.api.internal;
 
 import io.dtron.api.DtronOptions;
-import io.dtron.bus.Transport;
+import io.dtron.bus.internal.Transport;
 import io.dtron.bus.internal.BusKeys;
 import io.dtron.bus.internal.JGroupsSettings;
 import io.dtron.bus.internal.JGroupsTransport;

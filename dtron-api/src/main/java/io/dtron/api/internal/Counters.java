@@ -2,7 +2,7 @@ package io.dtron.api.internal;
 
 import io.dtron.api.DtronStats;
 import io.dtron.api.InvalidMessageException.Reason;
-import io.dtron.bus.DropReason;
+import io.dtron.bus.internal.DropReason;
 import java.util.EnumMap;
 import java.util.Map;
 import java.util.concurrent.atomic.LongAdder;

@@ -1,4 +1,4 @@
-package io.dtron.bus;
+package io.dtron.bus.internal;
 
 /**
  * Why a transport dropped a received message before anything read it: it lacked a valid code of the bus's secret

@@ -1,6 +1,5 @@
 package io.dtron.bus.internal;
 
-import io.dtron.bus.DropReason;
 import java.io.BufferedInputStream;
 import java.io.DataInput;
 import java.io.DataInputStream;

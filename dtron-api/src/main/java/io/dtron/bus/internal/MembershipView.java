@@ -1,4 +1,4 @@
-package io.dtron.bus;
+package io.dtron.bus.internal;
 
 import java.util.ArrayList;
 import java.util.List;

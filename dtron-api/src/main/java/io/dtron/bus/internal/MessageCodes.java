@@ -1,6 +1,5 @@
 package io.dtron.bus.internal;
 
-import io.dtron.bus.DropReason;
 import java.nio.charset.StandardCharsets;
 import java.security.GeneralSecurityException;
 import java.security.MessageDigest;

@@ -1,10 +1,5 @@
 package io.dtron.bus.internal;
 
-import io.dtron.bus.BusMessage;
-import io.dtron.bus.DropReason;
-import io.dtron.bus.MembershipView;
-import io.dtron.bus.Subscription;
-import io.dtron.bus.Transport;
 import io.nats.client.Connection;
 import io.nats.client.Consumer;
 import io.nats.client.Dispatcher;

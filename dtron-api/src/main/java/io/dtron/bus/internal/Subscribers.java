@@ -1,8 +1,5 @@
 package io.dtron.bus.internal;
 
-import io.dtron.bus.BusMessage;
-import io.dtron.bus.MembershipView;
-import io.dtron.bus.Subscription;
 import java.util.List;
 import java.util.Map;
 import java.util.Objects;

@@ -1,4 +1,4 @@
-package io.dtron.bus;
+package io.dtron.bus.internal;
 
 /** A registration with a {@link Transport}; closing it ends the calls. Closing twice does nothing. */
 @FunctionalInterface

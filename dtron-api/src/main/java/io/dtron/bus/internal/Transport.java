@@ -1,4 +1,4 @@
-package io.dtron.bus;
+package io.dtron.bus.internal;
 
 import java.io.IOException;
 import java.util.Map;

@@ -5,8 +5,8 @@ import static org.junit.jupiter.api.Assertions.assertFalse;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
 import ch.qos.logback.classic.Level;
-import io.dtron.bus.BusMessage;
-import io.dtron.bus.DropReason;
+import io.dtron.bus.internal.BusMessage;
+import io.dtron.bus.internal.DropReason;
 import io.dtron.testsupport.FreePorts;
 import io.dtron.testsupport.LogCapture;
 import io.dtron.testsupport.RecordingProxy;

@@ -7,9 +7,9 @@ import static org.junit.jupiter.api.Assertions.assertNull;
 import static org.junit.jupiter.api.Assertions.assertThrows;
 import static org.junit.jupiter.api.Assertions.assertTrue;
 
-import io.dtron.bus.BusMessage;
-import io.dtron.bus.MembershipView;
-import io.dtron.bus.Subscription;
+import io.dtron.bus.internal.BusMessage;
+import io.dtron.bus.internal.MembershipView;
+import io.dtron.bus.internal.Subscription;
 import io.dtron.testsupport.Waits;
 import java.net.InetAddress;
 import java.util.List;
