@@ -51,6 +51,13 @@ typedef struct {
     uint64_t joined;
 } member;
 
+/* A message the stream did not acknowledge, waiting for the timer thread to publish it again. */
+typedef struct retry {
+    natsMsg *msg;
+    int64_t due_ns; /* not before then: a pause between tries, as a server fails over */
+    struct retry *next;
+} retry;
+
 struct dtron_bus {
     natsConnection *nc;
     jsCtx *js;
@@ -85,12 +92,18 @@ struct dtron_bus {
     uint64_t generation;
     dtron_stats stats;
     dtron_guard *guard; /* NULL: insecure */
+    /* the messages to publish again (publish_failed adds, the timer thread publishes); their own lock, which the
+       library's thread takes, never bus->lock, which a publisher holds while the library may be full */
+    pthread_mutex_t retry_lock;
+    retry *retries, *retries_tail;
     struct {
         char *sender;
         int reason;
     } named[NAMED_DROPS]; /* the senders and reasons of drops named on standard error */
     size_t nnamed;
 };
+
+static void publish_retries(dtron_bus *bus);
 
 int64_t dtron_now_ns(void) {
     struct timespec now;
@@ -709,6 +722,7 @@ static void *timer_main(void *closure) {
             bus->next_ping_ns = now + (bus->pings_sent < PING_BURST ? PING_SPACING_NS : PING_PERIOD_NS);
         }
         pthread_mutex_unlock(&bus->lock);
+        publish_retries(bus);
         nanosleep(&step, NULL);
     }
 }
@@ -757,19 +771,103 @@ static void free_bus(dtron_bus *bus) {
     }
     dtron_guard_free(bus->guard);
     pthread_mutex_destroy(&bus->lock);
+    for (retry *r = bus->retries; r != NULL;) { /* the library's thread is gone: nothing adds any more */
+        retry *next = r->next;
+        natsMsg_Destroy(r->msg);
+        free(r);
+        r = next;
+    }
+    pthread_mutex_destroy(&bus->retry_lock);
     pthread_cond_destroy(&bus->joined_cond);
     free(bus);
+}
+
+/* A copy of msg (subject, data and every header), or NULL when it cannot be made. */
+static natsMsg *copy_message(natsMsg *msg) {
+    natsMsg *copy = NULL;
+    if (natsMsg_Create(&copy, natsMsg_GetSubject(msg), NULL, natsMsg_GetData(msg), natsMsg_GetDataLength(msg))
+        != NATS_OK) {
+        return NULL;
+    }
+    const char **keys = NULL;
+    int nkeys = 0;
+    if (natsMsgHeader_Keys(msg, &keys, &nkeys) == NATS_OK) {
+        for (int i = 0; i < nkeys; i++) {
+            const char **values = NULL;
+            int nvalues = 0;
+            if (natsMsgHeader_Values(msg, keys[i], &values, &nvalues) == NATS_OK) {
+                for (int j = 0; j < nvalues; j++) {
+                    natsMsgHeader_Add(copy, keys[i], values[j]);
+                }
+                free((void *)values);
+            }
+        }
+        free((void *)keys);
+    }
+    return copy;
+}
+
+static void publish_again(dtron_bus *bus, jsPubAckErr *pae);
+
+/* Publishes the messages waiting to be published again whose pause is over (timer thread, bus->lock not held). */
+static void publish_retries(dtron_bus *bus) {
+    int64_t now = dtron_now_ns();
+    pthread_mutex_lock(&bus->retry_lock);
+    retry *r = bus->retries;
+    bus->retries = bus->retries_tail = NULL;
+    pthread_mutex_unlock(&bus->retry_lock);
+    while (r != NULL) {
+        retry *next = r->next;
+        r->next = NULL;
+        if (r->due_ns > now) { /* not yet: back in the queue, in its order */
+            pthread_mutex_lock(&bus->retry_lock);
+            if (bus->retries_tail != NULL) {
+                bus->retries_tail->next = r;
+            } else {
+                bus->retries = r;
+            }
+            bus->retries_tail = r;
+            pthread_mutex_unlock(&bus->retry_lock);
+            r = next;
+            continue;
+        }
+        jsPubOptions options;
+        jsPubOptions_Init(&options);
+        options.MaxWait = PUBLISH_WAIT_MS;
+        natsStatus status = js_PublishMsgAsync(bus->js, &r->msg, &options);
+        if (status != NATS_OK) {
+            /* not even sent (the library's queue full, the connection gone while it reconnects): no
+               acknowledgement will fail for it, so it is counted as a failed try here */
+            jsPubAckErr pae;
+            memset(&pae, 0, sizeof pae);
+            pae.Msg = r->msg;
+            pae.Err = status;
+            pae.ErrText = natsStatus_GetText(status);
+            publish_again(bus, &pae);
+        }
+        natsMsg_Destroy(r->msg); /* NULL when the library took it */
+        free(r);
+        r = next;
+    }
 }
 
 /*
  * The stream did not acknowledge a message (a server failing over, or the library timed out waiting): publish it
  * again, with the same Nats-Msg-Id so that the stream stores it once, until it was tried RETRIES times. Runs on the
- * library's thread; messages refused for good (limits) are reported.
+ * library's thread, which must not publish (with the library's queue of messages in flight full, that waits for
+ * acknowledgements this very thread delivers): a copy goes to the timer thread. Messages refused for good (limits)
+ * are reported.
  */
 static void publish_failed(jsCtx *js, jsPubAckErr *pae, void *closure) {
-    dtron_bus *bus = closure;
+    (void)js;
+    publish_again(closure, pae);
+}
+
+/* Queues a copy of the message of pae for the timer thread, 100 ms from now, unless it was tried enough. */
+static void publish_again(dtron_bus *bus, jsPubAckErr *pae) {
     int transient = pae->Err == NATS_TIMEOUT || pae->Err == NATS_NO_RESPONDERS || pae->ErrCode == 503
-                    || pae->Err == NATS_CONNECTION_CLOSED || pae->Err == NATS_CONNECTION_DISCONNECTED;
+                    || pae->Err == NATS_CONNECTION_CLOSED || pae->Err == NATS_CONNECTION_DISCONNECTED
+                    || pae->Err == NATS_INSUFFICIENT_BUFFER || pae->Err == NATS_STALE_CONNECTION;
     const char *tries_text = NULL;
     int tries = 0;
     if (natsMsgHeader_Get(pae->Msg, "Dtron-Tries", &tries_text) == NATS_OK) {
@@ -779,17 +877,26 @@ static void publish_failed(jsCtx *js, jsPubAckErr *pae, void *closure) {
     int stale = natsMsgHeader_Get(pae->Msg, "Dtron-Time", &sent_text) == NATS_OK
                 && dtron_now_ns() - strtoll(sent_text, NULL, 10) > DTRON_STALE_NS; /* everyone would drop it */
     if (transient && !bus->closed && tries < RETRIES && !stale) {
-        char next[16];
-        struct timespec pause = {0, 100000000L};
-        nanosleep(&pause, NULL);
-        snprintf(next, sizeof next, "%d", tries + 1);
-        natsMsgHeader_Set(pae->Msg, "Dtron-Tries", next);
-        jsPubOptions options;
-        jsPubOptions_Init(&options);
-        options.MaxWait = PUBLISH_WAIT_MS;
-        if (js_PublishMsgAsync(js, &(pae->Msg), &options) == NATS_OK) {
-            return; /* the library owns the message again */
+        natsMsg *again = copy_message(pae->Msg);
+        retry *r = again == NULL ? NULL : malloc(sizeof *r);
+        if (r != NULL) {
+            char next[16];
+            snprintf(next, sizeof next, "%d", tries + 1);
+            natsMsgHeader_Set(again, "Dtron-Tries", next);
+            r->msg = again;
+            r->due_ns = dtron_now_ns() + 100000000LL;
+            r->next = NULL;
+            pthread_mutex_lock(&bus->retry_lock);
+            if (bus->retries_tail != NULL) {
+                bus->retries_tail->next = r;
+            } else {
+                bus->retries = r;
+            }
+            bus->retries_tail = r;
+            pthread_mutex_unlock(&bus->retry_lock);
+            return;
         }
+        natsMsg_Destroy(again);
     }
     warn(bus, "a message was not stored: %s", pae->ErrText ? pae->ErrText : natsStatus_GetText(pae->Err));
 }
@@ -832,6 +939,7 @@ int dtron_connect(const dtron_options *options, dtron_bus **out, char *err, size
         free(secret);
     }
     pthread_mutex_init(&bus->lock, NULL);
+    pthread_mutex_init(&bus->retry_lock, NULL);
     pthread_cond_init(&bus->joined_cond, NULL);
     bus->bus = copy(name);
     bus->member = copy(generated);
