@@ -98,6 +98,32 @@ class LiveMonitorRunEndTest {
     }
 
     @Test
+    void aTestersInputStampedBeforeAJudgedEventIsPlacedByItsAcknowledgementNotTakenAsLate() throws Exception {
+        try (Watch watch = new Watch()) {
+            long t0 = watch.system.currentTimeNanos();
+            long end = t0 + 5 * UNIT_NANOS;
+            TesterSide.of(watch.system).sendRunStart(Dtron.RUN_START.constructValued(Map.of("timeunit", 100_000)),
+                    t0, end);
+            watch.send(REQ, 1, t0 + UNIT_NANOS);
+            watch.send(RESP, 2, t0 + 2 * UNIT_NANOS);
+            // once the monitor judged the response at 2 (its window is over), the tester's next request comes,
+            // stamped at 1.9 (the tester aimed it there), and its adapter applied it at 2.2: it happened at 2.2, after
+            // the response, as the tester takes it (a web adapter applies an input a little after its stamp)
+            watch.awaitPast(t0 + 2 * UNIT_NANOS + 2 * LiveMonitor.AUTO_WINDOW_MICROS * 1000);
+            IDtronChannelValued late = watch.system.send(REQ.constructValued(Map.of("n", 3)),
+                    t0 + 19 * UNIT_NANOS / 10);
+            watch.system.acknowledge(late, t0 + 22 * UNIT_NANOS / 10);
+            watch.awaitPast(end);
+            watch.system.send(Dtron.RUN_STOP.constructValued(Map.of()), end);
+            int exit = watch.exit();
+            String printed = watch.monitor.out.toString();
+            assertEquals(0, exit, watch.shown());
+            assertTrue(printed.contains("run c0ffee ended: no violation, 3 events checked (the run ended), 0 too late"
+                    + " to judge"), watch.shown());
+        }
+    }
+
+    @Test
     void anEventStampedBeforeTheEndThatTheBusDeliversAfterTheStopIsJudged() throws Exception {
         Path xml = dir.resolve("watch.xml");
         try (Watch watch = new Watch("--junit", xml.toString())) {
