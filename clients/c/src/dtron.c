@@ -809,6 +809,18 @@ static natsMsg *copy_message(natsMsg *msg) {
 
 static void publish_again(dtron_bus *bus, jsPubAckErr *pae);
 
+/* Appends r (its next NULL) to the messages to publish again; from any thread. */
+static void enqueue_retry(dtron_bus *bus, retry *r) {
+    pthread_mutex_lock(&bus->retry_lock);
+    if (bus->retries_tail != NULL) {
+        bus->retries_tail->next = r;
+    } else {
+        bus->retries = r;
+    }
+    bus->retries_tail = r;
+    pthread_mutex_unlock(&bus->retry_lock);
+}
+
 /* Publishes the messages waiting to be published again whose pause is over (timer thread, bus->lock not held). */
 static void publish_retries(dtron_bus *bus) {
     int64_t now = dtron_now_ns();
@@ -820,14 +832,7 @@ static void publish_retries(dtron_bus *bus) {
         retry *next = r->next;
         r->next = NULL;
         if (r->due_ns > now) { /* not yet: back in the queue, in its order */
-            pthread_mutex_lock(&bus->retry_lock);
-            if (bus->retries_tail != NULL) {
-                bus->retries_tail->next = r;
-            } else {
-                bus->retries = r;
-            }
-            bus->retries_tail = r;
-            pthread_mutex_unlock(&bus->retry_lock);
+            enqueue_retry(bus, r);
             r = next;
             continue;
         }
@@ -886,14 +891,7 @@ static void publish_again(dtron_bus *bus, jsPubAckErr *pae) {
             r->msg = again;
             r->due_ns = dtron_now_ns() + 100000000LL;
             r->next = NULL;
-            pthread_mutex_lock(&bus->retry_lock);
-            if (bus->retries_tail != NULL) {
-                bus->retries_tail->next = r;
-            } else {
-                bus->retries = r;
-            }
-            bus->retries_tail = r;
-            pthread_mutex_unlock(&bus->retry_lock);
+            enqueue_retry(bus, r);
             return;
         }
         natsMsg_Destroy(again);
