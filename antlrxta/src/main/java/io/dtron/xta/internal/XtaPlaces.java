@@ -72,27 +72,15 @@ public final class XtaPlaces {
         int i = 0;
         int n = text.length();
         while (i < n) {
+            int skipped = afterCommentOrString(text, i);
+            if (skipped != i) {
+                i = skipped;
+                continue;
+            }
             char c = text.charAt(i);
-            if (c == '/' && i + 1 < n && text.charAt(i + 1) == '/') {
-                int end = text.indexOf('\n', i);
-                i = end < 0 ? n : end;
-                continue;
-            }
-            if (c == '/' && i + 1 < n && text.charAt(i + 1) == '*') {
-                int end = text.indexOf("*/", i + 2);
-                i = end < 0 ? n : end + 2;
-                continue;
-            }
-            if (c == '"') {
-                int end = text.indexOf('"', i + 1);
-                i = end < 0 ? n : end + 1;
-                continue;
-            }
             if (Character.isLetter(c) || c == '_') {
                 int start = i;
-                while (i < n && (Character.isLetterOrDigit(text.charAt(i)) || text.charAt(i) == '_')) {
-                    i++;
-                }
+                i = afterWord(text, i, n);
                 String word = text.substring(start, i);
                 if (depth == 0) {
                     if (afterProcess) {
@@ -168,22 +156,15 @@ public final class XtaPlaces {
         int depth = 0;
         int i = from;
         while (i < end) {
+            int skipped = afterCommentOrString(text, i);
+            if (skipped != i) {
+                i = skipped;
+                continue;
+            }
             char c = text.charAt(i);
-            if (c == '/' && i + 1 < end && text.charAt(i + 1) == '/') {
-                int e = text.indexOf('\n', i);
-                i = e < 0 ? end : e;
-                continue;
-            }
-            if (c == '/' && i + 1 < end && text.charAt(i + 1) == '*') {
-                int e = text.indexOf("*/", i + 2);
-                i = e < 0 ? end : e + 2;
-                continue;
-            }
             if (Character.isLetter(c) || c == '_') {
                 int start = i;
-                while (i < end && (Character.isLetterOrDigit(text.charAt(i)) || text.charAt(i) == '_')) {
-                    i++;
-                }
+                i = afterWord(text, i, end);
                 if (depth == 0 && isSection(text.substring(start, i))) {
                     return start - 1;
                 }
@@ -197,6 +178,35 @@ public final class XtaPlaces {
             i++;
         }
         return end;
+    }
+
+    /**
+     * The offset after the comment ({@code //} to the line's end, {@code /* ... *}{@code /}) or the string at {@code i},
+     * or {@code i} when none starts there: the scanners skip them whole, so that their words and braces do not count.
+     */
+    private static int afterCommentOrString(String text, int i) {
+        int n = text.length();
+        if (text.startsWith("//", i)) {
+            int end = text.indexOf('\n', i);
+            return end < 0 ? n : end;
+        }
+        if (text.startsWith("/*", i)) {
+            int end = text.indexOf("*/", i + 2);
+            return end < 0 ? n : end + 2;
+        }
+        if (text.charAt(i) == '"') {
+            int end = text.indexOf('"', i + 1);
+            return end < 0 ? n : end + 1;
+        }
+        return i;
+    }
+
+    /** The offset after the identifier that starts at {@code i}, at most {@code end}. */
+    private static int afterWord(String text, int i, int end) {
+        while (i < end && (Character.isLetterOrDigit(text.charAt(i)) || text.charAt(i) == '_')) {
+            i++;
+        }
+        return i;
     }
 
     private static boolean isSection(String word) {
