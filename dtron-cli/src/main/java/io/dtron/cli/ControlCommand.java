@@ -210,8 +210,9 @@ final class ControlCommand implements Callable<Integer> {
         if (duration <= 0) {
             throw usage("--duration must be a positive number of time units: " + duration);
         }
-        if (junit != null && OutputFile.problem("--junit", junit, model, interfaceFile, reloadFrom) != null) {
-            throw usage(OutputFile.problem("--junit", junit, model, interfaceFile, reloadFrom));
+        String junitProblem = OutputFile.problem("--junit", junit, model, interfaceFile, reloadFrom);
+        if (junitProblem != null) {
+            throw usage(junitProblem);
         }
         if (safeAction != null && safeLocation != null) {
             throw usage("give --safe-action or --safe-location, not both");

@@ -120,9 +120,8 @@ final class MonitorCommand implements Callable<Integer> {
         if (replay != null && live.onBus()) {
             throw usage("--replay checks a recorded run; leave out --cluster and --bus, or --replay");
         }
-        for (String problem : new String[] {junit == null ? null : OutputFile.problem("--junit", junit, model,
-                replay, interfaceFile), alarmsFile == null ? null : OutputFile.problem("--alarms", alarmsFile, model,
-                replay, interfaceFile, junit)}) {
+        for (String problem : new String[] {OutputFile.problem("--junit", junit, model, replay, interfaceFile),
+                OutputFile.problem("--alarms", alarmsFile, model, replay, interfaceFile, junit)}) {
             if (problem != null) {
                 throw usage(problem);
             }

@@ -119,8 +119,8 @@ final class MutantsCommand implements Callable<Integer> {
         if (checkSeconds <= 0) {
             throw usage("--check-time must be a positive number of seconds: " + checkSeconds);
         }
-        for (String problem : new String[] {junit == null ? null : OutputFile.problem("--junit", junit, model,
-                interfaceFile), json == null ? null : OutputFile.problem("--json", json, model, interfaceFile)}) {
+        for (String problem : new String[] {OutputFile.problem("--junit", junit, model, interfaceFile),
+                OutputFile.problem("--json", json, model, interfaceFile)}) {
             if (problem != null) {
                 throw usage(problem);
             }

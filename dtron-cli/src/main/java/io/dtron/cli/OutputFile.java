@@ -20,9 +20,12 @@ final class OutputFile {
     /**
      * Why {@code option FILE} cannot be written, or null when it can: an empty name, a folder, a folder that does not
      * exist, no permission to write, or one of the command's {@code inputs} (the model, the trace), which it would
-     * overwrite.
+     * overwrite. Null when the option was not given ({@code file} null).
      */
     static String problem(String option, Path file, Path... inputs) {
+        if (file == null) {
+            return null;
+        }
         if (file.toString().isEmpty()) {
             return option + ": give a file name";
         }

@@ -578,10 +578,10 @@ final class RunCommand implements Callable<Integer> {
             throw usage("--trace-max-size bounds the --trace file: give --trace FILE too");
         }
         traceMaxBytes();
-        for (String problem : new String[] {junit == null ? null : OutputFile.problem("--junit", junit, model,
-                interfaceFile), trace == null ? null : OutputFile.problem("--trace", trace, model, interfaceFile),
-                coverage.file == null ? null : OutputFile.problem("--coverage", coverage.file, model, interfaceFile),
-                report.file == null ? null : OutputFile.problem("--report", report.file, model, interfaceFile)}) {
+        for (String problem : new String[] {OutputFile.problem("--junit", junit, model, interfaceFile),
+                OutputFile.problem("--trace", trace, model, interfaceFile),
+                OutputFile.problem("--coverage", coverage.file, model, interfaceFile),
+                OutputFile.problem("--report", report.file, model, interfaceFile)}) {
             if (problem != null) {
                 throw usage(problem);
             }
