@@ -25,7 +25,10 @@ import java.util.function.Predicate;
  * run that comes back to the same states and delays costs a hash lookup per event. Not thread-safe.
  */
 public final class Tracker {
-    /** The most states a closure or the exploration of the reachable states may visit. */
+    /**
+     * The most states the exploration of the reachable states may visit, and the most a closure may visit beyond
+     * the states it starts from (a monitor that starts from every reachable state starts with up to as many).
+     */
     public static final int MAX_STATES = 200_000;
     /** How long the exploration of the reachable states may take: 10 s. */
     static final long REACHABLE_NANOS = 10_000_000_000L;
@@ -261,15 +264,16 @@ public final class Tracker {
             waiting.add(s.copy());
         }
         int visited = 0;
+        int most = from.states.size() + MAX_STATES;
         Semantics.MoveSink sink = (move, next) -> waiting.add(next);
         while (!waiting.isEmpty()) {
             SymState s = waiting.poll();
             if (!all.delay(s, elapsed, Bound.le(horizon)) || !passed.add(s)) {
                 continue;
             }
-            if (++visited > MAX_STATES) {
-                throw new UnsupportedModelException("more than " + MAX_STATES + " symbolic states between two"
-                        + " events: the model is too nondeterministic to follow");
+            if (++visited > most) {
+                throw new UnsupportedModelException("more than " + most + " symbolic states between two events"
+                        + " (from " + from.states.size() + "): the model is too nondeterministic to follow");
             }
             all.moves(s, internal, sink);
         }
