@@ -45,11 +45,14 @@ public final class LargeStack {
             return work.run();
         }
         Object[] outcome = new Object[1];
+        boolean[] threw = new boolean[1];
         Thread thread = new LargeStackThread(() -> {
             try {
                 outcome[0] = work.run();
             } catch (Exception | Error e) {
-                outcome[0] = new Failure(e);
+                // kept without allocating: the heap may be full
+                outcome[0] = e;
+                threw[0] = true;
             }
         });
         thread.start();
@@ -64,18 +67,14 @@ public final class LargeStack {
         if (interrupted) {
             Thread.currentThread().interrupt();
         }
-        if (outcome[0] instanceof Failure failure) {
-            if (failure.thrown() instanceof Error error) {
+        if (threw[0]) {
+            if (outcome[0] instanceof Error error) {
                 throw error;
-            } else if (failure.thrown() instanceof RuntimeException runtime) {
+            } else if (outcome[0] instanceof RuntimeException runtime) {
                 throw runtime;
             }
-            throw (E) failure.thrown();
+            throw (E) outcome[0];
         }
         return (T) outcome[0];
-    }
-
-    /** What the work threw. */
-    private record Failure(Throwable thrown) {
     }
 }

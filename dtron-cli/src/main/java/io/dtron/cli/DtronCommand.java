@@ -2,6 +2,7 @@ package io.dtron.cli;
 
 import java.io.File;
 import java.io.PrintWriter;
+import java.nio.charset.StandardCharsets;
 import java.nio.file.Files;
 import java.nio.file.InvalidPathException;
 import java.nio.file.Path;
@@ -44,17 +45,36 @@ public final class DtronCommand implements Callable<Integer> {
      */
     public static void main(String[] args) {
         Thread.UncaughtExceptionHandler others = Thread.getDefaultUncaughtExceptionHandler();
+        // a heap too small even for the line below (java -Xmx4m) gets this one, made while there was room
+        byte[] lastResort = ("dtron: out of memory: the Java heap limit of " + (Runtime.getRuntime().maxMemory() >> 20)
+                + " MB is too small for DTRON; raise it, e.g. java -Xmx256m -jar dtron.jar ...\n")
+                .getBytes(StandardCharsets.UTF_8);
+        try {
+            // halting loads this class, which a full heap has no room for
+            Class.forName("java.lang.Shutdown");
+        } catch (ClassNotFoundException e) {
+            // another JVM: the last resort line may be followed by the JVM's own
+        }
         Thread.setDefaultUncaughtExceptionHandler((thread, e) -> {
-            String limit = JvmLimits.describe(e);
-            if (limit == null) {
-                if (others != null) {
-                    others.uncaughtException(thread, e);
-                } else {
-                    thread.getThreadGroup().uncaughtException(thread, e);
+            try {
+                String limit = JvmLimits.describe(e);
+                if (limit == null) {
+                    if (others != null) {
+                        others.uncaughtException(thread, e);
+                    } else {
+                        thread.getThreadGroup().uncaughtException(thread, e);
+                    }
+                    return;
                 }
-                return;
+                System.err.println("dtron: " + limit + " (in thread " + thread.getName() + ")");
+            } catch (OutOfMemoryError again) {
+                try {
+                    System.err.write(lastResort, 0, lastResort.length);
+                    System.err.flush();
+                } finally {
+                    Runtime.getRuntime().halt(1);
+                }
             }
-            System.err.println("dtron: " + limit + " (in thread " + thread.getName() + ")");
             System.exit(1);
         });
         RealTimeJit.ownJvm();
