@@ -367,8 +367,12 @@ public final class Tracker {
             this.values = values;
             this.fromTicks = fromTicks;
             this.toTicks = toTicks;
-            this.hash = ((31 * channel + Arrays.hashCode(values)) * 31 + Long.hashCode(fromTicks)) * 31
-                    + Long.hashCode(toTicks);
+            long h = ((31L * channel + Arrays.hashCode(values)) * 31 + fromTicks) * 31 + toTicks;
+            // mixed (MurmurHash3's finaliser): the sum alone is a multiple of 32 plus the channel's part when the
+            // window is one delay, so a node's transitions on one channel fell into a few of the map's buckets
+            h = (h ^ (h >>> 33)) * 0xff51afd7ed558ccdL;
+            h = (h ^ (h >>> 33)) * 0xc4ceb9fe1a85ec53L;
+            this.hash = (int) (h ^ (h >>> 33));
             return this;
         }
 
