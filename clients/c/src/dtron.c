@@ -9,6 +9,7 @@
 
 #include <nats/nats.h>
 #include <openssl/crypto.h>
+#include <openssl/rand.h>
 #include <pthread.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -69,7 +70,7 @@ struct dtron_bus {
     int timer_started;
     int closed;
     channel *channels;
-    uint64_t sequence, msg_ids;
+    uint64_t sequence;
     member members[MAX_MEMBERS];
     size_t nmembers;
     uint64_t own_join;
@@ -231,7 +232,17 @@ static int publish(dtron_bus *bus, const char *subject, const char *presence, co
     if (natsMsg_Create(&msg, subject, NULL, (const char *)data, (int)len) != NATS_OK) {
         return DTRON_ERR_BUS;
     }
-    snprintf(id, sizeof id, "%s-%llu", bus->member, (unsigned long long)++bus->msg_ids);
+    /* an id no one can tell in advance: no other process can publish first under it and have the stream drop
+       this message as the duplicate */
+    unsigned char random[16];
+    if (RAND_bytes(random, sizeof random) != 1) {
+        natsMsg_Destroy(msg);
+        return DTRON_ERR_BUS;
+    }
+    int at = snprintf(id, sizeof id, "%.150s-", bus->member);
+    for (size_t i = 0; i < sizeof random; i++) {
+        at += snprintf(id + at, sizeof id - (size_t)at, "%02x", random[i]);
+    }
     natsMsgHeader_Set(msg, "Dtron-Sender", bus->member);
     natsMsgHeader_Set(msg, "Nats-Msg-Id", id);
     if (presence != NULL) {
@@ -946,8 +957,6 @@ int dtron_connect(const dtron_options *options, dtron_bus **out, char *err, size
     sprintf(bus->prefix, "dtron.%s.c.", name);
     bus->presence = malloc(strlen(name) + 16);
     sprintf(bus->presence, "dtron.%s.p", name);
-    /* from the clock: a member started again under the same id within the duplicate window is stored */
-    bus->msg_ids = (uint64_t)dtron_now_ns();
     bus->members[0].name = copy(generated);
     bus->members[0].last_seen = INT64_MAX / 2;
     bus->nmembers = 1;

@@ -100,8 +100,6 @@ class Bus:
         self._registrations: dict[str, _Registration] = {}
         self._sends: set[str] = set()
         self._sequence = 0
-        # from the clock: a member started again under the same id within the stream's duplicate window is stored
-        self._msg_ids = wall_clock_ns()
         self._outbox: asyncio.Queue[Optional[tuple[str, dict[str, str], bytes, Optional[asyncio.Future[None]]]]] = \
             asyncio.Queue()
         self._inbox: asyncio.Queue[Optional[Callable[[], Awaitable[None]]]] = asyncio.Queue()
@@ -301,8 +299,9 @@ class Bus:
     async def _publish(self, subject: str, headers: dict[str, str], payload: bytes) -> None:
         """Publishes into the stream until it acknowledged the message: a message that fails while a server fails
         over is published again with the same ``Nats-Msg-Id``, so that the stream stores it once."""
-        self._msg_ids += 1
-        headers = dict(headers, **{"Nats-Msg-Id": f"{self.member}-{self._msg_ids}"})
+        # an id no one can tell in advance: no other process can publish first under it and have the stream drop
+        # this message as the duplicate
+        headers = dict(headers, **{"Nats-Msg-Id": f"{self.member}-{secrets.token_hex(16)}"})
         if self._guard is not None:  # signed once: a message published again keeps its number, time and code
             headers = self._guard.sign(subject, headers, payload, wall_clock_ns())
         loop = asyncio.get_running_loop()

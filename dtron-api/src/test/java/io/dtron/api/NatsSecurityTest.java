@@ -205,6 +205,52 @@ class NatsSecurityTest {
         assertEquals(1, adapter.getStats().getRejectedTotal(), adapter.getStats().toString());
     }
 
+    /**
+     * A client without the secret that sees a member's messages cannot publish first under the member's next
+     * {@code Nats-Msg-Id}, which would have the stream drop the member's message as its duplicate: whatever it
+     * derives from the ids it saw (the next numbers, decimal or hexadecimal), the member's next message is stored
+     * and delivered.
+     */
+    @Test
+    void noOneCanTakeAMembersNextMessageIdFirst() throws Exception {
+        SecureBus bus = secureBus("squat", true);
+        Dtron adapter = bus.adapter();
+        Connection raw = bus.raw();
+        Inbox inbox = bus.inbox();
+        io.nats.client.Subscription capture = raw.subscribe(bus.channel());
+        raw.flush(Duration.ofSeconds(10));
+        for (int n = 1; n <= 3; n++) {
+            adapter.send(ORDER.constructValued(Map.of("n", n)));
+            assertEquals(n, inbox.take().getVariables().get("n"));
+        }
+        java.util.Set<String> seen = new java.util.HashSet<>();
+        String last = null;
+        for (int n = 1; n <= 3; n++) {
+            Message captured = capture.nextMessage(Duration.ofSeconds(20));
+            assertTrue(captured != null && captured.hasHeaders(), "the subscriber saw message " + n);
+            last = captured.getHeaders().getFirst("Nats-Msg-Id");
+            assertTrue(seen.add(last), "ids differ: " + seen);
+        }
+        String prefix = last.substring(0, last.lastIndexOf('-') + 1);
+        String tail = last.substring(last.lastIndexOf('-') + 1);
+        List<String> guesses = new java.util.ArrayList<>();
+        for (int ahead = 1; ahead <= 20; ahead++) {
+            if (tail.matches("\\d{1,18}")) {
+                guesses.add(prefix + (Long.parseLong(tail) + ahead));
+            }
+            guesses.add(prefix + new java.math.BigInteger(tail, 16).add(java.math.BigInteger.valueOf(ahead))
+                    .toString(16));
+        }
+        for (String guess : guesses) {
+            publish(bus.js(), bus.channel(), new Headers().put(NatsTransport.SENDER, "adapter")
+                    .put("Nats-Msg-Id", guess), order(666, "adapter"));
+        }
+        adapter.send(ORDER.constructValued(Map.of("n", 4)));
+        assertEquals(4, inbox.take().getVariables().get("n"), "the member's next message was stored and delivered");
+        assertEquals(guesses.size(), bus.tester().getStats().getRejected(Reason.UNAUTHENTICATED),
+                bus.tester().getStats().toString());
+    }
+
     @Test
     void aMessageWhoseSenderTimeIsTenMinutesOffIsStale() throws Exception {
         SecureBus bus = secureBus("stale", false);

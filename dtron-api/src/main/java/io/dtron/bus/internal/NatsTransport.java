@@ -25,6 +25,7 @@ import java.nio.charset.StandardCharsets;
 import java.nio.file.Files;
 import java.security.GeneralSecurityException;
 import java.security.KeyStore;
+import java.security.SecureRandom;
 import java.security.cert.Certificate;
 import java.security.cert.CertificateFactory;
 import java.time.Duration;
@@ -34,6 +35,7 @@ import java.util.Comparator;
 import java.util.EnumMap;
 import java.util.HashMap;
 import java.util.HashSet;
+import java.util.HexFormat;
 import java.util.List;
 import java.util.Map;
 import java.util.Objects;
@@ -96,6 +98,8 @@ public final class NatsTransport implements Transport {
     private final Subscribers subscribers = new Subscribers();
     private final ScheduledExecutorService presence;
     private final Object sendLock = new Object();
+    /** The source of the messages' {@code Nats-Msg-Id}s. */
+    private final SecureRandom msgIds = new SecureRandom();
     private final AtomicInteger inFlight = new AtomicInteger();
     private final ExecutorService retries;
     /**
@@ -412,7 +416,7 @@ public final class NatsTransport implements Transport {
     private void send(String subject, Headers headers, byte[] payload) throws IOException {
         synchronized (sendLock) { // the ids and the connection's order agree
             String seq = Long.toString(published.incrementAndGet());
-            headers.put("Nats-Msg-Id", settings.memberName() + "-" + seq);
+            headers.put("Nats-Msg-Id", settings.memberName() + "-" + msgId());
             if (codes != null) {
                 String time = Long.toString(EpochClock.nowNanos());
                 headers.put(MessageCodes.SEQ, seq).put(MessageCodes.TIME, time);
@@ -434,6 +438,16 @@ public final class NatsTransport implements Transport {
                 throw new IOException("cannot publish on " + subject + ": " + e.getMessage(), e);
             }
         }
+    }
+
+    /**
+     * 32 random hexadecimal digits: an id no one can tell in advance, so that no other process can publish first
+     * under it and have the stream drop this member's message as the duplicate.
+     */
+    private String msgId() {
+        byte[] id = new byte[16];
+        msgIds.nextBytes(id);
+        return HexFormat.of().formatHex(id);
     }
 
     private void retryLater(Message message, Throwable failure) {
