@@ -53,6 +53,11 @@ public final class Monitor {
     private Tracker.Node reachable;
     private Tracker.Node current;
     private long lastMicros;
+    /**
+     * The time of the states' elapsed clock's 0: the last event's time, or the start of its window when its time
+     * was known give or take (the states then keep when in the window it came).
+     */
+    private long referenceMicros;
     private boolean started;
     private boolean stopped;
     /** What happened at {@link #lastMicros}: the start, the last event or a re-synchronisation. */
@@ -207,8 +212,8 @@ public final class Monitor {
             throw new IllegalArgumentException("event " + event + " at " + time(micros) + " comes before the last one,"
                     + " at " + time(lastMicros));
         }
-        long fromTicks = ticks.floor(Math.max(0, micros - uncertaintyMicros - lastMicros));
-        long toTicks = ticks.ceil(micros + uncertaintyMicros - lastMicros);
+        long fromTicks = ticks.floor(Math.max(0, micros - uncertaintyMicros - referenceMicros));
+        long toTicks = ticks.ceil(micros + uncertaintyMicros - referenceMicros);
         events++;
         Tracker.Node next;
         try {
@@ -219,6 +224,7 @@ public final class Monitor {
         if (!next.isEmpty()) {
             current = next;
             lastMicros = micros;
+            referenceMicros = fromTicks == toTicks ? micros : referenceMicros + ticks.micros(fromTicks);
             since = "the last event";
             return null;
         }
@@ -231,6 +237,7 @@ public final class Monitor {
             Tracker.Node consistent = tracker.step(reachable(), ch.channel, ch.slots, ch.values, 0, 0);
             current = consistent.isEmpty() ? reachable() : consistent;
             lastMicros = micros;
+            referenceMicros = micros;
             since = "the re-synchronisation";
         }
         return alarm;
@@ -250,7 +257,7 @@ public final class Monitor {
         if (micros <= lastMicros) {
             return null;
         }
-        long elapsed = ticks.floor(micros - lastMicros);
+        long elapsed = ticks.floor(micros - referenceMicros);
         try {
             if (tracker.allows(current, elapsed)) {
                 return null;
@@ -259,13 +266,14 @@ public final class Monitor {
             throw new UnsupportedModelException("model error while letting time pass: " + e.format());
         }
         List<SymState> reach = tracker.reach(current, elapsed);
-        long deadline = lastMicros + ticks.micros(Bound.value(tracker.latest(reach)));
+        long deadline = referenceMicros + ticks.micros(Bound.value(tracker.latest(reach)));
         String explanation = "no event by " + time(deadline) + ", the deadline after " + since() + ": the model "
                 + "required one of " + describe(allowed(elapsed)) + " by then";
         Alarm alarm = raise(Alarm.Reason.DEADLINE_MISSED, deadline, null, explanation, elapsed);
         if (options.keepGoing()) {
             current = reachable();
             lastMicros = deadline;
+            referenceMicros = deadline;
             since = "the re-synchronisation";
         }
         return alarm;
@@ -283,7 +291,7 @@ public final class Monitor {
             return true;
         }
         try {
-            return tracker.allows(current, ticks.floor(micros - lastMicros));
+            return tracker.allows(current, ticks.floor(micros - referenceMicros));
         } catch (ModelRuntimeException e) {
             throw new UnsupportedModelException("model error while letting time pass: " + e.format());
         }
@@ -312,13 +320,15 @@ public final class Monitor {
         if (!started) {
             started = true;
             lastMicros = micros;
+            referenceMicros = micros;
         }
     }
 
     private Alarm violation(Event event, Channel ch, long micros, long fromTicks, long toTicks) {
         Tracker.Node atTime = tracker.afterWindow(current, fromTicks, toTicks);
         if (atTime.isEmpty()) {
-            long deadline = lastMicros + ticks.micros(Bound.value(tracker.latest(tracker.reach(current, toTicks))));
+            long deadline = referenceMicros
+                    + ticks.micros(Bound.value(tracker.latest(tracker.reach(current, toTicks))));
             String explanation = "no event by " + time(deadline) + ", the deadline after " + since() + ": the model "
                     + "required one of " + describe(allowed(toTicks)) + " by then; the next event, " + event
                     + ", came at " + time(micros);
@@ -408,8 +418,8 @@ public final class Monitor {
         for (Map.Entry<String, long[]> e : windows.entrySet()) {
             long[] w = e.getValue();
             Alarm.Window k = keys.get(e.getKey());
-            out.add(new Alarm.Window(k.channel(), k.values(), lastMicros + ticks.microsFloor(w[0]),
-                    w[1] < 0 ? -1 : lastMicros + ticks.micros(w[1])));
+            out.add(new Alarm.Window(k.channel(), k.values(), referenceMicros + ticks.microsFloor(w[0]),
+                    w[1] < 0 ? -1 : referenceMicros + ticks.micros(w[1])));
         }
         return out;
     }

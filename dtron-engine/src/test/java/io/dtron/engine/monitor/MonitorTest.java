@@ -152,6 +152,42 @@ class MonitorTest {
         }
     }
 
+    /**
+     * An event's time give or take holds for the events after it too: the states keep when in its window it came.
+     * A response 3.15 units after its request, both give or take 0.1 unit, fits the model's 1 to 3 units (the
+     * request late, the response early in their windows); a tick every 12.05 units, give or take 0.1, fits a period
+     * of 8 to 12 units only for two ticks (the first at 12, the second at 24), and the third misses the deadline.
+     */
+    @Test
+    void aToleranceHoldsForThePreviousEventAsForTheNewOne() throws Exception {
+        Network n = server();
+        Monitor server = Monitor.of(n, TestInterface.fromNames(n), MonitorOptions.initial(UNIT));
+        assertNull(server.observe(Event.of("req", "n", 4), UNIT, UNIT / 10));
+        Alarm none = server.observe(Event.of("resp", "n", 5), 4150 * UNIT / 1000, UNIT / 10);
+        assertNull(none, () -> none.explanation());
+
+        Network ticker = ModelLoader.load("period.xta", "chan o_tick;\nprocess T() { clock x; state S { x <= 12 };"
+                + " init S; trans S -> S { guard x >= 8; sync o_tick!; assign x = 0; }; }\n"
+                + "process E() { state W; init W; trans W -> W { sync o_tick?; }; }\nsystem T, E;\n");
+        Monitor m = Monitor.of(ticker, TestInterface.fromNames(ticker), MonitorOptions.initial(UNIT));
+        Event tick = Event.of("tick");
+        long period = 12050 * UNIT / 1000;
+        assertNull(m.observe(tick, period, UNIT / 10));
+        assertNull(m.observe(tick, 2 * period, UNIT / 10));
+        Alarm third = m.observe(tick, 3 * period, UNIT / 10);
+        assertNotNull(third, "the third tick came 12.05 units after the second at the earliest");
+        // the deadline 12 units after the second tick, which came at 24 (its window's start) at the earliest
+        assertEquals(Alarm.Reason.DEADLINE_MISSED, third.reason(), third.explanation());
+        assertEquals(36 * UNIT, third.micros(), third.explanation());
+        // on time within the tolerance: no alarm over a hundred ticks
+        Monitor onTime = Monitor.of(ticker, TestInterface.fromNames(ticker), MonitorOptions.initial(UNIT));
+        for (int i = 1; i <= 100; i++) {
+            long at = i * 12 * UNIT + (i % 2 == 0 ? 1 : -1) * UNIT / 20;
+            Alarm a = onTime.observe(tick, at, UNIT / 10);
+            assertNull(a, () -> a.explanation());
+        }
+    }
+
     @Test
     void aMissedDeadlineIsFoundWhenTimePassesIt() throws Exception {
         Network n = server();

@@ -242,10 +242,15 @@ public final class Tracker {
                 continue;
             }
             Dbm z = t.zone();
-            if (!z.constrain(0, elapsed, Bound.le((int) -Math.min(fromTicks, Bound.MAX_VALUE)))) {
+            int start = (int) Math.min(fromTicks, Bound.MAX_VALUE);
+            if (!z.constrain(0, elapsed, Bound.le(-start))) {
                 continue;
             }
-            z.reset(elapsed, 0);
+            if (fromTicks == toTicks) {
+                z.reset(elapsed, 0);
+            } else {
+                z.shift(elapsed, start); // the set's time is the window's start: when the event came is kept
+            }
             all.extrapolate(t);
             out.add(t);
         }

@@ -494,6 +494,29 @@ public final class Dbm {
         }
     }
 
+    /**
+     * Sets clock {@code x} back by {@code by} ({@code x := x - by}) in every valuation, keeping its distances to the
+     * other clocks: exact, and the zone stays closed. Every valuation must have {@code x >= by}.
+     */
+    public void shift(int x, int by) {
+        checkClock(x);
+        if (isEmpty() || by == 0) {
+            return;
+        }
+        if (by < 0 || Bound.compare(m[x], Bound.le(-by)) > 0) {
+            throw new IllegalArgumentException("clock " + x + " is not at least " + by + " in " + this);
+        }
+        int less = Bound.le(-by);
+        int more = Bound.le(by);
+        int rowX = x * dim;
+        for (int j = 0; j < dim; j++) {
+            if (j != x) {
+                m[rowX + j] = Bound.add(m[rowX + j], less);
+                m[j * dim + x] = Bound.add(m[j * dim + x], more);
+            }
+        }
+    }
+
     /** Removes every constraint on clock {@code x} except {@code x >= 0}. */
     public void free(int x) {
         checkClock(x);

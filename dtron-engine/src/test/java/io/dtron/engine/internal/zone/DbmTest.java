@@ -192,6 +192,30 @@ class DbmTest {
     }
 
     @Test
+    void shiftSetsAClockBackKeepingItsDistances() {
+        Dbm z = Dbm.unconstrained(3);
+        z.constrain(1, 0, le(2));
+        z.reset(2, 4);
+        z.up();
+        z.constrain(2, 0, le(9));
+        z.constrain(0, 2, le(-6)); // 6 <= x2 <= 9, x1 - x2 in [-4, -2]
+        z.shift(2, 6);
+        assertEquals("x1>=2, x1<=7, x2<=3, x1-x2>=2, x1-x2<=4", z.toString());
+        assertCanonical(z);
+        assertTrue(z.contains(point(5, 2), 1));
+        assertFalse(z.contains(point(5, 4), 1));
+        // a clock at one value set back by that value: the same zone as its reset to 0
+        Dbm exact = staggered();
+        exact.constrain(0, 1, le(-3));
+        exact.constrain(1, 0, le(3));
+        Dbm reset = exact.copy();
+        reset.reset(1, 0);
+        exact.shift(1, 3);
+        assertEquals(reset, exact);
+        assertThrows(IllegalArgumentException.class, () -> reset.shift(1, 1), "x1 is not at least 1");
+    }
+
+    @Test
     void freeForgetsOneClock() {
         Dbm z = staggered();
         z.free(1);
