@@ -217,14 +217,16 @@ public final class Monitor {
         events++;
         Tracker.Node next;
         try {
-            next = tracker.step(current, ch.channel, ch.slots, ch.values, fromTicks, toTicks);
+            next = tracker.step(current, ch.channel, ch.slots, ch.values, fromTicks, toTicks, uncertaintyMicros > 0);
         } catch (ModelRuntimeException e) {
             throw new UnsupportedModelException("model error while following " + event + ": " + e.format());
         }
         if (!next.isEmpty()) {
             current = next;
             lastMicros = micros;
-            referenceMicros = fromTicks == toTicks ? micros : referenceMicros + ticks.micros(fromTicks);
+            // an exact time is the states' time, within a tick (as the tester takes it); a time give or take is kept
+            // in the states, whose time is then the start of its window
+            referenceMicros = uncertaintyMicros == 0 ? micros : referenceMicros + ticks.micros(fromTicks);
             since = "the last event";
             return null;
         }
@@ -234,7 +236,7 @@ public final class Monitor {
             return alarm;
         }
         if (options.keepGoing()) {
-            Tracker.Node consistent = tracker.step(reachable(), ch.channel, ch.slots, ch.values, 0, 0);
+            Tracker.Node consistent = tracker.step(reachable(), ch.channel, ch.slots, ch.values, 0, 0, false);
             current = consistent.isEmpty() ? reachable() : consistent;
             lastMicros = micros;
             referenceMicros = micros;
@@ -325,7 +327,7 @@ public final class Monitor {
     }
 
     private Alarm violation(Event event, Channel ch, long micros, long fromTicks, long toTicks) {
-        Tracker.Node atTime = tracker.afterWindow(current, fromTicks, toTicks);
+        Tracker.Node atTime = tracker.afterWindow(current, fromTicks, toTicks, false);
         if (atTime.isEmpty()) {
             long deadline = referenceMicros
                     + ticks.micros(Bound.value(tracker.latest(tracker.reach(current, toTicks))));

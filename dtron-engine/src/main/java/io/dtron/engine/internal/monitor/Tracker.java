@@ -150,15 +150,16 @@ public final class Tracker {
      * carry {@code values}, some time in {@code [fromTicks, toTicks]} after {@code from}'s time; {@link #empty}
      * when no state allows it then.
      */
-    public Node step(Node from, int channel, int[] slots, int[] values, long fromTicks, long toTicks) {
-        TransitionKey k = probe.set(channel, values, fromTicks, toTicks);
+    public Node step(Node from, int channel, int[] slots, int[] values, long fromTicks, long toTicks,
+            boolean keepWhen) {
+        TransitionKey k = probe.set(channel, values, fromTicks, toTicks, keepWhen);
         Node cached = remember && from.next != null ? from.next.get(k) : null;
         if (cached != null) {
             recalled++;
             return cached;
         }
         List<SymState> out = new ArrayList<>();
-        for (SymState s : delayed(from, fromTicks, toTicks, channel, slots, values)) {
+        for (SymState s : delayed(from, fromTicks, toTicks, keepWhen, channel, slots, values)) {
             all.moves(s, channel, (move, next) -> {
                 if (matches(next, slots, values)) {
                     out.add(next);
@@ -224,8 +225,8 @@ public final class Tracker {
      * The set after a delay somewhere in {@code [fromTicks, toTicks]} without an event, with the elapsed clock set
      * back to 0; {@link #empty} if time cannot pass that far.
      */
-    public Node afterWindow(Node from, long fromTicks, long toTicks) {
-        return intern(delayed(from, fromTicks, toTicks, NO_CHANNEL, null, null));
+    public Node afterWindow(Node from, long fromTicks, long toTicks, boolean keepWhen) {
+        return intern(delayed(from, fromTicks, toTicks, keepWhen, NO_CHANNEL, null, null));
     }
 
     /**
@@ -235,7 +236,8 @@ public final class Tracker {
      * keeps, and a state is compared only with those of its discrete part, so the states kept are those the step
      * would keep from all, in the same order.
      */
-    private List<SymState> delayed(Node from, long fromTicks, long toTicks, int channel, int[] slots, int[] values) {
+    private List<SymState> delayed(Node from, long fromTicks, long toTicks, boolean keepWhen, int channel,
+            int[] slots, int[] values) {
         Passed out = new Passed();
         for (SymState t : reach(from, toTicks)) {
             if (channel != NO_CHANNEL && !all.mayMove(t, channel, slots, values)) {
@@ -246,10 +248,10 @@ public final class Tracker {
             if (!z.constrain(0, elapsed, Bound.le(-start))) {
                 continue;
             }
-            if (fromTicks == toTicks) {
-                z.reset(elapsed, 0);
+            if (keepWhen) {
+                z.shift(elapsed, start); // the set's time is the window's start: when in it the event came is kept
             } else {
-                z.shift(elapsed, start); // the set's time is the window's start: when the event came is kept
+                z.reset(elapsed, 0);
             }
             all.extrapolate(t);
             out.add(t);
@@ -365,14 +367,17 @@ public final class Tracker {
         int[] values;
         long fromTicks;
         long toTicks;
+        boolean keepWhen;
         int hash;
 
-        TransitionKey set(int channel, int[] values, long fromTicks, long toTicks) {
+        TransitionKey set(int channel, int[] values, long fromTicks, long toTicks, boolean keepWhen) {
             this.channel = channel;
             this.values = values;
             this.fromTicks = fromTicks;
             this.toTicks = toTicks;
-            long h = ((31L * channel + Arrays.hashCode(values)) * 31 + fromTicks) * 31 + toTicks;
+            this.keepWhen = keepWhen;
+            long h = (((31L * channel + Arrays.hashCode(values)) * 31 + fromTicks) * 31 + toTicks) * 2
+                    + (keepWhen ? 1 : 0);
             // mixed (MurmurHash3's finaliser): the sum alone is a multiple of 32 plus the channel's part when the
             // window is one delay, so a node's transitions on one channel fell into a few of the map's buckets
             h = (h ^ (h >>> 33)) * 0xff51afd7ed558ccdL;
@@ -382,13 +387,13 @@ public final class Tracker {
         }
 
         TransitionKey copy() {
-            return new TransitionKey().set(channel, values.clone(), fromTicks, toTicks);
+            return new TransitionKey().set(channel, values.clone(), fromTicks, toTicks, keepWhen);
         }
 
         @Override
         public boolean equals(Object o) {
             return o instanceof TransitionKey k && k.hash == hash && k.channel == channel && k.fromTicks == fromTicks
-                    && k.toTicks == toTicks && Arrays.equals(k.values, values);
+                    && k.toTicks == toTicks && k.keepWhen == keepWhen && Arrays.equals(k.values, values);
         }
 
         @Override

@@ -108,7 +108,7 @@ class TrackerTest {
             int horizon = latest == Bound.INFINITY ? 300_000 : Math.min(300_000, Bound.value(latest)) + 1;
             long from = r.nextInt(4) == 0 ? 0 : r.nextInt(r.nextBoolean() ? Math.min(horizon, 20_000) : horizon);
             long to = r.nextInt(5) == 0 ? from + r.nextInt(3_000) : from;
-            List<SymState> atTime = tracker.afterWindow(at, from, to).states();
+            List<SymState> atTime = tracker.afterWindow(at, from, to, false).states();
             List<int[]> events = new ArrayList<>(); // channel index, then values
             for (SymState s : atTime) {
                 for (int c = 0; c < channels.size(); c++) {
@@ -129,7 +129,7 @@ class TrackerTest {
                 continue;
             }
             if (events.isEmpty()) {
-                at = tracker.afterWindow(at, from, to); // time passes without an event
+                at = tracker.afterWindow(at, from, to, false); // time passes without an event
                 continue;
             }
             int[] e = events.get(r.nextInt(events.size())).clone();
@@ -152,7 +152,7 @@ class TrackerTest {
                 });
             }
             List<SymState> expected = tracker.node(successors).states();
-            List<SymState> actual = tracker.step(at, channel, slots[c], values, from, to).states();
+            List<SymState> actual = tracker.step(at, channel, slots[c], values, from, to, false).states();
             assertEquals(expected.size(), actual.size(), "step " + step);
             for (int i = 0; i < actual.size(); i++) {
                 assertTrue(expected.get(i).sameDiscrete(actual.get(i)), "step " + step);
@@ -162,7 +162,7 @@ class TrackerTest {
                 refused++;
             } else {
                 allowed++;
-                at = tracker.step(at, channel, slots[c], values, from, to);
+                at = tracker.step(at, channel, slots[c], values, from, to, false);
             }
         }
         assertTrue(allowed > 500 && refused > 20 && restarts < 100, "allowed " + allowed + ", refused " + refused
