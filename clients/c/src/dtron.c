@@ -663,6 +663,17 @@ static void on_message(natsConnection *nc, natsSubscription *sub, natsMsg *msg, 
                             .nvars = strcmp(name, DTRON_RUN_START) == 0 ? 1 : 0};
     int ok = fits(bus, listened ? template : &run_template, sync, name);
     int64_t event = sync->event_time_ns ? sync->event_time_ns : sync->publish_time_ns;
+    /* a message of another run (one replayed from an earlier run, say) neither ends this run nor reaches the
+       listeners: a stop counts when it comes from this run's tester with this run's id (or none); a message with a
+       run id when it is this run's */
+    const char *message_run = sync->run_id ? sync->run_id : "";
+    int this_run = bus->run_id != NULL && *bus->run_id != '\0' && strcmp(message_run, bus->run_id) == 0;
+    if (ok && strcmp(name, DTRON_RUN_STOP) == 0 && !((this_run || *message_run == '\0') && bus->run_tester != NULL
+                                                      && strcmp(from, bus->run_tester) == 0)) {
+        ok = 0;
+    } else if (ok && !is_run_channel(name) && *message_run != '\0' && !this_run) {
+        ok = 0;
+    }
     if (ok && strcmp(name, DTRON_RUN_START) == 0) {
         replace(&bus->run_tester, from);
         replace(&bus->run_id, sync->run_id);

@@ -460,6 +460,7 @@ typedef struct {
     const char *bus;        /* NULL: "hand" */
     int64_t shift;          /* how far the tester's clock is ahead of this host's */
     const char *host_clock; /* what its hellos and pongs say of its clock, NULL: nothing */
+    const char *run_id;     /* the run its messages say they belong to, NULL: none */
 } fake_tester;
 
 static void tester_publish(fake_tester *t, const char *channel, const char *variable, int value, const char *acked,
@@ -479,6 +480,7 @@ static void tester_publish(fake_tester *t, const char *channel, const char *vari
         sync.host_clock = (char *)t->host_clock;
     }
     sync.event_time_ns = event_ns;
+    sync.run_id = (char *)(t->run_id ? t->run_id : "");
     sync.acked_sender = (char *)(acked ? acked : "");
     sync.acked_sequence = acked_sequence;
     if (variable) {
@@ -621,6 +623,7 @@ static void test_handshake_clock_and_acknowledgements(void) {
     pthread_mutex_lock(&t.lock);
     CHECK(t.pongs >= 1 && t.first_pong_acked == probe);
     pthread_mutex_unlock(&t.lock);
+    t.run_id = "run-1";
     tester_publish(&t, "dtron_start", "timeunit", 1000, NULL, 0, 0, NULL);
     UNTIL(dtron_run_running(adapter));
     CHECK(dtron_run_running(adapter));
@@ -631,9 +634,18 @@ static void test_handshake_clock_and_acknowledgements(void) {
     CHECK(field(&t, &t.acks) == 1 && resets == 1);
     CHECK(t.acked_sequence == reset_sequence && strcmp(t.acked_sender, "tester") == 0);
     CHECK(t.ack_error > 0 && llabs(t.ack_offset - 50000000LL) <= t.ack_error);
+    /* messages of another run (as replayed from an earlier one) neither reach the listener nor end this run */
+    t.run_id = "run-0";
+    tester_publish(&t, "reset", NULL, 0, NULL, 0, 0, NULL);
+    tester_publish(&t, "dtron_stop", NULL, 0, NULL, 0, 0, NULL);
+    t.run_id = "run-1";
+    tester_publish(&t, "reset", NULL, 0, NULL, 0, 0, NULL);
+    UNTIL(field(&t, &t.acks) == 2);
+    CHECK(field(&t, &t.acks) == 2 && resets == 2 && dtron_run_running(adapter));
     tester_publish(&t, "dtron_stop", NULL, 0, NULL, 0, 0, NULL);
     UNTIL(!dtron_run_running(adapter));
     CHECK(!dtron_run_running(adapter));
+    t.run_id = NULL;
 
     /* bad input: no Sync, unknown and missing variables, then a good one */
     natsMsg *garbage = NULL;
@@ -644,10 +656,10 @@ static void test_handshake_clock_and_acknowledgements(void) {
     store(t.nc, garbage);
     tester_publish(&t, "reset", "n", 1, NULL, 0, 0, NULL);
     tester_publish(&t, "reset", NULL, 0, NULL, 0, 0, NULL);
-    UNTIL(resets == 2);
+    UNTIL(resets == 3);
     dtron_stats stats = dtron_get_stats(adapter);
-    CHECK(resets == 2);
-    CHECK(stats.malformed == 1 && stats.unknown_variables == 1 && stats.accepted == 2);
+    CHECK(resets == 3);
+    CHECK(stats.malformed == 1 && stats.unknown_variables == 1 && stats.accepted == 3);
     CHECK(stats.unauthenticated == 0 && stats.replayed == 0 && stats.stale == 0);
     dtron_close(adapter);
     natsSubscription_Destroy(sub);

@@ -131,7 +131,13 @@ def test_the_handshake_the_clock_offset_and_acknowledgements(nats_url: str, dtro
         assert (ack.acked_sender, ack.acked_sequence, ack.run_id) == ("tester", reset.sequence, "run-1")
         assert ack.clock_error_ns > 0 and abs(ack.clock_offset_ns - 50_000_000) <= ack.clock_error_ns
         assert len(resets) == 1 and resets[0].sender == "tester"
-        await tester.publish("dtron_stop")
+        # messages of another run (as replayed from an earlier one) neither reach the listener nor end this run
+        await tester.publish("reset", run_id="run-0")
+        await tester.publish("dtron_stop", run_id="run-0")
+        await tester.publish("reset", run_id="run-1")
+        await until(lambda: len(resets) == 2)
+        assert adapter.run_clock.running and [r.run_id for r in resets] == ["run-1", "run-1"]
+        await tester.publish("dtron_stop", run_id="run-1")
         await until(lambda: not adapter.run_clock.running)
         await adapter.close()
         await nc.close()

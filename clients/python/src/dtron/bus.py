@@ -522,6 +522,17 @@ class Bus:
         except InvalidMessage as e:
             self._reject(channel, sender, e)
             return
+        # a message of another run (one replayed from an earlier run, say) neither ends this run nor reaches the
+        # listeners: a stop counts when it comes from this run's tester with this run's id (or none); a message with
+        # a run id when it is this run's
+        this_run = self._run_id != "" and sync.run_id == self._run_id
+        if channel == "dtron_stop" and not ((this_run or not sync.run_id) and sender == self._run_tester):
+            LOG.debug("Ignored a stop of run %r from %s: this run is %r", sync.run_id, sender, self._run_id)
+            return
+        if not run_channel and sync.run_id and not this_run:
+            LOG.debug("Ignored a message on %r of run %r from %s: this run is %r", channel, sync.run_id, sender,
+                      self._run_id)
+            return
         message = Message(template, {v: values[v] for v in template.variables}, sender, sync.sequence,
                           sync.publish_time_ns, sync.event_time_ns or sync.publish_time_ns, sync.run_id,
                           sync.clock_offset_ns, sync.clock_error_ns, received_ns)

@@ -1049,7 +1049,19 @@ public final class Dtron implements AutoCloseable {
         if (group.equals(RUN_START.getChannelName())) {
             runStarted(value);
         } else if (group.equals(RUN_STOP.getChannelName())) {
+            if (!(ofThisRun(value) || value.getRunId().isEmpty()) || !value.getSender().equals(runTester)) {
+                // a stop of another run (one replayed from an earlier run, say) does not end this one
+                LOG.debug("{}: ignored a stop of run '{}' from {}: this run is '{}'", getMemberId(), value.getRunId(),
+                        value.getSender(), runId);
+                return;
+            }
             runStopped();
+        } else if (registration != null && !RESERVED.containsKey(group) && !clockSync.isTester()
+                && !value.getRunId().isEmpty() && !ofThisRun(value)
+                && handshake.own().receives().contains(group)) {
+            // an input of another run (one replayed from an earlier run, say) does not reach the adapter
+            LOG.debug("{}: ignored {} of run '{}': this run is '{}'", getMemberId(), value, value.getRunId(), runId);
+            return;
         }
         if (group.equals(ACK.getChannelName())
                 && clockSync.probeAnswered(value.getSender(), value.getAckedSender(), value.getAckedSequence())) {
@@ -1262,6 +1274,11 @@ public final class Dtron implements AutoCloseable {
         long delay = receiveTime + own.get().offsetNanos() - (publishTime + offset);
         long bound = error + own.get().errorNanos();
         delays.merge(sender, MemberDelay.first(sender, delay, bound), (old, one) -> old.plus(delay, bound));
+    }
+
+    /** Whether a message carries the id of the run this member takes part in (none: false). */
+    private boolean ofThisRun(IDtronChannelValued message) {
+        return !runId.isEmpty() && message.getRunId().equals(runId);
     }
 
     /** Called on the transport's thread, in the bus's order. */
