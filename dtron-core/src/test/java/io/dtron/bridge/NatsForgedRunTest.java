@@ -78,6 +78,68 @@ class NatsForgedRunTest {
                 .getRejected(Reason.REPLAYED), "nothing on this bus carries a code: " + outcome.stats());
     }
 
+    /**
+     * A client without the secret keeps the last run's signed reset and stop as they were published, and publishes
+     * them again, still fresh, while a new tester runs against a new ticker: they are of another run, so the ticker
+     * neither restarts nor stops, and the run passes.
+     */
+    @Test
+    void theLastRunsResetAndStopPublishedAgainInTheNextRunChangeNothing() throws Exception {
+        Network network = ModelLoader.load(MODEL);
+        TestInterface testInterface = TestInterface.fromNames(network);
+        String bus = "replayed-" + UUID.randomUUID().toString().substring(0, 8);
+        DtronOptions.Builder options = DtronOptions.builder().clusterName(bus).secret(SECRET);
+        try (NatsServer server = NatsServer.start(dir);
+                Connection raw = Nats.connect(server.url())) {
+            options.natsServers(server.url());
+            Subscription resets = raw.subscribe("dtron." + bus + ".c.reset");
+            Subscription stops = raw.subscribe("dtron." + bus + ".c.dtron_stop");
+            raw.flush(Duration.ofSeconds(10));
+            TestResult first = runAgainstANewTicker(network, testInterface, bus, server, options, "first", null);
+            assertEquals(Verdict.PASSED, first.verdict(), first.explanation());
+            Message reset = resets.nextMessage(Duration.ofSeconds(30));
+            Message stop = stops.nextMessage(Duration.ofSeconds(30));
+            assertTrue(reset != null && stop != null, "the first run reset the ticker and stopped");
+            TestResult second = runAgainstANewTicker(network, testInterface, bus, server, options, "second",
+                    js -> {
+                        publish(js, reset.getSubject(), new Headers(reset.getHeaders()).put("Nats-Msg-Id", "again-1"),
+                                reset.getData());
+                        publish(js, stop.getSubject(), new Headers(stop.getHeaders()).put("Nats-Msg-Id", "again-2"),
+                                stop.getData());
+                    });
+            assertEquals(Verdict.PASSED, second.verdict(), second.explanation());
+        }
+    }
+
+    /** What a client publishes during a run. */
+    @FunctionalInterface
+    private interface Meddling {
+        void publish(JetStream js) throws Exception;
+    }
+
+    /** A run of the tester against a ticker in a JVM of its own; {@code meddling} publishes once a tick came. */
+    private TestResult runAgainstANewTicker(Network network, TestInterface testInterface, String bus,
+            NatsServer server, DtronOptions.Builder options, String name, Meddling meddling) throws Exception {
+        try (Connection raw = Nats.connect(server.url());
+                ChildJvm ticker = ChildJvm.start(TickerAdapterMain.class, dir.resolve(name + ".log"), bus,
+                        "ticker-" + name, "correct", "1", server.url(), SECRET)) {
+            ticker.awaitOutput("joined", Duration.ofSeconds(60));
+            try (BusBridge bridge = BusBridge.connect(testInterface, options)) {
+                assertTrue(bridge.run().awaitAdapters(1, Duration.ofSeconds(60)), "the ticker joined");
+                Subscription ticks = raw.subscribe("dtron." + bus + ".c.tick");
+                raw.flush(Duration.ofSeconds(10));
+                CompletableFuture<TestResult> run = CompletableFuture.supplyAsync(() -> new OnlineTester(network,
+                        testInterface, bridge, new TestOptions(1, UNIT_MICROS, UNITS, DelayPolicy.EAGER, 0, false))
+                        .run());
+                if (meddling != null) {
+                    assertTrue(ticks.nextMessage(Duration.ofSeconds(60)) != null, "a tick during the run");
+                    meddling.publish(raw.jetStream());
+                }
+                return run.get(2, TimeUnit.MINUTES);
+            }
+        }
+    }
+
     private record Outcome(TestResult result, DtronStats stats, String tester, List<String> members) {
     }
 
