@@ -251,6 +251,35 @@ class NatsSecurityTest {
                 bus.tester().getStats().toString());
     }
 
+    /**
+     * A client without the secret publishes, with the NATS protocol itself, a message whose headers read as the
+     * server's status (an idle heartbeat): the client library keeps it from the consumer's handler, and the consumer
+     * made anew from it waited for it for ever. Now it is counted as unauthenticated and the consumer is made from
+     * the message after it: the adapter's next order still comes.
+     */
+    @Test
+    void aMessageThatReadsAsTheServersStatusDoesNotStallAMember() throws Exception {
+        SecureBus bus = secureBus("status", true);
+        java.net.URI url = java.net.URI.create(bus.raw().getConnectedUrl());
+        try (java.net.Socket socket = new java.net.Socket(url.getHost(), url.getPort())) {
+            java.io.BufferedReader in = new java.io.BufferedReader(new java.io.InputStreamReader(
+                    socket.getInputStream(), StandardCharsets.US_ASCII));
+            assertTrue(in.readLine().startsWith("INFO "), "the server greets");
+            String headers = "NATS/1.0 100 Idle Heartbeat\r\n\r\n";
+            String payload = "x";
+            String frames = "CONNECT {\"verbose\":false,\"headers\":true,\"protocol\":1}\r\n"
+                    + "HPUB " + bus.channel() + " " + headers.length() + " " + (headers.length() + payload.length())
+                    + "\r\n" + headers + payload + "\r\nPING\r\n";
+            socket.getOutputStream().write(frames.getBytes(StandardCharsets.US_ASCII));
+            socket.getOutputStream().flush();
+            assertEquals("PONG", in.readLine(), "the server took the message");
+        }
+        bus.adapter().send(ORDER.constructValued(Map.of("n", 9)));
+        assertEquals(9, bus.inbox().take().getVariables().get("n"), "the order after it came");
+        assertEquals(1, bus.tester().getStats().getRejected(Reason.UNAUTHENTICATED),
+                bus.tester().getStats().toString());
+    }
+
     @Test
     void aMessageWhoseSenderTimeIsTenMinutesOffIsStale() throws Exception {
         SecureBus bus = secureBus("stale", false);

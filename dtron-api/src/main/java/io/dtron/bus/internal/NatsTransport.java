@@ -15,6 +15,7 @@ import io.nats.client.PushSubscribeOptions;
 import io.nats.client.api.ConsumerConfiguration;
 import io.nats.client.api.DeliverPolicy;
 import io.nats.client.api.DiscardPolicy;
+import io.nats.client.api.MessageInfo;
 import io.nats.client.api.StorageType;
 import io.nats.client.api.StreamConfiguration;
 import io.nats.client.impl.Headers;
@@ -88,6 +89,8 @@ public final class NatsTransport implements Transport {
     private static final Duration RETRY_FOR = Duration.ofSeconds(30);
     private static final long RETRY_PAUSE_MILLIS = 100;
     private static final long CLOSE_WAIT_MILLIS = 3_000;
+    /** The API error of a stream that holds no message of a sequence. */
+    private static final int NO_MESSAGE_FOUND = 10037;
     /** How many (sender, reason) pairs of dropped messages are logged, one line each, before logging stops. */
     private static final int DROPS_LOGGED = 256;
 
@@ -360,6 +363,10 @@ public final class NatsTransport implements Transport {
             return;
         }
         long from = lastSequence + 1;
+        if (cannotBeDelivered(from)) {
+            lastSequence = from;
+            from++;
+        }
         JetStreamSubscription stuck = subscription;
         if (stuck != null) {
             // first: the old consumer must deliver nothing after the new one's first messages
@@ -382,6 +389,45 @@ public final class NatsTransport implements Transport {
         } finally {
             gapReported.set(false);
         }
+    }
+
+    /**
+     * Whether the stream's message {@code sequence}, from which a consumer made anew delivered nothing, is one no
+     * member would take: gone, or without a valid code on a bus with a secret (a client without it can publish a
+     * message whose headers read as a server's status, which the client library keeps from the consumer's handler,
+     * so that the consumer waits for it for ever). It is counted as an unauthenticated message then, and the
+     * consumer is made from the one after it; a message a member would take is waited for, as before.
+     */
+    private boolean cannotBeDelivered(long sequence) {
+        MessageInfo info;
+        try {
+            JetStreamManagement management = connection.jetStreamManagement();
+            if (sequence > management.getStreamInfo(settings.streamName()).getStreamState().getLastSequence()) {
+                return false; // not stored yet: the consumer waits for the stream's next message
+            }
+            info = management.getMessage(settings.streamName(), sequence);
+        } catch (JetStreamApiException e) {
+            if (e.getApiErrorCode() == NO_MESSAGE_FOUND) {
+                LOG.warn("{}: stream {} holds no sequence {}, from which its consumer was to be made anew: skipped",
+                        settings.memberName(), settings.streamName(), sequence);
+                return true;
+            }
+            LOG.debug("{} cannot read sequence {} of stream {}: {}", settings.memberName(), sequence,
+                    settings.streamName(), e.toString());
+            return false;
+        } catch (IOException | RuntimeException e) {
+            LOG.debug("{} cannot read sequence {} of stream {}: {}", settings.memberName(), sequence,
+                    settings.streamName(), e.toString());
+            return false;
+        }
+        Headers headers = info.getHeaders();
+        if (codes == null || headers != null && codes.matches(headers.getFirst(MessageCodes.MAC), info.getSubject(),
+                headers.getFirst(SENDER), headers.getFirst(MessageCodes.SEQ), headers.getFirst(MessageCodes.TIME),
+                headers.getFirst(PRESENCE), headers.getFirst(JOINED), info.getData())) {
+            return false; // a member's message: it is the consumer that is stuck
+        }
+        dropped(DropReason.UNAUTHENTICATED, headers == null ? null : headers.getFirst(SENDER), info.getSubject());
+        return true;
     }
 
     @Override
