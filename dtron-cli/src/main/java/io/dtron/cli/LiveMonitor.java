@@ -385,6 +385,7 @@ final class LiveMonitor {
                 case FIRST_VIOLATION -> " (stopped at the first violation)";
                 case NEXT_RUN -> " (the next run started before its end)";
                 case WATCH_ENDED -> "";
+                case GAVE_UP -> " (the monitor could not follow it to its end)";
             } + ", " + run.late() + " too late to judge" + (shielding ? ", " + run.withheld() + " withheld" : "")
                     + afterTheEnd(run.afterEnd()) + "; verdict published on dtron_alarm");
         }

@@ -202,13 +202,14 @@ final class MonitorCommand implements Callable<Integer> {
         double seconds = (System.nanoTime() - began) / 1e9;
         int violations = monitor.violations();
         String summary = "dtron monitor: " + violations(violations) + ", " + events(monitor.events())
-                + (monitor.stopped() ? " (stopped at the first violation)" : "") + ", " + rejected(r.rejected)
+                + (monitor.gaveUp().isPresent() ? " (not followed to the end: " + monitor.gaveUp().get() + ")"
+                        : monitor.stopped() ? " (stopped at the first violation)" : "") + ", " + rejected(r.rejected)
                 + ", in " + String.format(Locale.ROOT, "%.2f s", seconds);
         out.println(summary);
         if (junit != null && !replayReport(r, monitor, format, unit, seconds, summary, err)) {
             return 1;
         }
-        return violations > 0 ? 2 : r.rejected > 0 ? 3 : 0;
+        return violations > 0 ? 2 : r.rejected > 0 || monitor.gaveUp().isPresent() ? 3 : 0;
     }
 
     /** {@code --junit} of a replay: one test case; returns false if the file could not be written. */

@@ -143,7 +143,12 @@ public final class BusMonitor implements AutoCloseable {
         /** Another run started before this one's stop came. */
         NEXT_RUN,
         /** The watch ended ({@link BusMonitor#finish}, or an error) before the run's stop. */
-        WATCH_ENDED
+        WATCH_ENDED,
+        /**
+         * The monitor could not follow the run further (after a message too late to judge, a model with too many
+         * reachable states to start again from all of them): the rest of the run was not judged.
+         */
+        GAVE_UP
     }
 
     /**
@@ -454,7 +459,7 @@ public final class BusMonitor implements AutoCloseable {
                 }
                 judgeBefore(Math.min(now - window.micros(), endAt));
                 if (monitor.stopped()) {
-                    endRun(End.FIRST_VIOLATION);
+                    endRun(stoppedAs(monitor));
                 }
                 showProgress();
             }
@@ -488,12 +493,17 @@ public final class BusMonitor implements AutoCloseable {
                 || withheld > 0 || afterEnd > 0;
     }
 
+    /** How a run ends whose monitor stopped: at its first violation, or because it could not follow it further. */
+    private static End stoppedAs(Monitor monitor) {
+        return monitor.gaveUp().isPresent() ? End.GAVE_UP : End.FIRST_VIOLATION;
+    }
+
     /**
      * Ends the watch of a run: publishes its verdict, tells the sink, and waits for the next run's start (or ends the
      * watch after the last run).
      */
     private void endRun(End end) {
-        End why = monitor != null && monitor.stopped() ? End.FIRST_VIOLATION : end;
+        End why = monitor != null && monitor.stopped() ? stoppedAs(monitor) : end;
         long last = end();
         afterEnd += held.stream().filter(h -> h.micros > last).count(); // held, then the stop came before them
         publishVerdict();
@@ -822,7 +832,8 @@ public final class BusMonitor implements AutoCloseable {
         sink.note(h.message.getChannelName() + " from " + h.message.getSender() + " came "
                 + (Math.max(judgedTo, monitor.lastMicros()) - h.micros)
                 + " us after the monitor had judged its time (reorder window " + window.micros() + " us): not judged;"
-                + " the monitor starts again from every reachable state");
+                + monitor.gaveUp().map(why -> " the monitor stops following the run: " + why)
+                        .orElse(" the monitor starts again from every reachable state"));
     }
 
     /**

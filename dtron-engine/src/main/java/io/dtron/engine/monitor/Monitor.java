@@ -22,6 +22,7 @@ import java.util.HashMap;
 import java.util.LinkedHashMap;
 import java.util.List;
 import java.util.Map;
+import java.util.Optional;
 
 /**
  * Watches a running system against a closed model: it is told every event on the model's observable channels
@@ -60,6 +61,8 @@ public final class Monitor {
     private long referenceMicros;
     private boolean started;
     private boolean stopped;
+    /** Why the monitor could not follow the events further (null while it can). */
+    private String gaveUp;
     /** What happened at {@link #lastMicros}: the start, the last event or a re-synchronisation. */
     private String since = "the start";
     private long events;
@@ -139,6 +142,8 @@ public final class Monitor {
             }
         } catch (ModelRuntimeException e) {
             throw new UnsupportedModelException("model error while exploring the model's states: " + e.format());
+        } catch (UnsupportedModelException e) {
+            throw new UnsupportedModelException(e.getMessage() + ": start from the initial state");
         }
         return m;
     }
@@ -236,11 +241,15 @@ public final class Monitor {
             return alarm;
         }
         if (options.keepGoing()) {
-            Tracker.Node consistent = tracker.step(reachable(), ch.channel, ch.slots, ch.values, 0, 0, false);
-            current = consistent.isEmpty() ? reachable() : consistent;
-            lastMicros = micros;
-            referenceMicros = micros;
-            since = "the re-synchronisation";
+            try {
+                Tracker.Node consistent = tracker.step(reachable(), ch.channel, ch.slots, ch.values, 0, 0, false);
+                current = consistent.isEmpty() ? reachable() : consistent;
+                lastMicros = micros;
+                referenceMicros = micros;
+                since = "the re-synchronisation";
+            } catch (UnsupportedModelException e) {
+                giveUp("it cannot re-synchronise after violation " + violations + ": " + e.getMessage());
+            }
         }
         return alarm;
     }
@@ -273,10 +282,14 @@ public final class Monitor {
                 + "required one of " + describe(allowed(elapsed)) + " by then";
         Alarm alarm = raise(Alarm.Reason.DEADLINE_MISSED, deadline, null, explanation, elapsed);
         if (options.keepGoing()) {
-            current = reachable();
-            lastMicros = deadline;
-            referenceMicros = deadline;
-            since = "the re-synchronisation";
+            try {
+                current = reachable();
+                lastMicros = deadline;
+                referenceMicros = deadline;
+                since = "the re-synchronisation";
+            } catch (UnsupportedModelException e) {
+                giveUp("it cannot re-synchronise after violation " + violations + ": " + e.getMessage());
+            }
         }
         return alarm;
     }
@@ -313,9 +326,29 @@ public final class Monitor {
         if (stopped) {
             return;
         }
-        current = reachable();
+        try {
+            current = reachable();
+        } catch (UnsupportedModelException e) {
+            giveUp("it cannot start again from every reachable state after a gap in the events: " + e.getMessage());
+            return;
+        }
         started = false;
         since = "the gap in the events";
+    }
+
+    /** Stops following the events, for {@code why}: what the monitor judged so far stands. */
+    private void giveUp(String why) {
+        stopped = true;
+        gaveUp = why;
+    }
+
+    /**
+     * Why the monitor stopped following the events before their end, when it could not go on (a model with too
+     * many reachable states to start again from all of them, after a violation with {@code --continue} or a gap
+     * in the events); empty while it follows them, or when it stopped at a violation.
+     */
+    public Optional<String> gaveUp() {
+        return Optional.ofNullable(gaveUp);
     }
 
     private void start(long micros) {
@@ -493,7 +526,10 @@ public final class Monitor {
         return first;
     }
 
-    /** Whether the monitor has stopped at a violation (it does not go on after violations). */
+    /**
+     * Whether the monitor has stopped: at a violation (it does not go on after violations), or because it could not
+     * follow the events further ({@link #gaveUp}).
+     */
     public boolean stopped() {
         return stopped;
     }

@@ -188,6 +188,29 @@ class MonitorTest {
         }
     }
 
+    /**
+     * A model with more reachable states than a monitor may start from (the CSMA/CD protocol of ten stations): a
+     * monitor that goes on after violations reports the violation, then stops following the events, saying why,
+     * instead of failing; so does one that forgets the events after a gap.
+     */
+    @Test
+    void aMonitorThatCannotStartAgainFromEveryStateSaysSoAndKeepsWhatItJudged() throws Exception {
+        Network csma = ModelLoader.load(SHARED.resolve("benchmarks/csmacd-10.xml"));
+        TestInterface ti = TestInterface.fromText(csma, "csma.trn", "input begin();\noutput end();\n");
+        Monitor m = Monitor.of(csma, ti, MonitorOptions.initial(UNIT).keepGoing(true));
+        Alarm alarm = m.observe(Event.of("end"), 0);
+        assertNotNull(alarm, "end before any begin");
+        assertTrue(m.stopped() && m.gaveUp().orElse("").startsWith("it cannot re-synchronise after violation 1: the"
+                + " model has too many reachable symbolic states"), m.gaveUp().toString());
+        assertNull(m.observe(Event.of("begin"), 1000), "no longer followed");
+        assertEquals(1, m.violations());
+        Monitor gap = Monitor.of(csma, ti, MonitorOptions.initial(UNIT));
+        gap.forgetHistory();
+        assertTrue(gap.stopped() && gap.gaveUp().orElse("").startsWith("it cannot start again from every reachable"
+                + " state after a gap in the events"), gap.gaveUp().toString());
+        assertEquals(0, gap.violations());
+    }
+
     @Test
     void aMissedDeadlineIsFoundWhenTimePassesIt() throws Exception {
         Network n = server();

@@ -348,7 +348,7 @@ public final class Tracker {
                     && System.nanoTime() - began > REACHABLE_NANOS) {
                 throw new UnsupportedModelException("the model has too many reachable symbolic states to start from"
                         + " all of them (" + passed.size() + " found in " + (System.nanoTime() - began) / 1_000_000
-                        + " ms): start from the initial state");
+                        + " ms)");
             }
             all.moves(s, sink);
         }
