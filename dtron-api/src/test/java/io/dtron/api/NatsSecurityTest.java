@@ -111,6 +111,13 @@ class NatsSecurityTest {
         String presence() {
             return "dtron." + name + ".p";
         }
+
+        /** The raw client's subscription to channel {@code order}, in place on the server. */
+        io.nats.client.Subscription capture() throws Exception {
+            io.nats.client.Subscription capture = raw.subscribe(channel());
+            raw.flush(Duration.ofSeconds(10));
+            return capture;
+        }
     }
 
     private SecureBus secureBus(String what, boolean withAdapter) throws Exception {
@@ -178,10 +185,8 @@ class NatsSecurityTest {
         SecureBus bus = secureBus("replay", true);
         Dtron tester = bus.tester();
         Dtron adapter = bus.adapter();
-        Connection raw = bus.raw();
         Inbox inbox = bus.inbox();
-        io.nats.client.Subscription capture = raw.subscribe(bus.channel());
-        raw.flush(Duration.ofSeconds(10));
+        io.nats.client.Subscription capture = bus.capture();
         adapter.send(ORDER.constructValued(Map.of("n", 1)));
         assertEquals(1, inbox.take().getVariables().get("n"));
         Message captured = capture.nextMessage(Duration.ofSeconds(20));
@@ -215,10 +220,8 @@ class NatsSecurityTest {
     void noOneCanTakeAMembersNextMessageIdFirst() throws Exception {
         SecureBus bus = secureBus("squat", true);
         Dtron adapter = bus.adapter();
-        Connection raw = bus.raw();
         Inbox inbox = bus.inbox();
-        io.nats.client.Subscription capture = raw.subscribe(bus.channel());
-        raw.flush(Duration.ofSeconds(10));
+        io.nats.client.Subscription capture = bus.capture();
         for (int n = 1; n <= 3; n++) {
             adapter.send(ORDER.constructValued(Map.of("n", n)));
             assertEquals(n, inbox.take().getVariables().get("n"));

@@ -88,56 +88,34 @@ class NatsForgedRunTest {
         Network network = ModelLoader.load(MODEL);
         TestInterface testInterface = TestInterface.fromNames(network);
         String bus = "replayed-" + UUID.randomUUID().toString().substring(0, 8);
-        DtronOptions.Builder options = DtronOptions.builder().clusterName(bus).secret(SECRET);
         try (NatsServer server = NatsServer.start(dir);
                 Connection raw = Nats.connect(server.url())) {
-            options.natsServers(server.url());
+            DtronOptions.Builder options = DtronOptions.builder().clusterName(bus).natsServers(server.url())
+                    .secret(SECRET);
             Subscription resets = raw.subscribe("dtron." + bus + ".c.reset");
             Subscription stops = raw.subscribe("dtron." + bus + ".c.dtron_stop");
             raw.flush(Duration.ofSeconds(10));
-            TestResult first = runAgainstANewTicker(network, testInterface, bus, server, options, "first", null);
+            TestResult first = runAgainstANewTicker(network, testInterface, bus, server, options, SECRET, "first",
+                    null, 0).result();
             assertEquals(Verdict.PASSED, first.verdict(), first.explanation());
             Message reset = resets.nextMessage(Duration.ofSeconds(30));
             Message stop = stops.nextMessage(Duration.ofSeconds(30));
             assertTrue(reset != null && stop != null, "the first run reset the ticker and stopped");
-            TestResult second = runAgainstANewTicker(network, testInterface, bus, server, options, "second",
-                    js -> {
+            TestResult second = runAgainstANewTicker(network, testInterface, bus, server, options, SECRET, "second",
+                    (js, tick, tester) -> {
                         publish(js, reset.getSubject(), new Headers(reset.getHeaders()).put("Nats-Msg-Id", "again-1"),
                                 reset.getData());
                         publish(js, stop.getSubject(), new Headers(stop.getHeaders()).put("Nats-Msg-Id", "again-2"),
                                 stop.getData());
-                    });
+                    }, 0).result();
             assertEquals(Verdict.PASSED, second.verdict(), second.explanation());
         }
     }
 
-    /** What a client publishes during a run. */
+    /** What a client publishes during a run, once a tick came. */
     @FunctionalInterface
     private interface Meddling {
-        void publish(JetStream js) throws Exception;
-    }
-
-    /** A run of the tester against a ticker in a JVM of its own; {@code meddling} publishes once a tick came. */
-    private TestResult runAgainstANewTicker(Network network, TestInterface testInterface, String bus,
-            NatsServer server, DtronOptions.Builder options, String name, Meddling meddling) throws Exception {
-        try (Connection raw = Nats.connect(server.url());
-                ChildJvm ticker = ChildJvm.start(TickerAdapterMain.class, dir.resolve(name + ".log"), bus,
-                        "ticker-" + name, "correct", "1", server.url(), SECRET)) {
-            ticker.awaitOutput("joined", Duration.ofSeconds(60));
-            try (BusBridge bridge = BusBridge.connect(testInterface, options)) {
-                assertTrue(bridge.run().awaitAdapters(1, Duration.ofSeconds(60)), "the ticker joined");
-                Subscription ticks = raw.subscribe("dtron." + bus + ".c.tick");
-                raw.flush(Duration.ofSeconds(10));
-                CompletableFuture<TestResult> run = CompletableFuture.supplyAsync(() -> new OnlineTester(network,
-                        testInterface, bridge, new TestOptions(1, UNIT_MICROS, UNITS, DelayPolicy.EAGER, 0, false))
-                        .run());
-                if (meddling != null) {
-                    assertTrue(ticks.nextMessage(Duration.ofSeconds(60)) != null, "a tick during the run");
-                    meddling.publish(raw.jetStream());
-                }
-                return run.get(2, TimeUnit.MINUTES);
-            }
-        }
+        void publish(JetStream js, Message tick, String tester) throws Exception;
     }
 
     private record Outcome(TestResult result, DtronStats stats, String tester, List<String> members) {
@@ -147,35 +125,46 @@ class NatsForgedRunTest {
         Network network = ModelLoader.load(MODEL);
         TestInterface testInterface = TestInterface.fromNames(network);
         String bus = "forged-" + UUID.randomUUID().toString().substring(0, 8);
-        try (NatsServer server = NatsServer.start(dir);
-                Connection raw = Nats.connect(server.url())) {
-            List<String> args = new ArrayList<>(List.of(bus, "ticker", "correct", "1", server.url()));
-            args.add(secure ? SECRET : "insecure");
-            Path log = dir.resolve("ticker.log");
-            try (ChildJvm ticker = ChildJvm.start(TickerAdapterMain.class, log, args.toArray(String[]::new))) {
-                ticker.awaitOutput("joined", Duration.ofSeconds(60));
-                DtronOptions.Builder options = DtronOptions.builder().clusterName(bus).natsServers(server.url());
-                if (secure) {
-                    options.secret(SECRET);
-                } else {
-                    options.insecure(true);
-                }
-                try (BusBridge bridge = BusBridge.connect(testInterface, options)) {
-                    assertTrue(bridge.run().awaitAdapters(1, Duration.ofSeconds(60)), "the ticker joined");
-                    Subscription ticks = raw.subscribe("dtron." + bus + ".c.tick");
-                    raw.flush(Duration.ofSeconds(10));
-                    CompletableFuture<TestResult> run = CompletableFuture.supplyAsync(() -> new OnlineTester(network,
-                            testInterface, bridge, new TestOptions(1, UNIT_MICROS, UNITS, DelayPolicy.EAGER, 0, false))
-                            .run());
+        try (NatsServer server = NatsServer.start(dir)) {
+            DtronOptions.Builder options = DtronOptions.builder().clusterName(bus).natsServers(server.url());
+            if (secure) {
+                options.secret(SECRET);
+            } else {
+                options.insecure(true);
+            }
+            return runAgainstANewTicker(network, testInterface, bus, server, options, secure ? SECRET : "insecure",
+                    "ticker", (js, tick, tester) -> forge(js, bus, tick, tester), secure ? 6 : 0);
+        }
+    }
+
+    /**
+     * A run of the tester against a ticker in a JVM of its own (named {@code name}, with {@code secret} or
+     * "insecure"); {@code meddling} (or none) publishes once a tick came, and the outcome is taken once the tester
+     * rejected at least {@code rejected} messages (its receive thread has its own pace).
+     */
+    private Outcome runAgainstANewTicker(Network network, TestInterface testInterface, String bus, NatsServer server,
+            DtronOptions.Builder options, String secret, String name, Meddling meddling, long rejected)
+            throws Exception {
+        try (Connection raw = Nats.connect(server.url());
+                ChildJvm ticker = ChildJvm.start(TickerAdapterMain.class, dir.resolve(name + ".log"), bus, name,
+                        "correct", "1", server.url(), secret)) {
+            ticker.awaitOutput("joined", Duration.ofSeconds(60));
+            try (BusBridge bridge = BusBridge.connect(testInterface, options)) {
+                assertTrue(bridge.run().awaitAdapters(1, Duration.ofSeconds(60)), "the ticker joined");
+                Subscription ticks = raw.subscribe("dtron." + bus + ".c.tick");
+                raw.flush(Duration.ofSeconds(10));
+                CompletableFuture<TestResult> run = CompletableFuture.supplyAsync(() -> new OnlineTester(network,
+                        testInterface, bridge, new TestOptions(1, UNIT_MICROS, UNITS, DelayPolicy.EAGER, 0, false))
+                        .run());
+                if (meddling != null) {
                     Message tick = ticks.nextMessage(Duration.ofSeconds(60)); // the run is under way
                     assertTrue(tick != null, "a tick during the run");
-                    forge(raw.jetStream(), bus, tick, bridge.run().memberId());
-                    TestResult result = run.get(2, TimeUnit.MINUTES);
-                    // the forged messages came long before the end; still, the tester's receive thread has its pace
-                    Waits.await("the tester read the forged messages").until(
-                            () -> bridge.run().stats().getRejectedTotal() >= (secure ? 6 : 0));
-                    return new Outcome(result, bridge.run().stats(), bridge.run().memberId(), bridge.run().members());
+                    meddling.publish(raw.jetStream(), tick, bridge.run().memberId());
                 }
+                TestResult result = run.get(2, TimeUnit.MINUTES);
+                Waits.await("the tester read the forged messages").until(
+                        () -> bridge.run().stats().getRejectedTotal() >= rejected);
+                return new Outcome(result, bridge.run().stats(), bridge.run().memberId(), bridge.run().members());
             }
         }
     }
