@@ -1049,13 +1049,15 @@ public final class Dtron implements AutoCloseable {
         if (group.equals(RUN_START.getChannelName())) {
             runStarted(value);
         } else if (group.equals(RUN_STOP.getChannelName())) {
-            if (!(ofThisRun(value) || value.getRunId().isEmpty()) || !value.getSender().equals(runTester)) {
-                // a stop of another run (one replayed from an earlier run, say) does not end this one
+            if ((ofThisRun(value) || value.getRunId().isEmpty()) && value.getSender().equals(runTester)) {
+                runStopped();
+            } else if (!clockSync.isTester() && !handshake.own().receives().isEmpty()) {
+                // a stop of another run (one replayed from an earlier run, say) does not end an adapter's run; a
+                // member that serves no channel (a monitor that joined a running system) still hears every stop
                 LOG.debug("{}: ignored a stop of run '{}' from {}: this run is '{}'", getMemberId(), value.getRunId(),
                         value.getSender(), runId);
                 return;
             }
-            runStopped();
         } else if (registration != null && !RESERVED.containsKey(group) && !clockSync.isTester()
                 && !value.getRunId().isEmpty() && !ofThisRun(value)
                 && handshake.own().receives().contains(group)) {
