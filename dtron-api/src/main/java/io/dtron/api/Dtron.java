@@ -1058,9 +1058,8 @@ public final class Dtron implements AutoCloseable {
                         value.getSender(), runId);
                 return;
             }
-        } else if (registration != null && !RESERVED.containsKey(group) && !clockSync.isTester()
-                && !value.getRunId().isEmpty() && !ofThisRun(value)
-                && handshake.own().receives().contains(group)) {
+        } else if (registration != null && !value.getRunId().isEmpty() && !ofThisRun(value)
+                && !RESERVED.containsKey(group) && !clockSync.isTester() && handshake.own().receives().contains(group)) {
             // an input of another run (one replayed from an earlier run, say) does not reach the adapter
             LOG.debug("{}: ignored {} of run '{}': this run is '{}'", getMemberId(), value, value.getRunId(), runId);
             return;

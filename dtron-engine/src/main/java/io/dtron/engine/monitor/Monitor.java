@@ -23,6 +23,7 @@ import java.util.LinkedHashMap;
 import java.util.List;
 import java.util.Map;
 import java.util.Optional;
+import java.util.function.Supplier;
 
 /**
  * Watches a running system against a closed model: it is told every event on the model's observable channels
@@ -241,15 +242,10 @@ public final class Monitor {
             return alarm;
         }
         if (options.keepGoing()) {
-            try {
+            resynchronise(() -> {
                 Tracker.Node consistent = tracker.step(reachable(), ch.channel, ch.slots, ch.values, 0, 0, false);
-                current = consistent.isEmpty() ? reachable() : consistent;
-                lastMicros = micros;
-                referenceMicros = micros;
-                since = "the re-synchronisation";
-            } catch (UnsupportedModelException e) {
-                giveUp("it cannot re-synchronise after violation " + violations + ": " + e.getMessage());
-            }
+                return consistent.isEmpty() ? reachable() : consistent;
+            }, micros);
         }
         return alarm;
     }
@@ -282,14 +278,7 @@ public final class Monitor {
                 + "required one of " + describe(allowed(elapsed)) + " by then";
         Alarm alarm = raise(Alarm.Reason.DEADLINE_MISSED, deadline, null, explanation, elapsed);
         if (options.keepGoing()) {
-            try {
-                current = reachable();
-                lastMicros = deadline;
-                referenceMicros = deadline;
-                since = "the re-synchronisation";
-            } catch (UnsupportedModelException e) {
-                giveUp("it cannot re-synchronise after violation " + violations + ": " + e.getMessage());
-            }
+            resynchronise(this::reachable, deadline);
         }
         return alarm;
     }
@@ -334,6 +323,22 @@ public final class Monitor {
         }
         started = false;
         since = "the gap in the events";
+    }
+
+    /**
+     * Goes on after a violation from {@code states} at {@code micros}, or stops following the events when they are
+     * too many to start again from.
+     */
+    private void resynchronise(Supplier<Tracker.Node> states, long micros) {
+        try {
+            current = states.get();
+        } catch (UnsupportedModelException e) {
+            giveUp("it cannot re-synchronise after violation " + violations + ": " + e.getMessage());
+            return;
+        }
+        lastMicros = micros;
+        referenceMicros = micros;
+        since = "the re-synchronisation";
     }
 
     /** Stops following the events, for {@code why}: what the monitor judged so far stands. */
