@@ -203,24 +203,24 @@ final class LiveMonitor {
                 ? ", going on after violations" : "") + (shield == null ? "" : ", shielding " + shielded[0] + " on "
                 + shielded[1]) + (watched == 1 ? "" : watched == 0 ? ", following every run"
                 : ", following " + watched + " runs"));
+        long began = System.nanoTime();
+        ScheduledExecutorService progress = Progress.every(() -> printer.progress(began, monitor.progress()));
+        Ending ending = new Ending(start, printer, alarms, progress, began, joinFrom, runFrom, window, err);
+        // an interrupt (SIGINT, SIGTERM) ends the watch as --duration would: the summary and the reports, once
         Thread hook = new Thread(() -> {
-            try {
-                monitor.finish();
+            ending.interrupted = true;
+            try (monitor) {
+                ending.end(monitor.finish());
             } catch (InterruptedException e) {
                 Thread.currentThread().interrupt();
             }
         }, "dtron-monitor-end");
         Runtime.getRuntime().addShutdownHook(hook);
-        long began = System.nanoTime();
-        ScheduledExecutorService progress = Progress.every(() -> printer.progress(began, monitor.progress()));
-        BusMonitor.Result result;
         try (monitor) {
-            result = duration == null ? monitor.await(Duration.ofSeconds(RunDefaults.MAX_WAIT_SECONDS))
+            BusMonitor.Result result = duration == null
+                    ? monitor.await(Duration.ofSeconds(RunDefaults.MAX_WAIT_SECONDS))
                     : monitor.await(Duration.ofSeconds(duration));
-            if (result == null) {
-                result = monitor.finish();
-            }
-            Progress.stop(progress); // before the bus is left: no line after the watch's end
+            return ending.end(result == null ? monitor.finish() : result);
         } catch (InterruptedException e) {
             Thread.currentThread().interrupt();
             err.println("dtron monitor: interrupted");
@@ -232,25 +232,70 @@ final class LiveMonitor {
             } catch (IllegalStateException e) {
                 // the JVM is going down: the hook ends the watch
             }
+        }
+    }
+
+    /**
+     * The end of a watch, done once whoever comes first (the watch's end, or the shutdown hook of an interrupt): the
+     * progress lines stop, the alarms' file is closed, the JUnit report written and the summary printed.
+     */
+    private final class Ending {
+        private final Start start;
+        private final Printer printer;
+        private final Writer alarms;
+        private final ScheduledExecutorService progress;
+        private final long began;
+        private final String joinFrom;
+        private final String runFrom;
+        private final long window;
+        private final PrintWriter err;
+        /** Set by the shutdown hook before it ends the watch: the summary says that the watch was interrupted. */
+        volatile boolean interrupted;
+        /** The exit code once the watch's end was reported; null before. */
+        private Integer exit;
+
+        Ending(Start start, Printer printer, Writer alarms, ScheduledExecutorService progress, long began,
+                String joinFrom, String runFrom, long window, PrintWriter err) {
+            this.start = start;
+            this.printer = printer;
+            this.alarms = alarms;
+            this.progress = progress;
+            this.began = began;
+            this.joinFrom = joinFrom;
+            this.runFrom = runFrom;
+            this.window = window;
+            this.err = err;
+        }
+
+        /** Reports the watch's {@code result} (the first call; later ones wait for it) and returns the exit code. */
+        synchronized int end(BusMonitor.Result result) {
+            if (exit == null) {
+                exit = report(result);
+            }
+            return exit;
+        }
+
+        private int report(BusMonitor.Result result) {
+            Progress.stop(progress); // no progress line after the summary
             try {
                 alarms.close();
             } catch (IOException e) {
                 err.println("dtron monitor: cannot write " + start.alarmsFile() + ": " + OutputFile.reason(e));
             }
+            String summary = summary(result, shield != null, interrupted);
+            if (start.junitFile() != null && !JunitXml.writeOrSay(start.junitFile(), "monitor", start.model(),
+                    printer.cases(result.error()), properties(start, result, joinFrom, runFrom, window),
+                    (System.nanoTime() - began) / 1e9, result.error() == null ? summary : result.error(), err)) {
+                return 1;
+            }
+            if (result.error() != null) {
+                err.println("dtron monitor: " + start.model() + ": " + result.error());
+                return 1;
+            }
+            printer.line(summary);
+            int v = result.violations();
+            return v > 0 ? 2 : result.late() > 0 ? 3 : 0;
         }
-        String summary = summary(result, shield != null);
-        if (start.junitFile() != null && !JunitXml.writeOrSay(start.junitFile(), "monitor", start.model(),
-                printer.cases(result.error()), properties(start, result, joinFrom, runFrom, window),
-                (System.nanoTime() - began) / 1e9, result.error() == null ? summary : result.error(), err)) {
-            return 1;
-        }
-        if (result.error() != null) {
-            err.println("dtron monitor: " + start.model() + ": " + result.error());
-            return 1;
-        }
-        printer.line(summary);
-        int v = result.violations();
-        return v > 0 ? 2 : result.late() > 0 ? 3 : 0;
     }
 
     /** The properties of {@code --junit}: the watch's settings and the counts of all its runs. */
@@ -279,7 +324,7 @@ final class LiveMonitor {
      * the others counted), the events, the messages too late to judge, of a shield those withheld, and the events
      * after their runs' ends if any.
      */
-    static String summary(BusMonitor.Result result, boolean shield) {
+    static String summary(BusMonitor.Result result, boolean shield, boolean interrupted) {
         int n = result.runs().size();
         List<String> perRun = new ArrayList<>();
         long clean = result.runs().stream().filter(r -> r.violations() == 0).count();
@@ -288,7 +333,7 @@ final class LiveMonitor {
         }
         result.runs().stream().filter(r -> n <= LISTED_RUNS || r.violations() > 0)
                 .forEach(r -> perRun.add(Printer.name(r) + ": " + r.violations()));
-        return "dtron monitor: " + n + " run" + (n == 1 ? "" : "s") + ", " + violations(result.violations()) + " ("
+        return "dtron monitor: " + (interrupted ? "interrupted, " : "") + n + " run" + (n == 1 ? "" : "s") + ", " + violations(result.violations()) + " ("
                 + String.join(", ", perRun) + "), " + events(result.events()) + ", " + result.late()
                 + " too late to judge" + (shield ? ", " + result.withheld() + " withheld" : "")
                 + afterTheEnd(result.afterEnd());
