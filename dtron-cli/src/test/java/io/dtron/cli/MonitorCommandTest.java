@@ -68,6 +68,14 @@ class MonitorCommandTest {
                 .count();
     }
 
+    /** The end of a recorded run: its verdict line's time, or its timeout when that comes first. */
+    static long end(List<String> trace) {
+        Map<?, ?> start = (Map<?, ?>) Json.parse(trace.get(0));
+        long timeout = (Long) start.get("timeout") * (Long) start.get("timeunit_us");
+        return trace.stream().map(l -> (Map<?, ?>) Json.parse(l)).filter(m -> "verdict".equals(m.get("kind")))
+                .mapToLong(m -> Math.min((Long) m.get("t_us"), timeout)).findFirst().orElseThrow();
+    }
+
     @Test
     void correctRunsOfTheSamplesReplayWithoutViolation(@TempDir Path dir) throws Exception {
         List<Object[]> samples = List.of(new Object[] {SERVER, 500L, new String[0], List.of("initial", "any")},
@@ -87,6 +95,8 @@ class MonitorCommandTest {
                     CommandRun r = monitor(dir, "t.jsonl", trace, args.toArray(String[]::new));
                     assertEquals(0, r.exit(), r.out() + r.err());
                     assertTrue(r.out().contains("no violation, " + events + " events checked, 0 lines rejected"), r.out());
+                    // a CSV does not say where the run ended: --end says it, as the JSON trace's verdict line
+                    args.addAll(List.of("--end", Long.toString(end(trace))));
                     CommandRun c = monitor(dir, "t.csv", csv(trace), args.toArray(String[]::new));
                     assertEquals(0, c.exit(), c.out() + c.err());
                     assertTrue(c.out().contains("(CSV)"), c.out());
@@ -160,6 +170,44 @@ class MonitorCommandTest {
                 + "\"virtual_time\":false}");
         CommandRun t = monitor(dir, "t.jsonl", timeout, SERVER.toString());
         assertEquals(0, t.exit(), t.out() + t.err());
+    }
+
+    @Test
+    void aDeadlineAfterTheLastEventOfATraceWithoutAnEndIsNotJudgedButSaid(@TempDir Path dir) throws Exception {
+        // a log that stops after a request: whether its response came by t=4 the log does not say
+        List<String> log = List.of("t_us,channel,values", "1000,req,n=1");
+        CommandRun r = monitor(dir, "open.csv", log, SERVER.toString());
+        assertEquals(3, r.exit(), r.out() + r.err());
+        assertTrue(r.out().contains("dtron monitor: the deadline at t=4.000 after the last event at t=1.000 was not"
+                + " judged: the trace does not say when the run ended (give it with --end US)\n"), r.out());
+        assertTrue(r.out().contains("dtron monitor: no violation, 1 event checked, 0 lines rejected, a deadline after"
+                + " the last event not judged, in "), r.out());
+        Path xml = dir.resolve("open.xml");
+        monitor(dir, "open.csv", log, SERVER.toString(), "--junit", xml.toString());
+        assertTrue(Files.readString(xml).contains("type=\"INCOMPLETE\""), Files.readString(xml));
+        // a DTRON trace cut short (no verdict line) is such a trace too
+        List<String> cut = List.of("{\"kind\":\"start\",\"seed\":1,\"model\":\"server.xta\",\"timeunit_us\":1000,"
+                + "\"timeout\":50,\"virtual_time\":false}", "{\"kind\":\"input\",\"t_us\":1000,\"channel\":\"req\","
+                + "\"values\":{\"n\":1}}");
+        assertEquals(3, monitor(dir, "cut.jsonl", cut, SERVER.toString()).exit());
+        // --end gives the run's end: the deadline before it is judged, missed
+        CommandRun missed = monitor(dir, "open.csv", log, SERVER.toString(), "--end", "9000");
+        assertEquals(2, missed.exit(), missed.out() + missed.err());
+        assertTrue(missed.out().contains("violation 1 at t=4.000: no event by t=4.000"), missed.out());
+        // an end before the deadline: nothing was due by then
+        CommandRun early = monitor(dir, "open.csv", log, SERVER.toString(), "--end", "3000");
+        assertEquals(0, early.exit(), early.out() + early.err());
+        assertFalse(early.out().contains("not judged"), early.out());
+        // a trace that ends answered has nothing pending
+        assertEquals(0, monitor(dir, "done.csv", List.of("1000,req,n=1", "2500,resp,n=2"), SERVER.toString()).exit());
+        // an event after --end is a rejected line; a bad --end a usage error
+        CommandRun after = monitor(dir, "open.csv", log, SERVER.toString(), "--end", "500");
+        assertEquals(3, after.exit(), after.out() + after.err());
+        assertEquals(dir.resolve("open.csv") + ":2: the event at 1000 us comes after the run's end at 500 us (--end)",
+                after.err().strip());
+        CommandRun bad = monitor(dir, "open.csv", log, SERVER.toString(), "--end", "-1");
+        assertEquals(1, bad.exit());
+        assertTrue(bad.err().startsWith("dtron monitor: --end must be a time of the run"), bad.err());
     }
 
     @Test

@@ -23,6 +23,7 @@ import java.util.LinkedHashMap;
 import java.util.List;
 import java.util.Map;
 import java.util.Optional;
+import java.util.OptionalLong;
 import java.util.function.Supplier;
 
 /**
@@ -299,6 +300,30 @@ public final class Monitor {
         } catch (ModelRuntimeException e) {
             throw new UnsupportedModelException("model error while letting time pass: " + e.format());
         }
+    }
+
+    /**
+     * The deadline the model sets after the last event: the latest time it lets pass without an event, when it
+     * requires one by then; empty when it lets time pass without end (as far as the monitor can time), or the
+     * monitor has not started or has stopped. The monitor is unchanged: of a recorded run whose end is not known, a
+     * deadline still pending at its last event is one the run showed neither met nor missed.
+     *
+     * @throws UnsupportedModelException on a model error or a model too nondeterministic to follow
+     */
+    public OptionalLong pendingDeadline() {
+        if (stopped || !started) {
+            return OptionalLong.empty();
+        }
+        int latest;
+        try {
+            latest = tracker.latest(tracker.reach(current, Bound.MAX_VALUE));
+        } catch (ModelRuntimeException e) {
+            throw new UnsupportedModelException("model error while letting time pass: " + e.format());
+        }
+        if (latest == Bound.INFINITY || Bound.value(latest) >= Bound.MAX_VALUE) {
+            return OptionalLong.empty();
+        }
+        return OptionalLong.of(referenceMicros + ticks.micros(Bound.value(latest)));
     }
 
     /** Returns the time of the last event the monitor accepted (or of its start, or re-synchronisation). */

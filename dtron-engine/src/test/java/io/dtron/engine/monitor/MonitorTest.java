@@ -26,6 +26,7 @@ import java.time.Duration;
 import java.util.ArrayList;
 import java.util.List;
 import java.util.Map;
+import java.util.OptionalLong;
 import org.junit.jupiter.api.Test;
 
 class MonitorTest {
@@ -236,6 +237,26 @@ class MonitorTest {
         assertEquals(Alarm.Reason.DEADLINE_MISSED, b.reason());
         assertEquals(4_000, b.micros());
         assertEquals(Event.of("resp", "n", 2), b.event());
+    }
+
+    @Test
+    void theDeadlinePendingAfterTheLastEventIsNamedWithoutChangingTheMonitor() throws Exception {
+        Network n = server();
+        Monitor m = Monitor.of(n, TestInterface.fromNames(n), MonitorOptions.initial(UNIT));
+        assertEquals(OptionalLong.empty(), m.pendingDeadline(), "the idle server requires nothing");
+        assertNull(m.observe(Event.of("req", "n", 1), 1_000));
+        assertEquals(OptionalLong.of(4_000), m.pendingDeadline(), "the response is due 3 units after the request");
+        assertEquals(OptionalLong.of(4_000), m.pendingDeadline(), "asking changes nothing");
+        assertNull(m.advanceTo(3_000));
+        assertEquals(OptionalLong.of(4_000), m.pendingDeadline(), "time passing before it leaves it where it is");
+        assertNull(m.observe(Event.of("resp", "n", 2), 3_500));
+        assertEquals(OptionalLong.empty(), m.pendingDeadline(), "answered: nothing is due");
+        Monitor missed = Monitor.of(n, TestInterface.fromNames(n), MonitorOptions.initial(UNIT));
+        missed.observe(Event.of("req", "n", 1), 1_000);
+        assertNotNull(missed.advanceTo(5_000));
+        assertEquals(OptionalLong.empty(), missed.pendingDeadline(), "a monitor stopped at a violation judges no more");
+        Monitor joined = Monitor.of(n, TestInterface.fromNames(n), MonitorOptions.anyState(UNIT));
+        assertEquals(OptionalLong.empty(), joined.pendingDeadline(), "not started: no time, no deadline");
     }
 
     @Test
