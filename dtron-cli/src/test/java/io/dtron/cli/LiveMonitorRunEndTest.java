@@ -26,7 +26,8 @@ import org.junit.jupiter.api.io.TempDir;
  * tests' model (100 ms time units), publishing the run's messages with exact event times, so load changes nothing
  * the tests assert. An event stamped after the end, and a deadline after it, are not judged even though the stop
  * comes later (the tester judged neither); an event stamped before the end that the bus delivers after the stop is
- * judged; a stop of a tester that announced no end (an older one) ends the run when it was published, as before.
+ * judged; a monitor that joins during the run learns the announced end from the tester's pongs; a stop of a tester
+ * that announced no end (an older one) ends the run when it was published, as before.
  */
 @Timeout(value = 2, unit = TimeUnit.MINUTES)
 class LiveMonitorRunEndTest {
@@ -150,6 +151,31 @@ class LiveMonitorRunEndTest {
                 .getAttribute("name"));
         String failure = ((org.w3c.dom.Element) suite.getElementsByTagName("failure").item(0)).getAttribute("message");
         assertTrue(failure.startsWith("violation 1 at t=1.500: resp(n=2)"), failure);
+    }
+
+    @Test
+    void aMonitorThatJoinsDuringARunLearnsItsAnnouncedEndFromTheTester() throws Exception {
+        MonitorOnBus monitor = new MonitorOnBus(dir, "joinend");
+        try (Dtron system = monitor.member()) {
+            TesterSide.of(system).setRunId("c0ffee");
+            long t0 = system.currentTimeNanos();
+            long end = t0 + 100 * UNIT_NANOS;
+            TesterSide.of(system).sendRunStart(Dtron.RUN_START.constructValued(Map.of("timeunit", 100_000)), t0, end);
+            // the monitor joins after the start, which it never sees: the tester's answers to its pings say the end
+            monitor.start(system, 2, "--timeunit", "100000");
+            // a request 1.5 units before the end: its response is due 1.5 units after it, which the tester did not
+            // judge; the stop comes well after that deadline, as a held-up tester's would
+            IDtronChannelValued request = system.send(REQ.constructValued(Map.of("n", 1)), end - 15 * UNIT_NANOS / 10);
+            system.acknowledge(request, end - 15 * UNIT_NANOS / 10);
+            Waits.await("the wall clock past the run's end").until(() -> system.currentTimeNanos()
+                    > end + 12 * UNIT_NANOS);
+            system.send(Dtron.RUN_STOP.constructValued(Map.of()), end);
+            assertEquals(0, monitor.exit(), monitor.shown());
+            String printed = monitor.out.toString();
+            assertFalse(printed.contains("violation 1"), monitor.shown());
+            assertTrue(printed.contains("run c0ffee ended: no violation, 1 event checked (the run ended), 0 too late"
+                    + " to judge"), monitor.shown());
+        }
     }
 
     @Test
