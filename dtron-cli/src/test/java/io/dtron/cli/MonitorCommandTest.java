@@ -272,6 +272,10 @@ class MonitorCommandTest {
         CommandRun r = monitor(dir, "l.csv", log, SERVER.toString(), "--tolerance", "300");
         assertEquals(0, r.exit(), r.out() + r.err());
         assertTrue(r.out().contains("event times give or take 300 us"), r.out());
+        // the largest tolerance: each event's window reaches as far as DTRON can time, and nothing overflows
+        CommandRun most = monitor(dir, "l.csv", log, SERVER.toString(), "--tolerance", "9223372036854775");
+        assertEquals(0, most.exit(), most.out() + most.err());
+        assertTrue(most.out().contains("no violation, 2 events checked, 0 lines rejected"), most.out());
         CommandRun negative = monitor(dir, "l.csv", log, SERVER.toString(), "--tolerance", "-1");
         assertEquals(1, negative.exit());
         assertTrue(negative.err().startsWith("dtron monitor: --tolerance must be 0 to 9223372036854775 us"),

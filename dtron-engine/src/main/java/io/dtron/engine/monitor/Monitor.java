@@ -1,6 +1,7 @@
 package io.dtron.engine.monitor;
 
 import io.dtron.engine.Event;
+import io.dtron.engine.TestOptions;
 import io.dtron.engine.UnsupportedModelException;
 import io.dtron.engine.internal.clock.Ticks;
 import io.dtron.engine.internal.eval.ModelRuntimeException;
@@ -220,7 +221,9 @@ public final class Monitor {
                     + " at " + time(lastMicros));
         }
         long fromTicks = ticks.floor(Math.max(0, micros - uncertaintyMicros - referenceMicros));
-        long toTicks = ticks.ceil(micros + uncertaintyMicros - referenceMicros);
+        // a window past what DTRON can time (a tolerance near its maximum) reaches as far as the zones tell
+        long toTicks = Math.min(ticks.ceil(Math.min(micros + uncertaintyMicros - referenceMicros,
+                TestOptions.MAX_DURATION_MICROS)), Bound.MAX_VALUE);
         events++;
         Tracker.Node next;
         try {

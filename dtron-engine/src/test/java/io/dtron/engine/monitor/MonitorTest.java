@@ -260,6 +260,17 @@ class MonitorTest {
     }
 
     @Test
+    void theLargestUncertaintyOverflowsNothing() throws Exception {
+        Network n = server();
+        Monitor m = Monitor.of(n, TestInterface.fromNames(n), MonitorOptions.initial(UNIT));
+        assertNull(m.observe(Event.of("req", "n", 1), 1_000, TestOptions.MAX_DURATION_MICROS));
+        assertNull(m.observe(Event.of("resp", "n", 2), 1_500, TestOptions.MAX_DURATION_MICROS),
+                "a response some time in the window may be 1 to 3 units after the request");
+        assertNotNull(m.observe(Event.of("resp", "n", 2), 2_000, TestOptions.MAX_DURATION_MICROS),
+                "no time makes a second response allowed");
+    }
+
+    @Test
     void aShieldWithholdsAForbiddenEventAndGoesOnAsIfItHadNotHappened() throws Exception {
         Network n = server();
         Monitor m = Monitor.of(n, TestInterface.fromNames(n), MonitorOptions.initial(UNIT));
