@@ -266,6 +266,26 @@ class MonitorCommandTest {
     }
 
     @Test
+    void quotedCsvFieldsAreReadAsRfc4180QuotesThemAndBadQuotingIsARejectedLine(@TempDir Path dir) throws Exception {
+        // a spreadsheet's export: every field quoted, the header too, a space after a comma
+        List<String> quoted = List.of("\"t_us\",\"channel\",\"values\"", "\"1000\",\"req\",\"n=4\"",
+                "2500, \"resp\", \"n=5\"", "6000,req,\"n=8\"", "7500,\"resp\",n=9");
+        CommandRun r = monitor(dir, "q.csv", quoted, SERVER.toString(), "--end", "9000");
+        assertEquals(0, r.exit(), r.out() + r.err());
+        assertTrue(r.out().contains("no violation, 4 events checked, 0 lines rejected"), r.out());
+        // a comma inside quotes is part of the field: here a value that is no integer, said as such
+        List<String> bad = List.of("t_us,channel,values", "1000,req,\"n=4,5\"", "2500,\"resp,n=5",
+                "3000,\"resp\"x,n=5", "3500,re\"q,n=1");
+        CommandRun b = monitor(dir, "b.csv", bad, SERVER.toString());
+        assertEquals(3, b.exit(), b.out() + b.err());
+        assertEquals(List.of(dir.resolve("b.csv") + ":2: value of 'n' is not a 32-bit integer: 4,5",
+                dir.resolve("b.csv") + ":3: the quote at column 6 is not closed",
+                dir.resolve("b.csv") + ":4: column 12: a quoted field is followed by 'x', not by a comma",
+                dir.resolve("b.csv") + ":5: column 8: a quote inside a field that does not start with one"),
+                b.err().lines().toList());
+    }
+
+    @Test
     void aToleranceTakesEachEventsTimeGiveOrTake(@TempDir Path dir) throws Exception {
         List<String> log = List.of("t_us,channel,values", "1000,req,n=1", "1800,resp,n=2");
         assertEquals(2, monitor(dir, "l.csv", log, SERVER.toString()).exit());
