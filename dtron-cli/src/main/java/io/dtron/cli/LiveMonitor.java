@@ -204,6 +204,7 @@ final class LiveMonitor {
                 + shielded[1]) + (watched == 1 ? "" : watched == 0 ? ", following every run"
                 : ", following " + watched + " runs"));
         long began = System.nanoTime();
+        printer.runBegan = began;
         ScheduledExecutorService progress = Progress.every(() -> printer.progress(began, monitor.progress()));
         Ending ending = new Ending(start, printer, alarms, progress, began, joinFrom, runFrom, window, err);
         // an interrupt (SIGINT, SIGTERM) ends the watch as --duration would: the summary and the reports, once
@@ -403,6 +404,11 @@ final class LiveMonitor {
         private volatile long unit;
         /** For --junit: the cases of the runs ended. */
         private final List<JunitXml.Case> cases = new ArrayList<>();
+        /**
+         * When the run watched began ({@link System#nanoTime}): its start, else the last run's end or the watch's
+         * beginning; each run's case takes its own time.
+         */
+        private volatile long runBegan = System.nanoTime();
 
         Printer(PrintWriter out, Writer alarms, long unit, String shielded, boolean shielding) {
             this.out = out;
@@ -422,7 +428,10 @@ final class LiveMonitor {
             synchronized (cases) {
                 String missing = run.late() == 0 ? null
                         : run.late() + (run.late() == 1 ? " message" : " messages") + " came too late to judge";
-                cases.add(MonitorCommand.junitCase(name(run), run.violations(), run.firstAlarm(), unit, missing));
+                long now = System.nanoTime();
+                cases.add(MonitorCommand.junitCase(name(run), run.violations(), run.firstAlarm(), unit, missing)
+                        .took((now - runBegan) / 1e9));
+                runBegan = now; // what comes before the next run's start is the next case's
             }
             line(name(run) + " ended: " + violations(run.violations()) + ", " + events(run.events()) + switch (run
                     .end()) {
@@ -437,6 +446,7 @@ final class LiveMonitor {
 
         @Override
         public void runStarted(String runId, long timeUnitMicros) {
+            runBegan = System.nanoTime();
             unit = timeUnitMicros;
             line("run " + runId + " started (time units of " + timeUnitMicros + " us): the monitor starts again");
         }

@@ -179,6 +179,39 @@ class LiveMonitorRunEndTest {
     }
 
     @Test
+    void eachRunsJunitCaseTakesItsOwnTimeNotTheWholeWatchs() throws Exception {
+        Path xml = dir.resolve("runs.xml");
+        try (Watch watch = new Watch("--runs", "2", "--junit", xml.toString())) {
+            for (int run = 0; run < 2; run++) {
+                long t0 = watch.system.currentTimeNanos();
+                long end = t0 + 3 * UNIT_NANOS;
+                TesterSide.of(watch.system).sendRunStart(Dtron.RUN_START.constructValued(Map.of("timeunit", 100_000)),
+                        t0, end);
+                watch.send(REQ, 1, t0 + UNIT_NANOS);
+                watch.send(RESP, 2, t0 + 2 * UNIT_NANOS);
+                watch.awaitPast(end);
+                watch.system.send(Dtron.RUN_STOP.constructValued(Map.of()), end);
+                int ended = run + 1;
+                Waits.await("the run's end").until(() -> watch.monitor.out.toString().split(" ended: ").length > ended);
+            }
+            assertEquals(0, watch.exit(), watch.shown());
+        }
+        org.w3c.dom.Element suite = JunitReportTest.parse(xml).getDocumentElement();
+        double whole = Double.parseDouble(suite.getAttribute("time"));
+        org.w3c.dom.NodeList cases = suite.getElementsByTagName("testcase");
+        assertEquals(2, cases.getLength());
+        double sum = 0;
+        for (int i = 0; i < 2; i++) {
+            double own = Double.parseDouble(((org.w3c.dom.Element) cases.item(i)).getAttribute("time"));
+            assertTrue(own > 0, "run " + i + " took " + own + " s");
+            sum += own;
+        }
+        // the runs followed one another within the watch: their times add up to no more than the watch's (each was
+        // the whole watch's before)
+        assertTrue(sum <= whole + 0.002, "runs " + sum + " s, the watch " + whole + " s");
+    }
+
+    @Test
     void aStopOfATesterThatAnnouncedNoEndEndsTheRunWhenItWasPublished() throws Exception {
         try (Watch watch = new Watch()) {
             long t0 = watch.system.currentTimeNanos();
