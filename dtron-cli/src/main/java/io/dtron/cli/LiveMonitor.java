@@ -32,6 +32,7 @@ import java.util.Map;
 import java.util.concurrent.ScheduledExecutorService;
 import java.util.function.Function;
 import java.util.function.Supplier;
+import java.util.function.ToIntBiFunction;
 import picocli.CommandLine.Mixin;
 import picocli.CommandLine.Option;
 import picocli.CommandLine.ParameterException;
@@ -206,7 +207,27 @@ final class LiveMonitor {
         long began = System.nanoTime();
         printer.runBegan = began;
         ScheduledExecutorService progress = Progress.every(() -> printer.progress(began, monitor.progress()));
-        Ending ending = new Ending(start, printer, alarms, progress, began, joinFrom, runFrom, window, err);
+        // the end of the watch: no progress line after the summary, the alarms' file closed, JUnit, the summary
+        Ending ending = new Ending((result, interrupted) -> {
+            Progress.stop(progress);
+            try {
+                alarms.close();
+            } catch (IOException e) {
+                err.println("dtron monitor: cannot write " + start.alarmsFile() + ": " + OutputFile.reason(e));
+            }
+            String summary = summary(result, shield != null, interrupted);
+            if (start.junitFile() != null && !JunitXml.writeOrSay(start.junitFile(), "monitor", start.model(),
+                    printer.cases(result.error()), properties(start, result, joinFrom, runFrom, window),
+                    (System.nanoTime() - began) / 1e9, result.error() == null ? summary : result.error(), err)) {
+                return 1;
+            }
+            if (result.error() != null) {
+                err.println("dtron monitor: " + start.model() + ": " + result.error());
+                return 1;
+            }
+            printer.line(summary);
+            return result.violations() > 0 ? 2 : result.late() > 0 ? 3 : 0;
+        });
         // an interrupt (SIGINT, SIGTERM) ends the watch as --duration would: the summary and the reports, once
         Thread hook = new Thread(() -> {
             ending.interrupted = true;
@@ -238,64 +259,25 @@ final class LiveMonitor {
 
     /**
      * The end of a watch, done once whoever comes first (the watch's end, or the shutdown hook of an interrupt): the
-     * progress lines stop, the alarms' file is closed, the JUnit report written and the summary printed.
+     * report of the result, whether the watch was interrupted, gives the exit code.
      */
-    private final class Ending {
-        private final Start start;
-        private final Printer printer;
-        private final Writer alarms;
-        private final ScheduledExecutorService progress;
-        private final long began;
-        private final String joinFrom;
-        private final String runFrom;
-        private final long window;
-        private final PrintWriter err;
+    private static final class Ending {
+        private final ToIntBiFunction<BusMonitor.Result, Boolean> report;
         /** Set by the shutdown hook before it ends the watch: the summary says that the watch was interrupted. */
         volatile boolean interrupted;
         /** The exit code once the watch's end was reported; null before. */
         private Integer exit;
 
-        Ending(Start start, Printer printer, Writer alarms, ScheduledExecutorService progress, long began,
-                String joinFrom, String runFrom, long window, PrintWriter err) {
-            this.start = start;
-            this.printer = printer;
-            this.alarms = alarms;
-            this.progress = progress;
-            this.began = began;
-            this.joinFrom = joinFrom;
-            this.runFrom = runFrom;
-            this.window = window;
-            this.err = err;
+        Ending(ToIntBiFunction<BusMonitor.Result, Boolean> report) {
+            this.report = report;
         }
 
         /** Reports the watch's {@code result} (the first call; later ones wait for it) and returns the exit code. */
         synchronized int end(BusMonitor.Result result) {
             if (exit == null) {
-                exit = report(result);
+                exit = report.applyAsInt(result, interrupted);
             }
             return exit;
-        }
-
-        private int report(BusMonitor.Result result) {
-            Progress.stop(progress); // no progress line after the summary
-            try {
-                alarms.close();
-            } catch (IOException e) {
-                err.println("dtron monitor: cannot write " + start.alarmsFile() + ": " + OutputFile.reason(e));
-            }
-            String summary = summary(result, shield != null, interrupted);
-            if (start.junitFile() != null && !JunitXml.writeOrSay(start.junitFile(), "monitor", start.model(),
-                    printer.cases(result.error()), properties(start, result, joinFrom, runFrom, window),
-                    (System.nanoTime() - began) / 1e9, result.error() == null ? summary : result.error(), err)) {
-                return 1;
-            }
-            if (result.error() != null) {
-                err.println("dtron monitor: " + start.model() + ": " + result.error());
-                return 1;
-            }
-            printer.line(summary);
-            int v = result.violations();
-            return v > 0 ? 2 : result.late() > 0 ? 3 : 0;
         }
     }
 

@@ -63,6 +63,17 @@ class LiveMonitorRunEndTest {
             }
         }
 
+        /**
+         * Starts a run now, in time units of 100 ms, announcing its end {@code endUnits} later; returns its time 0 and
+         * its end.
+         */
+        long[] startRun(int endUnits) {
+            long t0 = system.currentTimeNanos();
+            long end = t0 + endUnits * UNIT_NANOS;
+            TesterSide.of(system).sendRunStart(Dtron.RUN_START.constructValued(Map.of("timeunit", 100_000)), t0, end);
+            return new long[] {t0, end};
+        }
+
         /** Waits until the wall clock has passed {@code nanos}, so that the monitor's time may have passed it. */
         void awaitPast(long nanos) {
             Waits.await("the wall clock past the run's end").until(() -> system.currentTimeNanos() > nanos);
@@ -77,10 +88,9 @@ class LiveMonitorRunEndTest {
     @Test
     void anEventAndADeadlineAfterTheTestersEndAreNotJudgedThoughTheStopComesLater() throws Exception {
         try (Watch watch = new Watch()) {
-            long t0 = watch.system.currentTimeNanos();
-            long end = t0 + 5 * UNIT_NANOS;
-            TesterSide.of(watch.system).sendRunStart(Dtron.RUN_START.constructValued(Map.of("timeunit", 100_000)),
-                    t0, end);
+            long[] run = watch.startRun(5);
+            long t0 = run[0];
+            long end = run[1];
             // a request at 3.5: its response is due by 6.5, after the end at 5; the response at 7, after the end
             watch.send(REQ, 1, t0 + 35 * UNIT_NANOS / 10);
             watch.send(RESP, 2, t0 + 7 * UNIT_NANOS);
@@ -101,10 +111,9 @@ class LiveMonitorRunEndTest {
     @Test
     void aTestersInputStampedBeforeAJudgedEventIsPlacedByItsAcknowledgementNotTakenAsLate() throws Exception {
         try (Watch watch = new Watch()) {
-            long t0 = watch.system.currentTimeNanos();
-            long end = t0 + 5 * UNIT_NANOS;
-            TesterSide.of(watch.system).sendRunStart(Dtron.RUN_START.constructValued(Map.of("timeunit", 100_000)),
-                    t0, end);
+            long[] run = watch.startRun(5);
+            long t0 = run[0];
+            long end = run[1];
             watch.send(REQ, 1, t0 + UNIT_NANOS);
             watch.send(RESP, 2, t0 + 2 * UNIT_NANOS);
             // once the monitor judged the response at 2 (its window is over), the tester's next request comes,
@@ -128,10 +137,9 @@ class LiveMonitorRunEndTest {
     void anEventStampedBeforeTheEndThatTheBusDeliversAfterTheStopIsJudged() throws Exception {
         Path xml = dir.resolve("watch.xml");
         try (Watch watch = new Watch("--junit", xml.toString())) {
-            long t0 = watch.system.currentTimeNanos();
-            long end = t0 + 5 * UNIT_NANOS;
-            TesterSide.of(watch.system).sendRunStart(Dtron.RUN_START.constructValued(Map.of("timeunit", 100_000)),
-                    t0, end);
+            long[] run = watch.startRun(5);
+            long t0 = run[0];
+            long end = run[1];
             watch.send(REQ, 1, t0 + UNIT_NANOS);
             watch.system.send(Dtron.RUN_STOP.constructValued(Map.of()), end);
             // after the stop on the bus, stamped at 1.5: half a unit after the request, before the server's 1
@@ -182,16 +190,15 @@ class LiveMonitorRunEndTest {
     void eachRunsJunitCaseTakesItsOwnTimeNotTheWholeWatchs() throws Exception {
         Path xml = dir.resolve("runs.xml");
         try (Watch watch = new Watch("--runs", "2", "--junit", xml.toString())) {
-            for (int run = 0; run < 2; run++) {
-                long t0 = watch.system.currentTimeNanos();
-                long end = t0 + 3 * UNIT_NANOS;
-                TesterSide.of(watch.system).sendRunStart(Dtron.RUN_START.constructValued(Map.of("timeunit", 100_000)),
-                        t0, end);
+            for (int n = 0; n < 2; n++) {
+                long[] run = watch.startRun(3);
+                long t0 = run[0];
+                long end = run[1];
                 watch.send(REQ, 1, t0 + UNIT_NANOS);
                 watch.send(RESP, 2, t0 + 2 * UNIT_NANOS);
                 watch.awaitPast(end);
                 watch.system.send(Dtron.RUN_STOP.constructValued(Map.of()), end);
-                int ended = run + 1;
+                int ended = n + 1;
                 Waits.await("the run's end").until(() -> watch.monitor.out.toString().split(" ended: ").length > ended);
             }
             assertEquals(0, watch.exit(), watch.shown());

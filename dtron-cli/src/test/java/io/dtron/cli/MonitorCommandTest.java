@@ -49,6 +49,15 @@ class MonitorCommandTest {
         return r;
     }
 
+    /** {@link #monitor}, asserting its exit code and a text it printed. */
+    static CommandRun expect(int exit, String printed, Path dir, String name, List<String> lines, String... args)
+            throws Exception {
+        CommandRun r = monitor(dir, name, lines, args);
+        assertEquals(exit, r.exit(), r.out() + r.err());
+        assertTrue(r.out().contains(printed), r.out());
+        return r;
+    }
+
     /** The events of a trace as CSV lines: t_us,channel,name=value;... */
     static List<String> csv(List<String> trace) {
         List<String> out = new ArrayList<>(List.of("t_us,channel,values"));
@@ -191,12 +200,11 @@ class MonitorCommandTest {
                 + "\"values\":{\"n\":1}}");
         assertEquals(3, monitor(dir, "cut.jsonl", cut, SERVER.toString()).exit());
         // --end gives the run's end: the deadline before it is judged, missed
-        CommandRun missed = monitor(dir, "open.csv", log, SERVER.toString(), "--end", "9000");
-        assertEquals(2, missed.exit(), missed.out() + missed.err());
-        assertTrue(missed.out().contains("violation 1 at t=4.000: no event by t=4.000"), missed.out());
+        expect(2, "violation 1 at t=4.000: no event by t=4.000", dir, "open.csv", log, SERVER.toString(), "--end",
+                "9000");
         // an end before the deadline: nothing was due by then
-        CommandRun early = monitor(dir, "open.csv", log, SERVER.toString(), "--end", "3000");
-        assertEquals(0, early.exit(), early.out() + early.err());
+        CommandRun early = expect(0, "no violation, 1 event checked, 0 lines rejected, in ", dir, "open.csv", log,
+                SERVER.toString(), "--end", "3000");
         assertFalse(early.out().contains("not judged"), early.out());
         // a trace that ends answered has nothing pending
         assertEquals(0, monitor(dir, "done.csv", List.of("1000,req,n=1", "2500,resp,n=2"), SERVER.toString()).exit());
@@ -270,9 +278,8 @@ class MonitorCommandTest {
         // a spreadsheet's export: every field quoted, the header too, a space after a comma
         List<String> quoted = List.of("\"t_us\",\"channel\",\"values\"", "\"1000\",\"req\",\"n=4\"",
                 "2500, \"resp\", \"n=5\"", "6000,req,\"n=8\"", "7500,\"resp\",n=9");
-        CommandRun r = monitor(dir, "q.csv", quoted, SERVER.toString(), "--end", "9000");
-        assertEquals(0, r.exit(), r.out() + r.err());
-        assertTrue(r.out().contains("no violation, 4 events checked, 0 lines rejected"), r.out());
+        expect(0, "no violation, 4 events checked, 0 lines rejected", dir, "q.csv", quoted, SERVER.toString(), "--end",
+                "9000");
         // a comma inside quotes is part of the field: here a value that is no integer, said as such
         List<String> bad = List.of("t_us,channel,values", "1000,req,\"n=4,5\"", "2500,\"resp,n=5",
                 "3000,\"resp\"x,n=5", "3500,re\"q,n=1");
@@ -293,9 +300,8 @@ class MonitorCommandTest {
         assertEquals(0, r.exit(), r.out() + r.err());
         assertTrue(r.out().contains("event times give or take 300 us"), r.out());
         // the largest tolerance: each event's window reaches as far as DTRON can time, and nothing overflows
-        CommandRun most = monitor(dir, "l.csv", log, SERVER.toString(), "--tolerance", "9223372036854775");
-        assertEquals(0, most.exit(), most.out() + most.err());
-        assertTrue(most.out().contains("no violation, 2 events checked, 0 lines rejected"), most.out());
+        expect(0, "no violation, 2 events checked, 0 lines rejected", dir, "l.csv", log, SERVER.toString(),
+                "--tolerance", "9223372036854775");
         CommandRun negative = monitor(dir, "l.csv", log, SERVER.toString(), "--tolerance", "-1");
         assertEquals(1, negative.exit());
         assertTrue(negative.err().startsWith("dtron monitor: --tolerance must be 0 to 9223372036854775 us"),
