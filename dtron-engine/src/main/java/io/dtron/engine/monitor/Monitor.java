@@ -73,7 +73,7 @@ public final class Monitor {
     private Alarm first;
 
     /** An observable channel: its number, the state slots of its attached variables and their names. */
-    private record Channel(String name, int channel, int[] slots, String[] variables, int[] values) {
+    private record Channel(String name, int channel, int[] slots, String[] variables, int[] values, boolean input) {
     }
 
     private Monitor(Network network, TestInterface testInterface, MonitorOptions options, boolean remember) {
@@ -99,7 +99,8 @@ public final class Monitor {
                 slots[i] = c.variables().get(i).variable().offset();
                 names[i] = c.variables().get(i).name();
             }
-            Channel ch = new Channel(c.name(), c.channel(), slots, names, new int[n]);
+            Channel ch = new Channel(c.name(), c.channel(), slots, names, new int[n],
+                    testInterface.inputs().contains(c));
             channels.put(c.name(), ch);
             byNumber.add(ch);
         }
@@ -277,9 +278,10 @@ public final class Monitor {
             throw new UnsupportedModelException("model error while letting time pass: " + e.format());
         }
         List<SymState> reach = tracker.reach(current, elapsed);
-        long deadline = referenceMicros + ticks.micros(Bound.value(tracker.latest(reach)));
+        long deadlineTicks = Bound.value(tracker.latest(reach));
+        long deadline = referenceMicros + ticks.micros(deadlineTicks);
         String explanation = "no event by " + time(deadline) + ", the deadline after " + since() + ": the model "
-                + "required one of " + describe(allowed(elapsed)) + " by then";
+                + "required one of " + describe(required(allowed(elapsed), deadlineTicks)) + " by then";
         Alarm alarm = raise(Alarm.Reason.DEADLINE_MISSED, deadline, null, explanation, elapsed);
         if (options.keepGoing()) {
             resynchronise(this::reachable, deadline);
@@ -395,10 +397,11 @@ public final class Monitor {
     private Alarm violation(Event event, Channel ch, long micros, long fromTicks, long toTicks) {
         Tracker.Node atTime = tracker.afterWindow(current, fromTicks, toTicks, false);
         if (atTime.isEmpty()) {
-            long deadline = referenceMicros
-                    + ticks.micros(Bound.value(tracker.latest(tracker.reach(current, toTicks))));
+            long deadlineTicks = Bound.value(tracker.latest(tracker.reach(current, toTicks)));
+            long deadline = referenceMicros + ticks.micros(deadlineTicks);
             String explanation = "no event by " + time(deadline) + ", the deadline after " + since() + ": the model "
-                    + "required one of " + describe(allowed(toTicks)) + " by then; the next event, " + event
+                    + "required one of " + describe(required(allowed(toTicks), deadlineTicks)) + " by then; the next"
+                    + " event, " + event
                     + ", came at " + time(micros);
             return raise(Alarm.Reason.DEADLINE_MISSED, deadline, event, explanation, toTicks);
         }
@@ -490,6 +493,36 @@ public final class Monitor {
                     w[1] < 0 ? -1 : referenceMicros + ticks.micros(w[1])));
         }
         return out;
+    }
+
+    /**
+     * Of the events the model allowed, those a missed deadline ({@code deadlineTicks} after the last event) required:
+     * every output, and the inputs after which time may pass beyond the deadline (an input that leaves it where it
+     * was would not have met it); all of them if that leaves none.
+     */
+    private List<Alarm.Window> required(List<Alarm.Window> allowed, long deadlineTicks) {
+        List<Alarm.Window> required = new ArrayList<>();
+        for (Alarm.Window w : allowed) {
+            Channel ch = channels.get(w.channel());
+            if (!ch.input || liftsDeadline(ch, w, deadlineTicks)) {
+                required.add(w);
+            }
+        }
+        return required.isEmpty() ? allowed : required;
+    }
+
+    /** Whether time may pass beyond the deadline after the event of {@code w}, some time in its window before it. */
+    private boolean liftsDeadline(Channel ch, Alarm.Window w, long deadlineTicks) {
+        long from = ticks.floor(Math.max(0, w.fromMicros() - referenceMicros));
+        if (from > deadlineTicks) {
+            return false;
+        }
+        int[] values = new int[ch.slots.length]; // not ch.values: the violating event's, which going on uses
+        for (int i = 0; i < values.length; i++) {
+            values[i] = w.values().get(ch.variables[i]);
+        }
+        Tracker.Node after = tracker.step(current, ch.channel, ch.slots, values, from, deadlineTicks, true);
+        return !after.isEmpty() && tracker.allows(after, deadlineTicks - from + 1);
     }
 
     private String describe(List<Alarm.Window> allowed) {

@@ -260,6 +260,38 @@ class MonitorTest {
     }
 
     @Test
+    void aMissedDeadlineNamesNoInputThatWouldNotHaveMetIt() throws Exception {
+        // the server of the monitor's tests, with a ping the client may send at any time (it changes nothing) and a
+        // cancel that ends the request
+        Network n = ModelLoader.load("pinged.xta", """
+                chan i_req, o_resp, i_ping, i_cancel;
+                int[0,9] i_req_n, o_resp_n;
+                process Server() { clock x; int[0,9] n; state Idle, Busy { x <= 3 }; init Idle;
+                    trans Idle -> Busy { sync i_req?; assign x = 0, n = i_req_n; },
+                          Busy -> Idle { guard x >= 1; sync o_resp!; assign o_resp_n = (n + 1) % 10; },
+                          Busy -> Busy { sync i_ping?; }, Idle -> Idle { sync i_ping?; },
+                          Busy -> Idle { sync i_cancel?; }; }
+                process Client() { state Ready, Waiting; init Ready;
+                    trans Ready -> Waiting { select v : int[0,9]; sync i_req!; assign i_req_n = v; },
+                          Waiting -> Ready { sync o_resp?; }, Ready -> Ready { sync i_ping!; },
+                          Waiting -> Waiting { sync i_ping!; }, Waiting -> Ready { sync i_cancel!; }; }
+                system Server, Client;
+                """);
+        String required = "the model required one of cancel() in [t=1.000, t=4.000], resp(n=2) in [t=2.000,"
+                + " t=4.000] by then";
+        // found when time passes the deadline, or at the next event (a ping, after it)
+        for (boolean byTime : new boolean[] {true, false}) {
+            Monitor m = Monitor.of(n, TestInterface.fromNames(n), MonitorOptions.initial(UNIT));
+            assertNull(m.observe(Event.of("req", "n", 1), 1_000));
+            Alarm a = byTime ? m.advanceTo(5_000) : m.observe(Event.of("ping"), 6_000);
+            assertEquals(Alarm.Reason.DEADLINE_MISSED, a.reason());
+            String expected = required + (byTime ? "" : "; the next event, ping(), came at t=6.000");
+            assertTrue(a.explanation().endsWith(expected), a.explanation());
+            assertTrue(a.allowed().stream().anyMatch(w -> w.channel().equals("ping")), "the ping was allowed, though");
+        }
+    }
+
+    @Test
     void theLargestUncertaintyOverflowsNothing() throws Exception {
         Network n = server();
         Monitor m = Monitor.of(n, TestInterface.fromNames(n), MonitorOptions.initial(UNIT));
