@@ -87,8 +87,8 @@ public final class ChildJvm implements AutoCloseable {
     }
 
     /**
-     * Sends the JVM a signal, as {@code kill} names it: {@code -TERM} as a service manager stops a process, {@code -INT}
-     * as Ctrl-C does.
+     * Sends the JVM a signal, as {@code kill} names it: {@code -TERM} as a service manager stops a process, {@code
+     * -INT} as Ctrl-C does.
      */
     public void signal(String signal) throws IOException, InterruptedException {
         int code = new ProcessBuilder("kill", signal, Long.toString(process.pid())).inheritIO().start().waitFor();

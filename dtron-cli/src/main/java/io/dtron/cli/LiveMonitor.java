@@ -316,7 +316,8 @@ final class LiveMonitor {
         }
         result.runs().stream().filter(r -> n <= LISTED_RUNS || r.violations() > 0)
                 .forEach(r -> perRun.add(Printer.name(r) + ": " + r.violations()));
-        return "dtron monitor: " + (interrupted ? "interrupted, " : "") + n + " run" + (n == 1 ? "" : "s") + ", " + violations(result.violations()) + " ("
+        return "dtron monitor: " + (interrupted ? "interrupted, " : "") + n + " run" + (n == 1 ? "" : "s") + ", "
+                + violations(result.violations()) + " ("
                 + String.join(", ", perRun) + "), " + events(result.events()) + ", " + result.late()
                 + " too late to judge" + (shield ? ", " + result.withheld() + " withheld" : "")
                 + afterTheEnd(result.afterEnd());

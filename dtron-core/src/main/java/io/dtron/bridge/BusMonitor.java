@@ -55,10 +55,10 @@ import org.slf4j.LoggerFactory;
  * observation (its timeout, or its verdict's time when that came first), and the start announces the run's end (the
  * timeout; {@link IDtronChannelValued#getEndTimeNanos()}; a monitor that joined during the run learns it from the
  * tester's answers to its clock pings, {@link TesterSide#announcedEnd}), beyond which the monitor lets no time pass
- * while it waits for the stop. Events stamped after the end are not judged but counted ({@link RunResult#afterEnd}); an event stamped
- * before it is judged even if it arrives after the stop. As the tester, the monitor judges the events at the end
- * itself, and a deadline only when the instant past it lies before the end. A tester that announces no end (an
- * older one, a run of several testers) stamps its stop when it publishes it: the run ends there.
+ * while it waits for the stop. Events stamped after the end are not judged but counted ({@link RunResult#afterEnd});
+ * an event stamped before it is judged even if it arrives after the stop. As the tester, the monitor judges the events
+ * at the end itself, and a deadline only when the instant past it lies before the end. A tester that announces no end
+ * (an older one, a run of several testers) stamps its stop when it publishes it: the run ends there.
  *
  * <p>Each alarm and each run's verdict are published on {@link Dtron#ALARM}, stamped with the run's id. A shield
  * ({@link Settings#shield})
