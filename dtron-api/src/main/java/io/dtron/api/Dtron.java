@@ -248,6 +248,11 @@ public final class Dtron implements AutoCloseable {
         }
 
         @Override
+        public AnnouncedEnd announcedEnd() {
+            return announcedEnd;
+        }
+
+        @Override
         public Map<String, MemberDelay> getDelaysFromMembers() {
             return Collections.unmodifiableMap(new java.util.TreeMap<>(delays));
         }
@@ -289,6 +294,13 @@ public final class Dtron implements AutoCloseable {
     /** The current run's id and tester as of the last message received from the bus, in the bus's order. */
     private volatile String runId = "";
     private volatile String runTester;
+    /**
+     * The end of the current run its start announced (on the tester's wall clock, 0 for none): the tester's pongs
+     * carry it, so that a member that joins during the run learns it ({@link TesterSide#announcedEnd}).
+     */
+    private volatile long runEndNanos;
+    /** The end of the current run as the tester's latest pong to this member said it. */
+    private volatile TesterSide.AnnouncedEnd announcedEnd = new TesterSide.AnnouncedEnd("", 0);
     private volatile boolean closed;
 
     /** A message a member acknowledged. */
@@ -947,7 +959,7 @@ public final class Dtron implements AutoCloseable {
         try {
             transport.publish(channel, SyncCodec.encodeControl(channel,
                     stamp(seq, publishTimeNanos, eventTimeNanos, ackedSender, ackedSequence), asInput, probe,
-                    hostClock));
+                    hostClock, channel.equals(ClockSync.PONG) && getMemberId().equals(runTester) ? runEndNanos : 0));
         } catch (IOException | RuntimeException e) {
             LOG.debug("{} cannot publish on {}: {}", getMemberId(), channel, e.toString());
         }
@@ -1227,8 +1239,13 @@ public final class Dtron implements AutoCloseable {
                             sync.getProbe());
                 }
             }
-            case ClockSync.PONG -> clockSync.pongReceived(stamp.sender(), stamp.ackedSender(), stamp.ackedSequence(),
-                    stamp.effectiveEventTimeNanos(), receiveTime, sync.getHostClock());
+            case ClockSync.PONG -> {
+                if (stamp.ackedSender().equals(getMemberId())) {
+                    announcedEnd = new TesterSide.AnnouncedEnd(stamp.runId(), sync.getEndTimeNs());
+                }
+                clockSync.pongReceived(stamp.sender(), stamp.ackedSender(), stamp.ackedSequence(),
+                        stamp.effectiveEventTimeNanos(), receiveTime, sync.getHostClock());
+            }
             default -> throw new IllegalStateException("not a control channel: " + message.group());
         }
     }
@@ -1291,6 +1308,7 @@ public final class Dtron implements AutoCloseable {
             testersSeen.add(runTester);
         }
         runId = start.getRunId();
+        runEndNanos = start.getEndTimeNanos();
         clockSync.testerAnnounced(start.getSender(), true);
         runClock.start(start.getEventTimeNanos(), start.getVariables().get("timeunit"), start.getRunId());
     }
@@ -1298,6 +1316,7 @@ public final class Dtron implements AutoCloseable {
     /** Called on the transport's thread, in the bus's order. */
     private void runStopped() {
         runTester = null;
+        runEndNanos = 0;
         runId = "";
         runClock.stop();
     }

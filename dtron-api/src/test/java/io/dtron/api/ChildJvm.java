@@ -86,7 +86,11 @@ public final class ChildJvm implements AutoCloseable {
         signal("-CONT");
     }
 
-    private void signal(String signal) throws IOException, InterruptedException {
+    /**
+     * Sends the JVM a signal, as {@code kill} names it: {@code -TERM} as a service manager stops a process, {@code
+     * -INT} as Ctrl-C does.
+     */
+    public void signal(String signal) throws IOException, InterruptedException {
         int code = new ProcessBuilder("kill", signal, Long.toString(process.pid())).inheritIO().start().waitFor();
         if (code != 0) {
             fail("kill " + signal + " " + process.pid() + " exited with " + code);

@@ -35,12 +35,23 @@ final class JunitXml {
 
     /**
      * One test case: its name, and null for a pass, else the element ({@code failure}, {@code error} or {@code
-     * skipped}) and why; {@code type} names the outcome in the element's {@code type}.
+     * skipped}) and why; {@code type} names the outcome in the element's {@code type}; {@code seconds} of wall-clock
+     * time it took, or negative for the whole report's.
      */
-    record Case(String name, String problem, String type, String message) {
+    record Case(String name, String problem, String type, String message, double seconds) {
+        /** A case that took the whole report's time. */
+        Case(String name, String problem, String type, String message) {
+            this(name, problem, type, message, -1);
+        }
+
         /** A case of a run's verdict: FAILED a failure, INCONCLUSIVE an error. */
         Case(String name, String problem, String message) {
             this(name, problem, "failure".equals(problem) ? "FAILED" : "INCONCLUSIVE", message);
+        }
+
+        /** This case, taking {@code s} seconds. */
+        Case took(double s) {
+            return new Case(name, problem, type, message, s);
         }
     }
 
@@ -158,7 +169,8 @@ final class JunitXml {
                 xml.writeStartElement("testcase");
                 xml.writeAttribute("name", clean(c.name()));
                 xml.writeAttribute("classname", clean(className));
-                xml.writeAttribute("time", time);
+                xml.writeAttribute("time", c.seconds() < 0 ? time : String.format(Locale.ROOT, "%.3f",
+                        c.seconds()));
                 if (c.problem() != null) {
                     xml.writeCharacters("\n    ");
                     xml.writeStartElement(c.problem());

@@ -32,6 +32,7 @@ import java.util.Map;
 import java.util.concurrent.ScheduledExecutorService;
 import java.util.function.Function;
 import java.util.function.Supplier;
+import java.util.function.ToIntBiFunction;
 import picocli.CommandLine.Mixin;
 import picocli.CommandLine.Option;
 import picocli.CommandLine.ParameterException;
@@ -203,24 +204,45 @@ final class LiveMonitor {
                 ? ", going on after violations" : "") + (shield == null ? "" : ", shielding " + shielded[0] + " on "
                 + shielded[1]) + (watched == 1 ? "" : watched == 0 ? ", following every run"
                 : ", following " + watched + " runs"));
-        Thread hook = new Thread(() -> {
+        long began = System.nanoTime();
+        printer.runBegan = began;
+        ScheduledExecutorService progress = Progress.every(() -> printer.progress(began, monitor.progress()));
+        // the end of the watch: no progress line after the summary, the alarms' file closed, JUnit, the summary
+        Ending ending = new Ending((result, interrupted) -> {
+            Progress.stop(progress);
             try {
-                monitor.finish();
+                alarms.close();
+            } catch (IOException e) {
+                err.println("dtron monitor: cannot write " + start.alarmsFile() + ": " + OutputFile.reason(e));
+            }
+            String summary = summary(result, shield != null, interrupted);
+            if (start.junitFile() != null && !JunitXml.writeOrSay(start.junitFile(), "monitor", start.model(),
+                    printer.cases(result.error()), properties(start, result, joinFrom, runFrom, window),
+                    (System.nanoTime() - began) / 1e9, result.error() == null ? summary : result.error(), err)) {
+                return 1;
+            }
+            if (result.error() != null) {
+                err.println("dtron monitor: " + start.model() + ": " + result.error());
+                return 1;
+            }
+            printer.line(summary);
+            return result.violations() > 0 ? 2 : result.late() > 0 ? 3 : 0;
+        });
+        // an interrupt (SIGINT, SIGTERM) ends the watch as --duration would: the summary and the reports, once
+        Thread hook = new Thread(() -> {
+            ending.interrupted = true;
+            try (monitor) {
+                ending.end(monitor.finish());
             } catch (InterruptedException e) {
                 Thread.currentThread().interrupt();
             }
         }, "dtron-monitor-end");
         Runtime.getRuntime().addShutdownHook(hook);
-        long began = System.nanoTime();
-        ScheduledExecutorService progress = Progress.every(() -> printer.progress(began, monitor.progress()));
-        BusMonitor.Result result;
         try (monitor) {
-            result = duration == null ? monitor.await(Duration.ofSeconds(RunDefaults.MAX_WAIT_SECONDS))
+            BusMonitor.Result result = duration == null
+                    ? monitor.await(Duration.ofSeconds(RunDefaults.MAX_WAIT_SECONDS))
                     : monitor.await(Duration.ofSeconds(duration));
-            if (result == null) {
-                result = monitor.finish();
-            }
-            Progress.stop(progress); // before the bus is left: no line after the watch's end
+            return ending.end(result == null ? monitor.finish() : result);
         } catch (InterruptedException e) {
             Thread.currentThread().interrupt();
             err.println("dtron monitor: interrupted");
@@ -232,25 +254,31 @@ final class LiveMonitor {
             } catch (IllegalStateException e) {
                 // the JVM is going down: the hook ends the watch
             }
-            try {
-                alarms.close();
-            } catch (IOException e) {
-                err.println("dtron monitor: cannot write " + start.alarmsFile() + ": " + OutputFile.reason(e));
+        }
+    }
+
+    /**
+     * The end of a watch, done once whoever comes first (the watch's end, or the shutdown hook of an interrupt): the
+     * report of the result, whether the watch was interrupted, gives the exit code.
+     */
+    private static final class Ending {
+        private final ToIntBiFunction<BusMonitor.Result, Boolean> report;
+        /** Set by the shutdown hook before it ends the watch: the summary says that the watch was interrupted. */
+        volatile boolean interrupted;
+        /** The exit code once the watch's end was reported; null before. */
+        private Integer exit;
+
+        Ending(ToIntBiFunction<BusMonitor.Result, Boolean> report) {
+            this.report = report;
+        }
+
+        /** Reports the watch's {@code result} (the first call; later ones wait for it) and returns the exit code. */
+        synchronized int end(BusMonitor.Result result) {
+            if (exit == null) {
+                exit = report.applyAsInt(result, interrupted);
             }
+            return exit;
         }
-        String summary = summary(result, shield != null);
-        if (start.junitFile() != null && !JunitXml.writeOrSay(start.junitFile(), "monitor", start.model(),
-                printer.cases(result.error()), properties(start, result, joinFrom, runFrom, window),
-                (System.nanoTime() - began) / 1e9, result.error() == null ? summary : result.error(), err)) {
-            return 1;
-        }
-        if (result.error() != null) {
-            err.println("dtron monitor: " + start.model() + ": " + result.error());
-            return 1;
-        }
-        printer.line(summary);
-        int v = result.violations();
-        return v > 0 ? 2 : result.late() > 0 ? 3 : 0;
     }
 
     /** The properties of {@code --junit}: the watch's settings and the counts of all its runs. */
@@ -279,7 +307,7 @@ final class LiveMonitor {
      * the others counted), the events, the messages too late to judge, of a shield those withheld, and the events
      * after their runs' ends if any.
      */
-    static String summary(BusMonitor.Result result, boolean shield) {
+    static String summary(BusMonitor.Result result, boolean shield, boolean interrupted) {
         int n = result.runs().size();
         List<String> perRun = new ArrayList<>();
         long clean = result.runs().stream().filter(r -> r.violations() == 0).count();
@@ -288,7 +316,8 @@ final class LiveMonitor {
         }
         result.runs().stream().filter(r -> n <= LISTED_RUNS || r.violations() > 0)
                 .forEach(r -> perRun.add(Printer.name(r) + ": " + r.violations()));
-        return "dtron monitor: " + n + " run" + (n == 1 ? "" : "s") + ", " + violations(result.violations()) + " ("
+        return "dtron monitor: " + (interrupted ? "interrupted, " : "") + n + " run" + (n == 1 ? "" : "s") + ", "
+                + violations(result.violations()) + " ("
                 + String.join(", ", perRun) + "), " + events(result.events()) + ", " + result.late()
                 + " too late to judge" + (shield ? ", " + result.withheld() + " withheld" : "")
                 + afterTheEnd(result.afterEnd());
@@ -358,6 +387,11 @@ final class LiveMonitor {
         private volatile long unit;
         /** For --junit: the cases of the runs ended. */
         private final List<JunitXml.Case> cases = new ArrayList<>();
+        /**
+         * When the run watched began ({@link System#nanoTime}): its start, else the last run's end or the watch's
+         * beginning; each run's case takes its own time.
+         */
+        private volatile long runBegan = System.nanoTime();
 
         Printer(PrintWriter out, Writer alarms, long unit, String shielded, boolean shielding) {
             this.out = out;
@@ -377,7 +411,10 @@ final class LiveMonitor {
             synchronized (cases) {
                 String missing = run.late() == 0 ? null
                         : run.late() + (run.late() == 1 ? " message" : " messages") + " came too late to judge";
-                cases.add(MonitorCommand.junitCase(name(run), run.violations(), run.firstAlarm(), unit, missing));
+                long now = System.nanoTime();
+                cases.add(MonitorCommand.junitCase(name(run), run.violations(), run.firstAlarm(), unit, missing)
+                        .took((now - runBegan) / 1e9));
+                runBegan = now; // what comes before the next run's start is the next case's
             }
             line(name(run) + " ended: " + violations(run.violations()) + ", " + events(run.events()) + switch (run
                     .end()) {
@@ -392,6 +429,7 @@ final class LiveMonitor {
 
         @Override
         public void runStarted(String runId, long timeUnitMicros) {
+            runBegan = System.nanoTime();
             unit = timeUnitMicros;
             line("run " + runId + " started (time units of " + timeUnitMicros + " us): the monitor starts again");
         }

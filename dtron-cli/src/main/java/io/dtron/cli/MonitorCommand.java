@@ -19,6 +19,7 @@ import java.util.LinkedHashMap;
 import java.util.List;
 import java.util.Locale;
 import java.util.Map;
+import java.util.OptionalLong;
 import java.util.concurrent.Callable;
 import picocli.CommandLine.Command;
 import picocli.CommandLine.Mixin;
@@ -87,6 +88,12 @@ final class MonitorCommand implements Callable<Integer> {
                     + " default: 0).")
     private long toleranceMicros;
 
+    @Option(names = "--end", paramLabel = "US",
+            description = "With --replay: the run ended at US microseconds on its clock (a deadline before it is judged"
+                    + " even without a later event; an event after it is rejected). Default: the trace's verdict line,"
+                    + " else its last event; a deadline still pending there is reported as not judged.")
+    private Long endOption;
+
     @Option(names = "--continue", description = "Go on after a violation: count them, and start again after each"
             + " from every reachable state consistent with the event.")
     private boolean keepGoing;
@@ -112,6 +119,13 @@ final class MonitorCommand implements Callable<Integer> {
         if (toleranceMicros < 0 || toleranceMicros > TestOptions.MAX_DURATION_MICROS) {
             throw usage("--tolerance must be 0 to " + TestOptions.MAX_DURATION_MICROS + " us (about 292 years): "
                     + toleranceMicros);
+        }
+        if (endOption != null && (endOption < 0 || endOption > TestOptions.MAX_DURATION_MICROS)) {
+            throw usage("--end must be a time of the run, 0 to " + TestOptions.MAX_DURATION_MICROS + " us: "
+                    + endOption);
+        }
+        if (endOption != null && replay == null) {
+            throw usage("--end is the end of a replayed run (--replay); on a bus a run's end is the tester's");
         }
         if (replay == null && !live.onBus()) {
             throw usage("give the run to check: --replay TRACE, or the bus to watch: --cluster NAME or --bus"
@@ -190,6 +204,7 @@ final class MonitorCommand implements Callable<Integer> {
         try {
             TraceReader.read(replay, format, r);
             r.report(r.endMicros >= 0 ? monitor.advanceTo(r.endMicros) : null);
+            r.unjudged = r.endKnown || endOption != null ? OptionalLong.empty() : monitor.pendingDeadline();
         } catch (IOException e) {
             err.println("dtron monitor: cannot read " + replay + ": " + OutputFile.reason(e));
             return 1;
@@ -201,22 +216,32 @@ final class MonitorCommand implements Callable<Integer> {
         }
         double seconds = (System.nanoTime() - began) / 1e9;
         int violations = monitor.violations();
+        String unjudged = r.unjudged.isEmpty() ? null : "the deadline at t=" + units(r.unjudged.getAsLong(), unit)
+                + " after the last event at t=" + units(monitor.lastMicros(), unit) + " was not judged: the trace"
+                + " does not say when the run ended (give it with --end US)";
+        if (unjudged != null) {
+            out.println("dtron monitor: " + unjudged);
+        }
         String summary = "dtron monitor: " + violations(violations) + ", " + events(monitor.events())
                 + (monitor.gaveUp().isPresent() ? " (not followed to the end: " + monitor.gaveUp().get() + ")"
                         : monitor.stopped() ? " (stopped at the first violation)" : "") + ", " + rejected(r.rejected)
+                + (unjudged == null ? "" : ", a deadline after the last event not judged")
                 + ", in " + String.format(Locale.ROOT, "%.2f s", seconds);
         out.println(summary);
-        if (junit != null && !replayReport(r, monitor, format, unit, seconds, summary, err)) {
+        if (junit != null && !replayReport(r, monitor, format, unit, seconds, summary, unjudged, err)) {
             return 1;
         }
-        return violations > 0 ? 2 : r.rejected > 0 || monitor.gaveUp().isPresent() ? 3 : 0;
+        return violations > 0 ? 2 : r.rejected > 0 || monitor.gaveUp().isPresent() || unjudged != null ? 3 : 0;
     }
 
-    /** {@code --junit} of a replay: one test case; returns false if the file could not be written. */
+    /**
+     * {@code --junit} of a replay: one test case ({@code unjudged}: the deadline not judged at the trace's end, or
+     * null); returns false if the file could not be written.
+     */
     private boolean replayReport(Replay r, Monitor monitor, TraceReader.Format format, long unit, double seconds,
-            String summary, PrintWriter err) {
-        String missing = r.rejected == 0 ? null : r.rejected + " line" + (r.rejected == 1 ? "" : "s") + " of the trace"
-                + " rejected, the first " + r.firstRejected;
+            String summary, String unjudged, PrintWriter err) {
+        String missing = r.rejected == 0 ? unjudged : r.rejected + " line" + (r.rejected == 1 ? "" : "s")
+                + " of the trace rejected, the first " + r.firstRejected + (unjudged == null ? "" : "; " + unjudged);
         JunitXml.Case replayed = junitCase("replay of " + replay, monitor.violations(), monitor.firstAlarm(),
                 unit, missing);
         Map<String, String> properties = new LinkedHashMap<>();
@@ -227,6 +252,7 @@ final class MonitorCommand implements Callable<Integer> {
         properties.put("timeunit_us", Long.toString(unit));
         properties.put("tolerance_us", Long.toString(toleranceMicros));
         properties.put("continue", Boolean.toString(keepGoing));
+        properties.put("end", r.endKnown ? "the trace's" : endOption != null ? endOption + " us" : "its last event");
         properties.put("events", Long.toString(monitor.events()));
         properties.put("violations", Integer.toString(monitor.violations()));
         properties.put("rejected_lines", Integer.toString(r.rejected));
@@ -270,6 +296,10 @@ final class MonitorCommand implements Callable<Integer> {
         private int rejected;
         private long endMicros = -1;
         private long lastMicros = -1;
+        /** Whether the trace said where the run ended (a verdict line). */
+        private boolean endKnown;
+        /** The deadline pending at the last event of a trace whose end is not known; empty when none. */
+        private OptionalLong unjudged = OptionalLong.empty();
         private final ReplayProgress progress;
         /** The first line rejected ("LINE: reason"), for --junit; null until one is. */
         private String firstRejected;
@@ -280,10 +310,18 @@ final class MonitorCommand implements Callable<Integer> {
             this.err = err;
             this.unit = unit;
             this.progress = new ReplayProgress(out, unit, Progress.EVERY);
+            if (endOption != null) {
+                this.endMicros = endOption;
+            }
         }
 
         @Override
         public void event(Event event, long micros, int line) {
+            if (endOption != null && micros > endOption) {
+                rejected(line, "the event at " + micros + " us comes after the run's end at " + endOption
+                        + " us (--end)");
+                return;
+            }
             Alarm a;
             try {
                 a = monitor.observe(event, micros, toleranceMicros);
@@ -292,7 +330,7 @@ final class MonitorCommand implements Callable<Integer> {
                 return;
             }
             lastMicros = Math.max(lastMicros, micros);
-            endMicros = Math.max(endMicros, micros);
+            this.endMicros = Math.max(this.endMicros, micros);
             report(a);
             progress.after(line, lastMicros, monitor, rejected);
         }
@@ -303,7 +341,8 @@ final class MonitorCommand implements Callable<Integer> {
                 rejected(line, "the run ends at " + micros + " us, before its last event at " + lastMicros + " us");
                 return;
             }
-            endMicros = micros;
+            endKnown = true;
+            this.endMicros = endOption == null ? micros : Math.min(micros, endOption);
         }
 
         @Override

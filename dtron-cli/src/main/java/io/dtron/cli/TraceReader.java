@@ -10,7 +10,9 @@ import java.nio.charset.CodingErrorAction;
 import java.nio.charset.StandardCharsets;
 import java.nio.file.Files;
 import java.nio.file.Path;
+import java.util.ArrayList;
 import java.util.LinkedHashMap;
+import java.util.List;
 import java.util.Locale;
 import java.util.Map;
 
@@ -25,8 +27,9 @@ import java.util.Map;
  * when that comes first, or at the last event a {@code truncated} line (a trace bounded by {@code --trace-max-size})
  * names; {@code start}, {@code edges}, {@code due}, {@code coverage}, {@code bus} and {@code alarm} lines are skipped.
  * CSV: one event a line, {@code t_us,channel,values} with
- * the values as {@code name=value} pairs separated by {@code ;} (empty for none); a first line starting with {@code
- * t_us} is a header; blank lines and lines starting with {@code #} are skipped.
+ * the values as {@code name=value} pairs separated by {@code ;} (empty for none), any field in double quotes as RFC
+ * 4180 has it ({@link #fields}); a first line starting with {@code t_us} is a header; blank lines and lines starting
+ * with {@code #} are skipped.
  */
 final class TraceReader {
     /** The formats. */
@@ -121,7 +124,8 @@ final class TraceReader {
                 }
                 try {
                     if (format == Format.CSV) {
-                        if (trimmed.startsWith("#") || first && trimmed.startsWith("t_us")) {
+                        if (trimmed.startsWith("#") || first && (trimmed.startsWith("t_us")
+                                || trimmed.startsWith("\"t_us\""))) {
                             first = false;
                             continue;
                         }
@@ -218,10 +222,11 @@ final class TraceReader {
     }
 
     private static void csv(String line, int number, Sink sink) {
-        String[] fields = line.split(",", -1);
-        if (fields.length < 2 || fields.length > 3) {
-            throw new IllegalArgumentException("expected t_us,channel,values: " + fields.length + " fields");
+        List<String> split = fields(line);
+        if (split.size() < 2 || split.size() > 3) {
+            throw new IllegalArgumentException("expected t_us,channel,values: " + split.size() + " fields");
         }
+        String[] fields = split.toArray(String[]::new);
         long micros;
         try {
             micros = Long.parseLong(fields[0].strip());
@@ -253,6 +258,61 @@ final class TraceReader {
             }
         }
         sink.event(new Event(channel, values), micros, number);
+    }
+
+    /**
+     * The fields of a CSV line, quoted as RFC 4180 quotes them: a field in double quotes may hold commas, and a
+     * double quote doubled ({@code ""}) stands for one; a field cannot span lines.
+     *
+     * @throws IllegalArgumentException if a quote is not closed, or a quoted field is followed by more than a comma
+     */
+    static List<String> fields(String line) {
+        List<String> fields = new ArrayList<>();
+        int at = 0;
+        while (true) {
+            int start = at;
+            while (at < line.length() && line.charAt(at) == ' ') {
+                at++; // spaces before a quote, as after a comma in "1000, req"
+            }
+            StringBuilder field = new StringBuilder();
+            if (at < line.length() && line.charAt(at) == '"') {
+                int open = at++;
+                while (true) {
+                    if (at >= line.length()) {
+                        throw new IllegalArgumentException("the quote at column " + (open + 1) + " is not closed");
+                    }
+                    char c = line.charAt(at++);
+                    if (c != '"') {
+                        field.append(c);
+                    } else if (at < line.length() && line.charAt(at) == '"') {
+                        field.append('"');
+                        at++;
+                    } else {
+                        break;
+                    }
+                }
+                while (at < line.length() && line.charAt(at) == ' ') {
+                    at++;
+                }
+                if (at < line.length() && line.charAt(at) != ',') {
+                    throw new IllegalArgumentException("column " + (at + 1) + ": a quoted field is followed by '"
+                            + line.charAt(at) + "', not by a comma");
+                }
+            } else {
+                int comma = line.indexOf(',', start);
+                at = comma < 0 ? line.length() : comma;
+                field.append(line, start, at);
+                if (field.indexOf("\"") >= 0) {
+                    throw new IllegalArgumentException("column " + (start + field.indexOf("\"") + 1) + ": a quote"
+                            + " inside a field that does not start with one");
+                }
+            }
+            fields.add(field.toString());
+            if (at >= line.length()) {
+                return fields;
+            }
+            at++; // the comma
+        }
     }
 
     /**

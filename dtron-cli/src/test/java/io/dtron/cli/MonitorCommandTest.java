@@ -49,6 +49,15 @@ class MonitorCommandTest {
         return r;
     }
 
+    /** {@link #monitor}, asserting its exit code and a text it printed. */
+    static CommandRun expect(int exit, String printed, Path dir, String name, List<String> lines, String... args)
+            throws Exception {
+        CommandRun r = monitor(dir, name, lines, args);
+        assertEquals(exit, r.exit(), r.out() + r.err());
+        assertTrue(r.out().contains(printed), r.out());
+        return r;
+    }
+
     /** The events of a trace as CSV lines: t_us,channel,name=value;... */
     static List<String> csv(List<String> trace) {
         List<String> out = new ArrayList<>(List.of("t_us,channel,values"));
@@ -66,6 +75,14 @@ class MonitorCommandTest {
     static int events(List<String> trace) {
         return (int) trace.stream().filter(l -> l.startsWith("{\"kind\":\"input\"") || l.startsWith("{\"kind\":\"output\""))
                 .count();
+    }
+
+    /** The end of a recorded run: its verdict line's time, or its timeout when that comes first. */
+    static long end(List<String> trace) {
+        Map<?, ?> start = (Map<?, ?>) Json.parse(trace.get(0));
+        long timeout = (Long) start.get("timeout") * (Long) start.get("timeunit_us");
+        return trace.stream().map(l -> (Map<?, ?>) Json.parse(l)).filter(m -> "verdict".equals(m.get("kind")))
+                .mapToLong(m -> Math.min((Long) m.get("t_us"), timeout)).findFirst().orElseThrow();
     }
 
     @Test
@@ -87,6 +104,8 @@ class MonitorCommandTest {
                     CommandRun r = monitor(dir, "t.jsonl", trace, args.toArray(String[]::new));
                     assertEquals(0, r.exit(), r.out() + r.err());
                     assertTrue(r.out().contains("no violation, " + events + " events checked, 0 lines rejected"), r.out());
+                    // a CSV does not say where the run ended: --end says it, as the JSON trace's verdict line
+                    args.addAll(List.of("--end", Long.toString(end(trace))));
                     CommandRun c = monitor(dir, "t.csv", csv(trace), args.toArray(String[]::new));
                     assertEquals(0, c.exit(), c.out() + c.err());
                     assertTrue(c.out().contains("(CSV)"), c.out());
@@ -163,6 +182,43 @@ class MonitorCommandTest {
     }
 
     @Test
+    void aDeadlineAfterTheLastEventOfATraceWithoutAnEndIsNotJudgedButSaid(@TempDir Path dir) throws Exception {
+        // a log that stops after a request: whether its response came by t=4 the log does not say
+        List<String> log = List.of("t_us,channel,values", "1000,req,n=1");
+        CommandRun r = monitor(dir, "open.csv", log, SERVER.toString());
+        assertEquals(3, r.exit(), r.out() + r.err());
+        assertTrue(r.out().contains("dtron monitor: the deadline at t=4.000 after the last event at t=1.000 was not"
+                + " judged: the trace does not say when the run ended (give it with --end US)\n"), r.out());
+        assertTrue(r.out().contains("dtron monitor: no violation, 1 event checked, 0 lines rejected, a deadline after"
+                + " the last event not judged, in "), r.out());
+        Path xml = dir.resolve("open.xml");
+        monitor(dir, "open.csv", log, SERVER.toString(), "--junit", xml.toString());
+        assertTrue(Files.readString(xml).contains("type=\"INCOMPLETE\""), Files.readString(xml));
+        // a DTRON trace cut short (no verdict line) is such a trace too
+        List<String> cut = List.of("{\"kind\":\"start\",\"seed\":1,\"model\":\"server.xta\",\"timeunit_us\":1000,"
+                + "\"timeout\":50,\"virtual_time\":false}", "{\"kind\":\"input\",\"t_us\":1000,\"channel\":\"req\","
+                + "\"values\":{\"n\":1}}");
+        assertEquals(3, monitor(dir, "cut.jsonl", cut, SERVER.toString()).exit());
+        // --end gives the run's end: the deadline before it is judged, missed
+        expect(2, "violation 1 at t=4.000: no event by t=4.000", dir, "open.csv", log, SERVER.toString(), "--end",
+                "9000");
+        // an end before the deadline: nothing was due by then
+        CommandRun early = expect(0, "no violation, 1 event checked, 0 lines rejected, in ", dir, "open.csv", log,
+                SERVER.toString(), "--end", "3000");
+        assertFalse(early.out().contains("not judged"), early.out());
+        // a trace that ends answered has nothing pending
+        assertEquals(0, monitor(dir, "done.csv", List.of("1000,req,n=1", "2500,resp,n=2"), SERVER.toString()).exit());
+        // an event after --end is a rejected line; a bad --end a usage error
+        CommandRun after = monitor(dir, "open.csv", log, SERVER.toString(), "--end", "500");
+        assertEquals(3, after.exit(), after.out() + after.err());
+        assertEquals(dir.resolve("open.csv") + ":2: the event at 1000 us comes after the run's end at 500 us (--end)",
+                after.err().strip());
+        CommandRun bad = monitor(dir, "open.csv", log, SERVER.toString(), "--end", "-1");
+        assertEquals(1, bad.exit());
+        assertTrue(bad.err().startsWith("dtron monitor: --end must be a time of the run"), bad.err());
+    }
+
+    @Test
     void continuingCountsTheViolations(@TempDir Path dir) throws Exception {
         List<String> trace = record(dir, SERVER, 5, 2000);
         List<String> faulty = new ArrayList<>();
@@ -218,12 +274,34 @@ class MonitorCommandTest {
     }
 
     @Test
+    void quotedCsvFieldsAreReadAsRfc4180QuotesThemAndBadQuotingIsARejectedLine(@TempDir Path dir) throws Exception {
+        // a spreadsheet's export: every field quoted, the header too, a space after a comma
+        List<String> quoted = List.of("\"t_us\",\"channel\",\"values\"", "\"1000\",\"req\",\"n=4\"",
+                "2500, \"resp\", \"n=5\"", "6000,req,\"n=8\"", "7500,\"resp\",n=9");
+        expect(0, "no violation, 4 events checked, 0 lines rejected", dir, "q.csv", quoted, SERVER.toString(), "--end",
+                "9000");
+        // a comma inside quotes is part of the field: here a value that is no integer, said as such
+        List<String> bad = List.of("t_us,channel,values", "1000,req,\"n=4,5\"", "2500,\"resp,n=5",
+                "3000,\"resp\"x,n=5", "3500,re\"q,n=1");
+        CommandRun b = monitor(dir, "b.csv", bad, SERVER.toString());
+        assertEquals(3, b.exit(), b.out() + b.err());
+        assertEquals(List.of(dir.resolve("b.csv") + ":2: value of 'n' is not a 32-bit integer: 4,5",
+                dir.resolve("b.csv") + ":3: the quote at column 6 is not closed",
+                dir.resolve("b.csv") + ":4: column 12: a quoted field is followed by 'x', not by a comma",
+                dir.resolve("b.csv") + ":5: column 8: a quote inside a field that does not start with one"),
+                b.err().lines().toList());
+    }
+
+    @Test
     void aToleranceTakesEachEventsTimeGiveOrTake(@TempDir Path dir) throws Exception {
         List<String> log = List.of("t_us,channel,values", "1000,req,n=1", "1800,resp,n=2");
         assertEquals(2, monitor(dir, "l.csv", log, SERVER.toString()).exit());
         CommandRun r = monitor(dir, "l.csv", log, SERVER.toString(), "--tolerance", "300");
         assertEquals(0, r.exit(), r.out() + r.err());
         assertTrue(r.out().contains("event times give or take 300 us"), r.out());
+        // the largest tolerance: each event's window reaches as far as DTRON can time, and nothing overflows
+        expect(0, "no violation, 2 events checked, 0 lines rejected", dir, "l.csv", log, SERVER.toString(),
+                "--tolerance", "9223372036854775");
         CommandRun negative = monitor(dir, "l.csv", log, SERVER.toString(), "--tolerance", "-1");
         assertEquals(1, negative.exit());
         assertTrue(negative.err().startsWith("dtron monitor: --tolerance must be 0 to 9223372036854775 us"),

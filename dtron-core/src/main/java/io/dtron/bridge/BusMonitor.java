@@ -53,11 +53,12 @@ import org.slf4j.LoggerFactory;
  *
  * <p>The monitor judges a run up to the instant the tester did: the stop's event time is the end of the tester's
  * observation (its timeout, or its verdict's time when that came first), and the start announces the run's end (the
- * timeout; {@link IDtronChannelValued#getEndTimeNanos()}), beyond which the monitor lets no time pass while it waits
- * for the stop. Events stamped after the end are not judged but counted ({@link RunResult#afterEnd}); an event stamped
- * before it is judged even if it arrives after the stop. As the tester, the monitor judges the events at the end
- * itself, and a deadline only when the instant past it lies before the end. A tester that announces no end (an
- * older one, a run of several testers) stamps its stop when it publishes it: the run ends there.
+ * timeout; {@link IDtronChannelValued#getEndTimeNanos()}; a monitor that joined during the run learns it from the
+ * tester's answers to its clock pings, {@link TesterSide#announcedEnd}), beyond which the monitor lets no time pass
+ * while it waits for the stop. Events stamped after the end are not judged but counted ({@link RunResult#afterEnd});
+ * an event stamped before it is judged even if it arrives after the stop. As the tester, the monitor judges the events
+ * at the end itself, and a deadline only when the instant past it lies before the end. A tester that announces no end
+ * (an older one, a run of several testers) stamps its stop when it publishes it: the run ends there.
  *
  * <p>Each alarm and each run's verdict are published on {@link Dtron#ALARM}, stamped with the run's id. A shield
  * ({@link Settings#shield})
@@ -457,6 +458,7 @@ public final class BusMonitor implements AutoCloseable {
                     endRun(End.STOPPED);
                     continue;
                 }
+                learnAnnouncedEnd();
                 judgeBefore(Math.min(now - window.micros(), endAt));
                 if (monitor.stopped()) {
                     endRun(stoppedAs(monitor));
@@ -695,7 +697,25 @@ public final class BusMonitor implements AutoCloseable {
         held.forEach(h -> h.micros -= micros); // the same shift for all: their order stays
         clockStart = clockStart == Long.MAX_VALUE ? clockStart : clockStart - micros;
         stopAt = stopAt == Long.MAX_VALUE ? stopAt : stopAt - micros;
+        endAt = endAt == Long.MAX_VALUE ? endAt : endAt - micros;
         return 0;
+    }
+
+    /**
+     * A monitor that joined during a run saw no start: it learns the run's announced end from the tester's answers
+     * to its clock pings, so that it lets no time pass beyond that end while the run's stop is on its way (a deadline
+     * just after the end, which the tester did not judge, is not an alarm either).
+     */
+    private void learnAnnouncedEnd() {
+        if (startSeen || endAt != Long.MAX_VALUE) {
+            return;
+        }
+        TesterSide.AnnouncedEnd announced = tester.announcedEnd();
+        if (announced.endNanos() > 0 && !announced.runId().isEmpty()
+                && (runId.isEmpty() || runId.equals(announced.runId()))) {
+            runIs(announced.runId());
+            endAt = Math.floorDiv(announced.endNanos() - timeline.zeroEpochNanos(), 1000);
+        }
     }
 
     /** An acknowledgement places the input it names where its adapter applied it. */

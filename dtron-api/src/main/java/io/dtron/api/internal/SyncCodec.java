@@ -61,12 +61,13 @@ public final class SyncCodec {
     /**
      * Encodes a message of the clock-offset protocol, without variables; {@code asInput} (on a ping) asks the members
      * to answer it as they acknowledge an input, {@code probe} (on a ping) asks every member to answer it, whoever
-     * sent it; {@code hostClock} is the sender's {@link HostClock} id, or "".
+     * sent it; {@code hostClock} is the sender's {@link HostClock} id, or ""; {@code endTimeNanos} (on a tester's
+     * pong during a run) the end of the run its start announced, else 0.
      */
     public static byte[] encodeControl(String channelName, Stamp stamp, boolean asInput, boolean probe,
-            String hostClock) {
+            String hostClock, long endTimeNanos) {
         return builder(channelName, Map.of(), stamp).setAsInput(asInput).setProbe(probe).setHostClock(hostClock)
-                .build().toByteArray();
+                .setEndTimeNs(endTimeNanos).build().toByteArray();
     }
 
     /**

@@ -114,6 +114,18 @@ public interface TesterSide {
     boolean wasTester(String member);
 
     /**
+     * The end of a run as its tester announced it (in its {@link Dtron#RUN_START}) in its latest answer to this
+     * member's clock ping: the tester's pongs during a run carry it, so that a member that joined during the run,
+     * and so saw no start, learns it within a ping period (a second). Of the run {@code runId}; {@code endNanos} on
+     * the tester's wall clock in nanoseconds since the epoch, 0 when the run announced none or no run was going.
+     */
+    record AnnouncedEnd(String runId, long endNanos) {
+    }
+
+    /** Returns the end of the run the tester's latest pong to this member announced ({@link AnnouncedEnd}). */
+    AnnouncedEnd announcedEnd();
+
+    /**
      * Returns how long the messages of each other member took to arrive, on the tester's clock: publish time plus
      * the sender's clock offset estimate, to receive time plus this member's, over every message that carried an
      * estimate or came from the tester (members ping the tester once a second, and {@link #probe} asks them all).

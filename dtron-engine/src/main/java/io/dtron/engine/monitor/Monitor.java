@@ -1,6 +1,7 @@
 package io.dtron.engine.monitor;
 
 import io.dtron.engine.Event;
+import io.dtron.engine.TestOptions;
 import io.dtron.engine.UnsupportedModelException;
 import io.dtron.engine.internal.clock.Ticks;
 import io.dtron.engine.internal.eval.ModelRuntimeException;
@@ -23,6 +24,7 @@ import java.util.LinkedHashMap;
 import java.util.List;
 import java.util.Map;
 import java.util.Optional;
+import java.util.OptionalLong;
 import java.util.function.Supplier;
 
 /**
@@ -71,7 +73,7 @@ public final class Monitor {
     private Alarm first;
 
     /** An observable channel: its number, the state slots of its attached variables and their names. */
-    private record Channel(String name, int channel, int[] slots, String[] variables, int[] values) {
+    private record Channel(String name, int channel, int[] slots, String[] variables, int[] values, boolean input) {
     }
 
     private Monitor(Network network, TestInterface testInterface, MonitorOptions options, boolean remember) {
@@ -97,7 +99,8 @@ public final class Monitor {
                 slots[i] = c.variables().get(i).variable().offset();
                 names[i] = c.variables().get(i).name();
             }
-            Channel ch = new Channel(c.name(), c.channel(), slots, names, new int[n]);
+            Channel ch = new Channel(c.name(), c.channel(), slots, names, new int[n],
+                    testInterface.inputs().contains(c));
             channels.put(c.name(), ch);
             byNumber.add(ch);
         }
@@ -219,7 +222,9 @@ public final class Monitor {
                     + " at " + time(lastMicros));
         }
         long fromTicks = ticks.floor(Math.max(0, micros - uncertaintyMicros - referenceMicros));
-        long toTicks = ticks.ceil(micros + uncertaintyMicros - referenceMicros);
+        // a window past what DTRON can time (a tolerance near its maximum) reaches as far as the zones tell
+        long toTicks = Math.min(ticks.ceil(Math.min(micros + uncertaintyMicros - referenceMicros,
+                TestOptions.MAX_DURATION_MICROS)), Bound.MAX_VALUE);
         events++;
         Tracker.Node next;
         try {
@@ -273,9 +278,10 @@ public final class Monitor {
             throw new UnsupportedModelException("model error while letting time pass: " + e.format());
         }
         List<SymState> reach = tracker.reach(current, elapsed);
-        long deadline = referenceMicros + ticks.micros(Bound.value(tracker.latest(reach)));
+        long deadlineTicks = Bound.value(tracker.latest(reach));
+        long deadline = referenceMicros + ticks.micros(deadlineTicks);
         String explanation = "no event by " + time(deadline) + ", the deadline after " + since() + ": the model "
-                + "required one of " + describe(allowed(elapsed)) + " by then";
+                + "required one of " + describe(required(allowed(elapsed), deadlineTicks)) + " by then";
         Alarm alarm = raise(Alarm.Reason.DEADLINE_MISSED, deadline, null, explanation, elapsed);
         if (options.keepGoing()) {
             resynchronise(this::reachable, deadline);
@@ -299,6 +305,30 @@ public final class Monitor {
         } catch (ModelRuntimeException e) {
             throw new UnsupportedModelException("model error while letting time pass: " + e.format());
         }
+    }
+
+    /**
+     * The deadline the model sets after the last event: the latest time it lets pass without an event, when it
+     * requires one by then; empty when it lets time pass without end (as far as the monitor can time), or the
+     * monitor has not started or has stopped. The monitor is unchanged: of a recorded run whose end is not known, a
+     * deadline still pending at its last event is one the run showed neither met nor missed.
+     *
+     * @throws UnsupportedModelException on a model error or a model too nondeterministic to follow
+     */
+    public OptionalLong pendingDeadline() {
+        if (stopped || !started) {
+            return OptionalLong.empty();
+        }
+        int latest;
+        try {
+            latest = tracker.latest(tracker.reach(current, Bound.MAX_VALUE));
+        } catch (ModelRuntimeException e) {
+            throw new UnsupportedModelException("model error while letting time pass: " + e.format());
+        }
+        if (latest == Bound.INFINITY || Bound.value(latest) >= Bound.MAX_VALUE) {
+            return OptionalLong.empty();
+        }
+        return OptionalLong.of(referenceMicros + ticks.micros(Bound.value(latest)));
     }
 
     /** Returns the time of the last event the monitor accepted (or of its start, or re-synchronisation). */
@@ -367,10 +397,11 @@ public final class Monitor {
     private Alarm violation(Event event, Channel ch, long micros, long fromTicks, long toTicks) {
         Tracker.Node atTime = tracker.afterWindow(current, fromTicks, toTicks, false);
         if (atTime.isEmpty()) {
-            long deadline = referenceMicros
-                    + ticks.micros(Bound.value(tracker.latest(tracker.reach(current, toTicks))));
+            long deadlineTicks = Bound.value(tracker.latest(tracker.reach(current, toTicks)));
+            long deadline = referenceMicros + ticks.micros(deadlineTicks);
             String explanation = "no event by " + time(deadline) + ", the deadline after " + since() + ": the model "
-                    + "required one of " + describe(allowed(toTicks)) + " by then; the next event, " + event
+                    + "required one of " + describe(required(allowed(toTicks), deadlineTicks)) + " by then; the next"
+                    + " event, " + event
                     + ", came at " + time(micros);
             return raise(Alarm.Reason.DEADLINE_MISSED, deadline, event, explanation, toTicks);
         }
@@ -462,6 +493,36 @@ public final class Monitor {
                     w[1] < 0 ? -1 : referenceMicros + ticks.micros(w[1])));
         }
         return out;
+    }
+
+    /**
+     * Of the events the model allowed, those a missed deadline ({@code deadlineTicks} after the last event) required:
+     * every output, and the inputs after which time may pass beyond the deadline (an input that leaves it where it
+     * was would not have met it); all of them if that leaves none.
+     */
+    private List<Alarm.Window> required(List<Alarm.Window> allowed, long deadlineTicks) {
+        List<Alarm.Window> required = new ArrayList<>();
+        for (Alarm.Window w : allowed) {
+            Channel ch = channels.get(w.channel());
+            if (!ch.input || liftsDeadline(ch, w, deadlineTicks)) {
+                required.add(w);
+            }
+        }
+        return required.isEmpty() ? allowed : required;
+    }
+
+    /** Whether time may pass beyond the deadline after the event of {@code w}, some time in its window before it. */
+    private boolean liftsDeadline(Channel ch, Alarm.Window w, long deadlineTicks) {
+        long from = ticks.floor(Math.max(0, w.fromMicros() - referenceMicros));
+        if (from > deadlineTicks) {
+            return false;
+        }
+        int[] values = new int[ch.slots.length]; // not ch.values: the violating event's, which going on uses
+        for (int i = 0; i < values.length; i++) {
+            values[i] = w.values().get(ch.variables[i]);
+        }
+        Tracker.Node after = tracker.step(current, ch.channel, ch.slots, values, from, deadlineTicks, true);
+        return !after.isEmpty() && tracker.allows(after, deadlineTicks - from + 1);
     }
 
     private String describe(List<Alarm.Window> allowed) {

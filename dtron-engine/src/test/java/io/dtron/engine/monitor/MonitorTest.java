@@ -26,6 +26,7 @@ import java.time.Duration;
 import java.util.ArrayList;
 import java.util.List;
 import java.util.Map;
+import java.util.OptionalLong;
 import org.junit.jupiter.api.Test;
 
 class MonitorTest {
@@ -236,6 +237,69 @@ class MonitorTest {
         assertEquals(Alarm.Reason.DEADLINE_MISSED, b.reason());
         assertEquals(4_000, b.micros());
         assertEquals(Event.of("resp", "n", 2), b.event());
+    }
+
+    @Test
+    void theDeadlinePendingAfterTheLastEventIsNamedWithoutChangingTheMonitor() throws Exception {
+        Network n = server();
+        Monitor m = Monitor.of(n, TestInterface.fromNames(n), MonitorOptions.initial(UNIT));
+        assertEquals(OptionalLong.empty(), m.pendingDeadline(), "the idle server requires nothing");
+        assertNull(m.observe(Event.of("req", "n", 1), 1_000));
+        assertEquals(OptionalLong.of(4_000), m.pendingDeadline(), "the response is due 3 units after the request");
+        assertEquals(OptionalLong.of(4_000), m.pendingDeadline(), "asking changes nothing");
+        assertNull(m.advanceTo(3_000));
+        assertEquals(OptionalLong.of(4_000), m.pendingDeadline(), "time passing before it leaves it where it is");
+        assertNull(m.observe(Event.of("resp", "n", 2), 3_500));
+        assertEquals(OptionalLong.empty(), m.pendingDeadline(), "answered: nothing is due");
+        Monitor missed = Monitor.of(n, TestInterface.fromNames(n), MonitorOptions.initial(UNIT));
+        missed.observe(Event.of("req", "n", 1), 1_000);
+        assertNotNull(missed.advanceTo(5_000));
+        assertEquals(OptionalLong.empty(), missed.pendingDeadline(), "a monitor stopped at a violation judges no more");
+        Monitor joined = Monitor.of(n, TestInterface.fromNames(n), MonitorOptions.anyState(UNIT));
+        assertEquals(OptionalLong.empty(), joined.pendingDeadline(), "not started: no time, no deadline");
+    }
+
+    @Test
+    void aMissedDeadlineNamesNoInputThatWouldNotHaveMetIt() throws Exception {
+        // the server of the monitor's tests, with a ping the client may send at any time (it changes nothing) and a
+        // cancel that ends the request
+        Network n = ModelLoader.load("pinged.xta", """
+                chan i_req, o_resp, i_ping, i_cancel;
+                int[0,9] i_req_n, o_resp_n;
+                process Server() { clock x; int[0,9] n; state Idle, Busy { x <= 3 }; init Idle;
+                    trans Idle -> Busy { sync i_req?; assign x = 0, n = i_req_n; },
+                          Busy -> Idle { guard x >= 1; sync o_resp!; assign o_resp_n = (n + 1) % 10; },
+                          Busy -> Busy { sync i_ping?; }, Idle -> Idle { sync i_ping?; },
+                          Busy -> Idle { sync i_cancel?; }; }
+                process Client() { state Ready, Waiting; init Ready;
+                    trans Ready -> Waiting { select v : int[0,9]; sync i_req!; assign i_req_n = v; },
+                          Waiting -> Ready { sync o_resp?; }, Ready -> Ready { sync i_ping!; },
+                          Waiting -> Waiting { sync i_ping!; }, Waiting -> Ready { sync i_cancel!; }; }
+                system Server, Client;
+                """);
+        String required = "the model required one of cancel() in [t=1.000, t=4.000], resp(n=2) in [t=2.000,"
+                + " t=4.000] by then";
+        // found when time passes the deadline, or at the next event (a ping, after it)
+        for (boolean byTime : new boolean[] {true, false}) {
+            Monitor m = Monitor.of(n, TestInterface.fromNames(n), MonitorOptions.initial(UNIT));
+            assertNull(m.observe(Event.of("req", "n", 1), 1_000));
+            Alarm a = byTime ? m.advanceTo(5_000) : m.observe(Event.of("ping"), 6_000);
+            assertEquals(Alarm.Reason.DEADLINE_MISSED, a.reason());
+            String expected = required + (byTime ? "" : "; the next event, ping(), came at t=6.000");
+            assertTrue(a.explanation().endsWith(expected), a.explanation());
+            assertTrue(a.allowed().stream().anyMatch(w -> w.channel().equals("ping")), "the ping was allowed, though");
+        }
+    }
+
+    @Test
+    void theLargestUncertaintyOverflowsNothing() throws Exception {
+        Network n = server();
+        Monitor m = Monitor.of(n, TestInterface.fromNames(n), MonitorOptions.initial(UNIT));
+        assertNull(m.observe(Event.of("req", "n", 1), 1_000, TestOptions.MAX_DURATION_MICROS));
+        assertNull(m.observe(Event.of("resp", "n", 2), 1_500, TestOptions.MAX_DURATION_MICROS),
+                "a response some time in the window may be 1 to 3 units after the request");
+        assertNotNull(m.observe(Event.of("resp", "n", 2), 2_000, TestOptions.MAX_DURATION_MICROS),
+                "no time makes a second response allowed");
     }
 
     @Test
