@@ -255,10 +255,17 @@ public final class OnlineTester {
         run.warmUp();
         adapter.prepare();
         clock.begin(adapter.timeZero());
-        adapter.start(new Context(clock, window));
         TestResult result = null;
         try {
-            result = run.loop();
+            try {
+                adapter.start(new Context(clock, window));
+            } catch (RuntimeException | AssertionError e) {
+                result = run.result(Verdict.INCONCLUSIVE, RunClock.thrown("the system under test", e)
+                        + " when it was started");
+            }
+            if (result == null) {
+                result = run.loop();
+            }
         } catch (ModelRuntimeException e) {
             result = run.result(Verdict.INCONCLUSIVE, "model error: " + e.format());
         } finally {
@@ -1189,10 +1196,15 @@ public final class OnlineTester {
             Map<String, Integer> values = valuesOf(channel, chosen.state());
             Event event = new Event(channel.name(), values);
             // published first, the bookkeeping after: the input's way to the system starts at its time
-            if (ahead) {
-                adapter.perform(event, now);
-            } else {
-                adapter.perform(event);
+            try {
+                if (ahead) {
+                    adapter.perform(event, now);
+                } else {
+                    adapter.perform(event);
+                }
+            } catch (RuntimeException | AssertionError e) {
+                return result(Verdict.INCONCLUSIVE, RunClock.thrown("the system under test", e) + " when input "
+                        + event + " was applied at " + time(now));
             }
             List<io.dtron.engine.internal.sem.SymState> next = new ArrayList<>();
             List<StateSet.Successor> taken = new ArrayList<>();
