@@ -108,6 +108,38 @@ class JunitReportTest {
     }
 
     @Test
+    void aGoalNotReachedByTheTimeoutEndsTheRunInconclusiveAndTheExitCodeAndTheReportAgree() throws Exception {
+        // the model lets the ticker count to 50, but ten ticks at most fit in 100 units
+        String far = "E<> o_tick_seq == 50";
+        Path xml = dir.resolve("open.xml");
+        CommandRun r = CommandRun.of("run", ticker("ticker.xta").toString(), "--sut", TickerForTests.class.getName(),
+                "--virtual-time", "--seed", "3", "--timeout", "100", "--strategy", "goal", "--goal", far,
+                "--junit", xml.toString());
+        assertEquals(3, r.exit(), r.out() + r.err());
+        assertTrue(r.out().contains("INCONCLUSIVE: the timeout of 100 time units was reached after "), r.out());
+        assertTrue(r.out().contains(", but not every goal was reached, so the run did not serve its purpose: not"
+                + " reached: '" + far + "'"), r.out());
+        Element suite = parse(xml).getDocumentElement();
+        assertEquals("INCONCLUSIVE", properties(suite).get("verdict"));
+        Element error = only(only(suite, "testcase"), "error");
+        assertTrue(error.getAttribute("message").startsWith("the goal was not reached: the run ended INCONCLUSIVE"),
+                error.getAttribute("message"));
+
+        // a stop condition decides instead of the goals: PASSED, exit code 0, and the goal's case skipped, no error
+        Path until = dir.resolve("until.xml");
+        CommandRun u = CommandRun.of("run", ticker("ticker.xta").toString(), "--sut", TickerForTests.class.getName(),
+                "--virtual-time", "--seed", "3", "--timeout", "100", "--strategy", "goal", "--goal", far,
+                "--until", "reached(1) or time(50)", "--junit", until.toString());
+        assertEquals(0, u.exit(), u.out() + u.err());
+        Element passed = parse(until).getDocumentElement();
+        assertEquals(List.of("1", "0", "0", "1"), List.of(passed.getAttribute("tests"),
+                passed.getAttribute("failures"), passed.getAttribute("errors"), passed.getAttribute("skipped")));
+        Element skipped = only(only(passed, "testcase"), "skipped");
+        assertTrue(skipped.getAttribute("message").startsWith("the goal was not reached, and the stop condition decided"
+                + " the run: PASSED: the stop condition reached(1) or time(50) was met"), skipped.getAttribute("message"));
+    }
+
+    @Test
     void namesWithMarkupAreEscapedAndReadBackAsTheyAre() throws Exception {
         Path model = ticker("tick<&\"'>er.xta");
         Path xml = dir.resolve("markup.xml");

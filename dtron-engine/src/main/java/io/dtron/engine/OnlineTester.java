@@ -583,9 +583,14 @@ public final class OnlineTester {
                                     + time(timeoutMicros) + " by " + stoppedBy + ", after " + inputs + " inputs and "
                                     + outputs + " outputs, all as the model allows");
                         }
-                        return result(Verdict.PASSED, "the timeout of " + options.timeout() + " time units was"
-                                + " reached after " + inputs + " inputs and " + outputs + " outputs, all as the model"
-                                + " allows");
+                        String timedOut = "the timeout of " + options.timeout() + " time units was reached after "
+                                + inputs + " inputs and " + outputs + " outputs, all as the model allows";
+                        String open = steerer == null ? "" : steerer.openAtTheEnd();
+                        if (!open.isEmpty()) {
+                            return result(Verdict.INCONCLUSIVE, timedOut + ", but not every goal was reached, so the"
+                                    + " run did not serve its purpose: not reached: " + open);
+                        }
+                        return result(Verdict.PASSED, timedOut);
                     }
                     TestResult verdict = receive(clock.awaitUntil(timeoutMicros + window()));
                     if (verdict != null) {

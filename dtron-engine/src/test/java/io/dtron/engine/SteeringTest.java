@@ -109,8 +109,11 @@ class SteeringTest {
             if (t.steeringReport().goals().get(0).state() == GoalStatus.State.REACHED) {
                 opened++;
             } else {
-                assertEquals(Verdict.PASSED, r.verdict(), r.explanation());
+                // the goal, not reached, leaves the run without its purpose: INCONCLUSIVE, never PASSED
+                assertEquals(Verdict.INCONCLUSIVE, r.verdict(), r.explanation());
                 assertTrue(r.explanation().startsWith("the timeout of 20 time units"), r.explanation());
+                assertTrue(r.explanation().endsWith(", but not every goal was reached, so the run did not serve its"
+                        + " purpose: not reached: 'E<> Lock.Open'"), r.explanation());
             }
         }
         assertTrue(opened <= 3, "random eager inputs opened the lock in " + opened + " of 10 runs");
@@ -295,7 +298,14 @@ class SteeringTest {
         OnlineTester unbounded = tester(COIN, new Answer("heads"), TestOptions.defaults(1).withTimeout(100))
                 .steer(Steering.of(Strategy.GOAL, List.of("E<> Coin.Tails")));
         TestResult timeout = unbounded.run();
-        assertEquals(Verdict.PASSED, timeout.verdict(), timeout.explanation());
+        assertEquals(Verdict.INCONCLUSIVE, timeout.verdict(), timeout.explanation());
+        assertTrue(timeout.explanation().endsWith("not reached: 'E<> Coin.Tails'"), timeout.explanation());
+        // when a stop condition, not the goals, decides when the run has done enough, the goal is only followed
+        OnlineTester conditioned = tester(COIN, new Answer("heads"), TestOptions.defaults(1).withTimeout(100))
+                .steer(new Steering(Strategy.GOAL, List.of("E<> Coin.Tails"), Steering.DEFAULT_HORIZON, -1, false));
+        TestResult passed = conditioned.run();
+        assertEquals(Verdict.PASSED, passed.verdict(), passed.explanation());
+        assertEquals(GoalStatus.State.OPEN, conditioned.steeringReport().goals().get(0).state());
         assertEquals(GoalStatus.State.OPEN, unbounded.steeringReport().goals().get(0).state());
         // a fair coin reaches the goal
         OnlineTester fair = tester(COIN, new Answer("tails"), TestOptions.defaults(1).withTimeout(1000))

@@ -574,6 +574,21 @@ public final class Steerer {
                 + " purpose: " + unreachable + (reached.length() > 0 ? " (reached: " + reached + ")" : ""));
     }
 
+    /**
+     * The goals still open at the end of a run, quoted and joined ({@code 'E<> p'; 'E<> q'}), when the goals decide
+     * when the run has done enough (no stop condition): the run did not serve its purpose. Empty when every goal was
+     * reached or found unreachable, or when a stop condition decides.
+     */
+    public String openAtTheEnd() {
+        StringBuilder open = new StringBuilder();
+        for (GoalStatus s : steering.stopWhenDone() ? goals() : List.<GoalStatus>of()) {
+            if (s.state() == GoalStatus.State.OPEN) {
+                open.append(open.length() == 0 ? "" : "; ").append('\'').append(s.text()).append('\'');
+            }
+        }
+        return open.toString();
+    }
+
     private boolean unreachableFrom(StateSet set, int g) {
         for (SymState s : set.states()) {
             int n = graph.node(s);
