@@ -36,7 +36,8 @@ final class CoverageCommand implements Callable<Integer> {
             description = {"Merge the coverage files of runs of one model (many seeds, many strategies) into the"
                     + " coverage of the suite: an element is covered when some run covered it; channel counts add"
                     + " up. Prints the summary of the union.",
-                    "Exit code 0 when merged, 1 when a file cannot be read or is of another model."})
+                    "A file given twice (or a copy of one) is refused: a run counts once.",
+                    "Exit code 0 when merged, 1 when a file cannot be read, is given twice or is of another model."})
     static final class Merge implements Callable<Integer> {
         @Spec
         private CommandSpec spec;
@@ -53,14 +54,22 @@ final class CoverageCommand implements Callable<Integer> {
             PrintWriter err = spec.commandLine().getErr();
             try {
                 List<Coverage> all = new ArrayList<>();
+                List<String> texts = new ArrayList<>();
                 for (Path f : files) {
                     String text;
+                    String twice;
                     try {
                         text = Files.readString(f, StandardCharsets.UTF_8);
+                        twice = givenBefore(f, text, texts);
                     } catch (IOException e) {
                         err.println("dtron coverage merge: cannot read " + f + ": " + OutputFile.reason(e));
                         return 1;
                     }
+                    if (twice != null) {
+                        err.println("dtron coverage merge: " + f + " " + twice + ": a run counts once in a suite");
+                        return 1;
+                    }
+                    texts.add(text);
                     try {
                         all.add(CoverageJson.read(text));
                     } catch (IllegalArgumentException e) {
@@ -98,6 +107,22 @@ final class CoverageCommand implements Callable<Integer> {
                 out.flush();
                 err.flush();
             }
+        }
+
+        /**
+         * How {@code file}, whose text is {@code text}, repeats one of the files before it ({@code texts}, in the
+         * order of {@link #files}): the same file by another path, or a copy of one; null when it is new.
+         */
+        private String givenBefore(Path file, String text, List<String> texts) throws IOException {
+            for (int i = 0; i < texts.size(); i++) {
+                if (Files.isSameFile(file, files.get(i))) {
+                    return "is given twice (as " + files.get(i) + " too)";
+                }
+                if (texts.get(i).equals(text)) {
+                    return "is a copy of " + files.get(i);
+                }
+            }
+            return null;
         }
     }
 }

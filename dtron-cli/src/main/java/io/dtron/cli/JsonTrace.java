@@ -12,9 +12,12 @@ import io.dtron.engine.TestResult;
 import java.io.IOException;
 import java.io.UncheckedIOException;
 import java.io.Writer;
+import java.nio.ByteBuffer;
+import java.nio.channels.Channels;
+import java.nio.channels.FileChannel;
 import java.nio.charset.StandardCharsets;
-import java.nio.file.Files;
 import java.nio.file.Path;
+import java.nio.file.StandardOpenOption;
 import java.util.Map;
 import java.util.function.Consumer;
 
@@ -30,19 +33,28 @@ import java.util.function.Consumer;
  * the bus, a {@code bus} line for every message on the bus while the run lasts, in the bus's order, with its sender's
  * stamps and its receive time: the global trace, the same order at every member.
  *
- * <p>A trace may be bounded ({@code --trace-max-size}): it stops there. The lines of events that would take it past
- * the bound are left out, and a {@code truncated} line (the bound, how many lines were left out, the time of the last
- * event written) comes before the {@code coverage} and {@code verdict} lines; the verdict always ends the trace: the
- * file holds the start of the run, its coverage and its verdict, at most the bound plus those three lines.
+ * <p>A trace may be bounded ({@code --trace-max-size}): the whole file stays within the bound. The lines of events
+ * that would take it past the bound are left out, and at the end the last events written give way to the lines that
+ * end every trace: a {@code truncated} line (the bound, how many lines were left out, the time of the last event
+ * kept), the {@code coverage} and the {@code verdict} lines. Only a bound too small for the start line and those
+ * alone is passed, by them.
  */
 final class JsonTrace implements TestListener {
     /** No bound. */
     static final long UNBOUNDED = Long.MAX_VALUE;
 
+    /** The most bytes a {@code truncated} line takes, with its newline. */
+    private static final int TRUNCATED_ROOM = truncatedLine(Long.MAX_VALUE, Long.MAX_VALUE, Long.MIN_VALUE).length()
+            + 1;
+
     private final Writer out;
     private final long unitMicros;
     private final Counted counted;
+    /** The file, to give the last events' room to the lines that end the trace; null when it is not bounded. */
+    private final FileChannel file;
     private final long maxBytes;
+    /** Where the start line ends: the events begin there. */
+    private long startEnd;
     private long lastMicros = -1;
     private long omitted;
     private long omittedAfterMicros = -1;
@@ -52,10 +64,11 @@ final class JsonTrace implements TestListener {
     private long windowFrom = -1;
     private long windowUntil = -1;
 
-    private JsonTrace(Writer out, long unitMicros, Counted counted, long maxBytes) {
+    private JsonTrace(Writer out, long unitMicros, Counted counted, FileChannel file, long maxBytes) {
         this.out = out;
         this.unitMicros = unitMicros;
         this.counted = counted;
+        this.file = file;
         this.maxBytes = maxBytes;
     }
 
@@ -101,10 +114,13 @@ final class JsonTrace implements TestListener {
         if (file == null) {
             return tester.run();
         }
-        Counted counted = new Counted(Files.newOutputStream(file));
+        FileChannel channel = FileChannel.open(file, StandardOpenOption.CREATE, StandardOpenOption.TRUNCATE_EXISTING,
+                StandardOpenOption.WRITE, StandardOpenOption.READ);
+        Counted counted = new Counted(Channels.newOutputStream(channel));
         try (Writer writer = new java.io.BufferedWriter(new java.io.OutputStreamWriter(counted,
                 StandardCharsets.UTF_8))) {
-            JsonTrace json = new JsonTrace(writer, options.timeUnitMicros(), counted, maxBytes);
+            JsonTrace json = new JsonTrace(writer, options.timeUnitMicros(), counted,
+                    maxBytes == UNBOUNDED ? null : channel, maxBytes);
             try {
                 return run(tester, json, model, options, adapter);
             } finally {
@@ -152,6 +168,7 @@ final class JsonTrace implements TestListener {
     void start(long seed, String model, long timeout, boolean virtualTime) {
         line("{\"kind\":\"start\",\"seed\":" + seed + ",\"model\":" + quote(model) + ",\"timeunit_us\":" + unitMicros
                 + ",\"timeout\":" + timeout + ",\"virtual_time\":" + virtualTime + "}");
+        startEnd = counted.bytes;
     }
 
     @Override
@@ -201,20 +218,132 @@ final class JsonTrace implements TestListener {
 
     @Override
     public void finished(TestResult r) {
+        // the coverage file's text has line breaks only between its tokens: strings escape theirs
+        String coverage = r.coverage() == null ? null : "{\"kind\":\"coverage\",\"coverage\":"
+                + CoverageJson.write(r.coverage()).replace("\n", "") + "}";
+        String verdict = "{\"kind\":\"verdict\",\"t_us\":" + r.durationMicros() + ",\"verdict\":\"" + r.verdict()
+                + "\",\"seed\":" + r.seed() + ",\"inputs\":" + r.inputs() + ",\"outputs\":" + r.outputs()
+                + ",\"explanation\":" + quote(r.explanation()) + "}";
         synchronized (this) {
+            long end = maxBytes - bytes(verdict) - (coverage == null ? 0 : bytes(coverage));
+            if (file != null && (omitted > 0 || counted.bytes > end)) {
+                makeRoom(end - TRUNCATED_ROOM);
+            }
             if (omitted > 0) {
-                line("{\"kind\":\"truncated\",\"max_bytes\":" + maxBytes + ",\"omitted_lines\":" + omitted
-                        + ",\"after_t_us\":" + omittedAfterMicros + "}");
+                line(truncatedLine(maxBytes, omitted, omittedAfterMicros));
             }
         }
-        if (r.coverage() != null) {
-            // the coverage file's text has line breaks only between its tokens: strings escape theirs
-            line("{\"kind\":\"coverage\",\"coverage\":" + CoverageJson.write(r.coverage()).replace("\n", "")
-                    + "}");
+        if (coverage != null) {
+            line(coverage);
         }
-        line("{\"kind\":\"verdict\",\"t_us\":" + r.durationMicros() + ",\"verdict\":\"" + r.verdict()
-                + "\",\"seed\":" + r.seed() + ",\"inputs\":" + r.inputs() + ",\"outputs\":" + r.outputs()
-                + ",\"explanation\":" + quote(r.explanation()) + "}");
+        line(verdict);
+    }
+
+    private static String truncatedLine(long maxBytes, long omitted, long afterMicros) {
+        return "{\"kind\":\"truncated\",\"max_bytes\":" + maxBytes + ",\"omitted_lines\":" + omitted
+                + ",\"after_t_us\":" + afterMicros + "}";
+    }
+
+    /** The bytes of {@code line} in the file, with its newline. */
+    private static long bytes(String line) {
+        return line.getBytes(StandardCharsets.UTF_8).length + 1L;
+    }
+
+    /**
+     * Cuts the last lines of events off the file until it ends at or before {@code limit} (never into the start
+     * line), counting them as left out, and the time of the last event kept as the one after which lines were.
+     */
+    private void makeRoom(long limit) {
+        try {
+            long cut = counted.bytes;
+            long cutLines = 0;
+            BackwardLines lines = new BackwardLines(file, startEnd, counted.bytes);
+            while (cut > limit && lines.hasPrevious()) {
+                cut -= lines.previous().length + 1;
+                cutLines++;
+            }
+            if (cutLines == 0) {
+                return;
+            }
+            long after = -1;
+            while (after < 0 && lines.hasPrevious()) {
+                after = micros(new String(lines.previous(), StandardCharsets.UTF_8));
+            }
+            file.truncate(cut);
+            counted.bytes = cut;
+            omitted += cutLines;
+            omittedAfterMicros = after;
+        } catch (IOException e) {
+            throw new UncheckedIOException(e);
+        }
+    }
+
+    /** The {@code t_us} of an event's line, or -1 when it has none (a message on the bus). */
+    private static long micros(String line) {
+        int at = line.indexOf("\"t_us\":");
+        if (at < 0) {
+            return -1;
+        }
+        int from = at + "\"t_us\":".length();
+        int to = from;
+        while (to < line.length() && (Character.isDigit(line.charAt(to)) || line.charAt(to) == '-')) {
+            to++;
+        }
+        return Long.parseLong(line, from, to, 10);
+    }
+
+    /** The lines of a part of a file, read from its end backward, a block at a time. */
+    private static final class BackwardLines {
+        private static final int BLOCK = 1 << 16;
+        private final FileChannel file;
+        private final long from;
+        /** Where the next line read ends (its newline is the byte there). */
+        private long end;
+
+        /** The lines of {@code file} between {@code from} and {@code end}, each ending with a newline. */
+        BackwardLines(FileChannel file, long from, long end) {
+            this.file = file;
+            this.from = from;
+            this.end = end - 1;
+        }
+
+        boolean hasPrevious() {
+            return end > from;
+        }
+
+        /** The line before the last one read, without its newline. */
+        byte[] previous() throws IOException {
+            java.io.ByteArrayOutputStream reversed = new java.io.ByteArrayOutputStream();
+            long pos = end;
+            ByteBuffer block = ByteBuffer.allocate(BLOCK);
+            while (pos > from) {
+                int size = (int) Math.min(BLOCK, pos - from);
+                block.clear().limit(size);
+                long at = pos - size;
+                while (block.hasRemaining() && file.read(block, at + block.position()) >= 0) {
+                    // reads the whole block
+                }
+                for (int i = size - 1; i >= 0; i--) {
+                    if (block.get(i) == '\n') {
+                        end = at + i;
+                        return reverse(reversed.toByteArray());
+                    }
+                    reversed.write(block.get(i));
+                }
+                pos = at;
+            }
+            end = from;
+            return reverse(reversed.toByteArray());
+        }
+
+        private static byte[] reverse(byte[] b) {
+            for (int i = 0, j = b.length - 1; i < j; i++, j--) {
+                byte t = b[i];
+                b[i] = b[j];
+                b[j] = t;
+            }
+            return b;
+        }
     }
 
     private void event(String kind, Event e, long micros, String more) {

@@ -26,7 +26,8 @@ import javax.xml.stream.XMLStreamWriter;
  * {@code --junit FILE.xml}: a run (or a mutation analysis) as a JUnit XML report, in the form Surefire writes and
  * Jenkins, GitLab and Surefire's report plugin read: one {@code testsuite}; for {@code dtron run} one {@code testcase}
  * per run, or per goal when the run has goals, named by the seed (and the goal). A FAILED run is a {@code failure}
- * with the explanation, an INCONCLUSIVE one (or a goal not reached) an {@code error} with the reason. The seed, the
+ * with the explanation, an INCONCLUSIVE one (or a goal not reached) an {@code error} with the reason, but a goal not
+ * reached by a run that a stop condition ended PASSED is {@code skipped}, as the exit code is 0. The seed, the
  * settings, the coverage figures and the goals that were not reached are the suite's {@code properties}.
  */
 final class JunitXml {
@@ -75,6 +76,10 @@ final class JunitXml {
             } else if (goal.state() == GoalStatus.State.UNREACHABLE) {
                 cases.add(new Case(name, "error", "the goal can no longer be reached" + (goal.micros() < 0 ? ""
                         : " (from t=" + GoalOptions.units(goal.micros(), unitMicros) + ")") + ": " + goal.reason()));
+            } else if (result.verdict() == Verdict.PASSED) {
+                // a run whose goals decide ends INCONCLUSIVE with a goal open: this one's stop condition decided
+                cases.add(new Case(name, "skipped", "PASSED", "the goal was not reached, and the stop condition"
+                        + " decided the run: PASSED: " + result.explanation()));
             } else {
                 cases.add(new Case(name, "error", "the goal was not reached: the run ended " + result.verdict() + ": "
                         + result.explanation()));

@@ -1,5 +1,6 @@
 package io.dtron.cli;
 
+import io.dtron.engine.coverage.Coverage;
 import io.dtron.model.Layout;
 import io.dtron.model.ModelException;
 import io.dtron.model.ModelLoader;
@@ -57,6 +58,10 @@ final class ReportCommand implements Callable<Integer> {
             description = "The model of the run (default: the file the trace names, as given or beside the trace).")
     private Path model;
 
+    /** The model the report draws, and its file; null when it was not found or does not load. */
+    private Network loaded;
+    private Path loadedFile;
+
     @Override
     public Integer call() {
         PrintWriter out = spec.commandLine().getOut();
@@ -98,11 +103,14 @@ final class ReportCommand implements Callable<Integer> {
                 }
                 String where = trace + " line " + number + ": ";
                 if (line.startsWith(COVERAGE_LINE) && record != null) {
+                    Coverage coverage;
                     try {
-                        record.coverage(CoverageJson.read(line.substring(COVERAGE_LINE.length(), line.length() - 1)));
+                        coverage = CoverageJson.read(line.substring(COVERAGE_LINE.length(), line.length() - 1));
                     } catch (IllegalArgumentException e) {
                         throw new IllegalArgumentException(where + "the coverage: " + e.getMessage());
                     }
+                    sameModel(coverage);
+                    record.coverage(coverage);
                     continue;
                 }
                 if (line.startsWith(EDGES_LINE) && record != null && edges(line, record, where)) {
@@ -210,10 +218,28 @@ final class ReportCommand implements Callable<Integer> {
             err.println("dtron report: warning: " + note + "; the report shows the run without the model");
             err.flush();
         }
+        loaded = network;
+        loadedFile = file;
         RunRecord record = new RunRecord(named, network, layout, note);
         record.start(number(o, "seed", where), number(o, "timeunit_us", where), number(o, "timeout", where),
                 Boolean.TRUE.equals(o.get("virtual_time")));
         return record;
+    }
+
+    /**
+     * Refuses a model that is not the one of the run, by the fingerprint its coverage line recorded (a trace without
+     * one, of TRON's backend, cannot be checked): the drawing would show another model's edges as covered.
+     */
+    private void sameModel(Coverage coverage) {
+        if (loaded == null) {
+            return;
+        }
+        String fingerprint = Coverage.fingerprintOf(loaded);
+        if (!fingerprint.equals(coverage.fingerprint())) {
+            throw new IllegalArgumentException(loadedFile + " is not the model of the run of " + trace + ": the run's"
+                    + " model was " + coverage.model() + ", fingerprint " + coverage.fingerprint() + ", not "
+                    + fingerprint + (model == null ? "; give the run's model with --model" : ""));
+        }
     }
 
     /** The trace's model as given (relative to the working folder), else beside the trace; null if neither. */

@@ -127,6 +127,20 @@ class CoverageCommandTest {
                 + a + " (" + other + ", fingerprint "), refused.err());
         assertEquals("", refused.out());
 
+        // a run counts once: a file given twice, by any path, or a copy of one, is refused, nothing written
+        Path twice = dir.resolve("twice.json");
+        CommandRun same = CommandRun.of("coverage", "merge", a.toString(), b.toString(),
+                dir.resolve(".").resolve("a.json").toString(), "-o", twice.toString());
+        assertEquals(1, same.exit(), same.out() + same.err());
+        assertEquals("dtron coverage merge: " + dir.resolve(".").resolve("a.json") + " is given twice (as " + a
+                + " too): a run counts once in a suite\n", same.err());
+        assertFalse(Files.exists(twice));
+        Path copy = Files.copy(b, dir.resolve("copy.json"));
+        CommandRun copied = CommandRun.of("coverage", "merge", b.toString(), copy.toString());
+        assertEquals(1, copied.exit(), copied.out() + copied.err());
+        assertEquals("dtron coverage merge: " + copy + " is a copy of " + b + ": a run counts once in a suite\n",
+                copied.err());
+
         Path notCoverage = Files.writeString(dir.resolve("x.json"), "{\"kind\": \"start\"}");
         CommandRun wrong = CommandRun.of("coverage", "merge", a.toString(), notCoverage.toString());
         assertEquals(1, wrong.exit());

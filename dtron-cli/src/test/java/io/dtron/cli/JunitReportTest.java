@@ -108,6 +108,38 @@ class JunitReportTest {
     }
 
     @Test
+    void aGoalNotReachedByTheTimeoutEndsTheRunInconclusiveAndTheExitCodeAndTheReportAgree() throws Exception {
+        // the model lets the ticker count to 50, but ten ticks at most fit in 100 units
+        String far = "E<> o_tick_seq == 50";
+        Path xml = dir.resolve("open.xml");
+        CommandRun r = CommandRun.of("run", ticker("ticker.xta").toString(), "--sut", TickerForTests.class.getName(),
+                "--virtual-time", "--seed", "3", "--timeout", "100", "--strategy", "goal", "--goal", far,
+                "--junit", xml.toString());
+        assertEquals(3, r.exit(), r.out() + r.err());
+        assertTrue(r.out().contains("INCONCLUSIVE: the timeout of 100 time units was reached after "), r.out());
+        assertTrue(r.out().contains(", but not every goal was reached, so the run did not serve its purpose: not"
+                + " reached: '" + far + "'"), r.out());
+        Element suite = parse(xml).getDocumentElement();
+        assertEquals("INCONCLUSIVE", properties(suite).get("verdict"));
+        Element error = only(only(suite, "testcase"), "error");
+        assertTrue(error.getAttribute("message").startsWith("the goal was not reached: the run ended INCONCLUSIVE"),
+                error.getAttribute("message"));
+
+        // a stop condition decides instead of the goals: PASSED, exit code 0, and the goal's case skipped, no error
+        Path until = dir.resolve("until.xml");
+        CommandRun u = CommandRun.of("run", ticker("ticker.xta").toString(), "--sut", TickerForTests.class.getName(),
+                "--virtual-time", "--seed", "3", "--timeout", "100", "--strategy", "goal", "--goal", far,
+                "--until", "reached(1) or time(50)", "--junit", until.toString());
+        assertEquals(0, u.exit(), u.out() + u.err());
+        Element passed = parse(until).getDocumentElement();
+        assertEquals(List.of("1", "0", "0", "1"), List.of(passed.getAttribute("tests"),
+                passed.getAttribute("failures"), passed.getAttribute("errors"), passed.getAttribute("skipped")));
+        Element skipped = only(only(passed, "testcase"), "skipped");
+        assertTrue(skipped.getAttribute("message").startsWith("the goal was not reached, and the stop condition decided"
+                + " the run: PASSED: the stop condition reached(1) or time(50) was met"), skipped.getAttribute("message"));
+    }
+
+    @Test
     void namesWithMarkupAreEscapedAndReadBackAsTheyAre() throws Exception {
         Path model = ticker("tick<&\"'>er.xta");
         Path xml = dir.resolve("markup.xml");
@@ -198,7 +230,7 @@ class JunitReportTest {
         Path trace = dir.resolve("trace.jsonl");
         CommandRun r = CommandRun.of("run", ticker("ticker.xta").toString(), "--sut", TickerForTests.class.getName(),
                 "--virtual-time", "--seed", "7", "--timeout", "100000", "--trace", trace.toString(),
-                "--trace-max-size", "2KB");
+                "--trace-max-size", "4KB");
         assertEquals(0, r.exit(), r.out() + r.err());
         List<String> lines = Files.readAllLines(trace);
         // the truncated line comes before the coverage and verdict lines, which end every trace
@@ -208,11 +240,17 @@ class JunitReportTest {
         assertTrue(coverage.startsWith("{\"kind\":\"coverage\","), coverage);
         assertTrue(lines.get(0).startsWith("{\"kind\":\"start\",\"seed\":7,"), lines.get(0));
         assertTrue(verdict.startsWith("{\"kind\":\"verdict\",\"t_us\":100000000,\"verdict\":\"PASSED\""), verdict);
-        assertTrue(truncated.startsWith("{\"kind\":\"truncated\",\"max_bytes\":2048,\"omitted_lines\":"), truncated);
-        long events = Files.size(trace) - (truncated.length() + 1) - (coverage.length() + 1) - (verdict.length() + 1);
-        assertTrue(events <= 2048 && events > 2048 - 300, "the events take the bound, less than one line: " + events);
-        assertTrue(r.out().contains("dtron run: the trace " + trace + " stopped at its bound of 2048 bytes after the"
-                + " event at t_us "), r.out());
+        assertTrue(truncated.startsWith("{\"kind\":\"truncated\",\"max_bytes\":4096,\"omitted_lines\":"), truncated);
+        // the whole file keeps to the bound, the lines that end it included: the last events give way to them
+        long size = Files.size(trace);
+        assertTrue(size <= 4096 && size > 4096 - 400, "the trace fills its bound, less than a line and the room of"
+                + " the truncated line: " + size);
+        String lastEvent = lines.get(lines.size() - 4);
+        java.util.regex.Matcher t = java.util.regex.Pattern.compile("\"t_us\":(\\d+),").matcher(lastEvent);
+        assertTrue(t.find(), lastEvent);
+        assertTrue(truncated.endsWith(",\"after_t_us\":" + t.group(1) + "}"), truncated + " after " + lastEvent);
+        assertTrue(r.out().contains("dtron run: the trace " + trace + " stopped at its bound of 4096 bytes after the"
+                + " event at t_us " + t.group(1) + ": "), r.out());
         assertTrue(r.out().indexOf("stopped at its bound") < r.out().indexOf("PASSED: "), r.out());
     }
 

@@ -61,6 +61,34 @@ class ReportCommandTest {
     }
 
     @Test
+    void aModelOfAnotherRunIsRefusedByItsFingerprintNotDrawnAsIfItWereTheRunsOne(@TempDir Path dir)
+            throws Exception {
+        Path model = Files.writeString(dir.resolve("ticker.xta"), TICKER);
+        Path trace = dir.resolve("run.jsonl");
+        CommandRun run = CommandRun.of("run", model.toString(), "--sut", TickerForTests.class.getName(),
+                "--virtual-time", "--seed", "7", "--timeout", "100", "--trace", trace.toString());
+        assertEquals(0, run.exit(), run.out() + run.err());
+        // the same text under another name is the run's model; a ticker with one more location is not
+        Path copy = Files.writeString(dir.resolve("copy.xta"), TICKER);
+        assertEquals(0, CommandRun.of("report", trace.toString(), "--model", copy.toString(), "-o",
+                dir.resolve("copy.html").toString()).exit());
+        Path other = Files.writeString(dir.resolve("other.xta"), TICKER.replace("state Running { x <= P + T };",
+                "state Running { x <= P + T }, Spare;"));
+        Path page = dir.resolve("other.html");
+        CommandRun r = CommandRun.of("report", trace.toString(), "--model", other.toString(), "-o", page.toString());
+        assertEquals(1, r.exit(), r.out() + r.err());
+        assertTrue(r.err().matches("dtron report: " + java.util.regex.Pattern.quote(other + " is not the model of the"
+                + " run of " + trace + ": the run's model was " + model + ", fingerprint ") + "[0-9a-f]{16}, not"
+                + " [0-9a-f]{16}\\R"), r.err());
+        assertFalse(Files.exists(page), "no page of the wrong model");
+        // the model the trace names, changed since the run, is refused the same way, with where to give the right one
+        Files.writeString(model, TICKER.replace("state Running { x <= P + T };", "state Running { x <= P + T }, Spare;"));
+        CommandRun changed = CommandRun.of("report", trace.toString(), "-o", page.toString());
+        assertEquals(1, changed.exit(), changed.out() + changed.err());
+        assertTrue(changed.err().strip().endsWith("; give the run's model with --model"), changed.err());
+    }
+
+    @Test
     void eachOutputCarriesTheWindowTheModelAllowedItInFromTheRunToItsTraceAndPage(@TempDir Path dir)
             throws Exception {
         // the ticker's model allows a tick 8 to 12 units after the last tick or reset

@@ -170,7 +170,7 @@ class RunCommandTest {
         assertTrue(notAdapter.err().contains("does not implement io.dtron.engine.Adapter"), notAdapter.err());
         CommandRun variant = CommandRun.of("run", model.toString(), "--sut", TickerForTests.class.getName() + ":weird");
         assertEquals(1, variant.exit());
-        assertTrue(variant.err().contains("unknown variant 'weird' (correct, slow, broken)"), variant.err());
+        assertTrue(variant.err().contains("unknown variant 'weird' (correct, slow, broken, jammed, burning)"), variant.err());
         CommandRun policy = CommandRun.of("run", model.toString(), "--sut", TickerForTests.class.getName(), "--delay-policy", "soon");
         assertEquals(1, policy.exit());
         assertTrue(policy.err().contains("unknown delay policy 'soon'"), policy.err());
@@ -246,12 +246,35 @@ class RunCommandTest {
     }
 
     @Test
-    void aSystemUnderTestThatThrowsIsReportedOnOneLineWithoutAStackTrace() {
-        CommandRun r = CommandRun.of("run", model.toString(), "--sut", TickerForTests.class.getName() + ":broken", "--virtual-time");
-        assertEquals(1, r.exit(), r.out() + r.err());
-        assertTrue(r.err().startsWith("dtron run: unexpected error: java.lang.IllegalStateException: the ticker is"
-                + " unplugged at io.dtron.cli.TickerForTests.start(TickerForTests.java:"), r.err());
-        assertEquals(1, r.err().lines().count(), r.err());
+    void aSystemUnderTestThatThrowsEndsTheRunInconclusiveOnOneLineAndItsReportsAreWritten() throws IOException {
+        // thrown when it starts, when an input is applied, and in a task it scheduled (its second tick, at 20)
+        String[][] cases = {
+            {"broken", "the system under test threw IllegalStateException: the ticker is unplugged, at"
+                    + " io.dtron.cli.TickerForTests.start(TickerForTests.java:", " when it was started"},
+            {"jammed", "the system under test threw IllegalStateException: the reset button is jammed, at"
+                    + " io.dtron.cli.TickerForTests.perform(TickerForTests.java:", " when input reset() was applied at"
+                    + " t="},
+            {"burning", "a task of the system under test threw IllegalStateException: the ticker burnt out, at"
+                    + " io.dtron.cli.TickerForTests.lambda$arm$", " (at t=20.000)"},
+        };
+        for (String[] c : cases) {
+            Path junit = dir.resolve("thrown-" + c[0] + ".xml");
+            Path trace = dir.resolve("thrown-" + c[0] + ".jsonl");
+            Path coverage = dir.resolve("thrown-" + c[0] + ".json");
+            CommandRun r = CommandRun.of("run", model.toString(), "--sut", TickerForTests.class.getName() + ":" + c[0],
+                    "--virtual-time", "--seed", "1", "--timeout", "100", "--junit", junit.toString(), "--trace",
+                    trace.toString(), "--coverage", coverage.toString());
+            assertEquals(3, r.exit(), r.out() + r.err());
+            assertEquals("", r.err(), "no stack trace, no error line: the verdict says it");
+            String verdict = r.out().lines().filter(l -> l.startsWith("INCONCLUSIVE: ")).findFirst().orElseThrow();
+            assertTrue(verdict.startsWith("INCONCLUSIVE: " + c[1]), verdict);
+            assertTrue(verdict.contains(c[2]), verdict);
+            assertFalse(r.out().contains("\tat "), r.out());
+            String xml = Files.readString(junit);
+            assertTrue(xml.contains("type=\"INCONCLUSIVE\"") && xml.contains("threw IllegalStateException: "), xml);
+            assertTrue(Files.readString(trace).contains("\"verdict\":\"INCONCLUSIVE\""), Files.readString(trace));
+            assertTrue(Files.readString(coverage).contains("\"dtron_coverage\": 1"), Files.readString(coverage));
+        }
     }
 
     @Test

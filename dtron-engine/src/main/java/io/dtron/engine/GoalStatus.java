@@ -11,7 +11,10 @@ package io.dtron.engine;
 public record GoalStatus(String text, State state, long micros, String reason) {
     /** Where a goal stands. */
     public enum State {
-        /** Every state the system may be in satisfied it at {@link #micros}. */
+        /**
+         * Every state the system may be in satisfied it at {@link #micros}: after the event then, or just before it
+         * (every state the event can have started from).
+         */
         REACHED,
         /** No path of the model leads to it any more (or ever: {@link #micros} is -1). */
         UNREACHABLE,

@@ -255,10 +255,17 @@ public final class OnlineTester {
         run.warmUp();
         adapter.prepare();
         clock.begin(adapter.timeZero());
-        adapter.start(new Context(clock, window));
         TestResult result = null;
         try {
-            result = run.loop();
+            try {
+                adapter.start(new Context(clock, window));
+            } catch (RuntimeException | AssertionError e) {
+                result = run.result(Verdict.INCONCLUSIVE, RunClock.thrown("the system under test", e)
+                        + " when it was started");
+            }
+            if (result == null) {
+                result = run.loop();
+            }
         } catch (ModelRuntimeException e) {
             result = run.result(Verdict.INCONCLUSIVE, "model error: " + e.format());
         } finally {
@@ -576,9 +583,14 @@ public final class OnlineTester {
                                     + time(timeoutMicros) + " by " + stoppedBy + ", after " + inputs + " inputs and "
                                     + outputs + " outputs, all as the model allows");
                         }
-                        return result(Verdict.PASSED, "the timeout of " + options.timeout() + " time units was"
-                                + " reached after " + inputs + " inputs and " + outputs + " outputs, all as the model"
-                                + " allows");
+                        String timedOut = "the timeout of " + options.timeout() + " time units was reached after "
+                                + inputs + " inputs and " + outputs + " outputs, all as the model allows";
+                        String open = steerer == null ? "" : steerer.openAtTheEnd();
+                        if (!open.isEmpty()) {
+                            return result(Verdict.INCONCLUSIVE, timedOut + ", but not every goal was reached, so the"
+                                    + " run did not serve its purpose: not reached: " + open);
+                        }
+                        return result(Verdict.PASSED, timedOut);
                     }
                     TestResult verdict = receive(clock.awaitUntil(timeoutMicros + window()));
                     if (verdict != null) {
@@ -1189,10 +1201,15 @@ public final class OnlineTester {
             Map<String, Integer> values = valuesOf(channel, chosen.state());
             Event event = new Event(channel.name(), values);
             // published first, the bookkeeping after: the input's way to the system starts at its time
-            if (ahead) {
-                adapter.perform(event, now);
-            } else {
-                adapter.perform(event);
+            try {
+                if (ahead) {
+                    adapter.perform(event, now);
+                } else {
+                    adapter.perform(event);
+                }
+            } catch (RuntimeException | AssertionError e) {
+                return result(Verdict.INCONCLUSIVE, RunClock.thrown("the system under test", e) + " when input "
+                        + event + " was applied at " + time(now));
             }
             List<io.dtron.engine.internal.sem.SymState> next = new ArrayList<>();
             List<StateSet.Successor> taken = new ArrayList<>();

@@ -9,7 +9,8 @@ import java.util.Objects;
  * @param strategy  how inputs and delays are chosen
  * @param goals     test purposes, each an {@code E<> p} query in Uppaal's syntax; once every goal is reached or
  *                  can no longer be, the run ends: INCONCLUSIVE when one can no longer be reached, PASSED when all
- *                  were reached and {@code stopWhenDone}
+ *                  were reached and {@code stopWhenDone}; with {@code stopWhenDone}, a goal still open at the timeout
+ *                  ends the run INCONCLUSIVE too
  * @param horizon   how many moves ahead the strategy looks: a target farther than that does not steer the choice
  * @param fairness  K of thesis 3.4.2: a choice of the system whose alternatives were taken a number of times that
  *                  differ by more than K, while a goal (or, for {@link Strategy#COVERAGE}, an uncovered edge) needs

@@ -109,8 +109,11 @@ class SteeringTest {
             if (t.steeringReport().goals().get(0).state() == GoalStatus.State.REACHED) {
                 opened++;
             } else {
-                assertEquals(Verdict.PASSED, r.verdict(), r.explanation());
+                // the goal, not reached, leaves the run without its purpose: INCONCLUSIVE, never PASSED
+                assertEquals(Verdict.INCONCLUSIVE, r.verdict(), r.explanation());
                 assertTrue(r.explanation().startsWith("the timeout of 20 time units"), r.explanation());
+                assertTrue(r.explanation().endsWith(", but not every goal was reached, so the run did not serve its"
+                        + " purpose: not reached: 'E<> Lock.Open'"), r.explanation());
             }
         }
         assertTrue(opened <= 3, "random eager inputs opened the lock in " + opened + " of 10 runs");
@@ -221,6 +224,42 @@ class SteeringTest {
         assertEquals(1_000, goal.micros());
     }
 
+    /**
+     * A job: a unit after go the system moves silently to Done, an urgent location, and leaves it at once with done.
+     * No state the tester keeps after an event is in Done; the system was there when done came.
+     */
+    static final String JOB = """
+            chan i_go, o_done;
+            process Job() {
+                clock x;
+                state Idle, Work { x <= 1 }, Done;
+                urgent Done;
+                init Idle;
+                trans Idle -> Work { sync i_go?; assign x = 0; },
+                      Work -> Done { guard x >= 1; },
+                      Done -> Idle { sync o_done!; };
+            }
+            process Env() { clock e; state Ready, Waiting; init Ready;
+                trans Ready -> Waiting { guard e >= 1; sync i_go!; }, Waiting -> Ready { sync o_done?; assign e = 0; }; }
+            system Job, Env;
+            """;
+
+    @Test
+    void aGoalOnALocationEnteredAndLeftBetweenTwoEventsIsReachedWhenTheSecondShowsTheSystemWasThere()
+            throws Exception {
+        OnlineTester t = tester(JOB, new Answer("done"), TestOptions.defaults(1).withTimeout(100))
+                .steer(Steering.of(Strategy.GOAL, List.of("E<> Job.Done")));
+        TestResult r = t.run();
+        assertEquals(Verdict.PASSED, r.verdict(), r.explanation());
+        assertEquals("every goal was reached: 'E<> Job.Done'", r.explanation());
+        GoalStatus goal = t.steeringReport().goals().get(0);
+        assertEquals(GoalStatus.State.REACHED, goal.state());
+        // done is the first output, a unit after the first input: the run ends then, not at its timeout
+        assertEquals(1, r.inputs(), r.toString());
+        assertEquals(1, r.outputs(), r.toString());
+        assertEquals(r.durationMicros(), goal.micros(), goal.toString());
+    }
+
     /** A coin the system flips on every go: heads or tails; the environment asks again a unit after each. */
     static final String COIN = """
             chan i_go, o_heads, o_tails;
@@ -259,7 +298,14 @@ class SteeringTest {
         OnlineTester unbounded = tester(COIN, new Answer("heads"), TestOptions.defaults(1).withTimeout(100))
                 .steer(Steering.of(Strategy.GOAL, List.of("E<> Coin.Tails")));
         TestResult timeout = unbounded.run();
-        assertEquals(Verdict.PASSED, timeout.verdict(), timeout.explanation());
+        assertEquals(Verdict.INCONCLUSIVE, timeout.verdict(), timeout.explanation());
+        assertTrue(timeout.explanation().endsWith("not reached: 'E<> Coin.Tails'"), timeout.explanation());
+        // when a stop condition, not the goals, decides when the run has done enough, the goal is only followed
+        OnlineTester conditioned = tester(COIN, new Answer("heads"), TestOptions.defaults(1).withTimeout(100))
+                .steer(new Steering(Strategy.GOAL, List.of("E<> Coin.Tails"), Steering.DEFAULT_HORIZON, -1, false));
+        TestResult passed = conditioned.run();
+        assertEquals(Verdict.PASSED, passed.verdict(), passed.explanation());
+        assertEquals(GoalStatus.State.OPEN, conditioned.steeringReport().goals().get(0).state());
         assertEquals(GoalStatus.State.OPEN, unbounded.steeringReport().goals().get(0).state());
         // a fair coin reaches the goal
         OnlineTester fair = tester(COIN, new Answer("tails"), TestOptions.defaults(1).withTimeout(1000))

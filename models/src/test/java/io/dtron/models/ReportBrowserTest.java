@@ -71,6 +71,34 @@ class ReportBrowserTest {
         Files.copy(shot, SCREENSHOTS.resolve(name), StandardCopyOption.REPLACE_EXISTING);
     }
 
+    /** A user who presses every 2 units or more and sees the level, for the lamps of the models below. */
+    private static final String PRESSING_USER = """
+            process User() { clock u; state idle; init idle;
+                trans idle -> idle { guard u >= 2; sync i_press!; assign u = 0; },
+                      idle -> idle { sync o_level?; }; }
+            system Lamp, User;
+            """;
+
+    /**
+     * Runs {@code model} (a file) against its own implementation part in virtual time with a report beside it, which
+     * must pass, and opens the report in a new browser, drawn: the caller quits the browser.
+     */
+    static WebDriver reportOfItsOwnRun(Path model, long seed, long timeout) {
+        Path page = model.resolveSibling(model.getFileName() + ".html");
+        String[] run = dtron("run", model.toString(), "--sut", "model", "--virtual-time", "--seed", Long.toString(seed),
+                "--timeout", Long.toString(timeout), "--report", page.toString());
+        assertEquals("0", run[0], run[1] + run[2]);
+        WebDriver browser = HeadlessChrome.defaults().create();
+        try {
+            browser.get(page.toUri().toString());
+            awaitRendered(browser);
+            return browser;
+        } catch (RuntimeException | Error e) {
+            browser.quit();
+            throw e;
+        }
+    }
+
     @Test
     void theReportOfAFailedLampRunHighlightsTheFailingOutputAndMarksWhereTheRunEnded(@TempDir Path dir)
             throws Exception {
@@ -198,19 +226,9 @@ class ReportBrowserTest {
                           low -> off { guard x >= 5; sync o_level!; assign o_level_n = 0; },
                           bright -> off { guard x >= 5; sync o_level!; assign o_level_n = 0; },
                           bright -> bright { sync i_press?; }; }
-                process User() { clock u; state idle; init idle;
-                    trans idle -> idle { guard u >= 2; sync i_press!; assign u = 0; },
-                          idle -> idle { sync o_level?; }; }
-                system Lamp, User;
-                """);
-        Path page = dir.resolve("lamp.html");
-        String[] run = dtron("run", model.toString(), "--sut", "model", "--virtual-time", "--seed", "2", "--timeout",
-                "100", "--report", page.toString());
-        assertEquals("0", run[0], run[1] + run[2]);
-        WebDriver browser = HeadlessChrome.defaults().create();
+                """ + PRESSING_USER);
+        WebDriver browser = reportOfItsOwnRun(model, 2, 100);
         try {
-            browser.get(page.toUri().toString());
-            awaitRendered(browser);
             assertEquals(2, browser.findElements(By.xpath("//h3[contains(., 'laid out automatically')]")).size());
             List<WebElement> lamp = browser.findElements(By.cssSelector("svg[data-template='Lamp'] g.location"));
             assertEquals(List.of("off", "low", "bright"), lamp.stream().map(e -> e.getAttribute("data-name")).toList());
@@ -232,6 +250,36 @@ class ReportBrowserTest {
                 assertEquals(at + " to " + at, row.findElement(By.cssSelector("td.window")).getText(), row.getText());
             }
             screenshot(browser, "report-xta.png");
+        } finally {
+            browser.quit();
+        }
+    }
+
+    @Test
+    void longLabelsAndNamesAreDrawnWholeInsideTheirTemplatesBox(@TempDir Path dir) throws Exception {
+        Path model = Files.writeString(dir.resolve("long.xta"), """
+                chan i_press, o_level;
+                int[0,2] o_level_n;
+                int[0,99] presses_counted_since_the_lamp_was_installed;
+                process Lamp() { clock x; state off, on_after_a_press_that_the_lamp_has_accepted { x <= 5 }; init off;
+                    trans off -> on_after_a_press_that_the_lamp_has_accepted { guard x >= 0 && presses_counted_since_the_lamp_was_installed < 99 && presses_counted_since_the_lamp_was_installed != 57; sync i_press?; assign x = 0, presses_counted_since_the_lamp_was_installed = presses_counted_since_the_lamp_was_installed + 1; },
+                          on_after_a_press_that_the_lamp_has_accepted -> off { guard x >= 5; sync o_level!; assign o_level_n = 0; }; }
+                """ + PRESSING_USER);
+        WebDriver browser = reportOfItsOwnRun(model, 1, 50);
+        try {
+            Object clipped = ((org.openqa.selenium.JavascriptExecutor) browser).executeScript("""
+                    var out = [];
+                    document.querySelectorAll('svg[data-template] text').forEach(function (t) {
+                      var v = t.ownerSVGElement.viewBox.baseVal, b = t.getBBox();
+                      if (b.x < v.x || b.y < v.y || b.x + b.width > v.x + v.width || b.y + b.height > v.y + v.height) {
+                        out.push(t.textContent);
+                      }
+                    });
+                    return out.join(' | ');""");
+            assertEquals("", clipped, "texts that reach out of their template's box");
+            assertTrue(browser.findElements(By.cssSelector("svg[data-template='Lamp'] text")).stream()
+                    .anyMatch(t -> t.getText().contains("!= 57")), "the long guard is drawn");
+            screenshot(browser, "report-long-labels.png");
         } finally {
             browser.quit();
         }

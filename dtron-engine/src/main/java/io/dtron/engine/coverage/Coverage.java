@@ -38,6 +38,11 @@ public record Coverage(String model, String fingerprint, List<Long> seeds, List<
         channels = List.copyOf(channels);
     }
 
+    /** The {@link #fingerprint} of the runs of {@code network}: a digest of its processes, locations and edges. */
+    public static String fingerprintOf(io.dtron.model.Network network) {
+        return io.dtron.engine.internal.coverage.Recorder.fingerprint(network);
+    }
+
     /** The most unreachable elements the summary names; the coverage file lists them all. */
     public static final int SUMMARY_UNREACHABLE = 5;
 

@@ -218,6 +218,28 @@ class CoverageTest {
     }
 
     @Test
+    void theLocationsOfAnEdgeTakenForCertainAreVisitedForCertain() throws Exception {
+        OnlineTester t = tester(model("branches.xta"), new Relay(), 1, 100);
+        t.until(StopCondition.parse("inputs(2)"), Goals.NONE);
+        Coverage c = t.run().coverage();
+        // done leaves only from B: B -> Idle is taken for certain, so B was visited for certain, though the tester
+        // cannot tell by which of the two edges from C the implementation got there
+        assertEquals(Coverage.Taken.CERTAINLY, edge(c, "Impl", 4).taken());
+        assertEquals(Coverage.Taken.POSSIBLY, edge(c, "Impl", 2).taken());
+        assertEquals(Coverage.Taken.POSSIBLY, edge(c, "Impl", 3).taken());
+        assertEquals(Coverage.Taken.CERTAINLY, location(c, "Impl", "B").taken());
+        for (Coverage.ProcessCoverage p : c.processes()) {
+            for (Coverage.EdgeCoverage e : p.edges()) {
+                for (String l : List.of(e.source(), e.target())) {
+                    assertTrue(location(c, p.name(), l).taken().compareTo(e.taken()) >= 0,
+                            p.name() + "." + l + " is less certain than " + e);
+                }
+            }
+        }
+        assertEquals(new Coverage.Figure(5, 5), c.locations());
+    }
+
+    @Test
     void theListenersHearTheEdgesOfEveryStep() throws Exception {
         OnlineTester t = tester(model("press.xta"), new PressLamp(), 1, 100);
         t.until(StopCondition.parse("inputs(2)"), Goals.NONE);

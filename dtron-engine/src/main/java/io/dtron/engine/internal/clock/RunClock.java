@@ -4,6 +4,7 @@ import io.dtron.engine.Event;
 import io.dtron.engine.TestClock;
 import java.util.PriorityQueue;
 import java.util.concurrent.LinkedBlockingQueue;
+import org.slf4j.LoggerFactory;
 
 /**
  * The clock of one run, as the tester drives it: scheduled tasks run on the tester's thread, inside
@@ -147,6 +148,9 @@ public abstract class RunClock implements TestClock {
                     taskTime = next.due;
                     try {
                         next.action.run();
+                    } catch (RuntimeException | AssertionError e) {
+                        // a task is the adapter's (the system under test's): its exception ends the run, not DTRON
+                        abort(thrown("a task of the system under test", e));
                     } finally {
                         taskTime = -1;
                     }
@@ -201,6 +205,18 @@ public abstract class RunClock implements TestClock {
      * 0 anyway.
      */
     public void begin(java.util.OptionalLong zeroNanoTime) {
+    }
+
+    /**
+     * What an exception thrown by the adapter's code says to a user, on one line and without its stack trace (logged
+     * at debug): {@code WHO threw IllegalStateException: its message, at Sut.perform(Sut.java:12)}.
+     */
+    public static String thrown(String who, Throwable e) {
+        LoggerFactory.getLogger(RunClock.class).debug(who + " threw", e);
+        StackTraceElement[] frames = e.getStackTrace();
+        String message = e.getMessage() == null ? "" : ": " + e.getMessage().strip().replaceAll("\\s*\\R\\s*", " ");
+        return who + " threw " + e.getClass().getSimpleName() + message + (frames.length == 0 ? "" : ", at "
+                + frames[0]);
     }
 
     /** Whether an output is waiting. */

@@ -374,6 +374,8 @@ public final class Recorder implements RunCoverage {
             }
             edgeTaken[id] = how;
         }
+        // the process was in the edge's source and went to its target: both as certain as the edge
+        visit(p, e.source(), how);
         visit(p, e.target(), how);
     }
 

@@ -373,9 +373,11 @@ public final class Steerer {
     /**
      * The moves {@code kept} (successors on one observable channel) were taken at {@code micros}, the {@code
      * inputs}-th input so far: counts their edges as covered (each edge of every one, as the system may have taken
-     * any of them) and the system's choice among its outputs; returns a stop when the fairness bound is passed.
+     * any of them), the goals that held in every state they start from, and the system's choice among its outputs;
+     * returns a stop when the fairness bound is passed.
      */
     public Stop taken(List<StateSet.Successor> kept, long micros, int inputs, boolean output) {
+        passedThrough(kept, micros);
         boolean grew = false;
         for (StateSet.Successor s : kept) {
             for (int e : graph.edgesOf(s.move())) {
@@ -398,6 +400,41 @@ public final class Steerer {
             }
         }
         return output && steering.fairness() >= 0 ? fairness(kept) : null;
+    }
+
+    /**
+     * Marks reached the open goals that hold in every state the moves {@code kept} start from: the system was in one
+     * of them at {@code micros}, just before the event, even when it got there by internal moves after the last
+     * event and leaves again by this one (a location entered and left between two observations).
+     */
+    private void passedThrough(List<StateSet.Successor> kept, long micros) {
+        if (kept.isEmpty()) {
+            return;
+        }
+        List<SymState> from = new ArrayList<>(kept.size());
+        for (StateSet.Successor s : kept) {
+            from.add(s.from());
+        }
+        boolean changed = false;
+        for (int g = 0; g < status.length; g++) {
+            if (status[g].state() == GoalStatus.State.OPEN && holdsInEvery(g, from)) {
+                status[g] = new GoalStatus(status[g].text(), GoalStatus.State.REACHED, micros, null);
+                changed = true;
+            }
+        }
+        if (changed) {
+            openChanged();
+        }
+    }
+
+    /** Whether goal {@code g} holds in every one of {@code states}. */
+    private boolean holdsInEvery(int g, List<SymState> states) {
+        for (SymState s : states) {
+            if (!properties.get(g).holdsSomewhere(s)) {
+                return false;
+            }
+        }
+        return true;
     }
 
     /**
@@ -490,14 +527,7 @@ public final class Steerer {
             if (status[g].state() != GoalStatus.State.OPEN) {
                 continue;
             }
-            boolean all = true;
-            for (SymState s : set.states()) {
-                if (!properties.get(g).holdsSomewhere(s)) {
-                    all = false;
-                    break;
-                }
-            }
-            if (all) {
+            if (holdsInEvery(g, set.states())) {
                 status[g] = new GoalStatus(status[g].text(), GoalStatus.State.REACHED, micros, null);
                 changed = true;
                 continue;
@@ -542,6 +572,21 @@ public final class Steerer {
         }
         return new Stop(Verdict.INCONCLUSIVE, "a goal can no longer be reached, so the run cannot serve its"
                 + " purpose: " + unreachable + (reached.length() > 0 ? " (reached: " + reached + ")" : ""));
+    }
+
+    /**
+     * The goals still open at the end of a run, quoted and joined ({@code 'E<> p'; 'E<> q'}), when the goals decide
+     * when the run has done enough (no stop condition): the run did not serve its purpose. Empty when every goal was
+     * reached or found unreachable, or when a stop condition decides.
+     */
+    public String openAtTheEnd() {
+        StringBuilder open = new StringBuilder();
+        for (GoalStatus s : steering.stopWhenDone() ? goals() : List.<GoalStatus>of()) {
+            if (s.state() == GoalStatus.State.OPEN) {
+                open.append(open.length() == 0 ? "" : "; ").append('\'').append(s.text()).append('\'');
+            }
+        }
+        return open.toString();
     }
 
     private boolean unreachableFrom(StateSet set, int g) {
