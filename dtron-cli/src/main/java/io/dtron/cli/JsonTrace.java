@@ -24,7 +24,8 @@ import java.util.function.Consumer;
 /**
  * Writes a run as JSON lines: a {@code start} line with the seed and settings, one line per input and output
  * with its time (an output with the window the model allowed it in, {@code allowed_from_us} to {@code
- * allowed_until_us}, -1 for the end of the test), a {@code due} line when the deadline of the next output changes
+ * allowed_until_us}, -1 for the end of the test; an input at the time the tester placed it, which is when its
+ * adapter reported it applied, with {@code sent_us} when that was later than the tester sent it), a {@code due} line when the deadline of the next output changes
  * (the time by which the model requires an output while the tester waits for it, -1 when it waits for something
  * else), an {@code edges} line for each of them once the tester has committed to it (the edges it took for certain
  * and possibly), a {@code coverage}
@@ -63,6 +64,12 @@ final class JsonTrace implements TestListener {
     /** The window the model allowed the next output in, as the tester last said; on the tester's thread only. */
     private long windowFrom = -1;
     private long windowUntil = -1;
+    /**
+     * The tester's lines held behind an input whose time is not known yet (its adapter reports when it applied it):
+     * an input's line carries the time the tester placed it at, and the lines stay in the order of their times.
+     * On the tester's thread only.
+     */
+    private final java.util.List<Held> held = new java.util.ArrayList<>();
 
     private JsonTrace(Writer out, long unitMicros, Counted counted, FileChannel file, long maxBytes) {
         this.out = out;
@@ -173,7 +180,7 @@ final class JsonTrace implements TestListener {
 
     @Override
     public void inputApplied(Event input, long micros) {
-        event("input", input, micros, "");
+        held.add(new Held(micros, input, null));
     }
 
     @Override
@@ -188,7 +195,7 @@ final class JsonTrace implements TestListener {
                 + windowUntil;
         windowFrom = -1;
         windowUntil = -1;
-        event("output", output, micros, window);
+        later(micros, eventLine("output", output, micros, window));
     }
 
     @Override
@@ -196,16 +203,82 @@ final class JsonTrace implements TestListener {
         long deadline = until == Until.OUTPUT_DEADLINE ? untilMicros : -1;
         if (deadline != due) {
             due = deadline;
-            bounded(nowMicros, "{\"kind\":\"due\",\"t_us\":" + nowMicros + ",\"until_us\":" + deadline + "}");
+            later(nowMicros, "{\"kind\":\"due\",\"t_us\":" + nowMicros + ",\"until_us\":" + deadline + "}");
         }
     }
 
     @Override
     public void edgesTaken(Event event, boolean input, long micros, java.util.List<String> certainly,
                            java.util.List<String> possibly) {
-        bounded(micros, "{\"kind\":\"edges\",\"t_us\":" + micros + ",\"channel\":" + quote(event.channel())
+        if (input) {
+            place(event, micros);
+        }
+        later(micros, "{\"kind\":\"edges\",\"t_us\":" + micros + ",\"channel\":" + quote(event.channel())
                 + ",\"input\":" + input + ",\"certainly\":" + strings(certainly) + ",\"possibly\":"
                 + strings(possibly) + "}");
+        flush(false);
+    }
+
+    /**
+     * A line of the tester's, held while an input before it waits for its time: an input's line (its event, with
+     * {@code line} null) until the tester commits to where it was applied, or any other line behind it.
+     */
+    private static final class Held {
+        long micros;
+        final Event input;
+        final String line;
+        /** When the tester sent the input, for an input's line. */
+        final long sentMicros;
+        boolean placed;
+
+        Held(long micros, Event input, String line) {
+            this.micros = micros;
+            this.input = input;
+            this.line = line;
+            this.sentMicros = micros;
+            this.placed = input == null;
+        }
+    }
+
+    /**
+     * Places the first input on {@code event}'s channel still waiting for its time at {@code micros}, where the
+     * tester committed to it: an adapter that reports when it applied an input (later than it was sent) moves it.
+     */
+    private void place(Event event, long micros) {
+        for (Held h : held) {
+            if (!h.placed && h.input.channel().equals(event.channel())) {
+                h.micros = micros;
+                h.placed = true;
+                return;
+            }
+        }
+    }
+
+    /** Writes {@code json}, of a line at {@code micros}, now, or after the inputs held before it. */
+    private void later(long micros, String json) {
+        if (held.isEmpty()) {
+            bounded(micros, json);
+        } else {
+            held.add(new Held(micros, null, json));
+        }
+    }
+
+    /**
+     * Writes the held lines in the order of their times (stable: lines of one time stay in the order they came) up
+     * to the first input still waiting for its time, or all of them when {@code all} (the run ended: an input
+     * never committed to keeps the time it was sent at).
+     */
+    private void flush(boolean all) {
+        held.sort(java.util.Comparator.comparingLong(h -> h.micros));
+        while (!held.isEmpty() && (all || held.get(0).placed)) {
+            Held h = held.remove(0);
+            if (h.input != null) {
+                bounded(h.micros, eventLine("input", h.input, h.micros, h.micros == h.sentMicros ? ""
+                        : ",\"sent_us\":" + h.sentMicros));
+            } else {
+                bounded(h.micros, h.line);
+            }
+        }
     }
 
     private static String strings(java.util.List<String> list) {
@@ -218,6 +291,7 @@ final class JsonTrace implements TestListener {
 
     @Override
     public void finished(TestResult r) {
+        flush(true);
         // the coverage file's text has line breaks only between its tokens: strings escape theirs
         String coverage = r.coverage() == null ? null : "{\"kind\":\"coverage\",\"coverage\":"
                 + CoverageJson.write(r.coverage()).replace("\n", "") + "}";
@@ -346,9 +420,9 @@ final class JsonTrace implements TestListener {
         }
     }
 
-    private void event(String kind, Event e, long micros, String more) {
-        bounded(micros, "{\"kind\":\"" + kind + "\",\"t_us\":" + micros + ",\"channel\":" + quote(e.channel())
-                + ",\"values\":" + values(e.values()) + more + "}");
+    private static String eventLine(String kind, Event e, long micros, String more) {
+        return "{\"kind\":\"" + kind + "\",\"t_us\":" + micros + ",\"channel\":" + quote(e.channel())
+                + ",\"values\":" + values(e.values()) + more + "}";
     }
 
     private static String values(Map<String, Integer> variables) {

@@ -161,6 +161,40 @@ class RunCommandTest {
     }
 
     @Test
+    void anInputAppliedLaterThanItWasSentStandsInTheTraceWhereTheTesterPlacedItAndReplaysAsJudged() throws IOException {
+        // the sticky ticker applies each reset 3 units after it is performed and reports so: its next tick comes 13
+        // units after the reset was sent, which the model allows only from where the reset was applied
+        Path trace = dir.resolve("sticky.jsonl");
+        CommandRun r = CommandRun.of("run", model.toString(), "--sut", TickerForTests.class.getName() + ":sticky",
+                "--virtual-time", "--seed", "3", "--timeout", "300", "--trace", trace.toString());
+        assertEquals(0, r.exit(), r.out() + r.err());
+        List<String> lines = Files.readAllLines(trace);
+        List<String> inputs = lines.stream().filter(l -> l.startsWith("{\"kind\":\"input\"")).toList();
+        assertFalse(inputs.isEmpty(), "resets were sent");
+        java.util.regex.Pattern placed = java.util.regex.Pattern.compile("\"t_us\":(\\d+),.*\"sent_us\":(\\d+)");
+        for (String input : inputs) {
+            java.util.regex.Matcher m = placed.matcher(input);
+            assertTrue(m.find(), "an input placed where it was applied: " + input);
+            assertEquals(3000, Long.parseLong(m.group(1)) - Long.parseLong(m.group(2)), input);
+        }
+        long last = -1;
+        int events = 0;
+        for (String line : lines.subList(1, lines.size() - 1)) {
+            java.util.regex.Matcher m = java.util.regex.Pattern.compile("\"t_us\":(\\d+)").matcher(line);
+            if (line.startsWith("{\"kind\":\"input\"") || line.startsWith("{\"kind\":\"output\"")) {
+                assertTrue(m.find());
+                long t = Long.parseLong(m.group(1));
+                assertTrue(t >= last, "events in the order of their times: " + line);
+                last = t;
+                events++;
+            }
+        }
+        CommandRun replay = CommandRun.of("monitor", model.toString(), "--replay", trace.toString());
+        assertEquals(0, replay.exit(), replay.out() + replay.err());
+        assertTrue(replay.out().contains("no violation, " + events + " events checked"), replay.out());
+    }
+
+    @Test
     void usageErrorsExitWithOneAndSayWhy() {
         CommandRun noClass = CommandRun.of("run", model.toString(), "--sut", "no.such.Sut", "--virtual-time");
         assertEquals(1, noClass.exit());
@@ -170,7 +204,7 @@ class RunCommandTest {
         assertTrue(notAdapter.err().contains("does not implement io.dtron.engine.Adapter"), notAdapter.err());
         CommandRun variant = CommandRun.of("run", model.toString(), "--sut", TickerForTests.class.getName() + ":weird");
         assertEquals(1, variant.exit());
-        assertTrue(variant.err().contains("unknown variant 'weird' (correct, slow, broken, jammed, burning)"), variant.err());
+        assertTrue(variant.err().contains("unknown variant 'weird' (correct, slow, broken, jammed, burning, sticky)"), variant.err());
         CommandRun policy = CommandRun.of("run", model.toString(), "--sut", TickerForTests.class.getName(), "--delay-policy", "soon");
         assertEquals(1, policy.exit());
         assertTrue(policy.err().contains("unknown delay policy 'soon'"), policy.err());

@@ -533,7 +533,7 @@ public final class OnlineTester {
                             return result(held.result().verdict(), held.result().explanation());
                         }
                         // the verdict depends on where that input was applied, which its acknowledgement will say
-                        until = held.finalMicros() + ACK_PATIENCE * window();
+                        until = ackDeadline(held.finalMicros());
                         if (now >= until) {
                             return result(Verdict.INCONCLUSIVE, "input " + unacknowledged.event + " was "
                                     + unacknowledged.sentOrDue() + " at " + time(unacknowledged.sentMicros)
@@ -830,6 +830,17 @@ public final class OnlineTester {
             return null;
         }
 
+        /**
+         * Until when, from {@code micros}, an acknowledgement is waited for before what follows its input is committed
+         * to, or a verdict that depends on where it was applied is given: {@link #ACK_PATIENCE} reorder windows; without
+         * a reorder window (an adapter in the tester's process, in virtual time above all, that applies an input later
+         * than it was performed) until the end of the run, so that an output that came between the two is judged
+         * before the input, as it happened.
+         */
+        private long ackDeadline(long micros) {
+            return window() > 0 ? micros + ACK_PATIENCE * window() : Math.max(micros, timeoutMicros);
+        }
+
         /** Whether inputs are acknowledged: the adapter says so, or some acknowledgement came in this run. */
         private boolean expectsAcknowledgements() {
             return acknowledgements > 0 || adapter.acknowledgesInputs();
@@ -844,7 +855,7 @@ public final class OnlineTester {
             while (!pending.isEmpty() && pending.get(0).micros <= horizon) {
                 Pending first = pending.get(0);
                 if (first.input && !first.acknowledged && expectsAcknowledgements()
-                        && horizon < first.sentMicros + ACK_PATIENCE * window()) {
+                        && horizon < ackDeadline(first.sentMicros)) {
                     break; // where it was applied is still to come, and so is the order of what follows it
                 }
                 Pending p = pending.remove(0);
@@ -946,7 +957,8 @@ public final class OnlineTester {
 
         /**
          * Puts an event among the pending ones by its time and judges the events from there on. A verdict is held
-         * until no event before the one it concerns can arrive any more; without a reorder window it is final.
+         * until no event before the one it concerns can arrive any more; without a reorder window it is final, but for
+         * one that waits for the acknowledgement of an input sent before the event it concerns ({@link #ackDeadline}).
          */
         private TestResult place(Pending event) {
             int index = pending.size();
@@ -970,7 +982,7 @@ public final class OnlineTester {
                 Pending p = pending.get(i);
                 TestResult verdict = p.input ? reapply(p) : judge(p.event, p.micros, p.uncertainty);
                 if (verdict != null) {
-                    if (window() == 0) {
+                    if (window() == 0 && awaitingAcknowledgement(p.micros) == null) {
                         return verdict;
                     }
                     held = new Held(verdict, p.micros + window(), p.micros);
