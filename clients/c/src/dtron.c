@@ -32,6 +32,10 @@
 #define PUBLISH_WAIT_MS 2000
 #define RETRIES 150
 #define NAMED_DROPS 1024
+/* How long a member waits for its join to come back after the last message it read. */
+#define JOIN_WAIT_NS 10000000000LL
+/* How far back a member joining a secure bus reads the stream, before the stream's last message (security.md). */
+#define HISTORY_NS (2 * DTRON_STALE_NS)
 /* how far a tester's reading may lie outside a ping's round trip while the two clocks are still taken as one */
 #define SAME_CLOCK_SLACK_NS 1000LL
 
@@ -93,6 +97,10 @@ struct dtron_bus {
     uint64_t generation;
     dtron_stats stats;
     dtron_guard *guard; /* NULL: insecure */
+    /* on a secure bus, until this member's join came back: the Dtron-Seq of the join ("" after); the stream's
+       messages before it are read only for their senders' numbers (security.md); when one was read last */
+    char learning_until[21];
+    int64_t last_read_ns;
     /* the messages to publish again (publish_failed adds, the timer thread publishes); their own lock, which the
        library's thread takes, never bus->lock, which a publisher holds while the library may be full */
     pthread_mutex_t retry_lock;
@@ -607,11 +615,25 @@ static void on_message(natsConnection *nc, natsSubscription *sub, natsMsg *msg, 
         natsMsg_Destroy(msg);
         return;
     }
+    bus->last_read_ns = dtron_now_ns();
+    int own_join = bus->learning_until[0] != '\0' && sender != NULL && seq != NULL
+                   && strcmp(sender, bus->member) == 0 && strcmp(seq, bus->learning_until) == 0;
+    if (bus->guard != NULL && bus->learning_until[0] != '\0' && !own_join) { /* published before this member joined */
+        dtron_guard_learn(bus->guard, subject, sender, seq, sent_at, presence, joined, mac, natsMsg_GetData(msg),
+                          (size_t)natsMsg_GetDataLength(msg), meta->Timestamp);
+        jsMsgMetaData_Destroy(meta);
+        pthread_mutex_unlock(&bus->lock);
+        natsMsg_Destroy(msg);
+        return;
+    }
     /* before anything else: an insecure member does not read a secure one's messages, which it cannot check */
     int dropped = bus->guard == NULL
                       ? (mac != NULL ? DTRON_DROP_UNAUTHENTICATED : DTRON_DROP_NONE)
                       : dtron_guard_check(bus->guard, subject, sender, seq, sent_at, presence, joined, mac,
                                           natsMsg_GetData(msg), (size_t)natsMsg_GetDataLength(msg), meta->Timestamp);
+    if (own_join && dropped != DTRON_DROP_UNAUTHENTICATED) {
+        bus->learning_until[0] = '\0';
+    }
     if (dropped != DTRON_DROP_NONE) {
         drop(bus, subject, sender ? sender : "", dropped);
         jsMsgMetaData_Destroy(meta);
@@ -1016,6 +1038,7 @@ int dtron_connect(const dtron_options *options, dtron_bus **out, char *err, size
     snprintf(subjects, sizeof subjects, "dtron.%s.>", name);
     s = natsConnection_JetStream(&bus->js, bus->nc, &jsopts);
     jsStreamInfo *info = NULL;
+    int64_t history_from = 0; /* 0: the stream's first message */
     if (s == NATS_OK) {
         s = js_GetStreamInfo(&info, bus->js, stream, NULL, &jerr);
         if (s == NATS_NOT_FOUND) {
@@ -1036,6 +1059,9 @@ int dtron_connect(const dtron_options *options, dtron_bus **out, char *err, size
                 s = js_GetStreamInfo(&info, bus->js, stream, NULL, &jerr);
             }
         }
+        if (s == NATS_OK && info->State.Msgs > 0) { /* HISTORY_NS before the stream's last message, by its clock */
+            history_from = info->State.LastTime - HISTORY_NS;
+        }
         jsStreamInfo_Destroy(info);
     }
     if (s == NATS_OK) {
@@ -1043,6 +1069,12 @@ int dtron_connect(const dtron_options *options, dtron_bus **out, char *err, size
         jsSubOptions_Init(&sub_options);
         sub_options.Ordered = true;
         sub_options.Config.DeliverPolicy = js_DeliverNew;
+        if (bus->guard != NULL) { /* so that copies of the messages before the join are known (security.md) */
+            snprintf(bus->learning_until, sizeof bus->learning_until, "%llu",
+                     (unsigned long long)dtron_guard_next_number(bus->guard));
+            sub_options.Config.DeliverPolicy = history_from > 0 ? js_DeliverByStartTime : js_DeliverAll;
+            sub_options.Config.OptStartTime = history_from;
+        }
         s = js_Subscribe(&bus->sub, bus->js, subjects, on_message, bus, NULL, &sub_options, &jerr);
     }
     if (s != NATS_OK) {
@@ -1054,10 +1086,15 @@ int dtron_connect(const dtron_options *options, dtron_bus **out, char *err, size
     publish_presence(bus, "join");
     struct timespec deadline;
     clock_gettime(CLOCK_REALTIME, &deadline);
-    deadline.tv_sec += 10;
+    deadline.tv_sec += JOIN_WAIT_NS / 1000000000LL;
     while (bus->own_join == 0) {
         if (pthread_cond_timedwait(&bus->joined_cond, &bus->lock, &deadline) != 0) {
-            break;
+            if (bus->learning_until[0] == '\0' || dtron_now_ns() - bus->last_read_ns > JOIN_WAIT_NS) {
+                break;
+            }
+            /* the messages before the join are still coming */
+            deadline.tv_sec = (time_t)((bus->last_read_ns + JOIN_WAIT_NS) / 1000000000LL);
+            deadline.tv_nsec = (long)((bus->last_read_ns + JOIN_WAIT_NS) % 1000000000LL);
         }
     }
     int joined = bus->own_join != 0;

@@ -838,6 +838,24 @@ static void test_a_stranger_is_refused(void) {
     }
 }
 
+/* Stores a captured message again as it was, but for its Nats-Msg-Id (which the code does not cover). */
+static void publish_again(natsConnection *nc, natsMsg *captured) {
+    natsMsg *again = NULL;
+    const char **keys = NULL;
+    int count = 0;
+    natsMsg_Create(&again, natsMsg_GetSubject(captured), NULL, natsMsg_GetData(captured),
+                   natsMsg_GetDataLength(captured));
+    natsMsgHeader_Keys(captured, &keys, &count);
+    for (int i = 0; i < count; i++) {
+        const char *value = NULL;
+        if (strcmp(keys[i], "Nats-Msg-Id") != 0 && natsMsgHeader_Get(captured, keys[i], &value) == NATS_OK) {
+            natsMsgHeader_Set(again, keys[i], value);
+        }
+    }
+    free((void *)keys);
+    store(nc, again);
+}
+
 static void test_a_replayed_message_is_dropped(void) {
     static record rb = {.lock = PTHREAD_MUTEX_INITIALIZER};
     dtron_bus *a = member("replay", "a", NULL, 0), *b = member("replay", "b", NULL, 0);
@@ -855,20 +873,7 @@ static void test_a_replayed_message_is_dropped(void) {
     UNTIL(seen_is(&rb, 1, first));
     /* published again as captured, under a new Nats-Msg-Id (which the code does not cover), twice */
     for (int copy = 0; copy < 2 && captured; copy++) {
-        natsMsg *again = NULL;
-        const char **keys = NULL;
-        int count = 0;
-        natsMsg_Create(&again, natsMsg_GetSubject(captured), NULL, natsMsg_GetData(captured),
-                       natsMsg_GetDataLength(captured));
-        natsMsgHeader_Keys(captured, &keys, &count);
-        for (int i = 0; i < count; i++) {
-            const char *value = NULL;
-            if (strcmp(keys[i], "Nats-Msg-Id") != 0 && natsMsgHeader_Get(captured, keys[i], &value) == NATS_OK) {
-                natsMsgHeader_Set(again, keys[i], value);
-            }
-        }
-        free((void *)keys);
-        store(nc, again);
+        publish_again(nc, captured);
     }
     send_order(a, 2);
     UNTIL(seen_is(&rb, 2, both));
@@ -881,6 +886,43 @@ static void test_a_replayed_message_is_dropped(void) {
     natsSubscription_Destroy(sub);
     natsConnection_Destroy(nc);
     dtron_close(b);
+    dtron_close(a);
+}
+
+/*
+ * A member that joins later learns the numbers of the stream's messages before its join, without delivering them:
+ * the announcement and the order a member published before it joined, published again after, are replayed for it.
+ */
+static void test_a_message_from_before_a_member_joined_is_replayed_for_it(void) {
+    static record rl = {.lock = PTHREAD_MUTEX_INITIALIZER};
+    static const char *const second[] = {"a:2"};
+    natsConnection *nc = NULL;
+    natsSubscription *sub = NULL;
+    CHECK(natsConnection_ConnectTo(&nc, url) == NATS_OK);
+    CHECK(natsConnection_SubscribeSync(&sub, nc, "dtron.late.c.>") == NATS_OK);
+    natsConnection_Flush(nc);
+    dtron_bus *a = member("late", "a", NULL, 0);
+    send_order(a, 1);
+    natsMsg *before[8] = {NULL};
+    int count = 0, ordered = 0;
+    while (!ordered && count < 8 && natsSubscription_NextMsg(&before[count], sub, 10000) == NATS_OK) {
+        ordered = strcmp(natsMsg_GetSubject(before[count++]), "dtron.late.c.order") == 0;
+    }
+    CHECK(ordered && count >= 2);
+    dtron_bus *late = member("late", "late", NULL, 0);
+    CHECK(dtron_listen(late, "order", ORDER_VARS, 1, recorded, &rl, 1) == DTRON_OK);
+    for (int i = 0; i < count; i++) {
+        publish_again(nc, before[i]);
+        natsMsg_Destroy(before[i]);
+    }
+    send_order(a, 2);
+    UNTIL(seen_is(&rl, 1, second));
+    CHECK(seen_is(&rl, 1, second));
+    dtron_stats stats = dtron_get_stats(late);
+    CHECK(stats.replayed == (uint64_t)count && stats.unauthenticated == 0 && stats.stale == 0);
+    natsSubscription_Destroy(sub);
+    natsConnection_Destroy(nc);
+    dtron_close(late);
     dtron_close(a);
 }
 
@@ -1181,6 +1223,7 @@ int main(int argc, char **argv) {
     test_a_tester_reading_this_hosts_clock();
     test_a_stranger_is_refused();
     test_a_replayed_message_is_dropped();
+    test_a_message_from_before_a_member_joined_is_replayed_for_it();
     test_a_member_started_again_under_its_id_is_heard();
     test_a_stale_message_is_dropped();
     test_an_insecure_member_and_a_secure_one_do_not_hear_each_other();
