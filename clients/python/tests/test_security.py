@@ -190,6 +190,19 @@ def test_a_stranger_is_refused_and_changes_neither_members_nor_listeners(
     assert len(dropped_lines(caplog, "tester", "UNAUTHENTICATED")) == 3  # by a, b and the stranger
 
 
+async def capturing(nats_url: str, subject: str) -> tuple[Any, list[Any]]:
+    """A client without the secret, and the list into which it captures the messages on ``subject`` from now on."""
+    nc = await nats.connect(nats_url)
+    captured: list[Any] = []
+
+    async def capture(msg: Any) -> None:
+        captured.append(msg)
+
+    await nc.subscribe(subject, cb=capture)
+    await nc.flush()
+    return nc, captured
+
+
 def test_a_replayed_message_is_dropped_as_replayed(nats_url: str, caplog: pytest.LogCaptureFixture) -> None:
     caplog.set_level(logging.WARNING, logger="dtron")
 
@@ -199,14 +212,7 @@ def test_a_replayed_message_is_dropped_as_replayed(nats_url: str, caplog: pytest
         got: list[int] = []
         b.add_listener(ORDER, lambda m: got.append(m.variables["n"]))
         await until(lambda: b.members == ["a", "b"])
-        nc = await nats.connect(nats_url)
-        captured: list[Any] = []
-
-        async def capture(msg: Any) -> None:
-            captured.append(msg)
-
-        await nc.subscribe("dtron.replay.c.order", cb=capture)
-        await nc.flush()
+        nc, captured = await capturing(nats_url, "dtron.replay.c.order")
         await a.send(ORDER.value(n=1))
         await until(lambda: got == [1] and len(captured) == 1)
         # published again as captured, under a new Nats-Msg-Id (which the code does not cover), twice
@@ -230,14 +236,7 @@ def test_a_message_from_before_a_member_joined_published_again_is_replayed_for_i
     them): a finished run's start, published again after it joined, is replayed for it, as the order before it."""
     async def test() -> None:
         a = await dtron.connect(nats_url, bus="late", member="a")
-        nc = await nats.connect(nats_url)
-        captured: list[Any] = []
-
-        async def capture(msg: Any) -> None:
-            captured.append(msg)
-
-        await nc.subscribe("dtron.late.c.>", cb=capture)
-        await nc.flush()
+        nc, captured = await capturing(nats_url, "dtron.late.c.>")
         await a.send(ORDER.value(n=1))
         await a.send(dtron.RUN_START.value(timeunit=1000))
         await until(lambda: any(msg.subject == "dtron.late.c.dtron_start" for msg in captured))
