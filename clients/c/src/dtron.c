@@ -10,6 +10,7 @@
 #include <nats/nats.h>
 #include <openssl/crypto.h>
 #include <openssl/rand.h>
+#include <math.h>
 #include <pthread.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -1247,8 +1248,9 @@ uint64_t dtron_run_generation(dtron_bus *bus) {
 
 double dtron_run_units_of(dtron_bus *bus, int64_t event_time_ns) {
     pthread_mutex_lock(&bus->lock);
-    double units = (double)(event_time_ns + (bus->has_estimate ? bus->offset_ns : 0) - bus->start_tester_ns)
-                   / ((double)bus->unit_us * 1000.0);
+    double units = bus->unit_us <= 0 ? NAN /* no run started yet: no time unit */
+                   : (double)(event_time_ns + (bus->has_estimate ? bus->offset_ns : 0) - bus->start_tester_ns)
+                         / ((double)bus->unit_us * 1000.0);
     pthread_mutex_unlock(&bus->lock);
     return units;
 }

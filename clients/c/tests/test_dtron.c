@@ -9,6 +9,7 @@
  */
 #define _POSIX_C_SOURCE 200809L
 #include <dtron.h>
+#include <math.h>
 #include <nats/nats.h>
 #include <netinet/in.h>
 #include <openssl/evp.h>
@@ -623,6 +624,7 @@ static void test_handshake_clock_and_acknowledgements(void) {
     pthread_mutex_lock(&t.lock);
     CHECK(t.pongs >= 1 && t.first_pong_acked == probe);
     pthread_mutex_unlock(&t.lock);
+    CHECK(isnan(dtron_run_now_units(adapter))); /* no run yet: no time unit */
     t.run_id = "run-1";
     tester_publish(&t, "dtron_start", "timeunit", 1000, NULL, 0, 0, NULL);
     UNTIL(dtron_run_running(adapter));
