@@ -33,6 +33,7 @@
 #define PUBLISH_WAIT_MS 2000
 #define RETRIES 150
 #define NAMED_DROPS 1024
+#define PRINTABLE 128
 /* How long a member waits for its join to come back after the last message it read. */
 #define JOIN_WAIT_NS 10000000000LL
 /* How far back a member joining a secure bus reads the stream, before the stream's last message (security.md). */
@@ -470,13 +471,34 @@ static void membership(dtron_bus *bus, uint64_t sequence, int64_t stream_ns, con
 /* ---- receiving ---- */
 
 /* Counts a message the bus's secret drops, and names the first of each sender and reason (lock held). */
-static void drop(dtron_bus *bus, const char *subject, const char *sender, int reason) {
+/*
+ * A sender or subject anyone may choose, fit for one line of standard error: printable ASCII, one '?' for any other
+ * character (escape sequences included), at most PRINTABLE characters and "..." when there were more.
+ */
+static const char *printable(const char *text, char out[PRINTABLE + 4]) {
+    const unsigned char *c = (const unsigned char *)(text ? text : "");
+    size_t n = 0;
+    for (; *c && n < PRINTABLE; c++) {
+        if ((*c & 0xC0) != 0x80) { /* a UTF-8 continuation byte belongs to the character that has its '?' */
+            out[n++] = *c >= 0x20 && *c < 0x7F ? (char)*c : '?';
+        }
+    }
+    while ((*c & 0xC0) == 0x80) {
+        c++;
+    }
+    strcpy(out + n, *c ? "..." : "");
+    return out;
+}
+
+static void drop(dtron_bus *bus, const char *subject, const char *anyone, int reason) {
     static const char *const why[] = {"", "no valid code of the bus's secret", "its Dtron-Seq was accepted before",
                                       "its Dtron-Time is more than 120 s away from when the stream stored it"};
     uint64_t *counter = reason == DTRON_DROP_REPLAYED ? &bus->stats.replayed
                         : reason == DTRON_DROP_STALE  ? &bus->stats.stale
                                                       : &bus->stats.unauthenticated;
     (*counter)++;
+    char sender[PRINTABLE + 4], where[PRINTABLE + 4];
+    printable(anyone, sender);
     for (size_t i = 0; i < bus->nnamed; i++) {
         if (bus->named[i].reason == reason && strcmp(bus->named[i].sender, sender) == 0) {
             return;
@@ -488,13 +510,14 @@ static void drop(dtron_bus *bus, const char *subject, const char *sender, int re
     bus->named[bus->nnamed].sender = copy(sender);
     bus->named[bus->nnamed++].reason = reason;
     const char *because = bus->guard ? why[reason] : "it carries a message code, and this member is insecure";
-    warn(bus, "dropped a message on %s from '%s', %s: %s (further ones are counted only)", subject, sender,
-         dtron_drop_reason(reason), because);
+    warn(bus, "dropped a message on %s from '%s', %s: %s (further ones are counted only)", printable(subject, where),
+         sender, dtron_drop_reason(reason), because);
 }
 
 static void count_rejected(dtron_bus *bus, uint64_t *counter, const char *channel, const char *why) {
+    char name[PRINTABLE + 4];
     (*counter)++;
-    warn(bus, "rejected a message on channel '%s': %s", channel, why);
+    warn(bus, "rejected a message on channel '%s': %s", printable(channel, name), why);
 }
 
 /* Checks a Sync against a template; returns 1 if it fits, else counts it as rejected (lock held). */
@@ -611,7 +634,8 @@ static void on_message(natsConnection *nc, natsSubscription *sub, natsMsg *msg, 
         return;
     }
     if (natsMsg_GetMetaData(&meta, msg) != NATS_OK) {
-        warn(bus, "dropped a message on %s without its stream's metadata", subject);
+        char where[PRINTABLE + 4];
+        warn(bus, "dropped a message on %s without its stream's metadata", printable(subject, where));
         pthread_mutex_unlock(&bus->lock);
         natsMsg_Destroy(msg);
         return;

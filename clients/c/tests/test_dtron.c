@@ -840,6 +840,31 @@ static void test_a_stranger_is_refused(void) {
     }
 }
 
+/* A sender's name anyone may choose is named on standard error printable and clipped: no escape sequence of the
+   terminal, at most 128 characters and "...". */
+static void test_a_senders_name_is_named_printable_and_clipped(void) {
+    char log[128], name[1009], expected[160];
+    snprintf(log, sizeof log, "%s/names.log", scratch);
+    capture_stderr(log);
+    dtron_bus *b = member("names", "b", NULL, 0);
+    natsConnection *nc = NULL;
+    CHECK(natsConnection_ConnectTo(&nc, url) == NATS_OK);
+    memcpy(name, "\x1b[31mred", 8);
+    memset(name + 8, 'x', 1000);
+    name[1008] = '\0';
+    natsMsg *msg = order_message("dtron.names.c.order", NULL, NULL, 0);
+    natsMsgHeader_Set(msg, "Dtron-Sender", name);
+    store(nc, msg);
+    UNTIL(dtron_get_stats(b).unauthenticated == 1);
+    CHECK(dtron_get_stats(b).unauthenticated == 1);
+    natsConnection_Destroy(nc);
+    dtron_close(b);
+    restore_stderr();
+    snprintf(expected, sizeof expected, "from '?[31mred%.120s...', UNAUTHENTICATED", name + 8);
+    CHECK(lines_with(log, expected) == 1);
+    CHECK(lines_with(log, "\x1b") == 0);
+}
+
 /* Stores a captured message again as it was, but for its Nats-Msg-Id (which the code does not cover). */
 static void publish_again(natsConnection *nc, natsMsg *captured) {
     natsMsg *again = NULL;
@@ -1225,6 +1250,7 @@ int main(int argc, char **argv) {
     test_a_tester_reading_this_hosts_clock();
     test_a_stranger_is_refused();
     test_a_replayed_message_is_dropped();
+    test_a_senders_name_is_named_printable_and_clipped();
     test_a_message_from_before_a_member_joined_is_replayed_for_it();
     test_a_member_started_again_under_its_id_is_heard();
     test_a_stale_message_is_dropped();

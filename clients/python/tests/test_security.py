@@ -317,3 +317,22 @@ def test_an_insecure_member_and_a_secure_one_do_not_hear_each_other(
 
     run(test)
     assert any("INSECURE: member insecure on bus 'mixed'" in r.getMessage() for r in caplog.records)
+
+
+def test_a_senders_name_anyone_may_choose_is_logged_printable_and_clipped(
+        nats_url: str, caplog: pytest.LogCaptureFixture) -> None:
+    caplog.set_level(logging.WARNING, logger="dtron")
+    name = "\x1b[31mred" + "x" * 1000  # an escape sequence of the terminal, and far too long for a line
+
+    async def test() -> None:
+        b = await dtron.connect(nats_url, bus="names", member="b")
+        nc = await nats.connect(nats_url)
+        await nc.jetstream().publish("dtron.names.c.order", b"", headers={"Dtron-Sender": name})
+        await until(lambda: b.stats.rejected.get("UNAUTHENTICATED", 0) == 1)
+        await nc.close()
+        await b.close()
+
+    run(test)
+    lines = [r.getMessage() for r in caplog.records if r.name == "dtron" and "dropped a message" in r.getMessage()]
+    assert len(lines) == 1 and "\x1b" not in lines[0]
+    assert "from '?[31mred" + "x" * 120 + "...', UNAUTHENTICATED" in lines[0]

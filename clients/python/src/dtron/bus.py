@@ -53,6 +53,7 @@ _BUS_NAME = re.compile(r"[A-Za-z0-9_-]{1,64}\Z")
 _MEMBER_NAME = re.compile(r"[\x21-\x7e]{1,128}\Z")
 _CONTROL = frozenset({"dtron_hello", "dtron_ping", "dtron_pong", "dtron_serve"})
 _NAMED_DROPS = 1024
+_PRINTABLE = 128
 
 Listener = Callable[[Message], Union[None, Awaitable[None]]]
 
@@ -426,6 +427,7 @@ class Bus:
     def _drop(self, subject: str, sender: str, reason: str) -> None:
         """Counts a message the bus's secret drops, and names the first of each sender and reason in the log."""
         self.stats.rejected[reason] = self.stats.rejected.get(reason, 0) + 1
+        sender = _printable(sender)
         if (sender, reason) not in self._named_drops and len(self._named_drops) < _NAMED_DROPS:
             self._named_drops.add((sender, reason))
             why = ("it carries a message code, and this member is insecure" if self._guard is None
@@ -433,7 +435,7 @@ class Bus:
                          "REPLAYED": "its Dtron-Seq was accepted before", "STALE": "its Dtron-Time is more than "
                          "120 s away from when the stream stored it"}.get(reason, reason))
             LOG.warning("%s dropped a message on %s from %r, %s: %s (further ones are counted only)", self.member,
-                        subject, sender, reason, why)
+                        _printable(subject), sender, reason, why)
 
     def _membership(self, sequence: int, stream_ns: float, sender: Optional[str],
                     presence: Optional[dict[str, str]]) -> None:
@@ -504,7 +506,7 @@ class Bus:
 
     def _reject(self, channel: str, sender: str, error: InvalidMessage) -> None:
         self.stats.rejected[error.reason] = self.stats.rejected.get(error.reason, 0) + 1
-        LOG.warning("Rejected a message on channel %r from %s, %s", channel, sender, error)
+        LOG.warning("Rejected a message on channel %r from %s, %s", _printable(channel), _printable(sender), error)
 
     def _message(self, channel: str, data: bytes, transport_sender: str, received_ns: int) -> None:
         registration = self._registrations.get(channel)
@@ -743,6 +745,13 @@ async def connect(servers: Union[str, Sequence[str]] = "nats://127.0.0.1:4222", 
         if isinstance(e, ConnectionError):
             raise
         raise ConnectionError(f"cannot join bus {bus!r} on {urls}: {e}") from e
+
+
+def _printable(text: str) -> str:
+    """A sender or subject anyone may choose, fit for one log line: printable ASCII, "?" for any other character
+    (escape sequences included), at most _PRINTABLE characters and "..." when there were more."""
+    clipped = "".join(c if " " <= c <= "~" else "?" for c in text[:_PRINTABLE])
+    return clipped + "..." if len(text) > _PRINTABLE else clipped
 
 
 async def _history(js: Any, stream: str) -> dict[str, Any]:
