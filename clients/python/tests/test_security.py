@@ -258,6 +258,29 @@ def test_a_message_from_before_a_member_joined_published_again_is_replayed_for_i
     run(test)
 
 
+def test_a_member_that_joined_later_hears_the_bus_after_its_consumer_was_made_anew(nats_url: str) -> None:
+    """A member that joins a bus whose stream holds messages reads it from a start time; when the server loses its
+    consumer, the client makes it anew from a sequence, which the server takes only without that start time."""
+    async def test() -> None:
+        a = await dtron.connect(nats_url, bus="anew", member="a")
+        b = await dtron.connect(nats_url, bus="anew", member="b")  # the stream holds a's messages
+        got: list[int] = []
+        b.add_listener(ORDER, lambda m: got.append(m.variables["n"]))
+        await until(lambda: b.members == ["a", "b"])
+        nc = await nats.connect(nats_url)
+        js = nc.jetstream()
+        for consumer in await js.consumers_info("DTRON_anew"):
+            await js.delete_consumer("DTRON_anew", consumer.name)
+        await a.send(ORDER.value(n=1))
+        await until(lambda: got == [1], 60)
+        assert got == [1] and b.stats.rejected == {}
+        await nc.close()
+        await b.close()
+        await a.close()
+
+    run(test)
+
+
 def test_a_member_started_again_under_its_id_is_heard(nats_url: str) -> None:
     async def test() -> None:
         b = await dtron.connect(nats_url, bus="again", member="b")

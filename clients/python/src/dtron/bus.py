@@ -728,8 +728,12 @@ async def connect(servers: Union[str, Sequence[str]] = "nats://127.0.0.1:4222", 
                                                  deliver_policy=api.DeliverPolicy.NEW)
         else:  # from HISTORY_S before the stream's last message, so that copies of those are known (security.md)
             member_bus._learning_until = str(guard.next_number)
+            history = await _history(js, stream)
             member_bus._sub = await js.subscribe(f"dtron.{bus}.>", cb=member_bus._received, ordered_consumer=True,
-                                                 **await _history(js, stream))
+                                                 config=history)
+            # nats-py makes its ordered consumer anew (a server lost) from this very configuration and a start
+            # sequence, which the server refuses together with a start time
+            history.opt_start_time = None
         await member_bus._put_presence("join", wait=True)
         while not member_bus._joined.is_set():
             try:
@@ -754,17 +758,17 @@ def _printable(text: str) -> str:
     return clipped + "..." if len(text) > _PRINTABLE else clipped
 
 
-async def _history(js: Any, stream: str) -> dict[str, Any]:
+async def _history(js: Any, stream: str) -> api.ConsumerConfig:
     """Where a member joining a secure bus starts reading: HISTORY_S before the stream's last message (the stream's
     clock, whatever this machine's), or at its first message when it holds none."""
     state = (await js.stream_info(stream)).state
-    if state.messages == 0:
-        return {"deliver_policy": api.DeliverPolicy.ALL}
-    try:
-        last = (await js.get_msg(stream, seq=state.last_seq)).time
-    except NotFoundError:
-        last = None
+    last = None
+    if state.messages > 0:
+        try:
+            last = (await js.get_msg(stream, seq=state.last_seq)).time
+        except NotFoundError:
+            pass
     if last is None:
-        return {"deliver_policy": api.DeliverPolicy.ALL}
-    return {"deliver_policy": api.DeliverPolicy.BY_START_TIME,
-            "config": api.ConsumerConfig(opt_start_time=last - datetime.timedelta(seconds=HISTORY_S))}
+        return api.ConsumerConfig(deliver_policy=api.DeliverPolicy.ALL)
+    return api.ConsumerConfig(deliver_policy=api.DeliverPolicy.BY_START_TIME,
+                              opt_start_time=last - datetime.timedelta(seconds=HISTORY_S))
