@@ -968,6 +968,25 @@ static void publish_again(dtron_bus *bus, jsPubAckErr *pae) {
     warn(bus, "a message was not stored: %s", pae->ErrText ? pae->ErrText : natsStatus_GetText(pae->Err));
 }
 
+/*
+ * The first of the stream's sequences lo to hi stored at or after from_ns (the stream's clock), found by bisection
+ * over the messages' times; a message that cannot be read counts as a later one, so that more is read, not less.
+ */
+static uint64_t first_since(jsCtx *js, const char *stream, uint64_t lo, uint64_t hi, int64_t from_ns) {
+    while (lo < hi) {
+        uint64_t mid = lo + (hi - lo) / 2;
+        natsMsg *msg = NULL;
+        int later = js_GetMsg(&msg, js, stream, mid, NULL, NULL) != NATS_OK || natsMsg_GetTime(msg) >= from_ns;
+        natsMsg_Destroy(msg);
+        if (later) {
+            hi = mid;
+        } else {
+            lo = mid + 1;
+        }
+    }
+    return lo;
+}
+
 int dtron_connect(const dtron_options *options, dtron_bus **out, char *err, size_t errlen) {
     const char *servers = options && options->servers ? options->servers : "nats://127.0.0.1:4222";
     const char *name = options && options->bus ? options->bus : "dtron";
@@ -1063,7 +1082,7 @@ int dtron_connect(const dtron_options *options, dtron_bus **out, char *err, size
     snprintf(subjects, sizeof subjects, "dtron.%s.>", name);
     s = natsConnection_JetStream(&bus->js, bus->nc, &jsopts);
     jsStreamInfo *info = NULL;
-    int64_t history_from = 0; /* 0: the stream's first message */
+    uint64_t history_from = 0; /* 0: the stream's first message */
     if (s == NATS_OK) {
         s = js_GetStreamInfo(&info, bus->js, stream, NULL, &jerr);
         if (s == NATS_NOT_FOUND) {
@@ -1085,7 +1104,8 @@ int dtron_connect(const dtron_options *options, dtron_bus **out, char *err, size
             }
         }
         if (s == NATS_OK && info->State.Msgs > 0) { /* HISTORY_NS before the stream's last message, by its clock */
-            history_from = info->State.LastTime - HISTORY_NS;
+            history_from = first_since(bus->js, stream, info->State.FirstSeq, info->State.LastSeq,
+                                       info->State.LastTime - HISTORY_NS);
         }
         jsStreamInfo_Destroy(info);
     }
@@ -1097,8 +1117,10 @@ int dtron_connect(const dtron_options *options, dtron_bus **out, char *err, size
         if (bus->guard != NULL) { /* so that copies of the messages before the join are known (security.md) */
             snprintf(bus->learning_until, sizeof bus->learning_until, "%llu",
                      (unsigned long long)dtron_guard_next_number(bus->guard));
-            sub_options.Config.DeliverPolicy = history_from > 0 ? js_DeliverByStartTime : js_DeliverAll;
-            sub_options.Config.OptStartTime = history_from;
+            /* a start sequence, not a start time: the library makes its ordered consumer anew (a server lost) from
+               this configuration with a start sequence, and the server refuses a consumer with both */
+            sub_options.Config.DeliverPolicy = history_from > 0 ? js_DeliverByStartSequence : js_DeliverAll;
+            sub_options.Config.OptStartSeq = history_from;
         }
         s = js_Subscribe(&bus->sub, bus->js, subjects, on_message, bus, NULL, &sub_options, &jerr);
     }

@@ -953,6 +953,38 @@ static void test_a_message_from_before_a_member_joined_is_replayed_for_it(void) 
     dtron_close(a);
 }
 
+/*
+ * A member that joins a bus whose stream holds messages reads it from a start time; when the server loses its
+ * consumer, the client makes it anew from a sequence (here: every consumer of the stream deleted), and the member
+ * hears the next order.
+ */
+static void test_a_member_that_joined_later_hears_the_bus_after_its_consumer_was_made_anew(void) {
+    static record rb = {.lock = PTHREAD_MUTEX_INITIALIZER};
+    static const char *const first[] = {"a:1"};
+    dtron_bus *a = member("anew", "a", NULL, 0), *b = member("anew", "b", NULL, 0); /* the stream holds a's */
+    CHECK(dtron_listen(b, "order", ORDER_VARS, 1, recorded, &rb, 1) == DTRON_OK);
+    UNTIL(dtron_member_count(b) == 2);
+    natsConnection *nc = NULL;
+    jsCtx *js = NULL;
+    jsConsumerNamesList *names = NULL;
+    CHECK(natsConnection_ConnectTo(&nc, url) == NATS_OK);
+    CHECK(natsConnection_JetStream(&js, nc, NULL) == NATS_OK);
+    CHECK(js_ConsumerNames(&names, js, "DTRON_anew", NULL, NULL) == NATS_OK);
+    for (int i = 0; names != NULL && i < names->Count; i++) {
+        CHECK(js_DeleteConsumer(js, "DTRON_anew", names->List[i], NULL, NULL) == NATS_OK);
+    }
+    jsConsumerNamesList_Destroy(names);
+    send_order(a, 1);
+    for (int waited = 0; !seen_is(&rb, 1, first) && waited < 6000; waited++) { /* the client notices in seconds */
+        pause_ms(10);
+    }
+    CHECK(seen_is(&rb, 1, first));
+    jsCtx_Destroy(js);
+    natsConnection_Destroy(nc);
+    dtron_close(b);
+    dtron_close(a);
+}
+
 static void test_a_member_started_again_under_its_id_is_heard(void) {
     static record rb = {.lock = PTHREAD_MUTEX_INITIALIZER};
     static const char *const expected[] = {"a:1", "a:2"};
@@ -1252,6 +1284,7 @@ int main(int argc, char **argv) {
     test_a_replayed_message_is_dropped();
     test_a_senders_name_is_named_printable_and_clipped();
     test_a_message_from_before_a_member_joined_is_replayed_for_it();
+    test_a_member_that_joined_later_hears_the_bus_after_its_consumer_was_made_anew();
     test_a_member_started_again_under_its_id_is_heard();
     test_a_stale_message_is_dropped();
     test_an_insecure_member_and_a_secure_one_do_not_hear_each_other();
