@@ -73,8 +73,10 @@ import org.slf4j.LoggerFactory;
  *
  * <p>On a secure bus ({@link NatsSettings#macKey()}) every message carries {@value MessageCodes#SEQ}, {@value
  * MessageCodes#TIME} and {@value MessageCodes#MAC} (security.md), and a received message without a valid code, or
- * replayed, or stale, is dropped before membership and delivery see it, and counted in {@link #drops()}. On an
- * insecure bus messages carry no code, and one that carries a code (a secure member's) is dropped.
+ * replayed, or stale, is dropped before membership and delivery see it, and counted in {@link #drops()}. A member
+ * joining a secure bus first reads the stream's messages of the 240 s before its join for their senders' counters
+ * only, so that a copy of one of them published again after it joined is replayed for it too. On an insecure bus
+ * messages carry no code, and one that carries a code (a secure member's) is dropped.
  */
 public final class NatsTransport implements Transport {
     /** Header naming the member that published a message. */
