@@ -131,10 +131,13 @@ int dtron_run_running(dtron_bus *bus);
 /** Counts the runs started; a task of an earlier run can tell that its run is over. */
 uint64_t dtron_run_generation(dtron_bus *bus);
 
-/** Run time now, in model time units, on the tester's clock. */
+/**
+ * Run time now, in model time units of the current (or last) run, on the tester's clock; NAN before the first run
+ * (there is no time unit yet), as for dtron_run_units_of.
+ */
 double dtron_run_now_units(dtron_bus *bus);
 
-/** The run time, in units, of an event at event_time_ns on this host's clock. */
+/** The run time, in units, of an event at event_time_ns on this host's clock; NAN before the first run. */
 double dtron_run_units_of(dtron_bus *bus, int64_t event_time_ns);
 
 /** Sleeps until run time units of run generation; returns 1 then, 0 if that run stopped or another started. */

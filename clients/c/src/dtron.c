@@ -10,6 +10,7 @@
 #include <nats/nats.h>
 #include <openssl/crypto.h>
 #include <openssl/rand.h>
+#include <math.h>
 #include <pthread.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -32,6 +33,11 @@
 #define PUBLISH_WAIT_MS 2000
 #define RETRIES 150
 #define NAMED_DROPS 1024
+#define PRINTABLE 128
+/* How long a member waits for its join to come back after the last message it read. */
+#define JOIN_WAIT_NS 10000000000LL
+/* How far back a member joining a secure bus reads the stream, before the stream's last message (security.md). */
+#define HISTORY_NS (2 * DTRON_STALE_NS)
 /* how far a tester's reading may lie outside a ping's round trip while the two clocks are still taken as one */
 #define SAME_CLOCK_SLACK_NS 1000LL
 
@@ -93,6 +99,10 @@ struct dtron_bus {
     uint64_t generation;
     dtron_stats stats;
     dtron_guard *guard; /* NULL: insecure */
+    /* on a secure bus, until this member's join came back: the Dtron-Seq of the join ("" after); the stream's
+       messages before it are read only for their senders' numbers (security.md); when one was read last */
+    char learning_until[21];
+    int64_t last_read_ns;
     /* the messages to publish again (publish_failed adds, the timer thread publishes); their own lock, which the
        library's thread takes, never bus->lock, which a publisher holds while the library may be full */
     pthread_mutex_t retry_lock;
@@ -461,13 +471,34 @@ static void membership(dtron_bus *bus, uint64_t sequence, int64_t stream_ns, con
 /* ---- receiving ---- */
 
 /* Counts a message the bus's secret drops, and names the first of each sender and reason (lock held). */
-static void drop(dtron_bus *bus, const char *subject, const char *sender, int reason) {
+/*
+ * A sender or subject anyone may choose, fit for one line of standard error: printable ASCII, one '?' for any other
+ * character (escape sequences included), at most PRINTABLE characters and "..." when there were more.
+ */
+static const char *printable(const char *text, char out[PRINTABLE + 4]) {
+    const unsigned char *c = (const unsigned char *)(text ? text : "");
+    size_t n = 0;
+    for (; *c && n < PRINTABLE; c++) {
+        if ((*c & 0xC0) != 0x80) { /* a UTF-8 continuation byte belongs to the character that has its '?' */
+            out[n++] = *c >= 0x20 && *c < 0x7F ? (char)*c : '?';
+        }
+    }
+    while ((*c & 0xC0) == 0x80) {
+        c++;
+    }
+    strcpy(out + n, *c ? "..." : "");
+    return out;
+}
+
+static void drop(dtron_bus *bus, const char *subject, const char *anyone, int reason) {
     static const char *const why[] = {"", "no valid code of the bus's secret", "its Dtron-Seq was accepted before",
                                       "its Dtron-Time is more than 120 s away from when the stream stored it"};
     uint64_t *counter = reason == DTRON_DROP_REPLAYED ? &bus->stats.replayed
                         : reason == DTRON_DROP_STALE  ? &bus->stats.stale
                                                       : &bus->stats.unauthenticated;
     (*counter)++;
+    char sender[PRINTABLE + 4], where[PRINTABLE + 4];
+    printable(anyone, sender);
     for (size_t i = 0; i < bus->nnamed; i++) {
         if (bus->named[i].reason == reason && strcmp(bus->named[i].sender, sender) == 0) {
             return;
@@ -479,13 +510,14 @@ static void drop(dtron_bus *bus, const char *subject, const char *sender, int re
     bus->named[bus->nnamed].sender = copy(sender);
     bus->named[bus->nnamed++].reason = reason;
     const char *because = bus->guard ? why[reason] : "it carries a message code, and this member is insecure";
-    warn(bus, "dropped a message on %s from '%s', %s: %s (further ones are counted only)", subject, sender,
-         dtron_drop_reason(reason), because);
+    warn(bus, "dropped a message on %s from '%s', %s: %s (further ones are counted only)", printable(subject, where),
+         sender, dtron_drop_reason(reason), because);
 }
 
 static void count_rejected(dtron_bus *bus, uint64_t *counter, const char *channel, const char *why) {
+    char name[PRINTABLE + 4];
     (*counter)++;
-    warn(bus, "rejected a message on channel '%s': %s", channel, why);
+    warn(bus, "rejected a message on channel '%s': %s", printable(channel, name), why);
 }
 
 /* Checks a Sync against a template; returns 1 if it fits, else counts it as rejected (lock held). */
@@ -602,7 +634,19 @@ static void on_message(natsConnection *nc, natsSubscription *sub, natsMsg *msg, 
         return;
     }
     if (natsMsg_GetMetaData(&meta, msg) != NATS_OK) {
-        warn(bus, "dropped a message on %s without its stream's metadata", subject);
+        char where[PRINTABLE + 4];
+        warn(bus, "dropped a message on %s without its stream's metadata", printable(subject, where));
+        pthread_mutex_unlock(&bus->lock);
+        natsMsg_Destroy(msg);
+        return;
+    }
+    bus->last_read_ns = dtron_now_ns();
+    int own_join = bus->learning_until[0] != '\0' && sender != NULL && seq != NULL
+                   && strcmp(sender, bus->member) == 0 && strcmp(seq, bus->learning_until) == 0;
+    if (bus->guard != NULL && bus->learning_until[0] != '\0' && !own_join) { /* published before this member joined */
+        dtron_guard_learn(bus->guard, subject, sender, seq, sent_at, presence, joined, mac, natsMsg_GetData(msg),
+                          (size_t)natsMsg_GetDataLength(msg), meta->Timestamp);
+        jsMsgMetaData_Destroy(meta);
         pthread_mutex_unlock(&bus->lock);
         natsMsg_Destroy(msg);
         return;
@@ -612,6 +656,9 @@ static void on_message(natsConnection *nc, natsSubscription *sub, natsMsg *msg, 
                       ? (mac != NULL ? DTRON_DROP_UNAUTHENTICATED : DTRON_DROP_NONE)
                       : dtron_guard_check(bus->guard, subject, sender, seq, sent_at, presence, joined, mac,
                                           natsMsg_GetData(msg), (size_t)natsMsg_GetDataLength(msg), meta->Timestamp);
+    if (own_join && dropped != DTRON_DROP_UNAUTHENTICATED) {
+        bus->learning_until[0] = '\0';
+    }
     if (dropped != DTRON_DROP_NONE) {
         drop(bus, subject, sender ? sender : "", dropped);
         jsMsgMetaData_Destroy(meta);
@@ -921,6 +968,25 @@ static void publish_again(dtron_bus *bus, jsPubAckErr *pae) {
     warn(bus, "a message was not stored: %s", pae->ErrText ? pae->ErrText : natsStatus_GetText(pae->Err));
 }
 
+/*
+ * The first of the stream's sequences lo to hi stored at or after from_ns (the stream's clock), found by bisection
+ * over the messages' times; a message that cannot be read counts as a later one, so that more is read, not less.
+ */
+static uint64_t first_since(jsCtx *js, const char *stream, uint64_t lo, uint64_t hi, int64_t from_ns) {
+    while (lo < hi) {
+        uint64_t mid = lo + (hi - lo) / 2;
+        natsMsg *msg = NULL;
+        int later = js_GetMsg(&msg, js, stream, mid, NULL, NULL) != NATS_OK || natsMsg_GetTime(msg) >= from_ns;
+        natsMsg_Destroy(msg);
+        if (later) {
+            hi = mid;
+        } else {
+            lo = mid + 1;
+        }
+    }
+    return lo;
+}
+
 int dtron_connect(const dtron_options *options, dtron_bus **out, char *err, size_t errlen) {
     const char *servers = options && options->servers ? options->servers : "nats://127.0.0.1:4222";
     const char *name = options && options->bus ? options->bus : "dtron";
@@ -1016,6 +1082,7 @@ int dtron_connect(const dtron_options *options, dtron_bus **out, char *err, size
     snprintf(subjects, sizeof subjects, "dtron.%s.>", name);
     s = natsConnection_JetStream(&bus->js, bus->nc, &jsopts);
     jsStreamInfo *info = NULL;
+    uint64_t history_from = 0; /* 0: the stream's first message */
     if (s == NATS_OK) {
         s = js_GetStreamInfo(&info, bus->js, stream, NULL, &jerr);
         if (s == NATS_NOT_FOUND) {
@@ -1036,6 +1103,10 @@ int dtron_connect(const dtron_options *options, dtron_bus **out, char *err, size
                 s = js_GetStreamInfo(&info, bus->js, stream, NULL, &jerr);
             }
         }
+        if (s == NATS_OK && info->State.Msgs > 0) { /* HISTORY_NS before the stream's last message, by its clock */
+            history_from = first_since(bus->js, stream, info->State.FirstSeq, info->State.LastSeq,
+                                       info->State.LastTime - HISTORY_NS);
+        }
         jsStreamInfo_Destroy(info);
     }
     if (s == NATS_OK) {
@@ -1043,6 +1114,14 @@ int dtron_connect(const dtron_options *options, dtron_bus **out, char *err, size
         jsSubOptions_Init(&sub_options);
         sub_options.Ordered = true;
         sub_options.Config.DeliverPolicy = js_DeliverNew;
+        if (bus->guard != NULL) { /* so that copies of the messages before the join are known (security.md) */
+            snprintf(bus->learning_until, sizeof bus->learning_until, "%llu",
+                     (unsigned long long)dtron_guard_next_number(bus->guard));
+            /* a start sequence, not a start time: the library makes its ordered consumer anew (a server lost) from
+               this configuration with a start sequence, and the server refuses a consumer with both */
+            sub_options.Config.DeliverPolicy = history_from > 0 ? js_DeliverByStartSequence : js_DeliverAll;
+            sub_options.Config.OptStartSeq = history_from;
+        }
         s = js_Subscribe(&bus->sub, bus->js, subjects, on_message, bus, NULL, &sub_options, &jerr);
     }
     if (s != NATS_OK) {
@@ -1054,10 +1133,15 @@ int dtron_connect(const dtron_options *options, dtron_bus **out, char *err, size
     publish_presence(bus, "join");
     struct timespec deadline;
     clock_gettime(CLOCK_REALTIME, &deadline);
-    deadline.tv_sec += 10;
+    deadline.tv_sec += JOIN_WAIT_NS / 1000000000LL;
     while (bus->own_join == 0) {
         if (pthread_cond_timedwait(&bus->joined_cond, &bus->lock, &deadline) != 0) {
-            break;
+            if (bus->learning_until[0] == '\0' || dtron_now_ns() - bus->last_read_ns > JOIN_WAIT_NS) {
+                break;
+            }
+            /* the messages before the join are still coming */
+            deadline.tv_sec = (time_t)((bus->last_read_ns + JOIN_WAIT_NS) / 1000000000LL);
+            deadline.tv_nsec = (long)((bus->last_read_ns + JOIN_WAIT_NS) % 1000000000LL);
         }
     }
     int joined = bus->own_join != 0;
@@ -1210,8 +1294,9 @@ uint64_t dtron_run_generation(dtron_bus *bus) {
 
 double dtron_run_units_of(dtron_bus *bus, int64_t event_time_ns) {
     pthread_mutex_lock(&bus->lock);
-    double units = (double)(event_time_ns + (bus->has_estimate ? bus->offset_ns : 0) - bus->start_tester_ns)
-                   / ((double)bus->unit_us * 1000.0);
+    double units = bus->unit_us <= 0 ? NAN /* no run started yet: no time unit */
+                   : (double)(event_time_ns + (bus->has_estimate ? bus->offset_ns : 0) - bus->start_tester_ns)
+                         / ((double)bus->unit_us * 1000.0);
     pthread_mutex_unlock(&bus->lock);
     return units;
 }

@@ -328,49 +328,96 @@ static void forget(dtron_guard *guard, int64_t stream_ns) {
     }
 }
 
+static int authentic(const dtron_guard *guard, const char *subject, const char *sender, const char *seq,
+                     const char *time, const char *presence, const char *joined, const char *mac, const void *data,
+                     size_t length) {
+    char code[65];
+    if (mac == NULL || strlen(mac) != 64) {
+        return 0;
+    }
+    dtron_message_code(guard->key, subject, sender, seq, time, presence, joined, data, length, code);
+    return CRYPTO_memcmp(code, mac, 64) == 0;
+}
+
+/* The window of a sender ("" for none), or NULL when it has none. */
+static window *window_of(dtron_guard *guard, const char *name) {
+    for (size_t i = 0; i < guard->nwindows; i++) {
+        if (strcmp(guard->windows[i].sender, name) == 0) {
+            return &guard->windows[i];
+        }
+    }
+    return NULL;
+}
+
+/* A new, empty window of a sender; NULL if out of memory. */
+static window *add_window(dtron_guard *guard, const char *name, int64_t stream_ns) {
+    forget(guard, stream_ns);
+    if (guard->nwindows == guard->capacity) {
+        size_t capacity = guard->capacity ? 2 * guard->capacity : 8;
+        window *more = realloc(guard->windows, capacity * sizeof *more);
+        if (more == NULL) {
+            return NULL;
+        }
+        guard->windows = more;
+        guard->capacity = capacity;
+    }
+    window *w = &guard->windows[guard->nwindows];
+    memset(w, 0, sizeof *w);
+    w->sender = strdup(name);
+    if (w->sender == NULL) {
+        return NULL;
+    }
+    guard->nwindows++;
+    return w;
+}
+
+/* Whether a number was accepted from the window's sender already, or is too low for the window to tell. */
+static int taken(const window *w, uint64_t number) {
+    return w != NULL && number <= w->highest
+           && (w->highest - number >= DTRON_REPLAY_WINDOW || seen(w, w->highest - number));
+}
+
 int dtron_guard_check(dtron_guard *guard, const char *subject, const char *sender, const char *seq, const char *time,
                       const char *presence, const char *joined, const char *mac, const void *data, size_t length,
                       int64_t stream_ns) {
-    char code[65];
-    if (mac == NULL || strlen(mac) != 64) {
-        return DTRON_DROP_UNAUTHENTICATED;
-    }
-    dtron_message_code(guard->key, subject, sender, seq, time, presence, joined, data, length, code);
-    if (CRYPTO_memcmp(code, mac, 64) != 0) {
+    if (!authentic(guard, subject, sender, seq, time, presence, joined, mac, data, length)) {
         return DTRON_DROP_UNAUTHENTICATED;
     }
     const char *name = sender ? sender : "";
     int64_t number = decimal(seq);
-    window *w = NULL;
-    for (size_t i = 0; i < guard->nwindows && w == NULL; i++) {
-        if (strcmp(guard->windows[i].sender, name) == 0) {
-            w = &guard->windows[i];
-        }
-    }
-    if (number < 1 || (w != NULL && (uint64_t)number <= w->highest
-                       && (w->highest - (uint64_t)number >= DTRON_REPLAY_WINDOW
-                           || seen(w, w->highest - (uint64_t)number)))) {
+    window *w = window_of(guard, name);
+    if (number < 1 || taken(w, (uint64_t)number)) {
         return DTRON_DROP_REPLAYED;
     }
     int64_t sent = decimal(time);
     if (sent < 0 || sent - stream_ns > DTRON_STALE_NS || stream_ns - sent > DTRON_STALE_NS) {
         return DTRON_DROP_STALE;
     }
-    if (w == NULL) {
-        forget(guard, stream_ns);
-        if (guard->nwindows == guard->capacity) {
-            size_t capacity = guard->capacity ? 2 * guard->capacity : 8;
-            window *more = realloc(guard->windows, capacity * sizeof *more);
-            if (more == NULL) {
-                return DTRON_DROP_REPLAYED; /* cannot remember it: do not take it */
-            }
-            guard->windows = more;
-            guard->capacity = capacity;
-        }
-        w = &guard->windows[guard->nwindows++];
-        memset(w, 0, sizeof *w);
-        w->sender = strdup(name);
+    if (w == NULL && (w = add_window(guard, name, stream_ns)) == NULL) {
+        return DTRON_DROP_REPLAYED; /* cannot remember it: do not take it */
     }
     accept_number(w, (uint64_t)number, stream_ns);
     return DTRON_DROP_NONE;
+}
+
+int dtron_guard_learn(dtron_guard *guard, const char *subject, const char *sender, const char *seq, const char *time,
+                      const char *presence, const char *joined, const char *mac, const void *data, size_t length,
+                      int64_t stream_ns) {
+    int64_t number = decimal(seq);
+    if (number < 1 || !authentic(guard, subject, sender, seq, time, presence, joined, mac, data, length)) {
+        return 0;
+    }
+    const char *name = sender ? sender : "";
+    window *w = window_of(guard, name);
+    if (w == NULL && (w = add_window(guard, name, stream_ns)) == NULL) {
+        return 0;
+    }
+    if (!taken(w, (uint64_t)number)) {
+        accept_number(w, (uint64_t)number, stream_ns);
+    }
+    return 1;
+}
+
+uint64_t dtron_guard_next_number(const dtron_guard *guard) {
+    return guard->sequence + 1;
 }

@@ -66,4 +66,16 @@ int dtron_guard_check(dtron_guard *guard, const char *subject, const char *sende
                       const char *presence, const char *joined, const char *mac, const void *data, size_t length,
                       int64_t stream_ns);
 
+/**
+ * Takes note of the number of a message published before this member joined, stored at stream_ns, so that a copy of
+ * it published again later is replayed: only a message whose code is valid counts, whatever its time. Returns 1 if
+ * it counted, else 0.
+ */
+int dtron_guard_learn(dtron_guard *guard, const char *subject, const char *sender, const char *seq, const char *time,
+                      const char *presence, const char *joined, const char *mac, const void *data, size_t length,
+                      int64_t stream_ns);
+
+/** The Dtron-Seq of the next message this member signs. */
+uint64_t dtron_guard_next_number(const dtron_guard *guard);
+
 #endif

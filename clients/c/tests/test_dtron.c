@@ -9,6 +9,7 @@
  */
 #define _POSIX_C_SOURCE 200809L
 #include <dtron.h>
+#include <math.h>
 #include <nats/nats.h>
 #include <netinet/in.h>
 #include <openssl/evp.h>
@@ -623,6 +624,7 @@ static void test_handshake_clock_and_acknowledgements(void) {
     pthread_mutex_lock(&t.lock);
     CHECK(t.pongs >= 1 && t.first_pong_acked == probe);
     pthread_mutex_unlock(&t.lock);
+    CHECK(isnan(dtron_run_now_units(adapter))); /* no run yet: no time unit */
     t.run_id = "run-1";
     tester_publish(&t, "dtron_start", "timeunit", 1000, NULL, 0, 0, NULL);
     UNTIL(dtron_run_running(adapter));
@@ -838,6 +840,49 @@ static void test_a_stranger_is_refused(void) {
     }
 }
 
+/* A sender's name anyone may choose is named on standard error printable and clipped: no escape sequence of the
+   terminal, at most 128 characters and "...". */
+static void test_a_senders_name_is_named_printable_and_clipped(void) {
+    char log[128], name[1009], expected[160];
+    snprintf(log, sizeof log, "%s/names.log", scratch);
+    capture_stderr(log);
+    dtron_bus *b = member("names", "b", NULL, 0);
+    natsConnection *nc = NULL;
+    CHECK(natsConnection_ConnectTo(&nc, url) == NATS_OK);
+    memcpy(name, "\x1b[31mred", 8);
+    memset(name + 8, 'x', 1000);
+    name[1008] = '\0';
+    natsMsg *msg = order_message("dtron.names.c.order", NULL, NULL, 0);
+    natsMsgHeader_Set(msg, "Dtron-Sender", name);
+    store(nc, msg);
+    UNTIL(dtron_get_stats(b).unauthenticated == 1);
+    CHECK(dtron_get_stats(b).unauthenticated == 1);
+    natsConnection_Destroy(nc);
+    dtron_close(b);
+    restore_stderr();
+    snprintf(expected, sizeof expected, "from '?[31mred%.120s...', UNAUTHENTICATED", name + 8);
+    CHECK(lines_with(log, expected) == 1);
+    CHECK(lines_with(log, "\x1b") == 0);
+}
+
+/* Stores a captured message again as it was, but for its Nats-Msg-Id (which the code does not cover). */
+static void publish_again(natsConnection *nc, natsMsg *captured) {
+    natsMsg *again = NULL;
+    const char **keys = NULL;
+    int count = 0;
+    natsMsg_Create(&again, natsMsg_GetSubject(captured), NULL, natsMsg_GetData(captured),
+                   natsMsg_GetDataLength(captured));
+    natsMsgHeader_Keys(captured, &keys, &count);
+    for (int i = 0; i < count; i++) {
+        const char *value = NULL;
+        if (strcmp(keys[i], "Nats-Msg-Id") != 0 && natsMsgHeader_Get(captured, keys[i], &value) == NATS_OK) {
+            natsMsgHeader_Set(again, keys[i], value);
+        }
+    }
+    free((void *)keys);
+    store(nc, again);
+}
+
 static void test_a_replayed_message_is_dropped(void) {
     static record rb = {.lock = PTHREAD_MUTEX_INITIALIZER};
     dtron_bus *a = member("replay", "a", NULL, 0), *b = member("replay", "b", NULL, 0);
@@ -855,20 +900,7 @@ static void test_a_replayed_message_is_dropped(void) {
     UNTIL(seen_is(&rb, 1, first));
     /* published again as captured, under a new Nats-Msg-Id (which the code does not cover), twice */
     for (int copy = 0; copy < 2 && captured; copy++) {
-        natsMsg *again = NULL;
-        const char **keys = NULL;
-        int count = 0;
-        natsMsg_Create(&again, natsMsg_GetSubject(captured), NULL, natsMsg_GetData(captured),
-                       natsMsg_GetDataLength(captured));
-        natsMsgHeader_Keys(captured, &keys, &count);
-        for (int i = 0; i < count; i++) {
-            const char *value = NULL;
-            if (strcmp(keys[i], "Nats-Msg-Id") != 0 && natsMsgHeader_Get(captured, keys[i], &value) == NATS_OK) {
-                natsMsgHeader_Set(again, keys[i], value);
-            }
-        }
-        free((void *)keys);
-        store(nc, again);
+        publish_again(nc, captured);
     }
     send_order(a, 2);
     UNTIL(seen_is(&rb, 2, both));
@@ -880,6 +912,83 @@ static void test_a_replayed_message_is_dropped(void) {
     natsMsg_Destroy(captured);
     natsSubscription_Destroy(sub);
     natsConnection_Destroy(nc);
+    dtron_close(b);
+    dtron_close(a);
+}
+
+/* A client of the server without the secret. */
+static natsConnection *raw_client(void) {
+    natsConnection *nc = NULL;
+    CHECK(natsConnection_ConnectTo(&nc, url) == NATS_OK);
+    return nc;
+}
+
+/* Whether the record's first and only message becomes expected within 60 s. */
+static int heard(record *r, const char *expected) {
+    const char *const one[] = {expected};
+    for (int waited = 0; !seen_is(r, 1, one) && waited < 6000; waited++) {
+        pause_ms(10);
+    }
+    return seen_is(r, 1, one);
+}
+
+/*
+ * A member that joins later learns the numbers of the stream's messages before its join, without delivering them:
+ * the announcement and the order a member published before it joined, published again after, are replayed for it.
+ */
+static void test_a_message_from_before_a_member_joined_is_replayed_for_it(void) {
+    static record rl = {.lock = PTHREAD_MUTEX_INITIALIZER};
+    natsConnection *nc = raw_client();
+    natsSubscription *sub = NULL;
+    CHECK(natsConnection_SubscribeSync(&sub, nc, "dtron.late.c.>") == NATS_OK);
+    natsConnection_Flush(nc);
+    dtron_bus *a = member("late", "a", NULL, 0);
+    send_order(a, 1);
+    natsMsg *before[8] = {NULL};
+    int count = 0, ordered = 0;
+    while (!ordered && count < 8 && natsSubscription_NextMsg(&before[count], sub, 10000) == NATS_OK) {
+        ordered = strcmp(natsMsg_GetSubject(before[count++]), "dtron.late.c.order") == 0;
+    }
+    CHECK(ordered && count >= 2);
+    dtron_bus *late = member("late", "late", NULL, 0);
+    CHECK(dtron_listen(late, "order", ORDER_VARS, 1, recorded, &rl, 1) == DTRON_OK);
+    for (int i = 0; i < count; i++) {
+        publish_again(nc, before[i]);
+        natsMsg_Destroy(before[i]);
+    }
+    send_order(a, 2);
+    CHECK(heard(&rl, "a:2"));
+    dtron_stats stats = dtron_get_stats(late);
+    CHECK(stats.replayed == (uint64_t)count && stats.unauthenticated == 0 && stats.stale == 0);
+    natsSubscription_Destroy(sub);
+    natsConnection_Destroy(nc);
+    dtron_close(late);
+    dtron_close(a);
+}
+
+/*
+ * A member that joins a bus whose stream holds messages reads it from a start time; when the server loses its
+ * consumer, the client makes it anew from a sequence (here: every consumer of the stream deleted), and the member
+ * hears the next order.
+ */
+static void test_a_member_that_joined_later_hears_the_bus_after_its_consumer_was_made_anew(void) {
+    static record rb = {.lock = PTHREAD_MUTEX_INITIALIZER};
+    dtron_bus *a = member("anew", "a", NULL, 0), *b = member("anew", "b", NULL, 0); /* the stream holds a's */
+    CHECK(dtron_listen(b, "order", ORDER_VARS, 1, recorded, &rb, 1) == DTRON_OK);
+    UNTIL(dtron_member_count(b) == 2);
+    natsConnection *nc = raw_client();
+    jsCtx *js = NULL;
+    jsConsumerNamesList *names = NULL;
+    CHECK(natsConnection_JetStream(&js, nc, NULL) == NATS_OK);
+    CHECK(js_ConsumerNames(&names, js, "DTRON_anew", NULL, NULL) == NATS_OK);
+    for (int i = 0; names != NULL && i < names->Count; i++) {
+        CHECK(js_DeleteConsumer(js, "DTRON_anew", names->List[i], NULL, NULL) == NATS_OK);
+    }
+    jsConsumerNamesList_Destroy(names);
+    jsCtx_Destroy(js);
+    natsConnection_Destroy(nc);
+    send_order(a, 1);
+    CHECK(heard(&rb, "a:1")); /* the client notices the lost consumer within seconds */
     dtron_close(b);
     dtron_close(a);
 }
@@ -1181,6 +1290,9 @@ int main(int argc, char **argv) {
     test_a_tester_reading_this_hosts_clock();
     test_a_stranger_is_refused();
     test_a_replayed_message_is_dropped();
+    test_a_senders_name_is_named_printable_and_clipped();
+    test_a_message_from_before_a_member_joined_is_replayed_for_it();
+    test_a_member_that_joined_later_hears_the_bus_after_its_consumer_was_made_anew();
     test_a_member_started_again_under_its_id_is_heard();
     test_a_stale_message_is_dropped();
     test_an_insecure_member_and_a_secure_one_do_not_hear_each_other();

@@ -190,6 +190,19 @@ def test_a_stranger_is_refused_and_changes_neither_members_nor_listeners(
     assert len(dropped_lines(caplog, "tester", "UNAUTHENTICATED")) == 3  # by a, b and the stranger
 
 
+async def capturing(nats_url: str, subject: str) -> tuple[Any, list[Any]]:
+    """A client without the secret, and the list into which it captures the messages on ``subject`` from now on."""
+    nc = await nats.connect(nats_url)
+    captured: list[Any] = []
+
+    async def capture(msg: Any) -> None:
+        captured.append(msg)
+
+    await nc.subscribe(subject, cb=capture)
+    await nc.flush()
+    return nc, captured
+
+
 def test_a_replayed_message_is_dropped_as_replayed(nats_url: str, caplog: pytest.LogCaptureFixture) -> None:
     caplog.set_level(logging.WARNING, logger="dtron")
 
@@ -199,14 +212,7 @@ def test_a_replayed_message_is_dropped_as_replayed(nats_url: str, caplog: pytest
         got: list[int] = []
         b.add_listener(ORDER, lambda m: got.append(m.variables["n"]))
         await until(lambda: b.members == ["a", "b"])
-        nc = await nats.connect(nats_url)
-        captured: list[Any] = []
-
-        async def capture(msg: Any) -> None:
-            captured.append(msg)
-
-        await nc.subscribe("dtron.replay.c.order", cb=capture)
-        await nc.flush()
+        nc, captured = await capturing(nats_url, "dtron.replay.c.order")
         await a.send(ORDER.value(n=1))
         await until(lambda: got == [1] and len(captured) == 1)
         # published again as captured, under a new Nats-Msg-Id (which the code does not cover), twice
@@ -223,6 +229,56 @@ def test_a_replayed_message_is_dropped_as_replayed(nats_url: str, caplog: pytest
 
     run(test)
     assert len(dropped_lines(caplog, "a", "REPLAYED")) == 2  # once by a (its own message), once by b
+
+
+def test_a_message_from_before_a_member_joined_published_again_is_replayed_for_it(nats_url: str) -> None:
+    """A member that joins later learns the numbers of the stream's messages before its join (without delivering
+    them): a finished run's start, published again after it joined, is replayed for it, as the order before it."""
+    async def test() -> None:
+        a = await dtron.connect(nats_url, bus="late", member="a")
+        nc, captured = await capturing(nats_url, "dtron.late.c.>")
+        await a.send(ORDER.value(n=1))
+        await a.send(dtron.RUN_START.value(timeunit=1000))
+        await until(lambda: any(msg.subject == "dtron.late.c.dtron_start" for msg in captured))
+        before = list(captured)  # the order, the start and what else a published (the channels it sends)
+        late = await dtron.connect(nats_url, bus="late", member="late")
+        got: list[str] = []
+        late.add_listener(ORDER, lambda m: got.append(f"order {m.variables['n']}"))
+        late.add_listener(dtron.RUN_START, lambda m: got.append("start"))
+        for msg in before:  # as captured, under a new Nats-Msg-Id (which the code does not cover)
+            headers = {k: v for k, v in msg.headers.items() if k != "Nats-Msg-Id"}
+            await nc.jetstream().publish(msg.subject, msg.data, headers=headers)
+        await a.send(ORDER.value(n=2))
+        await until(lambda: got == ["order 2"])
+        assert late.stats.rejected == {"REPLAYED": len(before)}
+        await nc.close()
+        await late.close()
+        await a.close()
+
+    run(test)
+
+
+def test_a_member_that_joined_later_hears_the_bus_after_its_consumer_was_made_anew(nats_url: str) -> None:
+    """A member that joins a bus whose stream holds messages reads it from a start time; when the server loses its
+    consumer, the client makes it anew from a sequence, which the server takes only without that start time."""
+    async def test() -> None:
+        a = await dtron.connect(nats_url, bus="anew", member="a")
+        b = await dtron.connect(nats_url, bus="anew", member="b")  # the stream holds a's messages
+        got: list[int] = []
+        b.add_listener(ORDER, lambda m: got.append(m.variables["n"]))
+        await until(lambda: b.members == ["a", "b"])
+        nc = await nats.connect(nats_url)
+        js = nc.jetstream()
+        for consumer in await js.consumers_info("DTRON_anew"):
+            await js.delete_consumer("DTRON_anew", consumer.name)
+        await a.send(ORDER.value(n=1))
+        await until(lambda: got == [1], 60)
+        assert got == [1] and b.stats.rejected == {}
+        await nc.close()
+        await b.close()
+        await a.close()
+
+    run(test)
 
 
 def test_a_member_started_again_under_its_id_is_heard(nats_url: str) -> None:
@@ -284,3 +340,22 @@ def test_an_insecure_member_and_a_secure_one_do_not_hear_each_other(
 
     run(test)
     assert any("INSECURE: member insecure on bus 'mixed'" in r.getMessage() for r in caplog.records)
+
+
+def test_a_senders_name_anyone_may_choose_is_logged_printable_and_clipped(
+        nats_url: str, caplog: pytest.LogCaptureFixture) -> None:
+    caplog.set_level(logging.WARNING, logger="dtron")
+    name = "\x1b[31mred" + "x" * 1000  # an escape sequence of the terminal, and far too long for a line
+
+    async def test() -> None:
+        b = await dtron.connect(nats_url, bus="names", member="b")
+        nc = await nats.connect(nats_url)
+        await nc.jetstream().publish("dtron.names.c.order", b"", headers={"Dtron-Sender": name})
+        await until(lambda: b.stats.rejected.get("UNAUTHENTICATED", 0) == 1)
+        await nc.close()
+        await b.close()
+
+    run(test)
+    lines = [r.getMessage() for r in caplog.records if r.name == "dtron" and "dropped a message" in r.getMessage()]
+    assert len(lines) == 1 and "\x1b" not in lines[0]
+    assert "from '?[31mred" + "x" * 120 + "...', UNAUTHENTICATED" in lines[0]

@@ -11,6 +11,7 @@ checked before anything else: one without a valid code, a replayed or a stale on
 from __future__ import annotations
 
 import asyncio
+import datetime
 import inspect
 import logging
 import secrets
@@ -27,7 +28,7 @@ from nats.js.errors import APIError, NotFoundError
 from dtron._proto import Sync_pb2
 from dtron.channel import RESERVED, Channel, InvalidMessage, Message
 from dtron.clock import SAME_CLOCK_SLACK_NS, ClockOffset, OffsetEstimator, RunClock, host_clock_id, same_clock, wall_clock_ns
-from dtron.secret import MAC, UNAUTHENTICATED, Guard, PathLike, load_secret
+from dtron.secret import MAC, SEQ, UNAUTHENTICATED, Guard, PathLike, load_secret
 
 LOG = logging.getLogger("dtron")
 
@@ -45,10 +46,14 @@ PING_BURST = 8
 PING_SPACING_S = 0.02
 PING_PERIOD_S = 1.0
 RETRY_FOR_S = 30.0
+JOIN_WAIT_S = 10.0
+#: How far back a member joining a secure bus reads the stream, before the stream's last message (security.md).
+HISTORY_S = 240.0
 _BUS_NAME = re.compile(r"[A-Za-z0-9_-]{1,64}\Z")
 _MEMBER_NAME = re.compile(r"[\x21-\x7e]{1,128}\Z")
 _CONTROL = frozenset({"dtron_hello", "dtron_ping", "dtron_pong", "dtron_serve"})
 _NAMED_DROPS = 1024
+_PRINTABLE = 128
 
 Listener = Callable[[Message], Union[None, Awaitable[None]]]
 
@@ -108,6 +113,10 @@ class Bus:
         self._joined_at: dict[str, int] = {}
         self._own_join = 0
         self._joined = asyncio.Event()
+        # on a secure bus, until this member's join came back: the Dtron-Seq of the join; the stream's messages
+        # before it are read only for their senders' numbers (security.md)
+        self._learning_until: Optional[str] = None
+        self._last_read = 0.0
         self._tester: Optional[str] = None
         self._run_tester: Optional[str] = None
         self._run_id = ""
@@ -392,8 +401,16 @@ class Bus:
         except Exception as e:
             LOG.warning("a message on %s without its stream's metadata was dropped: %s", msg.subject, e)
             return
+        self._last_read = asyncio.get_running_loop().time()
+        until = self._learning_until
+        own_join = until is not None and (sender, headers.get(SEQ)) == (self.member, until)
+        if self._guard is not None and until is not None and not own_join:
+            self._guard.learn(msg.subject, headers, msg.data, stream_ns)  # published before this member joined
+            return
         if self._guard is not None:
             dropped = self._guard.check(msg.subject, headers, msg.data, stream_ns)
+            if own_join and dropped != UNAUTHENTICATED:
+                self._learning_until = None
         else:  # an insecure member does not read a secure one's messages, which it cannot check
             dropped = UNAUTHENTICATED if MAC in headers else None
         if dropped is not None:
@@ -410,6 +427,7 @@ class Bus:
     def _drop(self, subject: str, sender: str, reason: str) -> None:
         """Counts a message the bus's secret drops, and names the first of each sender and reason in the log."""
         self.stats.rejected[reason] = self.stats.rejected.get(reason, 0) + 1
+        sender = _printable(sender)
         if (sender, reason) not in self._named_drops and len(self._named_drops) < _NAMED_DROPS:
             self._named_drops.add((sender, reason))
             why = ("it carries a message code, and this member is insecure" if self._guard is None
@@ -417,7 +435,7 @@ class Bus:
                          "REPLAYED": "its Dtron-Seq was accepted before", "STALE": "its Dtron-Time is more than "
                          "120 s away from when the stream stored it"}.get(reason, reason))
             LOG.warning("%s dropped a message on %s from %r, %s: %s (further ones are counted only)", self.member,
-                        subject, sender, reason, why)
+                        _printable(subject), sender, reason, why)
 
     def _membership(self, sequence: int, stream_ns: float, sender: Optional[str],
                     presence: Optional[dict[str, str]]) -> None:
@@ -488,7 +506,7 @@ class Bus:
 
     def _reject(self, channel: str, sender: str, error: InvalidMessage) -> None:
         self.stats.rejected[error.reason] = self.stats.rejected.get(error.reason, 0) + 1
-        LOG.warning("Rejected a message on channel %r from %s, %s", channel, sender, error)
+        LOG.warning("Rejected a message on channel %r from %s, %s", _printable(channel), _printable(sender), error)
 
     def _message(self, channel: str, data: bytes, transport_sender: str, received_ns: int) -> None:
         registration = self._registrations.get(channel)
@@ -705,10 +723,24 @@ async def connect(servers: Union[str, Sequence[str]] = "nats://127.0.0.1:4222", 
         member_bus = Bus(nc, js, bus, member, guard)
         loop = asyncio.get_running_loop()
         member_bus._tasks = [loop.create_task(member_bus._publisher()), loop.create_task(member_bus._dispatcher())]
-        member_bus._sub = await js.subscribe(f"dtron.{bus}.>", cb=member_bus._received, ordered_consumer=True,
-                                             deliver_policy=api.DeliverPolicy.NEW)
+        if guard is None:
+            member_bus._sub = await js.subscribe(f"dtron.{bus}.>", cb=member_bus._received, ordered_consumer=True,
+                                                 deliver_policy=api.DeliverPolicy.NEW)
+        else:  # from HISTORY_S before the stream's last message, so that copies of those are known (security.md)
+            member_bus._learning_until = str(guard.next_number)
+            history = await _history(js, stream)
+            member_bus._sub = await js.subscribe(f"dtron.{bus}.>", cb=member_bus._received, ordered_consumer=True,
+                                                 config=history)
+            # nats-py makes its ordered consumer anew (a server lost) from this very configuration and a start
+            # sequence, which the server refuses together with a start time
+            history.opt_start_time = None
         await member_bus._put_presence("join", wait=True)
-        await asyncio.wait_for(member_bus._joined.wait(), timeout=10)
+        while not member_bus._joined.is_set():
+            try:
+                await asyncio.wait_for(member_bus._joined.wait(), timeout=JOIN_WAIT_S)
+            except asyncio.TimeoutError:
+                if member_bus._learning_until is None or loop.time() - member_bus._last_read > JOIN_WAIT_S:
+                    raise  # else the messages before the join are still coming
         member_bus._heartbeats = loop.create_task(member_bus._heartbeat())
         LOG.info("Joined bus %r as %s; members %s", bus, member, member_bus.members)
         return member_bus
@@ -717,3 +749,26 @@ async def connect(servers: Union[str, Sequence[str]] = "nats://127.0.0.1:4222", 
         if isinstance(e, ConnectionError):
             raise
         raise ConnectionError(f"cannot join bus {bus!r} on {urls}: {e}") from e
+
+
+def _printable(text: str) -> str:
+    """A sender or subject anyone may choose, fit for one log line: printable ASCII, "?" for any other character
+    (escape sequences included), at most _PRINTABLE characters and "..." when there were more."""
+    clipped = "".join(c if " " <= c <= "~" else "?" for c in text[:_PRINTABLE])
+    return clipped + "..." if len(text) > _PRINTABLE else clipped
+
+
+async def _history(js: Any, stream: str) -> api.ConsumerConfig:
+    """Where a member joining a secure bus starts reading: HISTORY_S before the stream's last message (the stream's
+    clock, whatever this machine's), or at its first message when it holds none."""
+    state = (await js.stream_info(stream)).state
+    last = None
+    if state.messages > 0:
+        try:
+            last = (await js.get_msg(stream, seq=state.last_seq)).time
+        except NotFoundError:
+            pass
+    if last is None:
+        return api.ConsumerConfig(deliver_policy=api.DeliverPolicy.ALL)
+    return api.ConsumerConfig(deliver_policy=api.DeliverPolicy.BY_START_TIME,
+                              opt_start_time=last - datetime.timedelta(seconds=HISTORY_S))

@@ -107,13 +107,24 @@ class RunClock:
         return self._wall() + self._offset() - self._start_tester_ns
 
     def now_units(self) -> float:
-        """Model time units of run time now."""
-        return self.now_ns() / (self._unit_us * 1000.0)
+        """Model time units of run time now, in the current (or last) run's unit.
+
+        :raises RuntimeError: if no run has started yet, so that there is no time unit
+        """
+        return self.now_ns() / self._unit_ns()
 
     def units_of(self, message: "object") -> float:
-        """The run time, in units, of a message's event (its event time plus the offset its sender carried)."""
+        """The run time, in units, of a message's event (its event time plus the offset its sender carried).
+
+        :raises RuntimeError: if no run has started yet, so that there is no time unit
+        """
         event = getattr(message, "event_time_ns") or getattr(message, "publish_time_ns")
-        return (event + getattr(message, "clock_offset_ns") - self._start_tester_ns) / (self._unit_us * 1000.0)
+        return (event + getattr(message, "clock_offset_ns") - self._start_tester_ns) / self._unit_ns()
+
+    def _unit_ns(self) -> float:
+        if self._unit_us <= 0:
+            raise RuntimeError("no run has started yet: the run clock has no time unit (wait for dtron_start)")
+        return self._unit_us * 1000.0
 
     async def sleep_until(self, units: float) -> bool:
         """Waits until run time ``units`` of the current run.

@@ -189,12 +189,31 @@ class Guard:
         signed[MAC] = message_code(self._key, subject, signed, data)
         return signed
 
+    @property
+    def next_number(self) -> int:
+        """The Dtron-Seq of the next message this member signs."""
+        return self._sequence + 1
+
+    def _authentic(self, subject: str, headers: Mapping[str, str], data: bytes) -> bool:
+        code = headers.get(MAC)
+        return code is not None and hmac.compare_digest(code.encode("utf-8", "replace"),
+                                                        message_code(self._key, subject, headers, data).encode("ascii"))
+
+    def learn(self, subject: str, headers: Mapping[str, str], data: bytes, stream_ns: int) -> bool:
+        """Takes note of the number of a message published before this member joined, so that a copy of it published
+        again later is replayed: only a message whose code is valid counts, whatever its time. True if it counted."""
+        number = _decimal(headers.get(SEQ))
+        if number is None or number < 1 or not self._authentic(subject, headers, data):
+            return False
+        window = self._windows.setdefault(headers.get(SENDER, ""), _Window())
+        if window.fresh(number):
+            window.accept(number, stream_ns)
+        return True
+
     def check(self, subject: str, headers: Mapping[str, str], data: bytes, stream_ns: int) -> Optional[str]:
         """None if the message is authentic, new and fresh (its number is then remembered), else why it is dropped:
         UNAUTHENTICATED, REPLAYED or STALE. ``stream_ns`` is when the stream stored it."""
-        code = headers.get(MAC)
-        if code is None or not hmac.compare_digest(code.encode("utf-8", "replace"),
-                                                   message_code(self._key, subject, headers, data).encode("ascii")):
+        if not self._authentic(subject, headers, data):
             return UNAUTHENTICATED
         number = _decimal(headers.get(SEQ))
         sender = headers.get(SENDER, "")

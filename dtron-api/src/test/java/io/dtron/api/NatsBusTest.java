@@ -75,6 +75,33 @@ class NatsBusTest {
         }
     }
 
+    /**
+     * A member that joins a bus whose stream holds messages reads it from a start time; when the server loses its
+     * consumer (here: every consumer of the stream deleted), it is made anew from a sequence, and the member hears
+     * the next order.
+     */
+    @Test
+    void aMemberThatJoinedLaterHearsTheBusAfterItsConsumerWasMadeAnew() throws Exception {
+        try (NatsServer server = NatsServer.start(dir);
+                io.nats.client.Connection raw = io.nats.client.Nats.connect(server.url())) {
+            String cluster = TestClusters.uniqueName("anew");
+            Inbox inbox = new Inbox(ORDER);
+            try (Dtron a = Dtron.connect(nats(server, cluster, "a").build());
+                    Dtron b = Dtron.connect(nats(server, cluster, "b").build())) { // the stream holds a's messages
+                b.addDtronListener(inbox);
+                assertTrue(b.awaitMembers(2, Duration.ofSeconds(10)), "b sees a: " + b.getMembers());
+                io.nats.client.JetStreamManagement management = raw.jetStreamManagement();
+                for (String consumer : management.getConsumerNames("DTRON_" + cluster)) {
+                    management.deleteConsumer("DTRON_" + cluster, consumer);
+                }
+                a.send(ORDER.constructValued(Map.of("n", 1)));
+                IDtronChannelValued first = inbox.poll(Waits.TIMEOUT.toMillis());
+                assertTrue(first != null, "b heard a again");
+                assertEquals(1, first.getVariables().get("n"));
+            }
+        }
+    }
+
     @Test
     void aKilledMemberIsGoneWithinSecondsAndProcessesShareOneOrder() throws Exception {
         try (NatsServer server = NatsServer.start(dir)) {

@@ -211,6 +211,31 @@ class NatsSecurityTest {
     }
 
     /**
+     * A member that joins later learns the numbers of the messages before its join from the stream, without
+     * delivering them: a message published before it joined and published again after is replayed for it too.
+     */
+    @Test
+    void aMessageFromBeforeAMemberJoinedPublishedAgainIsReplayedForIt() throws Exception {
+        SecureBus bus = secureBus("late", true);
+        io.nats.client.Subscription capture = bus.capture();
+        bus.adapter().send(ORDER.constructValued(Map.of("n", 1)));
+        assertEquals(1, bus.inbox().take().getVariables().get("n"));
+        Message captured = capture.nextMessage(Duration.ofSeconds(20));
+        assertTrue(captured != null && captured.hasHeaders(), "the subscriber saw the message");
+        Inbox lateInbox = new Inbox(ORDER);
+        Dtron late = opened(Dtron.connect(DtronOptions.builder().clusterName(bus.name()).memberName("late")
+                .natsServers(bus.raw().getConnectedUrl()).secret(SECRET).channels(List.of(ORDER)).build()));
+        late.addDtronListener(lateInbox);
+        Headers again = new Headers(captured.getHeaders()).put("Nats-Msg-Id", "replay-late");
+        assertFalse(publish(bus.js(), captured.getSubject(), again, captured.getData()).isDuplicate());
+
+        bus.adapter().send(ORDER.constructValued(Map.of("n", 2)));
+        assertEquals(2, lateInbox.take().getVariables().get("n"), "neither the 1 before the join nor its copy came");
+        assertEquals(1, late.getStats().getRejected(Reason.REPLAYED), late.getStats().toString());
+        assertEquals(1, late.getStats().getRejectedTotal(), late.getStats().toString());
+    }
+
+    /**
      * A client without the secret that sees a member's messages cannot publish first under the member's next
      * {@code Nats-Msg-Id}, which would have the stream drop the member's message as its duplicate: whatever it
      * derives from the ids it saw (the next numbers, decimal or hexadecimal), the member's next message is stored

@@ -23,9 +23,11 @@ import io.dtron.testsupport.NatsServer;
 import io.dtron.testsupport.Waits;
 import io.nats.client.Connection;
 import io.nats.client.JetStream;
+import io.nats.client.JetStreamManagement;
 import io.nats.client.Message;
 import io.nats.client.Nats;
 import io.nats.client.Subscription;
+import io.nats.client.api.MessageInfo;
 import io.nats.client.impl.Headers;
 import io.nats.client.impl.NatsMessage;
 import java.nio.file.Path;
@@ -85,23 +87,19 @@ class NatsForgedRunTest {
      */
     @Test
     void theLastRunsResetAndStopPublishedAgainInTheNextRunChangeNothing() throws Exception {
-        Network network = ModelLoader.load(MODEL);
-        TestInterface testInterface = TestInterface.fromNames(network);
-        String bus = "replayed-" + UUID.randomUUID().toString().substring(0, 8);
         try (NatsServer server = NatsServer.start(dir);
                 Connection raw = Nats.connect(server.url())) {
-            DtronOptions.Builder options = DtronOptions.builder().clusterName(bus).natsServers(server.url())
-                    .secret(SECRET);
+            SecureTickerBus ticker = SecureTickerBus.of("replayed", server);
+            String bus = ticker.bus();
             Subscription resets = raw.subscribe("dtron." + bus + ".c.reset");
             Subscription stops = raw.subscribe("dtron." + bus + ".c.dtron_stop");
             raw.flush(Duration.ofSeconds(10));
-            TestResult first = runAgainstANewTicker(network, testInterface, bus, server, options, SECRET, "first",
-                    null, 0).result();
-            assertEquals(Verdict.PASSED, first.verdict(), first.explanation());
+            ticker.passingRun(this, server, "first");
             Message reset = resets.nextMessage(Duration.ofSeconds(30));
             Message stop = stops.nextMessage(Duration.ofSeconds(30));
             assertTrue(reset != null && stop != null, "the first run reset the ticker and stopped");
-            TestResult second = runAgainstANewTicker(network, testInterface, bus, server, options, SECRET, "second",
+            TestResult second = runAgainstANewTicker(ticker.network(), ticker.testInterface(), bus, server,
+                    ticker.options(), SECRET, "second",
                     (js, tick, tester) -> {
                         publish(js, reset.getSubject(), new Headers(reset.getHeaders()).put("Nats-Msg-Id", "again-1"),
                                 reset.getData());
@@ -109,6 +107,63 @@ class NatsForgedRunTest {
                                 stop.getData());
                     }, 0).result();
             assertEquals(Verdict.PASSED, second.verdict(), second.explanation());
+        }
+    }
+
+    /**
+     * A client without the secret keeps every message of a finished run as the stream stored it, the tester's run
+     * start among them, and publishes them all again, still fresh, after a tester joined the bus to join the next
+     * run: the joining tester learned their senders' numbers from the stream when it joined, so it drops each of them
+     * as replayed, takes no run and sees no member come or go.
+     */
+    @Test
+    void theLastRunsMessagesPublishedAgainAfterATesterJoinedAreReplayedForIt() throws Exception {
+        try (NatsServer server = NatsServer.start(dir);
+                Connection raw = Nats.connect(server.url())) {
+            SecureTickerBus ticker = SecureTickerBus.of("rejoined", server);
+            ticker.passingRun(this, server, "first");
+            JetStreamManagement management = raw.jetStreamManagement();
+            String stream = "DTRON_" + ticker.bus();
+            long last = management.getStreamInfo(stream).getStreamState().getLastSequence();
+            List<MessageInfo> captured = new ArrayList<>();
+            for (long sequence = 1; sequence <= last; sequence++) {
+                captured.add(management.getMessage(stream, sequence));
+            }
+            assertTrue(captured.stream().anyMatch(m -> m.getSubject().endsWith(".c.dtron_start")),
+                    "the first run's start is among its messages");
+            try (BusBridge joining = BusBridge.join(ticker.testInterface(), ticker.options()
+                    .memberName("joining"))) {
+                JetStream js = raw.jetStream();
+                for (MessageInfo message : captured) {
+                    publish(js, message.getSubject(), new Headers(message.getHeaders()).put("Nats-Msg-Id",
+                            "again-" + message.getSeq()), message.getData());
+                }
+                Waits.await("the joining tester read the messages published again").until(
+                        () -> joining.run().stats().getRejectedTotal() >= captured.size());
+                DtronStats stats = joining.run().stats();
+                assertEquals(captured.size(), stats.getRejected(Reason.REPLAYED), stats.toString());
+                assertEquals(captured.size(), stats.getRejectedTotal(), stats.toString());
+                assertEquals(-1, joining.run().awaitRun(Duration.ZERO), "the joining tester took no run");
+                assertEquals(List.of("joining"), joining.run().members(), "no member came or went");
+            }
+        }
+    }
+
+    /** The ticker model on a bus of its own with the secret, of a test's server. */
+    private record SecureTickerBus(Network network, TestInterface testInterface, String bus,
+            DtronOptions.Builder options) {
+        static SecureTickerBus of(String prefix, NatsServer server) throws Exception {
+            Network network = ModelLoader.load(MODEL);
+            String bus = prefix + "-" + UUID.randomUUID().toString().substring(0, 8);
+            return new SecureTickerBus(network, TestInterface.fromNames(network), bus, DtronOptions.builder()
+                    .clusterName(bus).natsServers(server.url()).secret(SECRET));
+        }
+
+        /** A run of a tester against a new ticker named {@code name}, which passes. */
+        void passingRun(NatsForgedRunTest test, NatsServer server, String name) throws Exception {
+            TestResult result = test.runAgainstANewTicker(network, testInterface, bus, server, options, SECRET, name,
+                    null, 0).result();
+            assertEquals(Verdict.PASSED, result.verdict(), result.explanation());
         }
     }
 

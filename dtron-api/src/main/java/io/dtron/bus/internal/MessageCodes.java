@@ -161,6 +161,25 @@ public final class MessageCodes {
             return null;
         }
 
+        /**
+         * Takes note of the counter of a message published before this member joined, so that a copy of it
+         * published again later is replayed; only a message whose code is valid counts, whatever its time.
+         *
+         * @return whether the message's code is valid and its counter a number
+         */
+        public boolean learn(String subject, String sender, String seq, String time, String presence, String joined,
+                byte[] data, String mac) {
+            long counter = number(seq);
+            if (counter < 1 || !codes.matches(mac, subject, sender, seq, time, presence, joined, data)) {
+                return false;
+            }
+            Window window = windows.computeIfAbsent(sender == null ? "" : sender, s -> new Window());
+            if (!window.holds(counter)) {
+                window.add(counter);
+            }
+            return true;
+        }
+
         /** A header's decimal number (1 to 19 digits, no sign), or -1 when it is none. */
         private static long number(String text) {
             if (text == null || text.isEmpty() || text.length() > 19) {

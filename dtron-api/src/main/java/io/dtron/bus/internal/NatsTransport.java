@@ -18,6 +18,7 @@ import io.nats.client.api.DiscardPolicy;
 import io.nats.client.api.MessageInfo;
 import io.nats.client.api.StorageType;
 import io.nats.client.api.StreamConfiguration;
+import io.nats.client.api.StreamState;
 import io.nats.client.impl.Headers;
 import io.nats.client.impl.NatsMessage;
 import java.io.IOException;
@@ -72,8 +73,10 @@ import org.slf4j.LoggerFactory;
  *
  * <p>On a secure bus ({@link NatsSettings#macKey()}) every message carries {@value MessageCodes#SEQ}, {@value
  * MessageCodes#TIME} and {@value MessageCodes#MAC} (security.md), and a received message without a valid code, or
- * replayed, or stale, is dropped before membership and delivery see it, and counted in {@link #drops()}. On an
- * insecure bus messages carry no code, and one that carries a code (a secure member's) is dropped.
+ * replayed, or stale, is dropped before membership and delivery see it, and counted in {@link #drops()}. A member
+ * joining a secure bus first reads the stream's messages of the 240 s before its join for their senders' counters
+ * only, so that a copy of one of them published again after it joined is replayed for it too. On an insecure bus
+ * messages carry no code, and one that carries a code (a secure member's) is dropped.
  */
 public final class NatsTransport implements Transport {
     /** Header naming the member that published a message. */
@@ -93,6 +96,12 @@ public final class NatsTransport implements Transport {
     private static final int NO_MESSAGE_FOUND = 10037;
     /** How many (sender, reason) pairs of dropped messages are logged, one line each, before logging stops. */
     private static final int DROPS_LOGGED = 256;
+    /**
+     * How far back a member joining a secure bus reads the stream before its join, by the stream's timestamps: a
+     * copy of a message is accepted only within 120 s of the time its sender put in it, which is within 120 s of when
+     * the stream stored the message first.
+     */
+    private static final Duration HISTORY = Duration.ofNanos(2 * MessageCodes.Check.MAX_SKEW_NANOS);
 
     private final Connection connection;
     private final NatsSettings settings;
@@ -119,6 +128,13 @@ public final class NatsTransport implements Transport {
     private final Set<String> dropsLogged = new HashSet<>();
     /** Why this member dropped its own message last, if it did: a join that does not come back says why. */
     private volatile DropReason ownDropped;
+    /** The {@value MessageCodes#SEQ} of this member's join, its first message. */
+    private final String joinSeq;
+    /**
+     * On a secure bus, until this member's join came back: the stream's messages before it are read only for their
+     * senders' counters (security.md), so that a copy of one of them published again after the join is replayed.
+     */
+    private volatile boolean learning;
     private final CountDownLatch joined = new CountDownLatch(1);
     /** Membership state, touched on the receive thread only: last stream time (ns) and join sequence per member. */
     private final Map<String, Long> lastSeen = new HashMap<>();
@@ -148,6 +164,8 @@ public final class NatsTransport implements Transport {
         this.view = new MembershipView(0, List.of(settings.memberName()));
         this.codes = settings.macKey().map(MessageCodes::forKey).orElse(null);
         this.check = codes == null ? null : codes.check();
+        this.joinSeq = Long.toString(published.get() + 1);
+        this.learning = check != null;
         for (DropReason reason : DropReason.values()) {
             drops.put(reason, new LongAdder());
         }
@@ -304,18 +322,26 @@ public final class NatsTransport implements Transport {
         }
     }
 
-    /** Subscribes from the stream's next message on, says join and waits until the join came back. */
+    /**
+     * Subscribes from the stream's next message on (on a secure bus: from {@link #HISTORY} before its last one),
+     * says join and waits until the join came back, for as long as the stream's messages before it keep coming.
+     */
     private void join() throws IOException, InterruptedException {
         dispatcher = connection.createDispatcher();
         try {
-            subscription = subscribe(ConsumerConfiguration.builder().deliverPolicy(DeliverPolicy.New));
+            subscription = subscribe(learning ? history() : ConsumerConfiguration.builder()
+                    .deliverPolicy(DeliverPolicy.New));
         } catch (JetStreamApiException e) {
             throw new IOException("JetStream refused a consumer on stream " + settings.streamName() + ": "
                     + e.getMessage(), e);
         }
         publishPresence("join");
-        if (!joined.await(CONNECT_TIMEOUT_MILLIS, TimeUnit.MILLISECONDS)) {
+        while (!joined.await(CONNECT_TIMEOUT_MILLIS, TimeUnit.MILLISECONDS)) {
             DropReason dropped = ownDropped;
+            if (learning && dropped == null && System.nanoTime() - lastDeliveredNanos < TimeUnit.MILLISECONDS
+                    .toNanos(CONNECT_TIMEOUT_MILLIS)) {
+                continue; // still reading the messages before the join
+            }
             throw new IOException("this member's join did not come back from stream " + settings.streamName()
                     + " within " + CONNECT_TIMEOUT_MILLIS + " ms" + (dropped == null ? ""
                     : "; it dropped its own messages as " + dropped.name().toLowerCase(java.util.Locale.ROOT)
@@ -327,6 +353,19 @@ public final class NatsTransport implements Transport {
             presenceQuietly("alive");
             resubscribeIfStalled();
         }, period, period, TimeUnit.MILLISECONDS);
+    }
+
+    /**
+     * Where a member joining a secure bus starts reading: at the stream's messages of the last {@link #HISTORY}
+     * before its last message (the stream's clock, whatever this machine's), or at the first when it holds none.
+     */
+    private ConsumerConfiguration.Builder history() throws IOException, JetStreamApiException {
+        StreamState state = connection.jetStreamManagement().getStreamInfo(settings.streamName()).getStreamState();
+        ConsumerConfiguration.Builder consumer = ConsumerConfiguration.builder();
+        if (state.getMsgCount() == 0 || state.getLastTime() == null) {
+            return consumer.deliverPolicy(DeliverPolicy.All);
+        }
+        return consumer.deliverPolicy(DeliverPolicy.ByStartTime).startTime(state.getLastTime().minus(HISTORY));
     }
 
     /**
@@ -658,11 +697,21 @@ public final class NatsTransport implements Transport {
         Headers headers = message.getHeaders();
         String sender = headers == null ? null : headers.getFirst(SENDER);
         String subject = message.getSubject();
+        if (learning && (headers == null || !settings.memberName().equals(sender)
+                || !joinSeq.equals(headers.getFirst(MessageCodes.SEQ)))) {
+            if (headers != null) { // published before this member joined: only its counter is of interest
+                check.learn(subject, sender, headers.getFirst(MessageCodes.SEQ), headers.getFirst(MessageCodes.TIME),
+                        headers.getFirst(PRESENCE), headers.getFirst(JOINED), message.getData(),
+                        headers.getFirst(MessageCodes.MAC));
+            }
+            return;
+        }
         DropReason drop = screen(subject, headers, message.getData(), streamTime);
         if (drop != null) {
             dropped(drop, sender, subject);
             return;
         }
+        learning = false;
         boolean presenceMessage = subject.equals(settings.presenceSubject());
         try {
             membership(sequence, streamTime, sender, presenceMessage ? headers : null);

@@ -130,6 +130,28 @@ class MessageCodesTest {
                 "replayed is checked before stale");
     }
 
+    /**
+     * A member that joins learns the counters of the stream's messages before its join: only those with a valid
+     * code, whatever their time, and one too low for the window marks no other counter.
+     */
+    @Test
+    void theCountersOfMessagesBeforeAJoinAreLearnedWhenTheirCodeIsValid() {
+        MessageCodes.Check check = CODES.check();
+        String old = Long.toString(T - 600_000_000_000L);
+        String mac = CODES.code("dtron.lab.c.tick", "a", "5000", old, null, null, TICK);
+        assertTrue(check.learn("dtron.lab.c.tick", "a", "5000", old, null, null, TICK, mac), "a stale one too");
+        assertFalse(check.learn("dtron.lab.c.tick", "b", "7", Long.toString(T), null, null, TICK, "0".repeat(64)),
+                "no valid code");
+        String low = CODES.code("dtron.lab.c.tick", "a", "903", old, null, null, TICK);
+        assertTrue(check.learn("dtron.lab.c.tick", "a", "903", old, null, null, TICK, low));
+        assertFalse(check.learn("dtron.lab.c.tick", "a", "x", old, null, null, TICK,
+                CODES.code("dtron.lab.c.tick", "a", "x", old, null, null, TICK)), "no counter");
+        assertEquals(DropReason.REPLAYED, signed(check, "a", 5000), "learned");
+        assertNull(signed(check, "a", 4999), "903, below the window, marked nothing (4999 shares its slot)");
+        assertNull(signed(check, "a", 5001));
+        assertNull(signed(check, "b", 7), "the code of b's 7 was not valid: nothing learned");
+    }
+
     @Test
     void theWindowRemembersExactly4096CountersBelowTheHighest() {
         MessageCodes.Window window = new MessageCodes.Window();
