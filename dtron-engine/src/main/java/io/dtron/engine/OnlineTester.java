@@ -3,6 +3,7 @@ package io.dtron.engine;
 import io.dtron.engine.coverage.Goals;
 import io.dtron.engine.coverage.RunCoverage;
 import io.dtron.engine.coverage.StopCondition;
+import io.dtron.engine.internal.clock.Reference;
 import io.dtron.engine.internal.clock.Ticks;
 import io.dtron.engine.internal.clock.RealClock;
 import io.dtron.engine.internal.clock.RunClock;
@@ -384,7 +385,9 @@ public final class OnlineTester {
          */
         boolean doubtful;
         StateSet after;
+        /** The time of the last event up to and with this one, and the time of the state set after it. */
         long afterMicros;
+        Reference afterReference;
         /** What the event took, once judged allowed; null before, or when a verdict came at or before it. */
         Recorder.Step taken;
 
@@ -429,16 +432,24 @@ public final class OnlineTester {
         /** The state set after every event committed to, at the time of the last of them. */
         private StateSet committed;
         private long committedMicros;
+        private Reference committedReference;
         /** The events after those, in time order; {@link #set} is the state after all of them. */
         private final List<Pending> pending = new ArrayList<>();
         /** The committed inputs by number, while their acknowledgements may still come. */
         private final Map<Long, Pending> committedInputs = new LinkedHashMap<>();
         private StateSet set;
+        /** The time of the last event. */
         private long lastMicros;
+        /**
+         * The time of {@link #set}, from which its elapsed clock counts: the start of the last event's window (its
+         * time rounded down to a tick, less its clock error), so that the set keeps when in the window the event
+         * came, and the reference stays on the ticks of the run's start and no rounding adds up from event to event.
+         */
+        private Reference reference;
         /** The last plan, and the state set, time and horizon it was made for: reused while they hold. */
         private Plan lastPlan;
         private StateSet lastPlanSet;
-        private long lastPlanMicros;
+        private Reference lastPlanReference;
         private long lastPlanHorizon;
         private Held held;
         /** How the last output observed was understood (the edges it was taken as), until the next input. */
@@ -468,6 +479,8 @@ public final class OnlineTester {
             this.inputMargin = options.virtualTime() ? 0 : ticks.ceil(options.inputMarginMicros());
             this.set = StateSet.initial(semantics, partition);
             this.committed = set;
+            this.reference = Reference.at(ticks, 0);
+            this.committedReference = reference;
             this.coverage = coverage;
             coverage.start(set);
         }
@@ -482,11 +495,12 @@ public final class OnlineTester {
         }
 
         private Plan plan() {
-            long horizon = ticks.ceil(timeoutMicros - lastMicros);
-            if (lastPlan == null || lastPlanSet != set || lastPlanMicros != lastMicros || lastPlanHorizon != horizon) {
+            long horizon = reference.ceil(timeoutMicros);
+            if (lastPlan == null || lastPlanSet != set || !reference.equals(lastPlanReference)
+                    || lastPlanHorizon != horizon) {
                 lastPlan = Plan.of(set, semantics, partition, testInterface, unit, horizon);
                 lastPlanSet = set;
-                lastPlanMicros = lastMicros;
+                lastPlanReference = reference;
                 lastPlanHorizon = horizon;
             }
             return lastPlan;
@@ -503,12 +517,12 @@ public final class OnlineTester {
                 // is not the current one
                 return;
             }
-            long[] w = plan().windowAt(channel.channel(), ticks.floor(at - lastMicros));
+            long[] w = plan().windowAt(channel.channel(), reference.floor(at));
             if (w == null) {
                 return;
             }
-            long earliest = lastMicros + ticks.micros(w[0]);
-            long latest = w[1] == Long.MAX_VALUE ? -1 : lastMicros + ticks.micros(w[1]);
+            long earliest = reference.micros(w[0]);
+            long latest = w[1] == Long.MAX_VALUE ? -1 : reference.micros(w[1]);
             for (TestListener l : listeners) {
                 l.outputWindow(event, at, earliest, latest);
             }
@@ -519,7 +533,7 @@ public final class OnlineTester {
          * begins before the run's end.
          */
         private boolean deadlineBeforeTheEnd(Plan plan) {
-            return plan.hasDeadline() && lastMicros + ticks.micros(plan.deadline() + 1) < timeoutMicros;
+            return plan.hasDeadline() && reference.micros(plan.deadline() + 1) < timeoutMicros;
         }
 
         TestResult loop() {
@@ -603,7 +617,7 @@ public final class OnlineTester {
                     return steered;
                 }
                 Plan plan = plan();
-                long elapsed = ticks.floor(now - lastMicros);
+                long elapsed = reference.floor(now);
                 // room before a window's end: for the tester's own lateness (a measure of how late this machine's
                 // threads act, an adapter's that keeps an input's time as well), and for the input's way to the system
                 long lateness = Math.max(inputMargin, ticks.ceil(2 * clock.worstLatenessMicros()));
@@ -611,7 +625,7 @@ public final class OnlineTester {
                         options.delayBound() * ticksPerUnit, options.shortDelayBound() * ticksPerUnit,
                         input -> lateness + ticks.ceil(roomMicros(input.name())),
                         earliestInput(), steerer == null ? null : steerer.scorer());
-                long at = lastMicros + ticks.micros(choice.ticks());
+                long at = reference.micros(choice.ticks());
                 // a deadline within the test is declared missed only when the outputs stamped before it had the
                 // reorder window to arrive
                 boolean deadline = !choice.isInput() && choice.ticks() > plan.deadline() && deadlineBeforeTheEnd(plan);
@@ -645,7 +659,7 @@ public final class OnlineTester {
                     if (clock.nowMicros() < at + window()) {
                         continue; // the window was widened while the tester waited
                     }
-                    String deadlineAt = time(lastMicros + ticks.micros(plan.deadline()));
+                    String deadlineAt = time(reference.micros(plan.deadline()));
                     java.util.Optional<String> unreachable = adapter.unreachable();
                     RunClock.TimedEvent meanwhile = clock.drain();
                     if (meanwhile != null) {
@@ -660,13 +674,13 @@ public final class OnlineTester {
                         return result(Verdict.INCONCLUSIVE, "no input was applied by " + deadlineAt + ": the"
                                 + " environment allowed inputs until then but no time to pass without one, and the"
                                 + " tester let time pass " + whyTimePassed(choice) + ". " + plan.explainInputs(this::time,
-                                lastMicros));
+                                reference.micros()));
                     }
                     if (plan.inputPossibleAt(plan.deadline()) && !choice.letsTimePass()) {
                         return result(Verdict.INCONCLUSIVE, "no input was applied by " + deadlineAt + ", when the"
                                 + " environment's window closed: the tester learned of the events before it too late,"
                                 + " or was held up (input executed too late). " + plan.explainInputs(this::time,
-                                lastMicros));
+                                reference.micros()));
                     }
                     if (unreachable.isPresent()) {
                         return result(Verdict.INCONCLUSIVE, "no output came by " + deadlineAt + ", and the system"
@@ -677,7 +691,7 @@ public final class OnlineTester {
                             ? " (the tester waited " + Plan.units(window(), unit) + " time units more for messages"
                             + " in transit)" : "") + (choice.letsTimePass() ? "; the environment allowed more inputs"
                             + " until then and lets time pass without them, and the tester let time pass "
-                            + whyTimePassed(choice) : "") + ". " + plan.explainOutputs(this::time, lastMicros));
+                            + whyTimePassed(choice) : "") + ". " + plan.explainOutputs(this::time, reference.micros()));
                 }
             }
         }
@@ -778,7 +792,7 @@ public final class OnlineTester {
             if (inputsAtInstant < MAX_INPUTS_AT_ONE_INSTANT) {
                 return 0;
             }
-            return Math.max(1, ticks.ceil(instantMicros + unit - lastMicros));
+            return Math.max(1, reference.ceil(instantMicros + unit));
         }
 
         /** Why the tester let time pass while the environment allowed an input, for explanations. */
@@ -808,7 +822,7 @@ public final class OnlineTester {
             }
             TestListener.Until until = choice.isInput() ? TestListener.Until.INPUT
                     : plan.hasDeadline() ? TestListener.Until.OUTPUT_DEADLINE : TestListener.Until.END;
-            long untilMicros = until == TestListener.Until.OUTPUT_DEADLINE ? lastMicros + ticks.micros(plan.deadline())
+            long untilMicros = until == TestListener.Until.OUTPUT_DEADLINE ? reference.micros(plan.deadline())
                     : target;
             for (TestListener l : listeners) {
                 l.waiting(now, untilMicros, until);
@@ -862,6 +876,7 @@ public final class OnlineTester {
                 record(p);
                 committed = p.after;
                 committedMicros = p.afterMicros;
+                committedReference = p.afterReference;
                 if (p.input) {
                     committedInputs.put(p.ordinal, p);
                     if (p.doubtful) {
@@ -970,9 +985,11 @@ public final class OnlineTester {
             if (from == 0) {
                 set = committed;
                 lastMicros = committedMicros;
+                reference = committedReference;
             } else {
                 set = pending.get(from - 1).after;
                 lastMicros = pending.get(from - 1).afterMicros;
+                reference = pending.get(from - 1).afterReference;
             }
             held = null;
             for (int i = from; i < pending.size(); i++) {
@@ -990,6 +1007,7 @@ public final class OnlineTester {
                 }
                 p.after = set;
                 p.afterMicros = lastMicros;
+                p.afterReference = reference;
                 p.taken = lastStep;
             }
             return null;
@@ -1021,7 +1039,7 @@ public final class OnlineTester {
                 }
                 return result(Verdict.FAILED, afterLastTaken() + "output " + event + " observed at " + time(at)
                         + " is too late: "
-                        + plan().explainOutputs(this::time, lastMicros));
+                        + plan().explainOutputs(this::time, reference.micros()));
             }
             List<StateSet.Successor> moves = atTime.successors(channel.channel());
             List<io.dtron.engine.internal.sem.SymState> matching = new ArrayList<>();
@@ -1042,6 +1060,7 @@ public final class OnlineTester {
                 lastStep = coverage.step(set.states(), taken);
                 set = atTime.of(matching);
                 lastMicros = at;
+                reference = reference.plus(windowStart(at, uncertainty));
                 lastTaken = "output " + event + " at " + time(at) + " was taken as " + edgesTaken(channel, event, moves);
                 return null;
             }
@@ -1071,8 +1090,8 @@ public final class OnlineTester {
             Plan plan = plan();
             return result(Verdict.FAILED, afterLastTaken() + "output " + event + " observed at " + time(at)
                     + " is not allowed then"
-                    + plan.timing(channel.channel(), ticks.floor(at - lastMicros)) + ". "
-                    + plan.explainOutputs(this::time, lastMicros));
+                    + plan.timing(channel.channel(), reference.floor(at)) + ". "
+                    + plan.explainOutputs(this::time, reference.micros()));
         }
 
         /**
@@ -1083,7 +1102,7 @@ public final class OnlineTester {
          */
         private TestResult missedInput(Event event, long at, long uncertainty) {
             Plan plan = plan();
-            long deadline = lastMicros + ticks.micros(plan.deadline());
+            long deadline = reference.micros(plan.deadline());
             if (!plan.hasDeadline() || at + uncertainty <= deadline || !plan.inputPossibleAt(plan.deadline())) {
                 return null;
             }
@@ -1091,7 +1110,7 @@ public final class OnlineTester {
                     ? " (give or take " + Plan.units(uncertainty, unit) + " time units)" : "") + " may have come after "
                     + time(deadline) + ", when the environment's window for an input closed, and the tester had"
                     + " applied none by then (input executed too late). " + plan.explainInputs(this::time,
-                    lastMicros));
+                    reference.micros()));
         }
 
         /**
@@ -1118,13 +1137,18 @@ public final class OnlineTester {
         }
 
         /**
-         * The state set at {@code at}, give or take {@code uncertainty} microseconds (but not before the last event):
-         * every state the model can be in at some time of that interval.
+         * The state set at {@code at}, give or take {@code uncertainty} microseconds (but not before the set's time):
+         * every state the model can be in at some time of that interval, each keeping when in it (the set's time is
+         * then {@link #windowStart} after {@link #reference}).
          */
         private StateSet afterDelay(long at, long uncertainty) {
             coverage.begin();
-            return set.afterWindow(ticks.floor(Math.max(0, at - uncertainty - lastMicros)),
-                    ticks.ceil(at + uncertainty - lastMicros), coverage.internalMoves());
+            return set.within(windowStart(at, uncertainty), reference.ceil(at + uncertainty), coverage.internalMoves());
+        }
+
+        /** The first tick, after {@link #reference}, of the window of {@code at} give or take {@code uncertainty}. */
+        private long windowStart(long at, long uncertainty) {
+            return Math.max(0, reference.floor(at - uncertainty));
         }
 
         /** The distinct edges of {@code moves} whose values match {@code event}, for explanations. */
@@ -1174,7 +1198,7 @@ public final class OnlineTester {
                         + Plan.units(p.micros - p.sentMicros, unit) + " time units later." : "";
                 return result(Verdict.INCONCLUSIVE, "input " + p.event + " was executed at " + time(p.micros)
                         + ", when the environment no longer allowed it, after the events that happened before it"
-                        + " (input executed too late)." + late + " " + plan().explainInputs(this::time, lastMicros));
+                        + " (input executed too late)." + late + " " + plan().explainInputs(this::time, reference.micros()));
             }
             // allowed within the clocks' error of where it was applied, but not there: it may have come too late
             p.doubtful = p.uncertainty > 0;
@@ -1185,6 +1209,7 @@ public final class OnlineTester {
             lastStep = coverage.step(set.states(), taken);
             set = atTime.of(next);
             lastMicros = p.micros;
+            reference = reference.plus(windowStart(p.micros, p.uncertainty));
             return null;
         }
 
@@ -1199,15 +1224,13 @@ public final class OnlineTester {
             }
             boolean ahead = dueMicros > quiet;
             long now = ahead ? dueMicros : quiet;
-            long delta = ticks.floor(now - lastMicros);
             TestInterface.ObservableChannel channel = choice.input();
-            coverage.begin();
-            StateSet atTime = set.afterWindow(delta, ticks.ceil(now - lastMicros), coverage.internalMoves());
+            StateSet atTime = afterDelay(now, 0);
             List<StateSet.Successor> moves = atTime.successors(channel.channel());
             if (moves.isEmpty()) {
                 return result(Verdict.INCONCLUSIVE, "input " + channel.name() + " could not be applied at "
                         + time(now) + " (too late for the window the environment allowed). "
-                        + plan.explainInputs(this::time, lastMicros));
+                        + plan.explainInputs(this::time, reference.micros()));
             }
             StateSet.Successor chosen = moves.get(random.nextInt(moves.size()));
             Map<String, Integer> values = valuesOf(channel, chosen.state());
@@ -1237,11 +1260,13 @@ public final class OnlineTester {
             Recorder.Step step = coverage.step(set.states(), taken);
             set = atTime.of(next);
             lastMicros = now;
+            reference = reference.plus(windowStart(now, 0));
             lastTaken = null;
             Pending p = new Pending(event, true, ++performed, now);
             p.ahead = ahead;
             p.after = set;
             p.afterMicros = now;
+            p.afterReference = reference;
             p.taken = step;
             pending.add(p);
             inputs++;

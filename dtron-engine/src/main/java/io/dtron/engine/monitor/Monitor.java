@@ -3,6 +3,7 @@ package io.dtron.engine.monitor;
 import io.dtron.engine.Event;
 import io.dtron.engine.TestOptions;
 import io.dtron.engine.UnsupportedModelException;
+import io.dtron.engine.internal.clock.Reference;
 import io.dtron.engine.internal.clock.Ticks;
 import io.dtron.engine.internal.eval.ModelRuntimeException;
 import io.dtron.engine.internal.monitor.Tracker;
@@ -58,10 +59,10 @@ public final class Monitor {
     private Tracker.Node current;
     private long lastMicros;
     /**
-     * The time of the states' elapsed clock's 0: the last event's time, or the start of its window when its time
-     * was known give or take (the states then keep when in the window it came).
+     * The time of the states' elapsed clock's 0: the start of the last event's window (its time rounded down to a
+     * tick, less its clock error; the states keep when in the window it came), on the ticks of the start.
      */
-    private long referenceMicros;
+    private Reference reference;
     private boolean started;
     private boolean stopped;
     /** Why the monitor could not follow the events further (null while it can). */
@@ -82,6 +83,7 @@ public final class Monitor {
         this.unit = options.timeUnitMicros();
         this.ticks = Ticks.of(unit);
         this.ticksPerUnit = ticks.perUnit();
+        this.reference = Reference.at(ticks, 0);
         Semantics semantics = new Semantics(network, ticksPerUnit);
         boolean[] observed = new boolean[network.channelCount()];
         List<TestInterface.ObservableChannel> all = new ArrayList<>(testInterface.inputs());
@@ -221,23 +223,23 @@ public final class Monitor {
             throw new IllegalArgumentException("event " + event + " at " + time(micros) + " comes before the last one,"
                     + " at " + time(lastMicros));
         }
-        long fromTicks = ticks.floor(Math.max(0, micros - uncertaintyMicros - referenceMicros));
+        long fromTicks = Math.max(0, reference.floor(micros - uncertaintyMicros));
         // a window past what DTRON can time (a tolerance near its maximum) reaches as far as the zones tell
-        long toTicks = Math.min(ticks.ceil(Math.min(micros + uncertaintyMicros - referenceMicros,
-                TestOptions.MAX_DURATION_MICROS)), Bound.MAX_VALUE);
+        long toTicks = Math.min(reference.ceil(Math.min(micros + uncertaintyMicros, TestOptions.MAX_DURATION_MICROS)),
+                Bound.MAX_VALUE);
         events++;
         Tracker.Node next;
         try {
-            next = tracker.step(current, ch.channel, ch.slots, ch.values, fromTicks, toTicks, uncertaintyMicros > 0);
+            next = tracker.step(current, ch.channel, ch.slots, ch.values, fromTicks, toTicks, true);
         } catch (ModelRuntimeException e) {
             throw new UnsupportedModelException("model error while following " + event + ": " + e.format());
         }
         if (!next.isEmpty()) {
             current = next;
             lastMicros = micros;
-            // an exact time is the states' time, within a tick (as the tester takes it); a time give or take is kept
-            // in the states, whose time is then the start of its window
-            referenceMicros = uncertaintyMicros == 0 ? micros : referenceMicros + ticks.micros(fromTicks);
+            // the states keep when in the window (a tick, and the clock error) the event came, as the tester's do:
+            // their time is the window's start, on the same ticks, so that no rounding adds up
+            reference = reference.plus(fromTicks);
             since = "the last event";
             return null;
         }
@@ -269,7 +271,7 @@ public final class Monitor {
         if (micros <= lastMicros) {
             return null;
         }
-        long elapsed = ticks.floor(micros - referenceMicros);
+        long elapsed = reference.floor(micros);
         try {
             if (tracker.allows(current, elapsed)) {
                 return null;
@@ -279,7 +281,7 @@ public final class Monitor {
         }
         List<SymState> reach = tracker.reach(current, elapsed);
         long deadlineTicks = Bound.value(tracker.latest(reach));
-        long deadline = referenceMicros + ticks.micros(deadlineTicks);
+        long deadline = reference.micros(deadlineTicks);
         String explanation = "no event by " + time(deadline) + ", the deadline after " + since() + ": the model "
                 + "required one of " + describe(required(allowed(elapsed), deadlineTicks)) + " by then";
         Alarm alarm = raise(Alarm.Reason.DEADLINE_MISSED, deadline, null, explanation, elapsed);
@@ -301,7 +303,7 @@ public final class Monitor {
             return true;
         }
         try {
-            return tracker.allows(current, ticks.floor(micros - referenceMicros));
+            return tracker.allows(current, reference.floor(micros));
         } catch (ModelRuntimeException e) {
             throw new UnsupportedModelException("model error while letting time pass: " + e.format());
         }
@@ -328,7 +330,7 @@ public final class Monitor {
         if (latest == Bound.INFINITY || Bound.value(latest) >= Bound.MAX_VALUE) {
             return OptionalLong.empty();
         }
-        return OptionalLong.of(referenceMicros + ticks.micros(Bound.value(latest)));
+        return OptionalLong.of(reference.micros(Bound.value(latest)));
     }
 
     /** Returns the time of the last event the monitor accepted (or of its start, or re-synchronisation). */
@@ -367,7 +369,7 @@ public final class Monitor {
             return;
         }
         lastMicros = micros;
-        referenceMicros = micros;
+        reference = Reference.at(ticks, micros);
         since = "the re-synchronisation";
     }
 
@@ -390,7 +392,7 @@ public final class Monitor {
         if (!started) {
             started = true;
             lastMicros = micros;
-            referenceMicros = micros;
+            reference = Reference.at(ticks, micros);
         }
     }
 
@@ -398,7 +400,7 @@ public final class Monitor {
         Tracker.Node atTime = tracker.afterWindow(current, fromTicks, toTicks, false);
         if (atTime.isEmpty()) {
             long deadlineTicks = Bound.value(tracker.latest(tracker.reach(current, toTicks)));
-            long deadline = referenceMicros + ticks.micros(deadlineTicks);
+            long deadline = reference.micros(deadlineTicks);
             String explanation = "no event by " + time(deadline) + ", the deadline after " + since() + ": the model "
                     + "required one of " + describe(required(allowed(toTicks), deadlineTicks)) + " by then; the next"
                     + " event, " + event
@@ -489,8 +491,8 @@ public final class Monitor {
         for (Map.Entry<String, long[]> e : windows.entrySet()) {
             long[] w = e.getValue();
             Alarm.Window k = keys.get(e.getKey());
-            out.add(new Alarm.Window(k.channel(), k.values(), referenceMicros + ticks.microsFloor(w[0]),
-                    w[1] < 0 ? -1 : referenceMicros + ticks.micros(w[1])));
+            out.add(new Alarm.Window(k.channel(), k.values(), reference.microsFloor(w[0]),
+                    w[1] < 0 ? -1 : reference.micros(w[1])));
         }
         return out;
     }
@@ -513,7 +515,7 @@ public final class Monitor {
 
     /** Whether time may pass beyond the deadline after the event of {@code w}, some time in its window before it. */
     private boolean liftsDeadline(Channel ch, Alarm.Window w, long deadlineTicks) {
-        long from = ticks.floor(Math.max(0, w.fromMicros() - referenceMicros));
+        long from = Math.max(0, reference.floor(w.fromMicros()));
         if (from > deadlineTicks) {
             return false;
         }

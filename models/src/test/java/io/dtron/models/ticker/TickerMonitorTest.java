@@ -28,8 +28,6 @@ import org.junit.jupiter.api.io.TempDir;
 class TickerMonitorTest {
     private static final String MODEL = "src/main/resources/io/dtron/models/ticker.xml";
     private static final Pattern ERROR = Pattern.compile("\"error_ns\":(\\d+)");
-    /** Ten ticks of the tester at 10,000 us per unit (1,000 ticks per unit). */
-    private static final long TESTER_TICKS_MICROS = 100;
     private static final Pattern VIOLATION = Pattern.compile("(?m)^violation 1 at t=(\\d+)\\.(\\d{3}): .*");
 
     record Run(int exit, String out, Path trace) {
@@ -46,10 +44,9 @@ class TickerMonitorTest {
     }
 
     /**
-     * Replays {@code trace} with each event's time give or take the largest clock error its bus lines carry, and
-     * ten of the tester's ticks (10 us each here): the tester takes each event's time within a tick of the last
-     * one's, so that its eager inputs may land a few ticks before the model's bound by the events' stamps, which
-     * the monitor, keeping each event's window, would see.
+     * Replays {@code trace} with each event's time give or take the largest clock error its bus lines carry, and no
+     * more: the tester and the monitor keep each event's window on the same ticks, so the tester's eager inputs
+     * keep the model's bounds by the events' stamps.
      */
     private static Run monitor(Path trace) throws Exception {
         long errorNanos = 0;
@@ -60,7 +57,7 @@ class TickerMonitorTest {
         StringWriter out = new StringWriter();
         StringWriter err = new StringWriter();
         int exit = DtronCommand.run(new String[] {"monitor", MODEL, "--replay", trace.toString(), "--tolerance",
-                String.valueOf((errorNanos + 999) / 1000 + TESTER_TICKS_MICROS)}, new PrintWriter(out),
+                String.valueOf((errorNanos + 999) / 1000)}, new PrintWriter(out),
                 new PrintWriter(err));
         assertEquals("", err.toString(), "no line rejected");
         return new Run(exit, out.toString(), trace);

@@ -19,8 +19,8 @@ import java.util.function.IntPredicate;
 import java.util.function.Predicate;
 
 /**
- * The monitor's knowledge of a closed network: sets of symbolic states at the time of the last event (the elapsed
- * clock is 0 in every zone), every channel of the interface observable and the others internal. Sets are interned
+ * The monitor's knowledge of a closed network: sets of symbolic states whose elapsed clock counts from the start of
+ * the last event's window (they keep when in it the event came), every channel of the interface observable and the others internal. Sets are interned
  * as {@link Node}s, and a node remembers where each event (channel, values, delay in ticks) took it, so that a
  * run that comes back to the same states and delays costs a hash lookup per event. Not thread-safe.
  */

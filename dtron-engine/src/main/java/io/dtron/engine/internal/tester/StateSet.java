@@ -13,8 +13,10 @@ import java.util.Deque;
 import java.util.List;
 
 /**
- * The tester's knowledge: the symbolic states the closed network may be in at the time of the last
- * observation (the elapsed clock is 0 in every zone). Immutable; every operation gives a new set.
+ * The tester's knowledge: the symbolic states the closed network may be in, the elapsed clock counting from the
+ * set's time (its reference): 0 in every zone at the time of the last observation when that time is on a tick and
+ * known exactly, else within the observation's window ({@link #within}). Immutable; every operation gives a new
+ * set.
  */
 public final class StateSet {
     /** The most states a closure may visit before the model is declared too nondeterministic to follow. */
@@ -125,24 +127,36 @@ public final class StateSet {
      * with the elapsed clock set back to 0.
      */
     public StateSet afterWindow(long fromTicks, long toTicks) {
-        return afterWindow(fromTicks, toTicks, null);
+        return afterWindow(fromTicks, toTicks, false, null);
     }
 
     /**
-     * {@link #afterWindow(long, long)}, telling {@code internalMoves} (when not null) every internal move the
-     * closure follows within the window: the moves some state may have taken (for coverage).
+     * The set after a delay somewhere in {@code [fromTicks, toTicks]} (an observation's window: its time rounded
+     * to ticks, give or take its clock error), its time the window's start: the elapsed clock is moved back by
+     * {@code fromTicks}, not set to 0, so that the zones keep when in the window each state's event came. Tells
+     * {@code internalMoves} (when not null) every internal move the closure follows within the window: the moves
+     * some state may have taken (for coverage).
      */
-    public StateSet afterWindow(long fromTicks, long toTicks,
-                                java.util.function.Consumer<Semantics.Move> internalMoves) {
+    public StateSet within(long fromTicks, long toTicks, java.util.function.Consumer<Semantics.Move> internalMoves) {
+        return afterWindow(fromTicks, toTicks, true, internalMoves);
+    }
+
+    private StateSet afterWindow(long fromTicks, long toTicks, boolean keepWhen,
+                                 java.util.function.Consumer<Semantics.Move> internalMoves) {
         int elapsed = semantics.elapsedClock();
+        int start = (int) Math.min(fromTicks, Bound.MAX_VALUE);
         Passed out = new Passed();
         // the states of reach are its own copies: changed in place
         for (SymState t : reach(toTicks, internalMoves)) {
             Dbm z = t.zone();
-            if (!z.constrain(0, elapsed, Bound.le((int) -Math.min(fromTicks, Bound.MAX_VALUE)))) {
+            if (!z.constrain(0, elapsed, Bound.le(-start))) {
                 continue;
             }
-            z.reset(elapsed, 0);
+            if (keepWhen) {
+                z.shift(elapsed, start);
+            } else {
+                z.reset(elapsed, 0);
+            }
             semantics.extrapolate(t);
             out.add(t);
         }
