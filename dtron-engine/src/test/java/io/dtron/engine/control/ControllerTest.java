@@ -163,6 +163,53 @@ class ControllerTest {
     }
 
     @Test
+    void commandsKeepTheirBoundByTheStampsWhenReadingsComeBetweenTicks() throws Exception {
+        // go when the controller's clock reaches 5 units, which only go resets; the plant reads a three times after
+        // each go, between the ticks of a millisecond: the readings must not move the controller's clock
+        Network n = ModelLoader.load("go.xta", """
+                chan i_go, o_a;
+                process Ctl() { clock e; state E; init E;
+                    trans E -> E { guard e >= 5; sync i_go!; assign e = 0; }, E -> E { sync o_a?; }; }
+                process Plant() { state S; init S; trans S -> S { sync i_go?; }, S -> S { sync o_a!; }; }
+                system Ctl, Plant;
+                """);
+        TestInterface names = TestInterface.fromNames(n);
+        long unit = 1_000_000;
+        Adapter plant = new Adapter() {
+            private AdapterContext context;
+
+            @Override
+            public void start(AdapterContext started) {
+                context = started;
+            }
+
+            @Override
+            public void perform(Event input) {
+                long now = context.clock().nowMicros();
+                for (double after : new double[] {0.3337, 1.4441, 3.7773}) {
+                    long delay = Math.round(after * unit);
+                    context.clock().schedule(delay, () -> context.report(Event.of("a"), now + delay));
+                }
+            }
+        };
+        Controller controller = new Controller(n, names, plant, TestOptions.defaults(7).withTimeUnit(unit)
+                .withTimeout(400));
+        List<Long> sent = new ArrayList<>();
+        controller.addListener(new ControlListener() {
+            @Override
+            public void commandSent(Event command, long micros) {
+                sent.add(micros);
+            }
+        });
+        ControlResult r = controller.run();
+        assertEquals(ControlResult.Outcome.COMPLETED, r.outcome(), r.toString());
+        assertTrue(sent.size() >= 70, r.toString());
+        for (int i = 1; i < sent.size(); i++) {
+            assertTrue(sent.get(i) - sent.get(i - 1) >= 5 * unit, "go at " + sent.get(i) + " after " + sent.get(i - 1));
+        }
+    }
+
+    @Test
     void aReadingOnItsWayAtTheDeadlineIsTakenAtItsTimeAndOneAfterItIsLate() throws Exception {
         Network n = model();
         TestInterface names = TestInterface.fromNames(n);

@@ -14,6 +14,7 @@ import io.dtron.engine.control.ControlPolicy;
 import io.dtron.engine.control.ControlResult;
 import io.dtron.engine.control.ModelVersion;
 import io.dtron.engine.control.SafeAction;
+import io.dtron.engine.internal.clock.Reference;
 import io.dtron.engine.internal.clock.Ticks;
 import io.dtron.engine.internal.clock.RealClock;
 import io.dtron.engine.internal.clock.RunClock;
@@ -71,7 +72,14 @@ public final class ControlLoop {
 
     private RunClock clock;
     private StateSet set;
+    /** The time of the last event, for the order of events. */
     private long lastMicros;
+    /**
+     * The time of {@link #set}, from which its elapsed clock counts: the start of the tick interval of the last
+     * event, on the ticks of the run's start, so that the set keeps when in that interval the event came and no
+     * rounding adds up from event to event (as the tester keeps it).
+     */
+    private Reference reference;
     private int commands;
     private int readings;
     private long instantMicros = -1;
@@ -105,6 +113,7 @@ public final class ControlLoop {
         use(network, testInterface);
         clock = options.virtualTime() ? new VirtualClock() : new RealClock();
         inputMargin = options.virtualTime() ? 0 : ticks.ceil(options.inputMarginMicros());
+        reference = Reference.at(ticks, 0);
         plan(); // once before time starts, so that a cold start does not eat real time
         plant.prepare();
         clock.begin(plant.timeZero());
@@ -159,7 +168,7 @@ public final class ControlLoop {
                 steerer.check(set, lastMicros, "");
             }
             Plan plan = plan();
-            long elapsed = ticks.floor(now - lastMicros);
+            long elapsed = reference.floor(now);
             long lateness = Math.max(inputMargin, ticks.ceil(2 * clock.worstLatenessMicros()));
             Plan.Choice choice = plan.choose(elapsed, random, policy == ControlPolicy.RANDOM
                             ? io.dtron.engine.DelayPolicy.RANDOM : io.dtron.engine.DelayPolicy.EAGER, 0, 0,
@@ -168,7 +177,7 @@ public final class ControlLoop {
                             + Math.max(0, plant.inputLeadMicros(input.name()))),
                     earliestCommand(),
                     steerer == null ? null : steerer.scorer());
-            long at = lastMicros + ticks.micros(choice.ticks());
+            long at = reference.micros(choice.ticks());
             boolean deadline = !choice.isInput() && plan.hasDeadline() && choice.ticks() > plan.deadline();
             long target = choice.isInput() || deadline ? at : Math.min(endMicros, at);
             RunClock.TimedEvent event = clock.awaitUntil(target);
@@ -206,6 +215,7 @@ public final class ControlLoop {
             return;
         }
         lastMicros = now;
+        reference = reference.plus(Math.max(0, reference.floor(now)));
         versions.add(version.label() + " at " + time(now));
         for (ControlListener l : listeners) {
             l.versionTaken(version.label(), now);
@@ -223,17 +233,17 @@ public final class ControlLoop {
     }
 
     private Plan plan() {
-        return Plan.of(set, semantics, partition, testInterface, unit, ticks.ceil(endMicros - lastMicros));
+        return Plan.of(set, semantics, partition, testInterface, unit, reference.ceil(endMicros));
     }
 
     /** No reading came by the plan's deadline: an alarm, unless the controller itself failed to act. */
     private ControlResult missed(Plan.Choice choice, Plan plan) {
-        long deadlineMicros = lastMicros + ticks.micros(plan.deadline());
+        long deadlineMicros = reference.micros(plan.deadline());
         String deadlineAt = time(deadlineMicros);
         if (choice.letsTimePass() && !plan.environmentLetsTimePass()
                 || plan.inputPossibleAt(plan.deadline()) && !choice.letsTimePass()) {
             return end(ControlResult.Outcome.STOPPED, "the controller sent no command by " + deadlineAt + ", when its"
-                    + " model required one: it was held up. " + plan.explainInputs(this::time, lastMicros), null, -1);
+                    + " model required one: it was held up. " + plan.explainInputs(this::time, reference.micros()), null, -1);
         }
         java.util.Optional<String> unreachable = plant.unreachable();
         if (unreachable.isPresent()) {
@@ -252,7 +262,7 @@ public final class ControlLoop {
 
     /** The readings {@code plan} allowed and the plant's state, in the controller's terms. */
     private String readings(Plan plan) {
-        return plan.explainOutputs(this::time, lastMicros).replace("The model allowed these outputs:",
+        return plan.explainOutputs(this::time, reference.micros()).replace("The model allowed these outputs:",
                 "The model allowed these readings:").replace("The model allowed no outputs then",
                 "The model allowed no readings then").replace("the implementation was in", "the plant was in");
     }
@@ -282,7 +292,8 @@ public final class ControlLoop {
                     + channel.name() + "'");
         }
         Plan before = plan();
-        StateSet atTime = set.afterWindow(ticks.floor(at - lastMicros), ticks.ceil(at - lastMicros));
+        long start = Math.max(0, reference.floor(at));
+        StateSet atTime = set.within(start, reference.ceil(at), null);
         if (atTime.isEmpty()) {
             return alarm("reading " + event + " at " + time(at) + " is too late: " + readings(before));
         }
@@ -301,6 +312,7 @@ public final class ControlLoop {
             }
             set = atTime.of(matching);
             lastMicros = at;
+            reference = reference.plus(start);
             for (ControlListener l : listeners) {
                 l.readingTaken(event, at);
             }
@@ -314,7 +326,7 @@ public final class ControlLoop {
             return alarm("the controller's model cannot take reading " + event + " at " + time(at) + ": " + refusal);
         }
         return alarm("reading " + event + " at " + time(at) + " is not allowed then"
-                + before.timing(channel.channel(), ticks.floor(at - lastMicros)) + ". "
+                + before.timing(channel.channel(), reference.floor(at)) + ". "
                 + readings(before));
     }
 
@@ -325,12 +337,13 @@ public final class ControlLoop {
             return null; // a reading came in after the drain: the loop takes it, then plans again
         }
         TestInterface.ObservableChannel channel = choice.input();
-        StateSet atTime = set.afterWindow(ticks.floor(now - lastMicros), ticks.ceil(now - lastMicros));
+        long start = Math.max(0, reference.floor(now));
+        StateSet atTime = set.within(start, reference.ceil(now), null);
         List<StateSet.Successor> moves = atTime.successors(channel.channel());
         if (moves.isEmpty()) {
             return end(ControlResult.Outcome.STOPPED, "command " + channel.name() + " could not be sent at "
                     + time(now) + ": its window had closed (the controller was held up). "
-                    + plan.explainInputs(this::time, lastMicros), null, -1);
+                    + plan.explainInputs(this::time, reference.micros()), null, -1);
         }
         StateSet.Successor chosen = moves.get(random.nextInt(moves.size()));
         Map<String, Integer> values = valuesOf(channel, chosen.state());
@@ -349,6 +362,7 @@ public final class ControlLoop {
         }
         set = atTime.of(next);
         lastMicros = now;
+        reference = reference.plus(start);
         commands++;
         countInstant(now);
         for (ControlListener l : listeners) {
@@ -390,7 +404,7 @@ public final class ControlLoop {
         if (commandsAtInstant < OnlineTester.MAX_INPUTS_AT_ONE_INSTANT) {
             return 0;
         }
-        return Math.max(1, ticks.ceil(instantMicros + unit - lastMicros));
+        return Math.max(1, reference.ceil(instantMicros + unit));
     }
 
     private void countInstant(long micros) {

@@ -119,15 +119,7 @@ public final class StateSet {
 
     /** The set after exactly {@code deltaTicks} without observation (empty if time cannot pass that far). */
     public StateSet after(long deltaTicks) {
-        return afterWindow(deltaTicks, deltaTicks);
-    }
-
-    /**
-     * The set after a delay somewhere in {@code [fromTicks, toTicks]} (an observation's uncertainty window),
-     * with the elapsed clock set back to 0.
-     */
-    public StateSet afterWindow(long fromTicks, long toTicks) {
-        return afterWindow(fromTicks, toTicks, false, null);
+        return afterWindow(deltaTicks, deltaTicks, false, null);
     }
 
     /**
