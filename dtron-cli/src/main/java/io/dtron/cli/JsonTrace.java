@@ -22,17 +22,16 @@ import java.util.Map;
 import java.util.function.Consumer;
 
 /**
- * Writes a run as JSON lines: a {@code start} line with the seed and settings, one line per input and output
- * with its time (an output with the window the model allowed it in, {@code allowed_from_us} to {@code
- * allowed_until_us}, -1 for the end of the test; an input at the time the tester placed it, which is when its
- * adapter reported it applied, with {@code sent_us} when that was later than the tester sent it), a {@code due} line when the deadline of the next output changes
- * (the time by which the model requires an output while the tester waits for it, -1 when it waits for something
- * else), an {@code edges} line for each of them once the tester has committed to it (the edges it took for certain
- * and possibly), a {@code coverage}
- * line with what the run covered (the coverage file's object, on one line), and the {@code verdict} line. In
- * virtual time the same seed gives the same file, byte for byte. On
- * the bus, a {@code bus} line for every message on the bus while the run lasts, in the bus's order, with its sender's
- * stamps and its receive time: the global trace, the same order at every member.
+ * Writes a run as JSON lines: a {@code start} line with the seed and settings, one line per input and output with its
+ * time (an output with the window the model allowed it in, {@code allowed_from_us} to {@code allowed_until_us}, -1 for
+ * the end of the test; an input at the time the tester placed it, which is when its adapter reported it applied, with
+ * {@code sent_us} when that was later than the tester sent it), a {@code due} line when the deadline of the next output
+ * changes (the time by which the model requires an output while the tester waits for it, -1 when it waits for something
+ * else), an {@code edges} line for each of them once the tester has committed to it (the edges it took for certain and
+ * possibly), a {@code coverage} line with what the run covered (the coverage file's object, on one line), and the
+ * {@code verdict} line. In virtual time the same seed gives the same file, byte for byte. On the bus, a {@code bus}
+ * line for every message on the bus while the run lasts, in the bus's order, with its sender's stamps and its receive
+ * time: the global trace, the same order at every member.
  *
  * <p>A trace may be bounded ({@code --trace-max-size}): the whole file stays within the bound. The lines of events
  * that would take it past the bound are left out, and at the end the last events written give way to the lines that

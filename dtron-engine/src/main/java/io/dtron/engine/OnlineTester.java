@@ -1060,7 +1060,7 @@ public final class OnlineTester {
                 lastStep = coverage.step(set.states(), taken);
                 set = atTime.of(matching);
                 lastMicros = at;
-                reference = reference.plus(windowStart(at, uncertainty));
+                reference = reference.plus(reference.windowStart(at - uncertainty));
                 lastTaken = "output " + event + " at " + time(at) + " was taken as " + edgesTaken(channel, event, moves);
                 return null;
             }
@@ -1139,16 +1139,12 @@ public final class OnlineTester {
         /**
          * The state set at {@code at}, give or take {@code uncertainty} microseconds (but not before the set's time):
          * every state the model can be in at some time of that interval, each keeping when in it (the set's time is
-         * then {@link #windowStart} after {@link #reference}).
+         * then the window's start after {@link #reference}).
          */
         private StateSet afterDelay(long at, long uncertainty) {
             coverage.begin();
-            return set.within(windowStart(at, uncertainty), reference.ceil(at + uncertainty), coverage.internalMoves());
-        }
-
-        /** The first tick, after {@link #reference}, of the window of {@code at} give or take {@code uncertainty}. */
-        private long windowStart(long at, long uncertainty) {
-            return Math.max(0, reference.floor(at - uncertainty));
+            return set.within(reference.windowStart(at - uncertainty), reference.ceil(at + uncertainty),
+                    coverage.internalMoves());
         }
 
         /** The distinct edges of {@code moves} whose values match {@code event}, for explanations. */
@@ -1198,7 +1194,8 @@ public final class OnlineTester {
                         + Plan.units(p.micros - p.sentMicros, unit) + " time units later." : "";
                 return result(Verdict.INCONCLUSIVE, "input " + p.event + " was executed at " + time(p.micros)
                         + ", when the environment no longer allowed it, after the events that happened before it"
-                        + " (input executed too late)." + late + " " + plan().explainInputs(this::time, reference.micros()));
+                        + " (input executed too late)." + late + " "
+                        + plan().explainInputs(this::time, reference.micros()));
             }
             // allowed within the clocks' error of where it was applied, but not there: it may have come too late
             p.doubtful = p.uncertainty > 0;
@@ -1209,7 +1206,7 @@ public final class OnlineTester {
             lastStep = coverage.step(set.states(), taken);
             set = atTime.of(next);
             lastMicros = p.micros;
-            reference = reference.plus(windowStart(p.micros, p.uncertainty));
+            reference = reference.plus(reference.windowStart(p.micros - p.uncertainty));
             return null;
         }
 
@@ -1260,7 +1257,7 @@ public final class OnlineTester {
             Recorder.Step step = coverage.step(set.states(), taken);
             set = atTime.of(next);
             lastMicros = now;
-            reference = reference.plus(windowStart(now, 0));
+            reference = reference.plus(reference.windowStart(now));
             lastTaken = null;
             Pending p = new Pending(event, true, ++performed, now);
             p.ahead = ahead;

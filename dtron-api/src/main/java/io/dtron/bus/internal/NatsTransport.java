@@ -343,7 +343,9 @@ public final class NatsTransport implements Transport {
                 continue; // still reading the messages before the join
             }
             throw new IOException("this member's join did not come back from stream " + settings.streamName()
-                    + " within " + CONNECT_TIMEOUT_MILLIS + " ms" + (dropped == null ? ""
+                    + " within " + CONNECT_TIMEOUT_MILLIS + " ms" + (learning
+                            ? " of the last earlier message the stream delivered (or of connecting, if none came)" : "")
+                    + (dropped == null ? ""
                     : "; it dropped its own messages as " + dropped.name().toLowerCase(java.util.Locale.ROOT)
                     + (dropped == DropReason.STALE ? " (this machine's clock is more than 120 s from the NATS"
                             + " server's)" : "")));

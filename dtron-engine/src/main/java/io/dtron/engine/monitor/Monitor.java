@@ -223,7 +223,7 @@ public final class Monitor {
             throw new IllegalArgumentException("event " + event + " at " + time(micros) + " comes before the last one,"
                     + " at " + time(lastMicros));
         }
-        long fromTicks = Math.max(0, reference.floor(micros - uncertaintyMicros));
+        long fromTicks = reference.windowStart(micros - uncertaintyMicros);
         // a window past what DTRON can time (a tolerance near its maximum) reaches as far as the zones tell
         long toTicks = Math.min(reference.ceil(Math.min(micros + uncertaintyMicros, TestOptions.MAX_DURATION_MICROS)),
                 Bound.MAX_VALUE);
@@ -515,7 +515,7 @@ public final class Monitor {
 
     /** Whether time may pass beyond the deadline after the event of {@code w}, some time in its window before it. */
     private boolean liftsDeadline(Channel ch, Alarm.Window w, long deadlineTicks) {
-        long from = Math.max(0, reference.floor(w.fromMicros()));
+        long from = reference.windowStart(w.fromMicros());
         if (from > deadlineTicks) {
             return false;
         }

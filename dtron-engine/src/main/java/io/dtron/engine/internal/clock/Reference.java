@@ -20,6 +20,14 @@ public record Reference(Ticks ticks, long baseMicros, long offsetTicks) {
         return ticks.floor(micros - baseMicros) - offsetTicks;
     }
 
+    /**
+     * The first tick of a window that begins at {@code micros}: the last tick at or before it, counted from the
+     * reference, and not before the reference (0), where the time of the state set it is measured from starts.
+     */
+    public long windowStart(long micros) {
+        return Math.max(0, floor(micros));
+    }
+
     /** The first tick at or after {@code micros}, counted from the reference. */
     public long ceil(long micros) {
         return ticks.ceil(micros - baseMicros) - offsetTicks;

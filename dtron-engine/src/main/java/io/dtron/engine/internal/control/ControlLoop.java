@@ -215,7 +215,7 @@ public final class ControlLoop {
             return;
         }
         lastMicros = now;
-        reference = reference.plus(Math.max(0, reference.floor(now)));
+        reference = reference.plus(reference.windowStart(now));
         versions.add(version.label() + " at " + time(now));
         for (ControlListener l : listeners) {
             l.versionTaken(version.label(), now);
@@ -243,7 +243,8 @@ public final class ControlLoop {
         if (choice.letsTimePass() && !plan.environmentLetsTimePass()
                 || plan.inputPossibleAt(plan.deadline()) && !choice.letsTimePass()) {
             return end(ControlResult.Outcome.STOPPED, "the controller sent no command by " + deadlineAt + ", when its"
-                    + " model required one: it was held up. " + plan.explainInputs(this::time, reference.micros()), null, -1);
+                    + " model required one: it was held up. " + plan.explainInputs(this::time, reference.micros()),
+                    null, -1);
         }
         java.util.Optional<String> unreachable = plant.unreachable();
         if (unreachable.isPresent()) {
@@ -292,7 +293,7 @@ public final class ControlLoop {
                     + channel.name() + "'");
         }
         Plan before = plan();
-        long start = Math.max(0, reference.floor(at));
+        long start = reference.windowStart(at);
         StateSet atTime = set.within(start, reference.ceil(at), null);
         if (atTime.isEmpty()) {
             return alarm("reading " + event + " at " + time(at) + " is too late: " + readings(before));
@@ -337,7 +338,7 @@ public final class ControlLoop {
             return null; // a reading came in after the drain: the loop takes it, then plans again
         }
         TestInterface.ObservableChannel channel = choice.input();
-        long start = Math.max(0, reference.floor(now));
+        long start = reference.windowStart(now);
         StateSet atTime = set.within(start, reference.ceil(now), null);
         List<StateSet.Successor> moves = atTime.successors(channel.channel());
         if (moves.isEmpty()) {

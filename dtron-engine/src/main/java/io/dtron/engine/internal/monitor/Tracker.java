@@ -19,10 +19,10 @@ import java.util.function.IntPredicate;
 import java.util.function.Predicate;
 
 /**
- * The monitor's knowledge of a closed network: sets of symbolic states whose elapsed clock counts from the start of
- * the last event's window (they keep when in it the event came), every channel of the interface observable and the others internal. Sets are interned
- * as {@link Node}s, and a node remembers where each event (channel, values, delay in ticks) took it, so that a
- * run that comes back to the same states and delays costs a hash lookup per event. Not thread-safe.
+ * The monitor's knowledge of a closed network: sets of symbolic states whose elapsed clock counts from the start of the
+ * last event's window (they keep when in it the event came), every channel of the interface observable and the others
+ * internal. Sets are interned as {@link Node}s, and a node remembers where each event (channel, values, delay in ticks)
+ * took it, so that a run that comes back to the same states and delays costs a hash lookup per event. Not thread-safe.
  */
 public final class Tracker {
     /**
